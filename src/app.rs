@@ -1,0 +1,101 @@
+//! One run of an input file: read, solve, evaluate the check rules, write the outputs.
+//! Shared by the `hertz` binary and the integration tests.
+
+use crate::error::{Error, Result};
+use crate::input::read_model;
+use crate::output::{check, outfile, vtu, write_atomic};
+use crate::solve::{run_analysis, SolveParams};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// What to do besides solving.
+#[derive(Debug, Clone, Default)]
+pub struct RunOptions {
+    /// Write the `.out`, `.vtu` and `.pvd` files (else only evaluate the rules).
+    pub write_outputs: bool,
+    /// Directory for the outputs; default: next to the input file.
+    pub out_dir: Option<PathBuf>,
+    /// One log line per step on stderr.
+    pub log_steps: bool,
+}
+
+/// What a run produced.
+#[derive(Debug, Default)]
+pub struct RunReport {
+    pub warnings: Vec<String>,
+    /// Whether the input has an `errorcheck` module.
+    pub has_errorcheck: bool,
+    pub outcomes: Vec<check::Outcome>,
+    pub written: Vec<PathBuf>,
+}
+
+impl RunReport {
+    pub fn n_failed(&self) -> usize {
+        self.outcomes.iter().filter(|o| !o.passed).count()
+    }
+}
+
+/// Read, solve and check `path`. Warnings are collected in the report (and, on a reader error,
+/// lost with it: the error says what matters).
+pub fn run_file(path: &Path, opts: &RunOptions) -> Result<RunReport> {
+    let clock = Instant::now();
+    let read = read_model(path)?;
+    let model = read.model;
+    let mut report = RunReport { warnings: read.warnings, has_errorcheck: model.analysis.errorcheck, ..Default::default() };
+    let rules = if model.analysis.errorcheck {
+        let raw = std::fs::read(path).map_err(|e| Error::InputFile { file: path.display().to_string(), msg: e.to_string() })?;
+        let (rules, w) = check::parse_rules(&String::from_utf8_lossy(&raw));
+        report.warnings.extend(w.into_iter().map(|m| format!("{}: {m}", path.display())));
+        let nsteps = model.step_times().len();
+        for r in rules.iter().filter(|r| r.step == 0 || r.step > nsteps) {
+            report.warnings.push(format!(
+                "{}:{}: check rule for step {} never applies (the analysis has {nsteps} steps)",
+                path.display(),
+                r.line,
+                r.step
+            ));
+        }
+        rules
+    } else {
+        Vec::new()
+    };
+    let dir = match &opts.out_dir {
+        Some(d) => d.clone(),
+        None => path.parent().map(Path::to_path_buf).unwrap_or_else(|| PathBuf::from(".")),
+    };
+    let out_name = if model.output_name.is_empty() { "hertz.out".to_string() } else { model.output_name.clone() };
+    let stem = Path::new(&out_name).file_stem().and_then(|s| s.to_str()).unwrap_or("hertz").to_string();
+    if opts.write_outputs {
+        std::fs::create_dir_all(&dir).map_err(|e| Error::Output(format!("cannot create {}: {e}", dir.display())))?;
+    }
+    let mut out_text = outfile::header(&model);
+    let mut vtus: Vec<(f64, String)> = Vec::new();
+    let params = SolveParams { log_steps: opts.log_steps, ..Default::default() };
+    let result = run_analysis(&model, &params, |res| {
+        report.outcomes.extend(check::evaluate_step(&model, &rules, res));
+        if opts.write_outputs {
+            if model.output.step(res.step) {
+                out_text.push_str(&outfile::step_block(&model, res));
+            }
+            let name = vtu::write_step(&model, res, &dir, &stem)?;
+            report.written.push(dir.join(&name));
+            vtus.push((res.time, name));
+        }
+        Ok(())
+    });
+    if opts.write_outputs {
+        if let Err(e) = &result {
+            out_text.push_str(&format!("\nAnalysis stopped: {e}\n"));
+        }
+        out_text.push_str(&outfile::footer(clock.elapsed().as_secs_f64()));
+        let out_path = dir.join(&out_name);
+        write_atomic(&out_path, out_text.as_bytes())?;
+        report.written.push(out_path);
+        if !vtus.is_empty() {
+            vtu::write_collection(&dir, &stem, &vtus)?;
+            report.written.push(dir.join(format!("{stem}.pvd")));
+        }
+    }
+    result?;
+    Ok(report)
+}

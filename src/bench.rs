@@ -1,0 +1,4 @@
+//! `hertz bench`: placeholder replaced below.
+pub fn main(_args: &[String]) -> std::process::ExitCode {
+    std::process::ExitCode::from(2)
+}

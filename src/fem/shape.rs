@@ -1,0 +1,252 @@
+//! Shape functions in OOFEM's node orderings (spec §1.9) and the element boundaries.
+
+/// Reference element shapes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Shape {
+    /// 2 nodes on ξ ∈ [−1, 1].
+    Line2,
+    /// 3 nodes on ξ ∈ [−1, 1]: ends then middle (edge of an 8-node quad).
+    Line3,
+    /// N = (ξ, η, 1−ξ−η).
+    Tri3,
+    /// Node 1 at (+1,+1), 2 (−1,+1), 3 (−1,−1), 4 (+1,−1).
+    Quad4,
+    /// Corners as Quad4, mid-side 5 (1–2), 6 (2–3), 7 (3–4), 8 (4–1).
+    Quad8,
+    /// N = (ξ, η, ζ, 1−ξ−η−ζ).
+    Tet4,
+    /// Nodes 1..8 at (−1,−1,+1), (−1,+1,+1), (+1,+1,+1), (+1,−1,+1), then the same at ζ = −1.
+    Hexa8,
+    /// N₁..₃ = ½(1−w)(1−u−v, u, v), N₄..₆ = ½(1+w)(1−u−v, u, v).
+    Wedge6,
+}
+
+const QUAD4_NODES: [[f64; 2]; 4] = [[1.0, 1.0], [-1.0, 1.0], [-1.0, -1.0], [1.0, -1.0]];
+const QUAD8_NODES: [[f64; 2]; 8] =
+    [[1.0, 1.0], [-1.0, 1.0], [-1.0, -1.0], [1.0, -1.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0], [1.0, 0.0]];
+const HEXA8_NODES: [[f64; 3]; 8] = [
+    [-1.0, -1.0, 1.0],
+    [-1.0, 1.0, 1.0],
+    [1.0, 1.0, 1.0],
+    [1.0, -1.0, 1.0],
+    [-1.0, -1.0, -1.0],
+    [-1.0, 1.0, -1.0],
+    [1.0, 1.0, -1.0],
+    [1.0, -1.0, -1.0],
+];
+
+impl Shape {
+    /// Dimension of the reference domain.
+    pub fn dim(self) -> usize {
+        match self {
+            Shape::Line2 | Shape::Line3 => 1,
+            Shape::Tri3 | Shape::Quad4 | Shape::Quad8 => 2,
+            Shape::Tet4 | Shape::Hexa8 | Shape::Wedge6 => 3,
+        }
+    }
+
+    pub fn n_nodes(self) -> usize {
+        match self {
+            Shape::Line2 => 2,
+            Shape::Line3 | Shape::Tri3 => 3,
+            Shape::Quad4 | Shape::Tet4 => 4,
+            Shape::Wedge6 => 6,
+            Shape::Quad8 | Shape::Hexa8 => 8,
+        }
+    }
+
+    /// Evaluate N_a(ξ) into `n` and ∂N_a/∂ξ_k into `dn[a][k]`.
+    pub fn eval(self, xi: [f64; 3], n: &mut [f64], dn: &mut [[f64; 3]]) {
+        let [x, y, z] = xi;
+        match self {
+            Shape::Line2 => {
+                n[0] = 0.5 * (1.0 - x);
+                n[1] = 0.5 * (1.0 + x);
+                dn[0] = [-0.5, 0.0, 0.0];
+                dn[1] = [0.5, 0.0, 0.0];
+            }
+            Shape::Line3 => {
+                n[0] = 0.5 * x * (x - 1.0);
+                n[1] = 0.5 * x * (x + 1.0);
+                n[2] = 1.0 - x * x;
+                dn[0] = [x - 0.5, 0.0, 0.0];
+                dn[1] = [x + 0.5, 0.0, 0.0];
+                dn[2] = [-2.0 * x, 0.0, 0.0];
+            }
+            Shape::Tri3 => {
+                n[0] = x;
+                n[1] = y;
+                n[2] = 1.0 - x - y;
+                dn[0] = [1.0, 0.0, 0.0];
+                dn[1] = [0.0, 1.0, 0.0];
+                dn[2] = [-1.0, -1.0, 0.0];
+            }
+            Shape::Quad4 => {
+                for (a, p) in QUAD4_NODES.iter().enumerate() {
+                    n[a] = 0.25 * (1.0 + p[0] * x) * (1.0 + p[1] * y);
+                    dn[a] = [0.25 * p[0] * (1.0 + p[1] * y), 0.25 * p[1] * (1.0 + p[0] * x), 0.0];
+                }
+            }
+            Shape::Quad8 => {
+                for (a, p) in QUAD8_NODES.iter().enumerate() {
+                    let (px, py) = (p[0], p[1]);
+                    if a < 4 {
+                        let s = px * x + py * y - 1.0;
+                        n[a] = 0.25 * (1.0 + px * x) * (1.0 + py * y) * s;
+                        dn[a] = [
+                            0.25 * px * (1.0 + py * y) * (s + 1.0 + px * x),
+                            0.25 * py * (1.0 + px * x) * (s + 1.0 + py * y),
+                            0.0,
+                        ];
+                    } else if px == 0.0 {
+                        n[a] = 0.5 * (1.0 - x * x) * (1.0 + py * y);
+                        dn[a] = [-x * (1.0 + py * y), 0.5 * py * (1.0 - x * x), 0.0];
+                    } else {
+                        n[a] = 0.5 * (1.0 + px * x) * (1.0 - y * y);
+                        dn[a] = [0.5 * px * (1.0 - y * y), -y * (1.0 + px * x), 0.0];
+                    }
+                }
+            }
+            Shape::Tet4 => {
+                n[0] = x;
+                n[1] = y;
+                n[2] = z;
+                n[3] = 1.0 - x - y - z;
+                dn[0] = [1.0, 0.0, 0.0];
+                dn[1] = [0.0, 1.0, 0.0];
+                dn[2] = [0.0, 0.0, 1.0];
+                dn[3] = [-1.0, -1.0, -1.0];
+            }
+            Shape::Hexa8 => {
+                for (a, p) in HEXA8_NODES.iter().enumerate() {
+                    let (fx, fy, fz) = (1.0 + p[0] * x, 1.0 + p[1] * y, 1.0 + p[2] * z);
+                    n[a] = 0.125 * fx * fy * fz;
+                    dn[a] = [0.125 * p[0] * fy * fz, 0.125 * p[1] * fx * fz, 0.125 * p[2] * fx * fy];
+                }
+            }
+            Shape::Wedge6 => {
+                let tri = [1.0 - x - y, x, y];
+                let dtri = [[-1.0, -1.0], [1.0, 0.0], [0.0, 1.0]];
+                for i in 0..3 {
+                    for (half, s) in [(0usize, -1.0f64), (3, 1.0)] {
+                        let a = i + half;
+                        let fz = 0.5 * (1.0 + s * z);
+                        n[a] = fz * tri[i];
+                        dn[a] = [fz * dtri[i][0], fz * dtri[i][1], 0.5 * s * tri[i]];
+                    }
+                }
+            }
+        }
+    }
+
+    /// Local node lists of the element boundaries (edges in 2D, faces in 3D), 1-based numbering
+    /// as in OOFEM (spec §1.9). Quad8 edges list (first corner, second corner, mid-side).
+    pub fn boundaries(self) -> &'static [&'static [usize]] {
+        match self {
+            Shape::Line2 | Shape::Line3 => &[&[0], &[1]],
+            Shape::Tri3 => &[&[0, 1], &[1, 2], &[2, 0]],
+            Shape::Quad4 => &[&[0, 1], &[1, 2], &[2, 3], &[3, 0]],
+            Shape::Quad8 => &[&[0, 1, 4], &[1, 2, 5], &[2, 3, 6], &[3, 0, 7]],
+            Shape::Tet4 => &[&[0, 2, 1], &[0, 1, 3], &[1, 2, 3], &[0, 3, 2]],
+            Shape::Hexa8 => &[
+                &[0, 3, 2, 1],
+                &[4, 5, 6, 7],
+                &[0, 1, 5, 4],
+                &[1, 2, 6, 5],
+                &[2, 3, 7, 6],
+                &[3, 0, 4, 7],
+            ],
+            Shape::Wedge6 => &[&[0, 1, 2], &[3, 4, 5], &[0, 1, 4, 3], &[1, 2, 5, 4], &[2, 0, 3, 5]],
+        }
+    }
+
+    /// Edges of 3D elements (used by `elementedges` on 3D elements); 2D: same as boundaries.
+    pub fn edges(self) -> &'static [&'static [usize]] {
+        match self {
+            Shape::Tet4 => &[&[0, 1], &[1, 2], &[2, 0], &[0, 3], &[1, 3], &[2, 3]],
+            Shape::Hexa8 => &[
+                &[0, 1],
+                &[1, 2],
+                &[2, 3],
+                &[3, 0],
+                &[4, 5],
+                &[5, 6],
+                &[6, 7],
+                &[7, 4],
+                &[0, 4],
+                &[1, 5],
+                &[2, 6],
+                &[3, 7],
+            ],
+            Shape::Wedge6 => &[&[0, 1], &[1, 2], &[2, 0], &[3, 4], &[4, 5], &[5, 3], &[0, 3], &[1, 4], &[2, 5]],
+            s => s.boundaries(),
+        }
+    }
+
+    /// Shape of a boundary with `n` nodes of this element.
+    pub fn boundary_shape(self, n: usize) -> Shape {
+        match (self.dim(), n) {
+            (2, 2) | (3, 2) => Shape::Line2,
+            (2, 3) => Shape::Line3,
+            (3, 3) => Shape::Tri3,
+            (3, 4) => Shape::Quad4,
+            _ => Shape::Line2,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const ALL: [Shape; 8] =
+        [Shape::Line2, Shape::Line3, Shape::Tri3, Shape::Quad4, Shape::Quad8, Shape::Tet4, Shape::Hexa8, Shape::Wedge6];
+
+    #[test]
+    fn shape_functions_sum_to_one_and_derivatives_to_zero() {
+        for s in ALL {
+            let mut n = [0.0; 8];
+            let mut dn = [[0.0; 3]; 8];
+            s.eval([0.21, 0.33, -0.4], &mut n, &mut dn);
+            let m = s.n_nodes();
+            assert!((n[..m].iter().sum::<f64>() - 1.0).abs() < 1e-14, "{s:?}");
+            for k in 0..3 {
+                assert!(dn[..m].iter().map(|d| d[k]).sum::<f64>().abs() < 1e-14, "{s:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn shape_derivatives_match_finite_differences() {
+        for s in ALL {
+            let xi = [0.17, 0.23, 0.31];
+            let (mut n0, mut n1, mut dn) = ([0.0; 8], [0.0; 8], [[0.0; 3]; 8]);
+            s.eval(xi, &mut n0, &mut dn);
+            let h = 1e-6;
+            for k in 0..s.dim() {
+                let (mut xp, mut xm) = (xi, xi);
+                xp[k] += h;
+                xm[k] -= h;
+                let mut d = [[0.0; 3]; 8];
+                s.eval(xp, &mut n1, &mut d);
+                let mut nm = [0.0; 8];
+                s.eval(xm, &mut nm, &mut d);
+                for a in 0..s.n_nodes() {
+                    let fd = (n1[a] - nm[a]) / (2.0 * h);
+                    assert!((fd - dn[a][k]).abs() < 1e-8, "{s:?} node {a} dir {k}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn quad_nodes_are_kronecker() {
+        for (a, p) in QUAD8_NODES.iter().enumerate() {
+            let (mut n, mut dn) = ([0.0; 8], [[0.0; 3]; 8]);
+            Shape::Quad8.eval([p[0], p[1], 0.0], &mut n, &mut dn);
+            for (b, v) in n.iter().enumerate() {
+                assert!((v - if a == b { 1.0 } else { 0.0 }).abs() < 1e-14);
+            }
+        }
+    }
+}

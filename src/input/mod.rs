@@ -1,0 +1,7 @@
+//! OOFEM text input: lexer with line numbers -> records -> [`Model`](crate::model::Model).
+
+pub mod lexer;
+pub mod reader;
+pub mod record;
+
+pub use reader::{read_model, ReadResult};

@@ -1,0 +1,815 @@
+//! Builds a [`Model`] from the records of an OOFEM input file in the order of spec §1.2,
+//! checking counts, record numbers and every cross reference.
+
+use super::lexer::{read_lines, Line};
+use super::record::Record;
+use crate::error::{Error, Result};
+use crate::model::*;
+use std::collections::HashMap;
+use std::path::Path;
+
+/// The model and the warnings met while reading it.
+pub struct ReadResult {
+    pub model: Model,
+    pub warnings: Vec<String>,
+}
+
+const SUPPORTED_ANALYSES: &str = "LinearStatic, NonLinearStatic, StaticStructural";
+const SUPPORTED_BCS: &str = "BoundaryCondition, NodalLoad, ConstantEdgeLoad, ConstantSurfaceLoad, DeadWeight";
+const CONTACT_BCS: [&str; 4] =
+    ["n2npenaltycontact", "n2nlagrangianmultipliercontact", "n2spenaltycontact", "n2slagrangianmultipliercontact"];
+
+struct Cursor {
+    lines: Vec<Line>,
+    pos: usize,
+    file: String,
+    warnings: Vec<String>,
+}
+
+impl Cursor {
+    fn next(&mut self, what: &str) -> Result<Record> {
+        let Some(line) = self.lines.get(self.pos).cloned() else {
+            return Err(Error::InputFile {
+                file: self.file.clone(),
+                msg: format!("unexpected end of file: expected {what}"),
+            });
+        };
+        self.pos += 1;
+        Ok(Record::new(line))
+    }
+
+    fn peek_keyword(&self) -> Option<String> {
+        self.lines.get(self.pos).map(|l| Record::new(l.clone()).tokens.first().cloned().unwrap_or_default())
+    }
+
+    /// Warn about tokens no lookup consumed (misspelled optional keywords).
+    fn finish(&mut self, r: &Record) {
+        let unread = r.unread();
+        if !unread.is_empty() {
+            self.warnings.push(format!(
+                "{}:{}: unread token(s) `{}` in record `{}` (misspelled keyword?)",
+                r.line.file.display(),
+                r.line.line,
+                unread.join(" "),
+                r.keyword()
+            ));
+        }
+    }
+}
+
+/// Numbered records (materials, sets, ...) must be numbered 1..=count, each once.
+struct Numbered<T> {
+    what: &'static str,
+    items: Vec<Option<T>>,
+}
+
+impl<T> Numbered<T> {
+    fn new(what: &'static str, count: usize) -> Self {
+        Numbered { what, items: (0..count).map(|_| None).collect() }
+    }
+    fn put(&mut self, r: &Record, value: T) -> Result<()> {
+        let n = r.number()?;
+        let count = self.items.len();
+        let slot = self.items.get_mut(n - 1).ok_or_else(|| {
+            r.error(format!("{} number {n} is out of range 1..{count} (the counts record declares {count})", self.what))
+        })?;
+        if slot.is_some() {
+            return Err(r.error(format!("{} number {n} is defined twice", self.what)));
+        }
+        *slot = Some(value);
+        Ok(())
+    }
+    fn finish(self) -> Vec<T> {
+        self.items.into_iter().map(|x| x.expect("all slots filled: count records read")).collect()
+    }
+}
+
+/// Read and check an OOFEM input file.
+pub fn read_model(path: &Path) -> Result<ReadResult> {
+    let lines = read_lines(path)?;
+    let file = path.display().to_string();
+    if lines.len() < 2 {
+        return Err(Error::InputFile {
+            file,
+            msg: "file is truncated: it needs an output file name line, a description line and records".into(),
+        });
+    }
+    let output_name = lines[0].text.trim().to_string();
+    let description = lines[1].text.trim_end().to_string();
+    let mut c = Cursor { lines: lines[2..].to_vec(), pos: 0, file: file.clone(), warnings: Vec::new() };
+
+    // Engineering model record.
+    let r = c.next("the engineering-model record (e.g. StaticStructural nsteps 1)")?;
+    let (mut analysis, nmodules, ninit, nmonitors) = read_analysis(&r)?;
+    c.finish(&r);
+    for i in 0..ninit {
+        let r = c.next(&format!("init module record {} of {ninit}", i + 1))?;
+        c.warnings.push(format!("{}:{}: init module `{}` ignored", file, r.line.line, r.keyword()));
+    }
+    for i in 0..nmodules {
+        let r = c.next(&format!("export module record {} of {nmodules}", i + 1))?;
+        if r.keyword() == "errorcheck" {
+            analysis.errorcheck = true;
+        } else {
+            c.warnings.push(format!("{}:{}: export module `{}` ignored", file, r.line.line, r.keyword()));
+        }
+    }
+    for i in 0..nmonitors {
+        let r = c.next(&format!("monitor record {} of {nmonitors}", i + 1))?;
+        c.warnings.push(format!("{}:{}: monitor `{}` ignored", file, r.line.line, r.keyword()));
+    }
+
+    // Domain record.
+    let r = c.next("the domain record (e.g. domain 2dPlaneStress)")?;
+    let domain = read_domain(&r)?;
+    c.finish(&r);
+
+    // Output manager.
+    let r = c.next("the OutputManager record")?;
+    if r.keyword() != "outputmanager" {
+        return Err(r.error(format!("expected the OutputManager record, found `{}`", r.keyword())));
+    }
+    let output = OutputSelection {
+        tstep_all: r.flag("tstep_all"),
+        tstep_step: r.opt_usize("tstep_step")?,
+        tsteps_out: r.opt_range_list("tsteps_out")?.unwrap_or_default(),
+        dofman_all: r.flag("dofman_all"),
+        dofman_output: r.opt_range_list("dofman_output")?.unwrap_or_default(),
+        dofman_except: r.opt_range_list("dofman_except")?.unwrap_or_default(),
+        element_all: r.flag("element_all"),
+        element_output: r.opt_range_list("element_output")?.unwrap_or_default(),
+        element_except: r.opt_range_list("element_except")?.unwrap_or_default(),
+    };
+    c.finish(&r);
+
+    // Counts record.
+    let r = c.next("the counts record (ndofman nelem ncrosssect nmat nbc nic nltf ...)")?;
+    r.keyword();
+    let ndofman = r.usize("ndofman")?;
+    let nelem = r.usize("nelem")?;
+    let ncs = r.usize("ncrosssect")?;
+    let nmat = r.usize("nmat")?;
+    let nbc = r.usize("nbc")?;
+    let nic = r.usize("nic")?;
+    let nltf = r.usize("nltf")?;
+    let nset = r.opt_usize("nset")?.unwrap_or(0);
+    let ncontactseg = r.opt_usize("ncontactseg")?.unwrap_or(0);
+    for k in ["nsd", "nbarrier", "nxfemman", "ncontactman", "nfracman", "ncontactsurf"] {
+        if r.opt_usize(k)?.unwrap_or(0) > 0 && k != "nsd" {
+            return Err(r.error(format!("`{k}` > 0 is not supported by hertz")));
+        }
+    }
+    r.flag("axisymm");
+    c.finish(&r);
+
+    // Nodes.
+    let mut nodes = Vec::with_capacity(ndofman);
+    let mut node_index: HashMap<usize, usize> = HashMap::new();
+    let mut slave_masters: Vec<(usize, Vec<i64>, Option<Vec<f64>>, Record)> = Vec::new();
+    for i in 0..ndofman {
+        let r = c.next(&format!("node record {} of {ndofman} (ndofman {ndofman})", i + 1))?;
+        let kw = r.keyword().to_string();
+        if kw != "node" && kw != "slavenode" {
+            return Err(r.error(format!(
+                "expected node record {} of {ndofman} (Node or SlaveNode), found `{kw}`: is ndofman too large?",
+                i + 1
+            )));
+        }
+        let label = r.number()?;
+        let coords = r.float_array("coords")?;
+        if coords.is_empty() || coords.len() > 3 {
+            return Err(r.error(format!("`coords` needs 1 to 3 values, found {}", coords.len())));
+        }
+        for k in ["bc", "load", "lcs", "dofidmask"] {
+            if r.flag(k) {
+                return Err(r.error(format!("node keyword `{k}` is not supported; use sets and BC records")));
+            }
+        }
+        let mut x = [0.0; 3];
+        x[..coords.len()].copy_from_slice(&coords);
+        if node_index.insert(label, i).is_some() {
+            return Err(r.error(format!("node label {label} is used twice")));
+        }
+        if kw == "slavenode" {
+            let masters = r.int_array("masterdofman")?;
+            let weights = r.opt_float_array("weights")?;
+            r.opt_int_array("doftype")?;
+            slave_masters.push((i, masters, weights, Record::new(r.line.clone())));
+        }
+        nodes.push(Node { label, coords: x, ncoords: coords.len(), slave: None, span: r.span() });
+        c.finish(&r);
+    }
+    for (i, masters, weights, r) in slave_masters {
+        if masters.is_empty() {
+            return Err(r.error("`masterDofMan` lists no master node"));
+        }
+        let idx = masters
+            .iter()
+            .map(|&m| {
+                node_index.get(&(m as usize)).copied().filter(|_| m > 0).ok_or_else(|| {
+                    r.error(format!("master node {m} does not exist"))
+                })
+            })
+            .collect::<Result<Vec<_>>>()?;
+        if idx.contains(&i) {
+            return Err(r.error("a slave node cannot be its own master"));
+        }
+        let w = weights.unwrap_or_else(|| vec![1.0 / idx.len() as f64; idx.len()]);
+        if w.len() != idx.len() {
+            return Err(r.error(format!("`weights` has {} values for {} master nodes", w.len(), idx.len())));
+        }
+        nodes[i].slave = Some(SlaveLink { masters: idx, weights: w });
+    }
+    for n in &nodes {
+        if let Some(s) = &n.slave {
+            if s.masters.iter().any(|&m| nodes[m].slave.is_some()) {
+                return Err(Error::Input {
+                    span: n.span.clone(),
+                    msg: "a slave node's master must not itself be a slave node".into(),
+                });
+            }
+        }
+    }
+
+    // Elements.
+    let mut elements = Vec::with_capacity(nelem);
+    let mut elem_index: HashMap<usize, usize> = HashMap::new();
+    let mut elem_cs: Vec<Option<usize>> = Vec::with_capacity(nelem);
+    let mut elem_mat: Vec<Option<usize>> = Vec::with_capacity(nelem);
+    for i in 0..nelem {
+        let r = c.next(&format!("element record {} of {nelem} (nelem {nelem})", i + 1))?;
+        let kw = r.keyword().to_string();
+        let Some(etype) = ElementType::from_keyword(&kw) else {
+            let names: Vec<&str> = ElementType::ALL.iter().map(|(_, t)| t.name()).collect();
+            let hint = if kw == "node" || kw == "slavenode" { " (is ndofman too small?)" } else { "" };
+            return Err(r.error(format!(
+                "unknown element type `{kw}`{hint}; supported: {}",
+                names.join(", ")
+            )));
+        };
+        let label = r.number()?;
+        let labels = r.int_array("nodes")?;
+        if labels.len() != etype.n_nodes() {
+            return Err(r.error(format!(
+                "{} needs {} nodes, `nodes` lists {}",
+                etype.name(),
+                etype.n_nodes(),
+                labels.len()
+            )));
+        }
+        let mut enodes = Vec::with_capacity(labels.len());
+        for &l in &labels {
+            let idx = (l > 0).then(|| node_index.get(&(l as usize))).flatten();
+            enodes.push(*idx.ok_or_else(|| r.error(format!("element {label} refers to node {l}, which does not exist")))?);
+        }
+        let mut sorted = enodes.clone();
+        sorted.sort_unstable();
+        sorted.dedup();
+        if sorted.len() != enodes.len() {
+            return Err(r.error(format!("element {label} lists the same node twice")));
+        }
+        let nip = r.opt_usize("nip")?;
+        if let Some(n) = nip {
+            if crate::fem::rule(etype.shape(), n).is_none() {
+                return Err(r.error(format!("{} does not support nip {n}", etype.name())));
+            }
+        }
+        let nlgeo = match r.opt_int("nlgeo")? {
+            None | Some(0) => false,
+            Some(1) => true,
+            Some(v) => return Err(r.error(format!("`nlgeo` must be 0 or 1, found {v}"))),
+        };
+        let truss_plane = match (etype, r.opt_int("cs")?) {
+            (_, None) => 0,
+            (ElementType::Truss2d, Some(v @ 0..=2)) => v as u8,
+            (ElementType::Truss2d, Some(v)) => return Err(r.error(format!("Truss2d `cs` must be 0, 1 or 2, found {v}"))),
+            (_, Some(_)) => return Err(r.error("keyword `cs` only applies to Truss2d")),
+        };
+        if nlgeo && etype.is_truss() {
+            return Err(r.error("nlgeo 1 is not supported on truss elements"));
+        }
+        for k in ["bodyloads", "boundaryloads", "activityltf", "lcs"] {
+            if r.flag(k) {
+                return Err(r.error(format!("element keyword `{k}` is not supported; use sets")));
+            }
+        }
+        r.flag("reducedshearint");
+        elem_cs.push(r.opt_usize("crosssect")?);
+        elem_mat.push(r.opt_usize("mat")?);
+        if elem_index.insert(label, i).is_some() {
+            return Err(r.error(format!("element label {label} is used twice")));
+        }
+        elements.push(Element {
+            label,
+            etype,
+            nodes: enodes,
+            cross_section: usize::MAX,
+            material: usize::MAX,
+            nip,
+            nlgeo,
+            truss_plane,
+            span: r.span(),
+        });
+        c.finish(&r);
+    }
+
+    let refs = Refs { nodes: &node_index, elements: &elem_index, element_list: &elements };
+    let mut sets: Option<Vec<Set>> = None;
+    if nset > 0 && c.peek_keyword().as_deref() == Some("set") {
+        sets = Some(read_sets(&mut c, nset, &refs)?);
+    }
+
+    for i in 0..ncontactseg {
+        let r = c.next(&format!("contact segment record {} of {ncontactseg}", i + 1))?;
+        return Err(r.error("contact segments are not supported by this version of hertz"));
+    }
+
+    // Cross sections.
+    let mut cs = Numbered::new("cross section", ncs);
+    for i in 0..ncs {
+        let r = c.next(&format!("cross-section record {} of {ncs} (ncrosssect {ncs})", i + 1))?;
+        if r.keyword() != "simplecs" {
+            return Err(r.error(format!(
+                "expected cross-section record {} of {ncs} (SimpleCS), found `{}`",
+                i + 1,
+                r.keyword()
+            )));
+        }
+        let thick = r.opt_float("thick")?;
+        let width = r.opt_float("width")?;
+        let area = r.opt_float("area")?.unwrap_or(match (thick, width) {
+            (Some(t), Some(w)) => t * w,
+            _ => 0.0,
+        });
+        for k in ["iy", "iz", "ik", "beamshearcoeff"] {
+            r.opt_float(k)?;
+        }
+        let material = r.opt_usize("material")?;
+        let set = r.opt_usize("set")?;
+        check_ref(&r, "material", material, nmat)?;
+        check_ref(&r, "set", set.filter(|&s| s > 0), nset)?;
+        cs.put(&r, CrossSection { thick, area, material, set: set.filter(|&s| s > 0) })?;
+        c.finish(&r);
+    }
+    let cross_sections = cs.finish();
+
+    // Materials.
+    let mut mats = Numbered::new("material", nmat);
+    for i in 0..nmat {
+        let r = c.next(&format!("material record {} of {nmat} (nmat {nmat})", i + 1))?;
+        if r.keyword() != "isole" {
+            return Err(r.error(format!(
+                "unsupported material `{}`; supported: IsoLE (or is a count before nmat wrong?)",
+                r.keyword()
+            )));
+        }
+        let m = Material {
+            density: r.float("d")?,
+            young: r.float("e")?,
+            poisson: r.float("n")?,
+            talpha: r.float("talpha")?,
+        };
+        r.opt_float("referencetemperature")?;
+        if !(m.young > 0.0) {
+            return Err(r.error(format!("Young's modulus E must be positive, found {}", m.young)));
+        }
+        if !(m.poisson > -1.0 && m.poisson < 0.5) {
+            return Err(r.error(format!("Poisson's ratio n must lie in (-1, 0.5), found {}", m.poisson)));
+        }
+        mats.put(&r, m)?;
+        c.finish(&r);
+    }
+    let materials = mats.finish();
+
+    // Boundary conditions and loads.
+    let mut bcs: Numbered<Option<Dirichlet>> = Numbered::new("boundary condition", nbc);
+    let mut loads = Vec::new();
+    for i in 0..nbc {
+        let r = c.next(&format!("boundary-condition record {} of {nbc} (nbc {nbc})", i + 1))?;
+        let kw = r.keyword().to_string();
+        let number = r.number()?;
+        let function = r.usize("loadtimefunction")?;
+        if function == 0 || function > nltf {
+            return Err(r.error(format!("loadTimeFunction {function} does not exist (nltf {nltf})")));
+        }
+        let set = r.opt_usize("set")?.unwrap_or(0);
+        check_ref(&r, "set", Some(set).filter(|&s| s > 0), nset)?;
+        if r.flag("istimefunction") || r.flag("isimposedtimefunction") {
+            return Err(r.error("`isImposedTimeFunction` is not supported"));
+        }
+        r.opt_usize("valtype")?;
+        let read_dofs = |r: &Record| -> Result<Option<Vec<DofId>>> {
+            match r.opt_int_array("dofs")? {
+                None => Ok(None),
+                Some(v) => v
+                    .iter()
+                    .map(|&d| {
+                        if (1..=3).contains(&d) {
+                            Ok(d as DofId)
+                        } else {
+                            Err(r.error(format!("DOF id {d} is not a displacement DOF (1, 2 or 3)")))
+                        }
+                    })
+                    .collect::<Result<Vec<_>>>()
+                    .map(Some),
+            }
+        };
+        match kw.as_str() {
+            "boundarycondition" => {
+                let dofs = read_dofs(&r)?.unwrap_or_else(|| domain.default_dofs().to_vec());
+                let values = match r.opt_float_array("values")? {
+                    Some(v) => v,
+                    None => {
+                        let v = match r.opt_float("prescribedvalue")? {
+                            Some(v) => v,
+                            None => r.opt_float("d")?.ok_or_else(|| r.error("BoundaryCondition needs `values`"))?,
+                        };
+                        vec![v; dofs.len()]
+                    }
+                };
+                if values.len() != dofs.len() {
+                    return Err(r.error(format!("`values` has {} entries for {} dofs", values.len(), dofs.len())));
+                }
+                bcs.put(&r, Some(Dirichlet { number, function, dofs, values, set: Some(set).filter(|&s| s > 0) }))?;
+            }
+            "nodalload" | "constantedgeload" | "constantsurfaceload" | "constantpressureload" | "deadweight" => {
+                let kind = match kw.as_str() {
+                    "nodalload" => LoadKind::Nodal,
+                    "constantedgeload" => LoadKind::Edge,
+                    "deadweight" => LoadKind::DeadWeight,
+                    _ => LoadKind::Surface,
+                };
+                if kw == "constantpressureload" {
+                    return Err(r.error("ConstantPressureLoad is not supported; use ConstantSurfaceLoad"));
+                }
+                let components = r.float_array("components")?;
+                let dofs = match (&kind, read_dofs(&r)?) {
+                    (_, Some(d)) => d,
+                    (LoadKind::DeadWeight, None) => (1..=components.len() as DofId).collect(),
+                    (_, None) => domain.default_dofs().to_vec(),
+                };
+                if components.len() != dofs.len() {
+                    return Err(r.error(format!(
+                        "`components` has {} entries for {} dofs",
+                        components.len(),
+                        dofs.len()
+                    )));
+                }
+                if r.opt_int("cstype")?.unwrap_or(0) != 0 {
+                    return Err(r.error("`cstype 1` (local load coordinates) is not supported"));
+                }
+                r.opt_int("loadtype")?;
+                if set == 0 {
+                    return Err(r.error(format!("{kw} needs `set` (legacy element boundaryloads are not supported)")));
+                }
+                loads.push(Load { number, kind, function, dofs, components, set });
+                bcs.put(&r, None)?;
+            }
+            k if CONTACT_BCS.contains(&k) => {
+                return Err(r.error(format!("contact condition `{k}` is not supported by this version of hertz")));
+            }
+            _ => {
+                return Err(r.error(format!(
+                    "unsupported boundary condition or load `{kw}`; supported: {SUPPORTED_BCS}"
+                )))
+            }
+        }
+        c.finish(&r);
+    }
+    let dirichlet: Vec<Dirichlet> = bcs.finish().into_iter().flatten().collect();
+
+    for i in 0..nic {
+        let r = c.next(&format!("initial-condition record {} of {nic}", i + 1))?;
+        return Err(r.error("initial conditions are not supported (set nic 0)"));
+    }
+
+    // Time functions.
+    let mut funcs = Numbered::new("time function", nltf);
+    for i in 0..nltf {
+        let r = c.next(&format!("time-function record {} of {nltf} (nltf {nltf})", i + 1))?;
+        let f = match r.keyword() {
+            "constantfunction" => TimeFunction::Constant(r.float("f(t)")?),
+            "peakfunction" => TimeFunction::Peak { t: r.float("t")?, value: r.float("f(t)")? },
+            "piecewiselinfunction" => {
+                if r.flag("datafile") {
+                    return Err(r.error("PiecewiseLinFunction `datafile` is not supported; list t and f(t)"));
+                }
+                r.opt_usize("npoints")?;
+                let t = r.float_array("t")?;
+                let f = r.float_array("f(t)")?;
+                if t.is_empty() || t.len() != f.len() {
+                    return Err(r.error(format!("`t` has {} points and `f(t)` {}: they must match", t.len(), f.len())));
+                }
+                if t.windows(2).any(|w| w[1] <= w[0]) {
+                    return Err(r.error("`t` must be strictly increasing"));
+                }
+                TimeFunction::PiecewiseLinear { t, f }
+            }
+            k => {
+                return Err(r.error(format!(
+                    "unsupported time function `{k}`; supported: ConstantFunction, PiecewiseLinFunction, PeakFunction"
+                )))
+            }
+        };
+        funcs.put(&r, f)?;
+        c.finish(&r);
+    }
+    let functions = funcs.finish();
+
+    let sets = match sets {
+        Some(s) => s,
+        None => read_sets(&mut c, nset, &refs)?,
+    };
+
+    if let Some(line) = c.lines.get(c.pos) {
+        let r = Record::new(line.clone());
+        return Err(r.error(format!(
+            "{} record(s) left after the last expected record: is a count (nset, nltf, nbc, ...) too small?",
+            c.lines.len() - c.pos
+        )));
+    }
+
+    // Resolve cross sections and materials of elements.
+    let mut model_elements = elements;
+    for (ci, cs) in cross_sections.iter().enumerate() {
+        if let Some(s) = cs.set {
+            for &e in &sets[s - 1].elements {
+                elem_cs[e] = Some(ci + 1);
+            }
+        }
+    }
+    for (i, e) in model_elements.iter_mut().enumerate() {
+        let span_err = |msg: String| Error::Input { span: e.span.clone(), msg };
+        let csn = elem_cs[i].ok_or_else(|| {
+            span_err(format!("element {} has no cross section (`crossSect` or a SimpleCS with `set`)", e.label))
+        })?;
+        if csn == 0 || csn > ncs {
+            return Err(span_err(format!("element {} refers to cross section {csn}, which does not exist", e.label)));
+        }
+        let csr = &cross_sections[csn - 1];
+        let mat = csr.material.or(elem_mat[i]).ok_or_else(|| {
+            span_err(format!("element {} has no material (`mat` or the cross section's `material`)", e.label))
+        })?;
+        if mat == 0 || mat > nmat {
+            return Err(span_err(format!("element {} refers to material {mat}, which does not exist", e.label)));
+        }
+        if e.etype.mode() == StressMode::PlaneStress && csr.thick.is_none() {
+            return Err(span_err(format!(
+                "element {} is a plane-stress element but cross section {csn} has no `thick`",
+                e.label
+            )));
+        }
+        e.cross_section = csn - 1;
+        e.material = mat - 1;
+    }
+    for l in &loads {
+        let s = &sets[l.set - 1];
+        let empty = match l.kind {
+            LoadKind::Nodal => s.nodes.is_empty(),
+            LoadKind::Edge => s.edges.is_empty(),
+            LoadKind::Surface => s.boundaries.is_empty() && s.surfaces.is_empty(),
+            LoadKind::DeadWeight => s.elements.is_empty(),
+        };
+        if empty {
+            c.warnings.push(format!("load {} acts on set {}, which has no matching entities", l.number, l.set));
+        }
+    }
+
+    let model = Model {
+        input_path: path.to_path_buf(),
+        output_name,
+        description,
+        analysis,
+        domain,
+        output,
+        nodes,
+        elements: model_elements,
+        cross_sections,
+        materials,
+        dirichlet,
+        loads,
+        functions,
+        sets,
+    };
+    // Earliest time a function is evaluated at: the first step, or one Δt before it for the
+    // incremental loads of NonLinearStatic `refloadmode 1`.
+    let a = &model.analysis;
+    let mut first_t = model.step_times().first().copied().unwrap_or(0.0);
+    if a.kind == AnalysisKind::NonLinearStatic && a.refloadmode == 1 {
+        first_t -= a.deltat;
+    }
+    for (i, f) in model.functions.iter().enumerate() {
+        if f.first_time().is_some_and(|t0| first_t < t0) {
+            c.warnings.push(format!(
+                "time function {} is evaluated before its first point (t = {first_t}); hertz uses the first value \
+                 (OOFEM would return the first time instead)",
+                i + 1
+            ));
+        }
+    }
+    Ok(ReadResult { model, warnings: c.warnings })
+}
+
+fn check_ref(r: &Record, what: &str, n: Option<usize>, count: usize) -> Result<()> {
+    match n {
+        Some(v) if v == 0 || v > count => {
+            Err(r.error(format!("{what} {v} does not exist (the counts record declares {count})")))
+        }
+        _ => Ok(()),
+    }
+}
+
+fn read_analysis(r: &Record) -> Result<(Analysis, usize, usize, usize)> {
+    let kind = match r.keyword() {
+        "linearstatic" => AnalysisKind::LinearStatic,
+        "nonlinearstatic" => AnalysisKind::NonLinearStatic,
+        "staticstructural" => AnalysisKind::StaticStructural,
+        k => {
+            return Err(r.error(format!("unsupported analysis type `{k}`; supported: {SUPPORTED_ANALYSES}")));
+        }
+    };
+    let prescribed_times = if kind == AnalysisKind::StaticStructural { r.opt_float_array("prescribedtimes")? } else { None };
+    let nsteps = match (&prescribed_times, r.opt_usize("nsteps")?) {
+        (Some(t), _) => t.len(),
+        (None, Some(n)) => n,
+        (None, None) => return Err(r.error("missing required keyword `nsteps`")),
+    };
+    if nsteps == 0 {
+        return Err(r.error("`nsteps` must be positive"));
+    }
+    if r.opt_usize("nmsteps")?.unwrap_or(0) > 0 {
+        return Err(r.error("metasteps (`nmsteps` > 0) are not supported"));
+    }
+    if kind == AnalysisKind::NonLinearStatic {
+        let mode = match r.opt_int("controlmode")? {
+            Some(m) => Some(m),
+            None => r.opt_int("controllmode")?,
+        };
+        if mode.unwrap_or(0) != 1 {
+            return Err(r.error(
+                "NonLinearStatic needs `controlmode 1` (direct load control); indirect (arc-length) control is not supported",
+            ));
+        }
+        if r.flag("deltatfunction") {
+            return Err(r.error("`deltatfunction` is not supported"));
+        }
+    }
+    let deltat = r.opt_float("deltat")?.unwrap_or(1.0);
+    if !(deltat > 0.0) {
+        return Err(r.error("`deltat` must be positive"));
+    }
+    let rtolv = r.opt_float("rtolv")?;
+    let rtolf = r.opt_float("rtolf")?.or(rtolv).unwrap_or(1e-3);
+    let rtold = r.opt_float("rtold")?.or(rtolv).unwrap_or(0.0);
+    let maxiter = r.opt_usize("maxiter")?.unwrap_or(50).max(1);
+    let manrmsteps = r.opt_usize("manrmsteps")?.filter(|&k| k > 0);
+    let refloadmode = match r.opt_int("refloadmode")?.unwrap_or(0) {
+        v @ (0 | 1) => v as u8,
+        v => return Err(r.error(format!("`refloadmode` must be 0 or 1, found {v}"))),
+    };
+    let default_guess = if kind == AnalysisKind::StaticStructural { 1 } else { 0 };
+    let initialguess = r.opt_int("initialguess")?.unwrap_or(default_guess) != 0;
+    for k in ["renumber", "lstype", "smtype", "stiffmode", "miniter", "nonlinform", "contextoutputstep", "profileopt"] {
+        r.opt_int(k)?;
+    }
+    r.opt_string("solvertype")?;
+    for k in ["soldepextforces", "suppress_output", "keepll", "donotfixload"] {
+        r.flag(k);
+    }
+    let nmodules = r.opt_usize("nmodules")?.unwrap_or(0);
+    let ninit = r.opt_usize("ninitmodules")?.unwrap_or(0);
+    let nmonitors = r.opt_usize("nmonitors")?.unwrap_or(0);
+    let analysis = Analysis {
+        kind,
+        nsteps,
+        deltat,
+        prescribed_times,
+        rtolf,
+        rtold,
+        maxiter,
+        manrmsteps,
+        refloadmode,
+        initialguess,
+        errorcheck: false,
+    };
+    Ok((analysis, nmodules, ninit, nmonitors))
+}
+
+fn read_domain(r: &Record) -> Result<DomainKind> {
+    let i = r.tokens.iter().position(|t| t == "domain").ok_or_else(|| {
+        r.error(format!("expected the domain record (e.g. `domain 2dPlaneStress`), found `{}`", r.keyword()))
+    })?;
+    r.flag("domain");
+    r.opt_string("domain")?;
+    let t = r.tokens.get(i + 1).map(String::as_str).unwrap_or("");
+    let kind = if t.starts_with("2dplanestressrot") {
+        None
+    } else if t.starts_with("2dplanestress") {
+        Some(DomainKind::PlaneStress)
+    } else if t.starts_with("planestrain") {
+        Some(DomainKind::PlaneStrain)
+    } else if t.starts_with("2dtruss") {
+        Some(DomainKind::Truss2d)
+    } else if t.starts_with("1dtruss") {
+        Some(DomainKind::Truss1d)
+    } else if t.starts_with("3d") && !t.starts_with("3daxisymm") && !t.starts_with("3dshell") {
+        Some(DomainKind::ThreeD)
+    } else {
+        None
+    };
+    kind.ok_or_else(|| {
+        r.error(format!("unsupported domain type `{t}`; supported: 2dPlaneStress, PlaneStrain, 3d, 2dTruss, 1dTruss"))
+    })
+}
+
+struct Refs<'a> {
+    nodes: &'a HashMap<usize, usize>,
+    elements: &'a HashMap<usize, usize>,
+    element_list: &'a [Element],
+}
+
+fn read_sets(c: &mut Cursor, nset: usize, refs: &Refs) -> Result<Vec<Set>> {
+    let mut sets = Numbered::new("set", nset);
+    for i in 0..nset {
+        let r = c.next(&format!("set record {} of {nset} (nset {nset})", i + 1))?;
+        if r.keyword() != "set" {
+            return Err(r.error(format!("expected set record {} of {nset}, found `{}`", i + 1, r.keyword())));
+        }
+        let node = |l: i64| -> Result<usize> {
+            (l > 0)
+                .then(|| refs.nodes.get(&(l as usize)).copied())
+                .flatten()
+                .ok_or_else(|| r.error(format!("set refers to node {l}, which does not exist")))
+        };
+        let elem = |l: i64| -> Result<usize> {
+            (l > 0)
+                .then(|| refs.elements.get(&(l as usize)).copied())
+                .flatten()
+                .ok_or_else(|| r.error(format!("set refers to element {l}, which does not exist")))
+        };
+        let pairs = |key: &str, edges: bool| -> Result<Vec<(usize, usize)>> {
+            let v = r.opt_int_array(key)?.unwrap_or_default();
+            if v.len() % 2 != 0 {
+                return Err(r.error(format!("`{key}` needs (element, number) pairs: an even count")));
+            }
+            v.chunks(2)
+                .map(|p| {
+                    let e = elem(p[0])?;
+                    let shape = refs.element_list[e].etype.shape();
+                    let n = if edges { shape.edges().len() } else { shape.boundaries().len() };
+                    if p[1] < 1 || p[1] as usize > n {
+                        return Err(r.error(format!(
+                            "`{key}`: element {} has boundaries 1..{n}, not {}",
+                            p[0], p[1]
+                        )));
+                    }
+                    Ok((e, p[1] as usize))
+                })
+                .collect()
+        };
+        let explicit: Vec<usize> = r.opt_int_array("nodes")?.unwrap_or_default().into_iter().map(node).collect::<Result<_>>()?;
+        let ranges: Vec<usize> =
+            r.opt_range_list("noderanges")?.unwrap_or_default().into_iter().map(node).collect::<Result<_>>()?;
+        let mut elements: Vec<usize> =
+            r.opt_int_array("elements")?.unwrap_or_default().into_iter().map(elem).collect::<Result<_>>()?;
+        for e in r.opt_range_list("elementranges")?.unwrap_or_default() {
+            elements.push(elem(e)?);
+        }
+        if r.flag("allelements") {
+            elements = (0..refs.element_list.len()).collect();
+        }
+        let boundaries = pairs("elementboundaries", false)?;
+        let edges = pairs("elementedges", true)?;
+        let surfaces = pairs("elementsurfaces", false)?;
+        let ordered = r.flag("ordered_nodes");
+        let nodes = if r.flag("allnodes") {
+            (0..refs.nodes.len()).collect()
+        } else if ordered {
+            let mut sorted = ranges.clone();
+            sorted.sort_unstable();
+            sorted.dedup();
+            explicit.into_iter().chain(sorted).collect()
+        } else {
+            let mut all: Vec<usize> = explicit.into_iter().chain(ranges).collect();
+            for &e in &elements {
+                all.extend(&refs.element_list[e].nodes);
+            }
+            for (list, edge) in [(&boundaries, false), (&edges, true), (&surfaces, false)] {
+                for &(e, b) in list {
+                    let el = &refs.element_list[e];
+                    let shape = el.etype.shape();
+                    let local = if edge { shape.edges()[b - 1] } else { shape.boundaries()[b - 1] };
+                    all.extend(local.iter().map(|&a| el.nodes[a]));
+                }
+            }
+            all.sort_unstable();
+            all.dedup();
+            all
+        };
+        elements.sort_unstable();
+        elements.dedup();
+        sets.put(&r, Set { nodes, elements, boundaries, edges, surfaces })?;
+        c.finish(&r);
+    }
+    Ok(sets.finish())
+}

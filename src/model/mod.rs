@@ -1,0 +1,360 @@
+//! The problem as read from the input: nodes, elements, sets, materials, loads, functions and the
+//! analysis settings. Indices are 0-based positions; labels are the numbers written in the file.
+
+pub mod functions;
+pub use functions::TimeFunction;
+
+use crate::error::Span;
+use std::path::PathBuf;
+
+/// DOF ids of OOFEM: 1 = u (x), 2 = v (y), 3 = w (z).
+pub type DofId = u8;
+
+/// Analysis type and its solver settings (spec §1.3).
+#[derive(Debug, Clone)]
+pub struct Analysis {
+    pub kind: AnalysisKind,
+    pub nsteps: usize,
+    pub deltat: f64,
+    /// StaticStructural `prescribedtimes` (overrides nsteps·deltat).
+    pub prescribed_times: Option<Vec<f64>>,
+    pub rtolf: f64,
+    /// Displacement tolerance; <= 0 disables the test.
+    pub rtold: f64,
+    pub maxiter: usize,
+    /// Recompute the tangent every k iterations; None = modified Newton (tangent at step start).
+    pub manrmsteps: Option<usize>,
+    /// NonLinearStatic: 0 total reference loads accumulated, 1 incremental.
+    pub refloadmode: u8,
+    /// Tangent predictor from prescribed-value increments.
+    pub initialguess: bool,
+    pub errorcheck: bool,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AnalysisKind {
+    LinearStatic,
+    NonLinearStatic,
+    StaticStructural,
+}
+
+/// Domain type (spec §1.5).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DomainKind {
+    PlaneStress,
+    PlaneStrain,
+    ThreeD,
+    Truss2d,
+    Truss1d,
+}
+
+impl DomainKind {
+    /// Number of space dimensions.
+    pub fn nsd(self) -> usize {
+        match self {
+            DomainKind::PlaneStress | DomainKind::PlaneStrain | DomainKind::Truss2d => 2,
+            DomainKind::ThreeD => 3,
+            DomainKind::Truss1d => 1,
+        }
+    }
+    /// Default node DOF ids.
+    pub fn default_dofs(self) -> &'static [DofId] {
+        match self {
+            DomainKind::PlaneStress | DomainKind::PlaneStrain => &[1, 2],
+            DomainKind::ThreeD => &[1, 2, 3],
+            DomainKind::Truss2d => &[1, 3],
+            DomainKind::Truss1d => &[1],
+        }
+    }
+}
+
+/// Which steps, nodes and elements the `.out` file reports.
+#[derive(Debug, Clone, Default)]
+pub struct OutputSelection {
+    pub tstep_all: bool,
+    pub tstep_step: Option<usize>,
+    pub tsteps_out: Vec<i64>,
+    pub dofman_all: bool,
+    pub dofman_output: Vec<i64>,
+    pub dofman_except: Vec<i64>,
+    pub element_all: bool,
+    pub element_output: Vec<i64>,
+    pub element_except: Vec<i64>,
+}
+
+impl OutputSelection {
+    pub fn step(&self, n: usize) -> bool {
+        self.tstep_all
+            || self.tstep_step.is_some_and(|k| k > 0 && n % k == 0)
+            || self.tsteps_out.contains(&(n as i64))
+    }
+    pub fn node(&self, number: usize) -> bool {
+        let n = number as i64;
+        (self.dofman_all || self.dofman_output.contains(&n)) && !self.dofman_except.contains(&n)
+    }
+    pub fn element(&self, number: usize) -> bool {
+        let n = number as i64;
+        (self.element_all || self.element_output.contains(&n)) && !self.element_except.contains(&n)
+    }
+}
+
+/// A node; slave nodes tie their DOFs to master nodes with weights.
+#[derive(Debug, Clone)]
+pub struct Node {
+    pub label: usize,
+    /// Coordinates padded to 3 components.
+    pub coords: [f64; 3],
+    /// Number of coordinates given in the file.
+    pub ncoords: usize,
+    pub slave: Option<SlaveLink>,
+    pub span: Span,
+}
+
+/// `SlaveNode`: each DOF = Σ weight_i · (same DOF of master i).
+#[derive(Debug, Clone)]
+pub struct SlaveLink {
+    /// Master node indices (0-based).
+    pub masters: Vec<usize>,
+    pub weights: Vec<f64>,
+}
+
+/// Element types (spec §1.9).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ElementType {
+    Truss1d,
+    Truss2d,
+    PlaneStress2d,
+    Quad1PlaneStrain,
+    TrPlaneStress2d,
+    TrPlaneStrain,
+    QPlaneStress2d,
+    LSpace,
+    LTRSpace,
+    LWedge,
+}
+
+/// Strain/stress state of an element's material points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StressMode {
+    PlaneStress,
+    PlaneStrain,
+    ThreeD,
+    Uniaxial,
+}
+
+impl ElementType {
+    pub const ALL: [(&'static str, ElementType); 10] = [
+        ("truss1d", ElementType::Truss1d),
+        ("truss2d", ElementType::Truss2d),
+        ("planestress2d", ElementType::PlaneStress2d),
+        ("quad1planestrain", ElementType::Quad1PlaneStrain),
+        ("trplanestress2d", ElementType::TrPlaneStress2d),
+        ("trplanestrain", ElementType::TrPlaneStrain),
+        ("qplanestress2d", ElementType::QPlaneStress2d),
+        ("lspace", ElementType::LSpace),
+        ("ltrspace", ElementType::LTRSpace),
+        ("lwedge", ElementType::LWedge),
+    ];
+
+    pub fn from_keyword(k: &str) -> Option<ElementType> {
+        Self::ALL.iter().find(|(n, _)| *n == k).map(|(_, t)| *t)
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            ElementType::Truss1d => "Truss1d",
+            ElementType::Truss2d => "Truss2d",
+            ElementType::PlaneStress2d => "PlaneStress2d",
+            ElementType::Quad1PlaneStrain => "Quad1PlaneStrain",
+            ElementType::TrPlaneStress2d => "TrPlaneStress2d",
+            ElementType::TrPlaneStrain => "TrPlaneStrain",
+            ElementType::QPlaneStress2d => "QPlaneStress2d",
+            ElementType::LSpace => "LSpace",
+            ElementType::LTRSpace => "LTRSpace",
+            ElementType::LWedge => "LWedge",
+        }
+    }
+
+    pub fn n_nodes(self) -> usize {
+        match self {
+            ElementType::Truss1d | ElementType::Truss2d => 2,
+            ElementType::PlaneStress2d | ElementType::Quad1PlaneStrain | ElementType::LTRSpace => 4,
+            ElementType::TrPlaneStress2d | ElementType::TrPlaneStrain => 3,
+            ElementType::QPlaneStress2d | ElementType::LSpace => 8,
+            ElementType::LWedge => 6,
+        }
+    }
+
+    pub fn mode(self) -> StressMode {
+        match self {
+            ElementType::Truss1d | ElementType::Truss2d => StressMode::Uniaxial,
+            ElementType::PlaneStress2d | ElementType::TrPlaneStress2d | ElementType::QPlaneStress2d => {
+                StressMode::PlaneStress
+            }
+            ElementType::Quad1PlaneStrain | ElementType::TrPlaneStrain => StressMode::PlaneStrain,
+            ElementType::LSpace | ElementType::LTRSpace | ElementType::LWedge => StressMode::ThreeD,
+        }
+    }
+
+    /// Reference shape of the element.
+    pub fn shape(self) -> crate::fem::Shape {
+        use crate::fem::Shape;
+        match self {
+            ElementType::Truss1d | ElementType::Truss2d => Shape::Line2,
+            ElementType::PlaneStress2d | ElementType::Quad1PlaneStrain => Shape::Quad4,
+            ElementType::TrPlaneStress2d | ElementType::TrPlaneStrain => Shape::Tri3,
+            ElementType::QPlaneStress2d => Shape::Quad8,
+            ElementType::LSpace => Shape::Hexa8,
+            ElementType::LTRSpace => Shape::Tet4,
+            ElementType::LWedge => Shape::Wedge6,
+        }
+    }
+
+    /// Default number of integration points.
+    pub fn default_nip(self) -> usize {
+        match self {
+            ElementType::Truss1d | ElementType::Truss2d => 1,
+            ElementType::TrPlaneStress2d | ElementType::TrPlaneStrain | ElementType::LTRSpace => 1,
+            ElementType::PlaneStress2d | ElementType::Quad1PlaneStrain | ElementType::QPlaneStress2d => 4,
+            ElementType::LSpace => 8,
+            ElementType::LWedge => 6,
+        }
+    }
+
+    pub fn is_truss(self) -> bool {
+        matches!(self, ElementType::Truss1d | ElementType::Truss2d)
+    }
+}
+
+/// An element as read: type, node indices (0-based), section/material and options.
+#[derive(Debug, Clone)]
+pub struct Element {
+    pub label: usize,
+    pub etype: ElementType,
+    pub nodes: Vec<usize>,
+    pub cross_section: usize,
+    pub material: usize,
+    pub nip: Option<usize>,
+    pub nlgeo: bool,
+    /// Truss2d plane: 0 = x–z (default), 1 = x–y, 2 = y–z.
+    pub truss_plane: u8,
+    pub span: Span,
+}
+
+impl Element {
+    /// The DOF ids every node of this element carries, in element order.
+    pub fn dof_ids(&self) -> &'static [DofId] {
+        match self.etype {
+            ElementType::Truss1d => &[1],
+            ElementType::Truss2d => match self.truss_plane {
+                1 => &[1, 2],
+                2 => &[2, 3],
+                _ => &[1, 3],
+            },
+            t if t.mode() == StressMode::ThreeD => &[1, 2, 3],
+            _ => &[1, 2],
+        }
+    }
+}
+
+/// `SimpleCS` cross section.
+#[derive(Debug, Clone)]
+pub struct CrossSection {
+    pub thick: Option<f64>,
+    pub area: f64,
+    pub material: Option<usize>,
+    pub set: Option<usize>,
+}
+
+/// `IsoLE` isotropic linear elastic material.
+#[derive(Debug, Clone, Copy)]
+pub struct Material {
+    pub density: f64,
+    pub young: f64,
+    pub poisson: f64,
+    pub talpha: f64,
+}
+
+/// Dirichlet condition: values per DOF id on the nodes of a set, scaled by a time function.
+#[derive(Debug, Clone)]
+pub struct Dirichlet {
+    pub number: usize,
+    pub function: usize,
+    pub dofs: Vec<DofId>,
+    pub values: Vec<f64>,
+    pub set: Option<usize>,
+}
+
+impl Dirichlet {
+    /// Prescribed value factor for a DOF id (OOFEM: index of the id in `dofs`, else the first).
+    pub fn value_for(&self, dof: DofId) -> f64 {
+        let i = self.dofs.iter().position(|&d| d == dof).unwrap_or(0);
+        self.values.get(i).copied().unwrap_or(0.0)
+    }
+}
+
+/// Loads: nodal forces, edge/surface tractions, body forces.
+#[derive(Debug, Clone)]
+pub enum LoadKind {
+    Nodal,
+    Edge,
+    Surface,
+    DeadWeight,
+}
+
+#[derive(Debug, Clone)]
+pub struct Load {
+    pub number: usize,
+    pub kind: LoadKind,
+    pub function: usize,
+    /// DOF ids the components act on (DeadWeight: 1..nsd).
+    pub dofs: Vec<DofId>,
+    pub components: Vec<f64>,
+    pub set: usize,
+}
+
+/// `Set` record (spec §1.16), resolved to 0-based indices.
+#[derive(Debug, Clone, Default)]
+pub struct Set {
+    /// Node list: sorted unique union, or input order with `ordered_nodes`.
+    pub nodes: Vec<usize>,
+    pub elements: Vec<usize>,
+    /// (element index, boundary number 1-based).
+    pub boundaries: Vec<(usize, usize)>,
+    pub edges: Vec<(usize, usize)>,
+    pub surfaces: Vec<(usize, usize)>,
+}
+
+/// The whole problem.
+#[derive(Debug, Clone)]
+pub struct Model {
+    pub input_path: PathBuf,
+    pub output_name: String,
+    pub description: String,
+    pub analysis: Analysis,
+    pub domain: DomainKind,
+    pub output: OutputSelection,
+    pub nodes: Vec<Node>,
+    pub elements: Vec<Element>,
+    pub cross_sections: Vec<CrossSection>,
+    pub materials: Vec<Material>,
+    pub dirichlet: Vec<Dirichlet>,
+    pub loads: Vec<Load>,
+    pub functions: Vec<TimeFunction>,
+    pub sets: Vec<Set>,
+}
+
+impl Model {
+    /// Times of steps 1..=n (spec §1.3).
+    pub fn step_times(&self) -> Vec<f64> {
+        let a = &self.analysis;
+        match a.kind {
+            AnalysisKind::LinearStatic => (1..=a.nsteps).map(|n| n as f64).collect(),
+            AnalysisKind::NonLinearStatic => (0..a.nsteps).map(|n| n as f64 * a.deltat).collect(),
+            AnalysisKind::StaticStructural => match &a.prescribed_times {
+                Some(t) => t.clone(),
+                None => (1..=a.nsteps).map(|n| n as f64 * a.deltat).collect(),
+            },
+        }
+    }
+}

@@ -1,0 +1,22 @@
+//! Results: the OOFEM `.out` file, ParaView VTU/PVD files, `#%BEGIN_CHECK%` rule evaluation.
+
+pub mod check;
+pub mod outfile;
+pub mod vtu;
+
+use crate::error::{Error, Result};
+use std::path::Path;
+
+/// Write a file whole: to a temporary name in the same directory, then rename.
+pub fn write_atomic(path: &Path, content: &[u8]) -> Result<()> {
+    let tmp = path.with_extension(format!(
+        "{}.tmp{}",
+        path.extension().and_then(|e| e.to_str()).unwrap_or(""),
+        std::process::id()
+    ));
+    std::fs::write(&tmp, content).map_err(|e| Error::Output(format!("cannot write {}: {e}", tmp.display())))?;
+    std::fs::rename(&tmp, path).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        Error::Output(format!("cannot rename {} to {}: {e}", tmp.display(), path.display()))
+    })
+}

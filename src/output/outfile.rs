@@ -1,0 +1,136 @@
+//! The OOFEM-style `.out` text file (spec §4): per step the DOF values of the selected nodes, the
+//! integration-point strains and stresses (or F and P for `nlgeo 1`), and the reaction table.
+
+use crate::model::{AnalysisKind, Model};
+use crate::solve::StepResult;
+use std::fmt::Write;
+
+/// Header written once at the top.
+pub fn header(model: &Model) -> String {
+    format!(
+        "\n############################################################## www.oofem.org ###\n\
+         #### hertz {} (OOFEM-compatible output)\n\
+         ##################################################################################\n\n\
+         Starting analysis on: {}\n{}\n",
+        env!("CARGO_PKG_VERSION"),
+        timestamp(),
+        model.description
+    )
+}
+
+/// Footer written once at the end.
+pub fn footer(total_seconds: f64) -> String {
+    format!("\nFinishing analysis on: {}\n\nReal time consumed: {:.3} [s]\n", timestamp(), total_seconds)
+}
+
+fn timestamp() -> String {
+    let secs = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.as_secs()).unwrap_or(0);
+    format!("{secs} s since the Unix epoch")
+}
+
+/// The block of one step.
+pub fn step_block(model: &Model, res: &StepResult) -> String {
+    let mut s = String::new();
+    match model.analysis.kind {
+        AnalysisKind::NonLinearStatic => {
+            let _ = write!(
+                s,
+                "\n\nOutput for time {:.3e}, solution step number {}\nReached load level : {:20.6} in {} iterations\n\n",
+                res.time, res.step, 1.0, res.info.iterations
+            );
+        }
+        _ => {
+            let _ = write!(
+                s,
+                "\n==============================================================\nOutput for time {:.8e} \n\
+                 ==============================================================\nOutput for domain   1\n",
+                res.time
+            );
+        }
+    }
+    s.push_str("\n\nDofManager output:\n------------------\n");
+    for (n, node) in model.nodes.iter().enumerate() {
+        if !model.output.node(n + 1) {
+            continue;
+        }
+        let class = if node.slave.is_some() { "SlaveNode" } else { "Node" };
+        let _ = writeln!(s, "{:<8}{:8} ({:8}):", class, node.label, n + 1);
+        for &(d, code) in &res.dofs.node_dofs[n] {
+            let _ = writeln!(s, "  dof {}   d {}", d, sci_sign(res.dofs.value(res.u, code), 8));
+        }
+    }
+    s.push_str("\n\nElement output:\n---------------\n");
+    for (e, el) in model.elements.iter().enumerate() {
+        if !model.output.element(e + 1) {
+            continue;
+        }
+        let _ = writeln!(s, "element {} ({:8}) :", el.label, e + 1);
+        for (g, st) in res.states[e].iter().enumerate() {
+            let _ = write!(s, "  GP {:2}.{:<2} :", 1, g + 1);
+            if el.nlgeo {
+                let order = [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1), (2, 1), (2, 0), (1, 0)];
+                s.push_str("  F ");
+                for (i, j) in order {
+                    let _ = write!(s, " {}", sci(st.f[i][j], 4));
+                }
+                s.push_str("\n  P");
+                for (i, j) in order {
+                    let _ = write!(s, " {}", sci(st.p[i][j], 4));
+                }
+            } else {
+                s.push_str("  strains ");
+                for v in st.strain {
+                    let _ = write!(s, " {}", sci(v, 4));
+                }
+                s.push_str("\n              stresses");
+                for v in st.stress {
+                    let _ = write!(s, " {}", sci(v, 4));
+                }
+            }
+            s.push('\n');
+        }
+    }
+    s.push_str("\n\n\tR E A C T I O N S  O U T P U T:\n\t_______________________________\n\n\n");
+    let mut rows: Vec<(usize, u8, usize, f64)> = res
+        .dofs
+        .prescribed
+        .iter()
+        .zip(res.reactions)
+        .filter(|((n, _, _), _)| model.output.node(n + 1))
+        .map(|(&(n, d, bi), &r)| (n, d, model.dirichlet[bi].number, r))
+        .collect();
+    rows.sort_by_key(|r| (r.0, r.1));
+    for (n, d, bc, r) in rows {
+        let _ = writeln!(s, "\tNode {:8} iDof {:2} reaction {}    [bc-id: {}]", model.nodes[n].label, d, sci_sign(r, 4), bc);
+    }
+    let _ = write!(s, "\nUser time consumed by solution step {}: {:.3} [s]\n\n", res.step, res.info.wall_seconds);
+    s
+}
+
+/// C `%.Ne` formatting (exponent with sign and at least two digits).
+pub fn sci(v: f64, prec: usize) -> String {
+    let s = format!("{v:.prec$e}");
+    let (mant, exp) = s.split_once('e').expect("exponent");
+    let e: i32 = exp.parse().expect("integer exponent");
+    format!("{mant}e{}{:02}", if e < 0 { '-' } else { '+' }, e.abs())
+}
+
+/// C `% .Ne` (a space in place of the plus sign).
+fn sci_sign(v: f64, prec: usize) -> String {
+    let s = sci(v, prec);
+    if v < 0.0 || s.starts_with('-') {
+        s
+    } else {
+        format!(" {s}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn sci_matches_c_printf() {
+        assert_eq!(super::sci(-1.5625, 8), "-1.56250000e+00");
+        assert_eq!(super::sci(4.975e6, 4), "4.9750e+06");
+        assert_eq!(super::sci(1.2e-12, 4), "1.2000e-12");
+    }
+}

@@ -1,0 +1,141 @@
+//! Reference load vectors (load value 1·components) as (node, DOF id, value) contributions:
+//! nodal forces, edge and surface tractions, dead weight.
+
+use super::continuum::ContinuumKernel;
+use super::Elasticity;
+use crate::error::{Error, Result};
+use crate::fem::{gauss_line, rule, Shape};
+use crate::model::{DofId, Load, LoadKind, Model};
+
+/// Contributions of one load at unit time-function value.
+pub fn reference_contributions(model: &Model, load: &Load) -> Result<Vec<(usize, DofId, f64)>> {
+    let set = &model.sets[load.set - 1];
+    let mut out = Vec::new();
+    let comps = || load.dofs.iter().copied().zip(load.components.iter().copied());
+    match load.kind {
+        LoadKind::Nodal => {
+            for &n in &set.nodes {
+                out.extend(comps().map(|(d, c)| (n, d, c)));
+            }
+        }
+        LoadKind::DeadWeight => {
+            for &e in &set.elements {
+                let el = &model.elements[e];
+                let rho = model.materials[el.material].density;
+                let w = element_shape_integrals(model, e)?;
+                for (a, &node) in el.nodes.iter().enumerate() {
+                    out.extend(comps().map(|(d, c)| (node, d, rho * c * w[a])));
+                }
+            }
+        }
+        LoadKind::Edge => {
+            for &(e, b) in &set.edges {
+                let el = &model.elements[e];
+                let shape = el.etype.shape();
+                let local = shape.edges()[b - 1];
+                let thick = if shape.dim() == 2 { element_thickness(model, e) } else { 1.0 };
+                let edge_shape = if local.len() == 3 { Shape::Line3 } else { Shape::Line2 };
+                let mut n = [0.0; 3];
+                let mut dn = [[0.0; 3]; 3];
+                for (xi, w) in gauss_line(3).expect("3-point rule") {
+                    edge_shape.eval([xi, 0.0, 0.0], &mut n, &mut dn);
+                    let mut t = [0.0; 3];
+                    for (k, &a) in local.iter().enumerate() {
+                        let x = model.nodes[el.nodes[a]].coords;
+                        for i in 0..3 {
+                            t[i] += dn[k][0] * x[i];
+                        }
+                    }
+                    let dl = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
+                    for (k, &a) in local.iter().enumerate() {
+                        out.extend(comps().map(|(d, c)| (el.nodes[a], d, c * n[k] * dl * w * thick)));
+                    }
+                }
+            }
+        }
+        LoadKind::Surface => {
+            for &(e, b) in set.boundaries.iter().chain(&set.surfaces) {
+                let el = &model.elements[e];
+                let shape = el.etype.shape();
+                if shape.dim() != 3 {
+                    return Err(Error::Input {
+                        span: el.span.clone(),
+                        msg: format!("surface load {} acts on element {}, which is not a 3D element", load.number, el.label),
+                    });
+                }
+                let local = shape.boundaries()[b - 1];
+                let face = if local.len() == 3 { Shape::Tri3 } else { Shape::Quad4 };
+                let mut n = [0.0; 4];
+                let mut dn = [[0.0; 3]; 4];
+                for qp in rule(face, if local.len() == 3 { 3 } else { 4 }).expect("face rule") {
+                    face.eval(qp.xi, &mut n, &mut dn);
+                    let (mut g1, mut g2) = ([0.0; 3], [0.0; 3]);
+                    for (k, &a) in local.iter().enumerate() {
+                        let x = model.nodes[el.nodes[a]].coords;
+                        for i in 0..3 {
+                            g1[i] += dn[k][0] * x[i];
+                            g2[i] += dn[k][1] * x[i];
+                        }
+                    }
+                    let cr = [g1[1] * g2[2] - g1[2] * g2[1], g1[2] * g2[0] - g1[0] * g2[2], g1[0] * g2[1] - g1[1] * g2[0]];
+                    let da = (cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]).sqrt() * qp.weight;
+                    for (k, &a) in local.iter().enumerate() {
+                        out.extend(comps().map(|(d, c)| (el.nodes[a], d, c * n[k] * da)));
+                    }
+                }
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Thickness of a 2D element (1 when the cross section gives none).
+pub fn element_thickness(model: &Model, e: usize) -> f64 {
+    model.cross_sections[model.elements[e].cross_section].thick.unwrap_or(1.0)
+}
+
+/// ∫ N_a dV over element e (with thickness in 2D and area for bars).
+fn element_shape_integrals(model: &Model, e: usize) -> Result<Vec<f64>> {
+    let el = &model.elements[e];
+    if el.etype.is_truss() {
+        let x = truss_coords(model, e);
+        let len = ((x[1][0] - x[0][0]).powi(2) + (x[1][1] - x[0][1]).powi(2)).sqrt();
+        let area = model.cross_sections[el.cross_section].area;
+        return Ok(vec![0.5 * area * len; 2]);
+    }
+    let shape = el.etype.shape();
+    let nip = el.nip.unwrap_or(el.etype.default_nip());
+    let qr = rule(shape, nip).expect("nip validated by the reader");
+    let elasticity = Elasticity::new(&model.materials[el.material], el.etype.mode());
+    let kernel = ContinuumKernel {
+        shape,
+        nsd: shape.dim(),
+        rule: &qr,
+        elasticity: &elasticity,
+        thick: if shape.dim() == 2 { element_thickness(model, e) } else { 1.0 },
+        nlgeo: false,
+    };
+    let x: Vec<[f64; 3]> = el.nodes.iter().map(|&n| model.nodes[n].coords).collect();
+    let mut w = vec![0.0; el.nodes.len()];
+    kernel
+        .integrate_shape(&x, &mut w)
+        .map_err(|k| Error::Input { span: el.span.clone(), msg: format!("element {}: {}", el.label, k.msg) })?;
+    Ok(w)
+}
+
+/// End coordinates of a bar in its own plane (Truss1d: x; Truss2d cs 0: x–z, 1: x–y, 2: y–z).
+pub fn truss_coords(model: &Model, e: usize) -> [[f64; 2]; 2] {
+    let el = &model.elements[e];
+    let axes: [usize; 2] = match (el.etype, el.truss_plane) {
+        (crate::model::ElementType::Truss1d, _) => [0, 0],
+        (_, 1) => [0, 1],
+        (_, 2) => [1, 2],
+        _ => [0, 2],
+    };
+    let mut out = [[0.0; 2]; 2];
+    for (k, &n) in el.nodes.iter().enumerate() {
+        let c = model.nodes[n].coords;
+        out[k] = [c[axes[0]], if el.etype == crate::model::ElementType::Truss1d { 0.0 } else { c[axes[1]] }];
+    }
+    out
+}

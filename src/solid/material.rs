@@ -1,0 +1,85 @@
+//! Isotropic linear elasticity in reduced Voigt form (spec §1.12).
+//! Full Voigt order [xx, yy, zz, yz, xz, xy], engineering shear strains.
+
+use crate::model::{Material, StressMode};
+
+/// Positions of the reduced components in the full 6-component Voigt vector.
+pub fn voigt_components(mode: StressMode) -> &'static [usize] {
+    match mode {
+        StressMode::PlaneStress => &[0, 1, 5],
+        StressMode::PlaneStrain => &[0, 1, 2, 5],
+        StressMode::ThreeD => &[0, 1, 2, 3, 4, 5],
+        StressMode::Uniaxial => &[0],
+    }
+}
+
+/// Tensor indices (I, J) of each full Voigt component.
+pub const VOIGT_PAIRS: [(usize, usize); 6] = [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)];
+
+/// The reduced elastic stiffness D (row-major, n × n) for a stress mode.
+#[derive(Debug, Clone)]
+pub struct Elasticity {
+    pub mode: StressMode,
+    pub n: usize,
+    pub d: [[f64; 6]; 6],
+}
+
+impl Elasticity {
+    pub fn new(m: &Material, mode: StressMode) -> Elasticity {
+        let (e, nu) = (m.young, m.poisson);
+        let mut d = [[0.0; 6]; 6];
+        let comps = voigt_components(mode);
+        match mode {
+            StressMode::Uniaxial => d[0][0] = e,
+            StressMode::PlaneStress => {
+                let c = e / (1.0 - nu * nu);
+                d[0][0] = c;
+                d[1][1] = c;
+                d[0][1] = c * nu;
+                d[1][0] = c * nu;
+                d[2][2] = c * (1.0 - nu) / 2.0;
+            }
+            StressMode::PlaneStrain | StressMode::ThreeD => {
+                let lambda = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+                let g = e / (2.0 * (1.0 + nu));
+                let mut full = [[0.0; 6]; 6];
+                for i in 0..3 {
+                    for j in 0..3 {
+                        full[i][j] = lambda;
+                    }
+                    full[i][i] = lambda + 2.0 * g;
+                    full[i + 3][i + 3] = g;
+                }
+                for (a, &ca) in comps.iter().enumerate() {
+                    for (b, &cb) in comps.iter().enumerate() {
+                        d[a][b] = full[ca][cb];
+                    }
+                }
+            }
+        }
+        Elasticity { mode, n: comps.len(), d }
+    }
+
+    /// stress = D · strain (reduced vectors).
+    pub fn stress(&self, strain: &[f64], stress: &mut [f64]) {
+        for i in 0..self.n {
+            stress[i] = (0..self.n).map(|j| self.d[i][j] * strain[j]).sum();
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn plane_strain_gives_sigma_z_from_poisson_effect() {
+        let m = Material { density: 0.0, young: 10.0, poisson: 0.2, talpha: 0.0 };
+        let el = Elasticity::new(&m, StressMode::PlaneStrain);
+        let mut s = [0.0; 4];
+        el.stress(&[1e-3, 0.0, 0.0, 0.0], &mut s);
+        // σz = ν/(1−ν) σx under εy = εz = 0.
+        assert!((s[2] - 0.25 * s[0]).abs() < 1e-15);
+        assert!((s[1] - s[2]).abs() < 1e-15);
+    }
+}

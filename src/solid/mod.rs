@@ -1,0 +1,9 @@
+//! Element kernels and materials: point-wise physics, no global structures.
+
+pub mod continuum;
+pub mod loads;
+pub mod material;
+pub mod truss;
+
+pub use continuum::{ContinuumKernel, GpState};
+pub use material::Elasticity;

@@ -1,0 +1,61 @@
+//! Two-node bar in small strain (Truss1d, Truss2d). B is built on the initial geometry
+//! (spec §1.9): ε = e·(u₂ − u₁)/L, σ = Eε, N = Aσ.
+//!
+//! Glossary: `x_ref` end coordinates in the element's plane (1 or 2 components used), `u` end
+//! displacements (u₁, u₂ per component), `area` A, `young` E.
+
+use super::GpState;
+
+/// Internal force `fe`, tangent `ke` (row-major) and the single GP state of a bar.
+pub fn evaluate_into(
+    dim: usize,
+    x_ref: [[f64; 2]; 2],
+    u: &[f64],
+    young: f64,
+    area: f64,
+    fe: &mut [f64],
+    ke: Option<&mut [f64]>,
+    states: Option<&mut Vec<GpState>>,
+) -> Result<(), String> {
+    let mut e = [0.0; 2];
+    let mut len2 = 0.0;
+    for i in 0..dim {
+        e[i] = x_ref[1][i] - x_ref[0][i];
+        len2 += e[i] * e[i];
+    }
+    let len = len2.sqrt();
+    if len < 1e-300 {
+        return Err("bar of zero length".into());
+    }
+    for v in e.iter_mut() {
+        *v /= len;
+    }
+    let strain: f64 = (0..dim).map(|i| e[i] * (u[dim + i] - u[i])).sum::<f64>() / len;
+    let stress = young * strain;
+    let force = area * stress;
+    for i in 0..dim {
+        fe[i] = -force * e[i];
+        fe[dim + i] = force * e[i];
+    }
+    if let Some(k) = ke {
+        let c = young * area / len;
+        let nd = 2 * dim;
+        for a in 0..2 {
+            for b in 0..2 {
+                let s = if a == b { c } else { -c };
+                for i in 0..dim {
+                    for j in 0..dim {
+                        k[(a * dim + i) * nd + b * dim + j] = s * e[i] * e[j];
+                    }
+                }
+            }
+        }
+    }
+    if let Some(st) = states {
+        let mut g = GpState::default();
+        g.strain[0] = strain;
+        g.stress[0] = stress;
+        st.push(g);
+    }
+    Ok(())
+}

@@ -1,0 +1,325 @@
+//! Load stepping and Newton–Raphson (spec §1.3, §3.2).
+//!
+//! Per step the target is: prescribed values `value·f(t)` (total) and external loads
+//! (LinearStatic/StaticStructural: `F·f(t)`; NonLinearStatic: the accumulated reference vectors
+//! Σ_k R_k with R_k = F·f(t_k) for `refloadmode 0` or F·(f(t_k) − f(t_k − Δt)) for 1).
+//! Newton solves F_int(u) = F_ext on the free DOFs with OOFEM's per-DOF-id convergence test.
+//! A step that does not converge is restarted in 2, 4, … substeps (loads and prescribed values
+//! interpolated linearly); after `max_cutbacks` halvings the run stops with an error.
+
+use super::assembly::{Assembler, Evaluation};
+use super::dofs::DofMap;
+use super::linear::{LinearSolver, SolverStats};
+use crate::error::{Error, Result};
+use crate::model::{AnalysisKind, Model};
+use crate::solid::loads::reference_contributions;
+use crate::solid::GpState;
+use std::time::Instant;
+
+/// Driver settings beyond what the input file says.
+#[derive(Debug, Clone)]
+pub struct SolveParams {
+    /// How many times a failing step may be halved.
+    pub max_cutbacks: usize,
+    /// Print one line per step on stderr.
+    pub log_steps: bool,
+}
+
+impl Default for SolveParams {
+    fn default() -> Self {
+        SolveParams { max_cutbacks: 5, log_steps: true }
+    }
+}
+
+/// Diagnostics of one step.
+#[derive(Debug, Clone, Default)]
+pub struct StepInfo {
+    pub iterations: usize,
+    /// Largest relative (or absolute) force error over the DOF groups, per iteration.
+    pub residual_history: Vec<f64>,
+    pub substeps: usize,
+    pub wall_seconds: f64,
+    pub solver: SolverStats,
+}
+
+/// The converged state after a step.
+pub struct StepResult<'a> {
+    pub step: usize,
+    pub time: f64,
+    pub dofs: &'a DofMap,
+    /// Primary displacement vector (free, then prescribed).
+    pub u: &'a [f64],
+    /// Reaction per prescribed DOF (same order as `dofs.prescribed`).
+    pub reactions: &'a [f64],
+    pub states: &'a [Vec<GpState>],
+    pub info: &'a StepInfo,
+}
+
+impl StepResult<'_> {
+    /// Total displacement of DOF `d` of node `n`, if the node has it.
+    pub fn displacement(&self, n: usize, d: u8) -> Option<f64> {
+        self.dofs.code(n, d).map(|c| self.dofs.value(self.u, c))
+    }
+}
+
+/// Run every step of the analysis, calling `on_step` after each converged step.
+pub fn run_analysis(
+    model: &Model,
+    params: &SolveParams,
+    mut on_step: impl FnMut(&StepResult) -> Result<()>,
+) -> Result<()> {
+    let dofs = DofMap::new(model)?;
+    let asm = Assembler::new(model, &dofs)?;
+    let nf = dofs.n_free;
+    let np = dofs.n_primary();
+    // Reference load vectors per load, in primary numbering.
+    let mut ref_loads = Vec::with_capacity(model.loads.len());
+    for load in &model.loads {
+        let mut v = vec![0.0; np];
+        for (node, d, val) in reference_contributions(model, load)? {
+            if let Some(code) = dofs.code(node, d) {
+                for (p, w) in dofs.entries(code) {
+                    v[p] += w * val;
+                }
+            }
+        }
+        ref_loads.push((load.function - 1, v));
+    }
+    let external = |scale: &dyn Fn(usize) -> f64| -> Vec<f64> {
+        let mut f = vec![0.0; np];
+        for (func, v) in &ref_loads {
+            let s = scale(*func);
+            if s != 0.0 {
+                for (a, b) in f.iter_mut().zip(v) {
+                    *a += s * b;
+                }
+            }
+        }
+        f
+    };
+    let prescribed_at = |t: f64| -> Vec<f64> {
+        dofs.prescribed
+            .iter()
+            .map(|&(_, d, bi)| {
+                let bc = &model.dirichlet[bi];
+                bc.value_for(d) * model.functions[bc.function - 1].eval(t)
+            })
+            .collect()
+    };
+    let a = &model.analysis;
+    let linear = !model.elements.iter().any(|e| e.nlgeo);
+    let mut ctx = NewtonContext { asm: &asm, dofs: &dofs, solver: LinearSolver::default(), factor_valid: false, linear };
+    let mut u = vec![0.0; np];
+    let mut applied = vec![0.0; np];
+    let times = model.step_times();
+    let nsteps = times.len();
+    for (k, &t) in times.iter().enumerate() {
+        let clock = Instant::now();
+        let step = k + 1;
+        let target = match a.kind {
+            AnalysisKind::NonLinearStatic => {
+                let r = external(&|f| {
+                    let func = &model.functions[f];
+                    if a.refloadmode == 1 {
+                        func.eval(t) - func.eval(t - a.deltat)
+                    } else {
+                        func.eval(t)
+                    }
+                });
+                applied.iter().zip(&r).map(|(x, y)| x + y).collect()
+            }
+            _ => external(&|f| model.functions[f].eval(t)),
+        };
+        let up_target = prescribed_at(t);
+        let mut info = StepInfo::default();
+        let start_u = u.clone();
+        let mut done = false;
+        for level in 0..=params.max_cutbacks {
+            let nsub = 1usize << level;
+            u.copy_from_slice(&start_u);
+            let mut ok = true;
+            for s in 1..=nsub {
+                let alpha = s as f64 / nsub as f64;
+                let f_sub: Vec<f64> = applied.iter().zip(&target).map(|(a0, a1)| a0 + alpha * (a1 - a0)).collect();
+                let up_sub: Vec<f64> =
+                    (0..dofs.n_prescribed).map(|i| start_u[nf + i] + alpha * (up_target[i] - start_u[nf + i])).collect();
+                match ctx.newton(&mut u, &f_sub, &up_sub, a, &mut info) {
+                    Ok(true) => {}
+                    Ok(false) => {
+                        ok = false;
+                        break;
+                    }
+                    Err(Error::Solve(msg)) if level < params.max_cutbacks => {
+                        if params.log_steps {
+                            eprintln!("step {step}: {msg}; cutting the step");
+                        }
+                        ok = false;
+                        break;
+                    }
+                    Err(e) => return Err(e),
+                }
+            }
+            if ok {
+                info.substeps = nsub;
+                done = true;
+                break;
+            }
+            ctx.factor_valid = false;
+            if params.log_steps && level < params.max_cutbacks {
+                eprintln!("step {step}: no convergence in {} iterations; retrying in {} substeps", a.maxiter, 2 * nsub);
+            }
+        }
+        if !done {
+            return Err(Error::Solve(format!(
+                "step {step} (t = {t}) did not converge within {} iterations even after {} step halvings; \
+                 last residual {:.3e} (rtolf {:.1e})",
+                a.maxiter,
+                params.max_cutbacks,
+                info.residual_history.last().copied().unwrap_or(f64::NAN),
+                a.rtolf
+            )));
+        }
+        applied = target;
+        let ev: Evaluation = asm.evaluate(&u, false, true, None)?;
+        let reactions: Vec<f64> = (0..dofs.n_prescribed).map(|i| ev.f_int[nf + i] - applied[nf + i]).collect();
+        info.wall_seconds = clock.elapsed().as_secs_f64();
+        info.solver = ctx.solver.stats.clone();
+        if params.log_steps {
+            eprintln!(
+                "step {step}/{nsteps}  t = {t:.4e}  iterations {}  residual {:.2e}  substeps {}  {:.3} s",
+                info.iterations,
+                info.residual_history.last().copied().unwrap_or(0.0),
+                info.substeps,
+                info.wall_seconds
+            );
+        }
+        let states = ev.states.unwrap_or_default();
+        on_step(&StepResult { step, time: t, dofs: &dofs, u: &u, reactions: &reactions, states: &states, info: &info })?;
+    }
+    Ok(())
+}
+
+struct NewtonContext<'a> {
+    asm: &'a Assembler<'a>,
+    dofs: &'a DofMap,
+    solver: LinearSolver,
+    /// The current factorization is the (constant) tangent of a linear problem.
+    factor_valid: bool,
+    linear: bool,
+}
+
+impl NewtonContext<'_> {
+    fn factorize(&mut self, ev: &Evaluation) -> Result<()> {
+        let kv = ev.k_values.as_ref().expect("tangent requested");
+        self.solver.factorize(&self.asm.pattern, kv)?;
+        self.factor_valid = self.linear;
+        Ok(())
+    }
+
+    /// Newton iterations towards external forces `f_ext` and prescribed values `up`.
+    /// Ok(false) = no convergence within maxiter.
+    fn newton(
+        &mut self,
+        u: &mut [f64],
+        f_ext: &[f64],
+        up: &[f64],
+        a: &crate::model::Analysis,
+        info: &mut StepInfo,
+    ) -> Result<bool> {
+        let nf = self.dofs.n_free;
+        if nf == 0 {
+            u[nf..].copy_from_slice(up);
+            return Ok(true);
+        }
+        let dup: Vec<f64> = (0..up.len()).map(|i| up[i] - u[nf + i]).collect();
+        if a.initialguess && dup.iter().any(|&d| d != 0.0) {
+            // Tangent predictor: K_ff Δu_f = −K_fp Δu_p at the current state.
+            let need_k = !self.factor_valid;
+            let ev = self.asm.evaluate(u, need_k, false, Some(&dup))?;
+            if need_k {
+                self.factorize(&ev)?;
+            }
+            let mut rhs: Vec<f64> = ev.k_fp_dup.expect("requested").iter().map(|v| -v).collect();
+            self.solver.solve_in_place(&mut rhs)?;
+            for i in 0..nf {
+                u[i] += rhs[i];
+            }
+        }
+        u[nf..].copy_from_slice(up);
+        let mut du = vec![0.0; nf];
+        for it in 0..=a.maxiter {
+            let refresh = !self.factor_valid && (it == 0 || a.manrmsteps.is_some_and(|k| it % k == 0));
+            let ev = self.asm.evaluate(u, refresh, false, None)?;
+            let mut rhs: Vec<f64> = (0..nf).map(|i| f_ext[i] - ev.f_int[i]).collect();
+            let (force_err, converged) = self.check(&rhs, f_ext, &ev.ebe, &du, u, a, it);
+            info.residual_history.push(force_err);
+            info.iterations += 1;
+            if converged && (it > 0 || force_err == 0.0) {
+                info.iterations -= 1;
+                return Ok(true);
+            }
+            if !force_err.is_finite() {
+                return Err(Error::Solve("residual is not finite".into()));
+            }
+            if it == a.maxiter {
+                break;
+            }
+            if refresh {
+                self.factorize(&ev)?;
+            }
+            self.solver.solve_in_place(&mut rhs)?;
+            for i in 0..nf {
+                u[i] += rhs[i];
+            }
+            du.copy_from_slice(&rhs);
+        }
+        Ok(false)
+    }
+
+    /// OOFEM's convergence test per DOF-id group (spec §1.3). Returns (largest force error, converged).
+    #[allow(clippy::too_many_arguments)]
+    fn check(
+        &self,
+        rhs: &[f64],
+        f_ext: &[f64],
+        ebe: &[f64; 4],
+        du: &[f64],
+        u: &[f64],
+        a: &crate::model::Analysis,
+        it: usize,
+    ) -> (f64, bool) {
+        let mut num = [0.0; 4];
+        let mut den = [0.0; 4];
+        let mut dd = [0.0; 4];
+        let mut uu = [0.0; 4];
+        let mut present = [false; 4];
+        for i in 0..rhs.len() {
+            let g = self.dofs.primary_dof_id[i] as usize;
+            present[g] = true;
+            num[g] += rhs[i] * rhs[i];
+            den[g] += f_ext[i] * f_ext[i];
+            dd[g] += du[i] * du[i];
+            uu[g] += u[i] * u[i];
+        }
+        let mut worst: f64 = 0.0;
+        let mut ok = true;
+        for g in 1..4 {
+            if !present[g] {
+                continue;
+            }
+            let d = den[g] + ebe[g];
+            let fe = if d < 1e-6 { num[g].sqrt() } else { (num[g] / d).sqrt() };
+            worst = worst.max(fe);
+            if !(fe <= a.rtolf) {
+                ok = false;
+            }
+            if a.rtold > 0.0 && it > 0 {
+                let de = if uu[g] < 1e-6 { dd[g].sqrt() } else { (dd[g] / uu[g]).sqrt() };
+                if !(de <= a.rtold) {
+                    ok = false;
+                }
+            }
+        }
+        (worst, ok)
+    }
+}

@@ -1,0 +1,262 @@
+//! Element loop: internal forces, tangent values on a fixed sparse pattern (upper triangle of the
+//! free-free block, CSC), integration-point states. Element kernels run in parallel chunks; the
+//! scatter is serial in element order, so results do not depend on the thread count.
+
+use super::dofs::DofMap;
+use crate::error::{Error, Result};
+use crate::fem::{rule, QuadPoint};
+use crate::model::Model;
+use crate::solid::continuum::{ContinuumKernel, MAX_DOFS};
+use crate::solid::loads::{element_thickness, truss_coords};
+use crate::solid::{truss, Elasticity, GpState};
+use rayon::prelude::*;
+use std::collections::HashMap;
+
+/// Upper-triangular CSC pattern of the free-free stiffness block.
+#[derive(Debug, Clone)]
+pub struct Pattern {
+    pub n: usize,
+    pub col_ptr: Vec<usize>,
+    pub row_idx: Vec<usize>,
+}
+
+impl Pattern {
+    /// Position of entry (row, col), row <= col, in the value array.
+    #[inline]
+    pub fn position(&self, row: usize, col: usize) -> usize {
+        debug_assert!(row <= col);
+        let (s, e) = (self.col_ptr[col], self.col_ptr[col + 1]);
+        s + self.row_idx[s..e].binary_search(&row).expect("entry in pattern")
+    }
+    pub fn nnz(&self) -> usize {
+        self.row_idx.len()
+    }
+}
+
+/// Per-element data prepared once: location codes, rule and material table indices.
+struct ElementInfo {
+    loc_start: usize,
+    ndof: usize,
+    rule: usize,
+    elasticity: usize,
+    thick: f64,
+}
+
+/// Global quantities from one element loop.
+pub struct Evaluation {
+    /// Internal forces in primary numbering (free then prescribed).
+    pub f_int: Vec<f64>,
+    /// Tangent values on the pattern, if requested.
+    pub k_values: Option<Vec<f64>>,
+    /// K_fp · Δu_p (free rows), if prescribed increments were given.
+    pub k_fp_dup: Option<Vec<f64>>,
+    /// Element-by-element squared internal-force norms per DOF id (index 1..3).
+    pub ebe: [f64; 4],
+    /// Integration-point states per element, if requested.
+    pub states: Option<Vec<Vec<GpState>>>,
+}
+
+pub struct Assembler<'m> {
+    pub model: &'m Model,
+    pub dofs: &'m DofMap,
+    pub pattern: Pattern,
+    elems: Vec<ElementInfo>,
+    locs: Vec<usize>,
+    rules: Vec<Vec<QuadPoint>>,
+    elasticities: Vec<Elasticity>,
+}
+
+const CHUNK: usize = 2048;
+
+impl<'m> Assembler<'m> {
+    pub fn new(model: &'m Model, dofs: &'m DofMap) -> Result<Assembler<'m>> {
+        let mut rule_ids: HashMap<(crate::fem::Shape, usize), usize> = HashMap::new();
+        let mut rules = Vec::new();
+        let mut el_ids: HashMap<(usize, u8), usize> = HashMap::new();
+        let mut elasticities = Vec::new();
+        let mut elems = Vec::with_capacity(model.elements.len());
+        let mut locs = Vec::new();
+        for (e, el) in model.elements.iter().enumerate() {
+            let shape = el.etype.shape();
+            let nip = el.nip.unwrap_or(el.etype.default_nip());
+            let r = *rule_ids.entry((shape, nip)).or_insert_with(|| {
+                rules.push(rule(shape, nip).expect("nip validated by the reader"));
+                rules.len() - 1
+            });
+            let mode = el.etype.mode();
+            let k = *el_ids.entry((el.material, mode as u8)).or_insert_with(|| {
+                elasticities.push(Elasticity::new(&model.materials[el.material], mode));
+                elasticities.len() - 1
+            });
+            let loc_start = locs.len();
+            for &n in &el.nodes {
+                for &d in el.dof_ids() {
+                    locs.push(dofs.code(n, d).expect("node carries its elements' DOFs"));
+                }
+            }
+            let thick = if el.etype.is_truss() {
+                model.cross_sections[el.cross_section].area
+            } else if shape.dim() == 2 {
+                element_thickness(model, e)
+            } else {
+                1.0
+            };
+            elems.push(ElementInfo { loc_start, ndof: locs.len() - loc_start, rule: r, elasticity: k, thick });
+        }
+        let mut a = Assembler { model, dofs, pattern: Pattern { n: 0, col_ptr: vec![0], row_idx: vec![] }, elems, locs, rules, elasticities };
+        a.pattern = a.build_pattern();
+        Ok(a)
+    }
+
+    fn free_eqs(&self, e: usize, out: &mut Vec<usize>) {
+        out.clear();
+        let info = &self.elems[e];
+        for &c in &self.locs[info.loc_start..info.loc_start + info.ndof] {
+            out.extend(self.dofs.entries(c).map(|x| x.0).filter(|&p| p < self.dofs.n_free));
+        }
+        out.sort_unstable();
+        out.dedup();
+    }
+
+    fn build_pattern(&self) -> Pattern {
+        let n = self.dofs.n_free;
+        let mut cols: Vec<Vec<usize>> = vec![Vec::new(); n];
+        let mut eqs = Vec::new();
+        for e in 0..self.elems.len() {
+            self.free_eqs(e, &mut eqs);
+            for (j, &c) in eqs.iter().enumerate() {
+                cols[c].extend_from_slice(&eqs[..=j]);
+            }
+        }
+        let mut col_ptr = Vec::with_capacity(n + 1);
+        col_ptr.push(0);
+        let mut row_idx = Vec::new();
+        for (c, mut rows) in cols.into_iter().enumerate() {
+            rows.push(c); // keep every diagonal so a missing stiffness shows as a zero pivot
+            rows.sort_unstable();
+            rows.dedup();
+            row_idx.extend_from_slice(&rows);
+            col_ptr.push(row_idx.len());
+        }
+        Pattern { n, col_ptr, row_idx }
+    }
+
+    /// Evaluate one element at the primary state `u` into `fe`, `ke` (row-major) and states.
+    fn element(
+        &self,
+        e: usize,
+        u: &[f64],
+        fe: &mut [f64],
+        ke: Option<&mut [f64]>,
+        states: Option<&mut Vec<GpState>>,
+    ) -> Result<()> {
+        let el = &self.model.elements[e];
+        let info = &self.elems[e];
+        let mut ue = [0.0; MAX_DOFS];
+        for (k, &c) in self.locs[info.loc_start..info.loc_start + info.ndof].iter().enumerate() {
+            ue[k] = self.dofs.value(u, c);
+        }
+        let fail = |gp: usize, msg: String| Error::Solve(format!("element {} (gp {gp}): {msg}", el.label));
+        if el.etype.is_truss() {
+            let dim = el.dof_ids().len();
+            let young = self.model.materials[el.material].young;
+            truss::evaluate_into(dim, truss_coords(self.model, e), &ue, young, info.thick, fe, ke, states)
+                .map_err(|m| fail(1, m))
+        } else {
+            let shape = el.etype.shape();
+            let mut x = [[0.0; 3]; 8];
+            for (a, &n) in el.nodes.iter().enumerate() {
+                x[a] = self.model.nodes[n].coords;
+            }
+            let kernel = ContinuumKernel {
+                shape,
+                nsd: shape.dim(),
+                rule: &self.rules[info.rule],
+                elasticity: &self.elasticities[info.elasticity],
+                thick: info.thick,
+                nlgeo: el.nlgeo,
+            };
+            kernel.evaluate_into(&x[..el.nodes.len()], &ue, fe, ke, states).map_err(|k| fail(k.gp, k.msg))
+        }
+    }
+
+    /// The element loop at primary state `u`.
+    pub fn evaluate(&self, u: &[f64], want_k: bool, want_states: bool, dup: Option<&[f64]>) -> Result<Evaluation> {
+        let nf = self.dofs.n_free;
+        let mut f_int = vec![0.0; self.dofs.n_primary()];
+        let mut k_values = want_k.then(|| vec![0.0; self.pattern.nnz()]);
+        let mut k_fp_dup = dup.map(|_| vec![0.0; nf]);
+        let mut ebe = [0.0; 4];
+        let mut states = want_states.then(|| Vec::with_capacity(self.elems.len()));
+        let need_k = want_k || dup.is_some();
+        let n_el = self.elems.len();
+        let mut start = 0;
+        while start < n_el {
+            let end = (start + CHUNK * rayon::current_num_threads().max(1)).min(n_el);
+            // Parallel kernels on this block of elements, each into its own buffers.
+            let results: Vec<Result<(Vec<f64>, Vec<f64>, Vec<GpState>)>> = (start..end)
+                .into_par_iter()
+                .map(|e| {
+                    let nd = self.elems[e].ndof;
+                    let mut fe = vec![0.0; nd];
+                    let mut ke = if need_k { vec![0.0; nd * nd] } else { Vec::new() };
+                    let mut st = Vec::new();
+                    self.element(
+                        e,
+                        u,
+                        &mut fe,
+                        need_k.then_some(ke.as_mut_slice()),
+                        want_states.then_some(&mut st),
+                    )?;
+                    Ok((fe, ke, st))
+                })
+                .collect();
+            for (off, res) in results.into_iter().enumerate() {
+                let e = start + off;
+                let (fe, ke, st) = res?;
+                let info = &self.elems[e];
+                let loc = &self.locs[info.loc_start..info.loc_start + info.ndof];
+                let nd = info.ndof;
+                for (a, &ca) in loc.iter().enumerate() {
+                    for (p, wp) in self.dofs.entries(ca) {
+                        f_int[p] += wp * fe[a];
+                        if p < nf {
+                            ebe[self.dofs.primary_dof_id[p] as usize] += (wp * fe[a]).powi(2);
+                        }
+                    }
+                }
+                if need_k {
+                    for (a, &ca) in loc.iter().enumerate() {
+                        for (p, wp) in self.dofs.entries(ca) {
+                            if p >= nf {
+                                continue;
+                            }
+                            for (b, &cb) in loc.iter().enumerate() {
+                                let kab = ke[a * nd + b];
+                                if kab == 0.0 {
+                                    continue;
+                                }
+                                for (q, wq) in self.dofs.entries(cb) {
+                                    if q < nf {
+                                        if let Some(kv) = k_values.as_mut() {
+                                            if p <= q {
+                                                kv[self.pattern.position(p, q)] += wp * wq * kab;
+                                            }
+                                        }
+                                    } else if let (Some(kd), Some(d)) = (k_fp_dup.as_mut(), dup) {
+                                        kd[p] += wp * wq * kab * d[q - nf];
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+                if let Some(s) = states.as_mut() {
+                    s.push(st);
+                }
+            }
+            start = end;
+        }
+        Ok(Evaluation { f_int, k_values, k_fp_dup, ebe, states })
+    }
+}

@@ -1,0 +1,134 @@
+//! Sparse symmetric solver on faer: fill-reducing ordering and symbolic analysis once per
+//! pattern, numeric LLᵀ per call; a sparse LU fallback when the matrix is not positive definite
+//! (e.g. under compressive geometric stiffness).
+
+use super::assembly::Pattern;
+use crate::error::{Error, Result};
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::solvers::Solve;
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky, SymmetricOrdering,
+};
+use faer::sparse::{SparseColMat, SparseColMatRef, SymbolicSparseColMatRef, Triplet};
+use faer::{Conj, MatMut, Par, Side};
+use std::time::Instant;
+
+/// Timings and sizes of the last factorization (for logs and benchmarks).
+#[derive(Debug, Clone, Default)]
+pub struct SolverStats {
+    pub symbolic_seconds: f64,
+    pub numeric_seconds: f64,
+    pub solve_seconds: f64,
+    pub factor_nnz: usize,
+    pub used_lu: bool,
+}
+
+enum Factor {
+    None,
+    Llt(Vec<f64>),
+    Lu(faer::sparse::linalg::solvers::Lu<usize, f64>),
+}
+
+/// Factorizes matrices that share one pattern.
+pub struct LinearSolver {
+    symbolic: Option<SymbolicCholesky<usize>>,
+    factor: Factor,
+    pub stats: SolverStats,
+}
+
+impl Default for LinearSolver {
+    fn default() -> Self {
+        LinearSolver { symbolic: None, factor: Factor::None, stats: SolverStats::default() }
+    }
+}
+
+fn par() -> Par {
+    faer::get_global_parallelism()
+}
+
+impl LinearSolver {
+    /// Factorize the symmetric matrix given by its upper triangle on `pattern`.
+    pub fn factorize(&mut self, pattern: &Pattern, values: &[f64]) -> Result<()> {
+        let n = pattern.n;
+        let sym = SymbolicSparseColMatRef::new_checked(n, n, &pattern.col_ptr, None, &pattern.row_idx);
+        if self.symbolic.is_none() {
+            let t = Instant::now();
+            let s = factorize_symbolic_cholesky(sym, Side::Upper, SymmetricOrdering::Amd, CholeskySymbolicParams::default())
+                .map_err(|e| Error::Solve(format!("symbolic factorization failed: {e:?}")))?;
+            self.stats.symbolic_seconds = t.elapsed().as_secs_f64();
+            self.stats.factor_nnz = s.len_val();
+            self.symbolic = Some(s);
+        }
+        let symbolic = self.symbolic.as_ref().expect("set above");
+        let mat = SparseColMatRef::new(sym, values);
+        let t = Instant::now();
+        let mut l_values = match std::mem::replace(&mut self.factor, Factor::None) {
+            Factor::Llt(v) => v,
+            _ => vec![0.0; symbolic.len_val()],
+        };
+        let mut mem = MemBuffer::try_new(symbolic.factorize_numeric_llt_scratch::<f64>(par(), Default::default()))
+            .map_err(|_| Error::Solve("out of memory for the factorization workspace".into()))?;
+        let llt = symbolic.factorize_numeric_llt::<f64>(
+            &mut l_values,
+            mat,
+            Side::Upper,
+            Default::default(),
+            par(),
+            MemStack::new(&mut mem),
+            Default::default(),
+        );
+        if llt.is_ok() {
+            self.factor = Factor::Llt(l_values);
+            self.stats.used_lu = false;
+        } else {
+            // Not positive definite: full LU on both triangles.
+            let mut triplets = Vec::with_capacity(2 * values.len());
+            for c in 0..n {
+                for k in pattern.col_ptr[c]..pattern.col_ptr[c + 1] {
+                    let r = pattern.row_idx[k];
+                    triplets.push(Triplet::new(r, c, values[k]));
+                    if r != c {
+                        triplets.push(Triplet::new(c, r, values[k]));
+                    }
+                }
+            }
+            let full = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &triplets)
+                .map_err(|e| Error::Solve(format!("cannot build the matrix: {e:?}")))?;
+            let lu = full.sp_lu().map_err(|_| {
+                Error::Solve("the stiffness matrix is singular: are all rigid-body motions restrained?".into())
+            })?;
+            self.factor = Factor::Lu(lu);
+            self.stats.used_lu = true;
+        }
+        self.stats.numeric_seconds = t.elapsed().as_secs_f64();
+        Ok(())
+    }
+
+    /// Solve in place with the last factorization; fails on a singular matrix.
+    pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()> {
+        let t = Instant::now();
+        let n = rhs.len();
+        let m = MatMut::from_column_major_slice_mut(rhs, n, 1);
+        match &self.factor {
+            Factor::None => return Err(Error::Solve("solve called before factorize".into())),
+            Factor::Llt(values) => {
+                let symbolic = self.symbolic.as_ref().expect("factorized");
+                let mut mem = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, par()));
+                LltRef::new(symbolic, values).solve_in_place_with_conj(Conj::No, m, par(), MemStack::new(&mut mem));
+            }
+            Factor::Lu(lu) => lu.solve_in_place(m),
+        }
+        self.stats.solve_seconds = t.elapsed().as_secs_f64();
+        if rhs.iter().any(|v| !v.is_finite()) {
+            return Err(Error::Solve(
+                "the stiffness matrix is singular: are all rigid-body motions restrained?".into(),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Forget the symbolic analysis (the pattern changed).
+    pub fn reset(&mut self) {
+        *self = LinearSolver::default();
+    }
+}
