@@ -41,11 +41,20 @@ pub fn run_file(path: &Path, opts: &RunOptions) -> Result<RunReport> {
     let clock = Instant::now();
     let read = read_model(path)?;
     let model = read.model;
-    let mut report = RunReport { warnings: read.warnings, has_errorcheck: model.analysis.errorcheck, ..Default::default() };
+    let mut report = RunReport {
+        warnings: read.warnings,
+        has_errorcheck: model.analysis.errorcheck,
+        ..Default::default()
+    };
     let rules = if model.analysis.errorcheck {
-        let raw = std::fs::read(path).map_err(|e| Error::InputFile { file: path.display().to_string(), msg: e.to_string() })?;
+        let raw = std::fs::read(path).map_err(|e| Error::InputFile {
+            file: path.display().to_string(),
+            msg: e.to_string(),
+        })?;
         let (rules, w) = check::parse_rules(&String::from_utf8_lossy(&raw));
-        report.warnings.extend(w.into_iter().map(|m| format!("{}: {m}", path.display())));
+        report
+            .warnings
+            .extend(w.into_iter().map(|m| format!("{}: {m}", path.display())));
         let nsteps = model.step_times().len();
         for r in rules.iter().filter(|r| r.step == 0 || r.step > nsteps) {
             report.warnings.push(format!(
@@ -61,18 +70,35 @@ pub fn run_file(path: &Path, opts: &RunOptions) -> Result<RunReport> {
     };
     let dir = match &opts.out_dir {
         Some(d) => d.clone(),
-        None => path.parent().map(Path::to_path_buf).unwrap_or_else(|| PathBuf::from(".")),
+        None => path
+            .parent()
+            .map(Path::to_path_buf)
+            .unwrap_or_else(|| PathBuf::from(".")),
     };
-    let out_name = if model.output_name.is_empty() { "hertz.out".to_string() } else { model.output_name.clone() };
-    let stem = Path::new(&out_name).file_stem().and_then(|s| s.to_str()).unwrap_or("hertz").to_string();
+    let out_name = if model.output_name.is_empty() {
+        "hertz.out".to_string()
+    } else {
+        model.output_name.clone()
+    };
+    let stem = Path::new(&out_name)
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .unwrap_or("hertz")
+        .to_string();
     if opts.write_outputs {
-        std::fs::create_dir_all(&dir).map_err(|e| Error::Output(format!("cannot create {}: {e}", dir.display())))?;
+        std::fs::create_dir_all(&dir)
+            .map_err(|e| Error::Output(format!("cannot create {}: {e}", dir.display())))?;
     }
     let mut out_text = outfile::header(&model);
     let mut vtus: Vec<(f64, String)> = Vec::new();
-    let params = SolveParams { log_steps: opts.log_steps, ..Default::default() };
+    let params = SolveParams {
+        log_steps: opts.log_steps,
+        ..Default::default()
+    };
     let result = run_analysis(&model, &params, |res| {
-        report.outcomes.extend(check::evaluate_step(&model, &rules, res));
+        report
+            .outcomes
+            .extend(check::evaluate_step(&model, &rules, res));
         if opts.write_outputs {
             if model.output.step(res.step) {
                 out_text.push_str(&outfile::step_block(&model, res));

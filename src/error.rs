@@ -22,6 +22,9 @@ pub enum Error {
     /// The solver failed (singular matrix, non-convergence, inverted element).
     #[error("solver: {0}")]
     Solve(String),
+    /// The system is singular (a mechanism); cutting the step cannot help.
+    #[error("solver: {0}")]
+    Singular(String),
     /// Writing output failed.
     #[error("output: {0}")]
     Output(String),
@@ -32,7 +35,7 @@ impl Error {
     pub fn exit_code(&self) -> i32 {
         match self {
             Error::Input { .. } | Error::InputFile { .. } => 2,
-            Error::Solve(_) => 3,
+            Error::Solve(_) | Error::Singular(_) => 3,
             Error::Output(_) => 4,
         }
     }

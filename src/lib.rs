@@ -6,6 +6,6 @@ pub mod error;
 pub mod fem;
 pub mod input;
 pub mod model;
+pub mod output;
 pub mod solid;
 pub mod solve;
-pub mod output;

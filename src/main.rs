@@ -33,7 +33,9 @@ fn usage_error(msg: &str) -> ExitCode {
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let Some(cmd) = args.first() else { return usage_error("no command given") };
+    let Some(cmd) = args.first() else {
+        return usage_error("no command given");
+    };
     match cmd.as_str() {
         "-h" | "--help" | "help" => {
             print!("{HELP}");
@@ -51,7 +53,11 @@ fn main() -> ExitCode {
 
 fn run_or_check(run: bool, args: &[String]) -> ExitCode {
     let mut file: Option<PathBuf> = None;
-    let mut opts = RunOptions { write_outputs: run, log_steps: true, out_dir: None };
+    let mut opts = RunOptions {
+        write_outputs: run,
+        log_steps: true,
+        out_dir: None,
+    };
     let mut it = args.iter();
     while let Some(a) = it.next() {
         match a.as_str() {
@@ -69,7 +75,9 @@ fn run_or_check(run: bool, args: &[String]) -> ExitCode {
             s => return usage_error(&format!("unexpected argument `{s}`")),
         }
     }
-    let Some(file) = file else { return usage_error("no input file given") };
+    let Some(file) = file else {
+        return usage_error("no input file given");
+    };
     match run_file(&file, &opts) {
         Ok(report) => {
             for w in &report.warnings {
@@ -80,9 +88,16 @@ fn run_or_check(run: bool, args: &[String]) -> ExitCode {
                 for o in report.outcomes.iter().filter(|o| !o.passed) {
                     println!("{}", describe_failure(o));
                 }
-                println!("{} passed, {} failed", report.outcomes.len() - failed, failed);
+                println!(
+                    "{} passed, {} failed",
+                    report.outcomes.len() - failed,
+                    failed
+                );
             } else if !run {
-                println!("no errorcheck module in {}: nothing to check", file.display());
+                println!(
+                    "no errorcheck module in {}: nothing to check",
+                    file.display()
+                );
             }
             if run {
                 for p in &report.written {

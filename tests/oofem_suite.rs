@@ -6,7 +6,9 @@ use hertz::output::check::parse_rules;
 use std::path::PathBuf;
 
 fn data(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/oofem").join(name)
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/oofem")
+        .join(name)
 }
 
 fn check_file(name: &str) {
@@ -16,9 +18,17 @@ fn check_file(name: &str) {
     let raw = std::fs::read_to_string(&path).unwrap();
     let n_rules = parse_rules(&raw).0.len();
     assert!(n_rules > 0);
-    assert_eq!(report.outcomes.len(), n_rules, "{name}: every rule evaluated once");
-    let failures: Vec<String> =
-        report.outcomes.iter().filter(|o| !o.passed).map(hertz::output::check::describe_failure).collect();
+    assert_eq!(
+        report.outcomes.len(),
+        n_rules,
+        "{name}: every rule evaluated once"
+    );
+    let failures: Vec<String> = report
+        .outcomes
+        .iter()
+        .filter(|o| !o.passed)
+        .map(hertz::output::check::describe_failure)
+        .collect();
     assert!(failures.is_empty(), "{name}:\n{}", failures.join("\n"));
 }
 

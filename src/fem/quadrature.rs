@@ -48,12 +48,21 @@ fn triangle(n: usize) -> Option<Vec<([f64; 2], f64)>> {
         1 => Some(vec![([1.0 / 3.0, 1.0 / 3.0], 0.5)]),
         3 => {
             let (a, b) = (1.0 / 6.0, 2.0 / 3.0);
-            Some(vec![([a, a], 1.0 / 6.0), ([b, a], 1.0 / 6.0), ([a, b], 1.0 / 6.0)])
+            Some(vec![
+                ([a, a], 1.0 / 6.0),
+                ([b, a], 1.0 / 6.0),
+                ([a, b], 1.0 / 6.0),
+            ])
         }
         4 => {
             let w1 = -27.0 / 96.0;
             let w2 = 25.0 / 96.0;
-            Some(vec![([1.0 / 3.0, 1.0 / 3.0], w1), ([0.2, 0.2], w2), ([0.6, 0.2], w2), ([0.2, 0.6], w2)])
+            Some(vec![
+                ([1.0 / 3.0, 1.0 / 3.0], w1),
+                ([0.2, 0.2], w2),
+                ([0.6, 0.2], w2),
+                ([0.2, 0.6], w2),
+            ])
         }
         _ => None,
     }
@@ -66,7 +75,12 @@ fn tetra(n: usize) -> Option<Vec<([f64; 3], f64)>> {
             let a = 0.585_410_196_624_968_5;
             let b = 0.138_196_601_125_010_5;
             let w = 1.0 / 24.0;
-            Some(vec![([a, b, b], w), ([b, a, b], w), ([b, b, a], w), ([b, b, b], w)])
+            Some(vec![
+                ([a, b, b], w),
+                ([b, a, b], w),
+                ([b, b, a], w),
+                ([b, b, b], w),
+            ])
         }
         _ => None,
     }
@@ -78,7 +92,10 @@ pub fn rule(shape: Shape, nip: usize) -> Option<Vec<QuadPoint>> {
     match shape {
         Shape::Line2 | Shape::Line3 => {
             for (x, w) in gauss_line(nip)? {
-                out.push(QuadPoint { xi: [x, 0.0, 0.0], weight: w });
+                out.push(QuadPoint {
+                    xi: [x, 0.0, 0.0],
+                    weight: w,
+                });
             }
         }
         Shape::Quad4 | Shape::Quad8 => {
@@ -89,7 +106,10 @@ pub fn rule(shape: Shape, nip: usize) -> Option<Vec<QuadPoint>> {
             let g = gauss_line(n)?;
             for &(x, wx) in &g {
                 for &(y, wy) in &g {
-                    out.push(QuadPoint { xi: [x, y, 0.0], weight: wx * wy });
+                    out.push(QuadPoint {
+                        xi: [x, y, 0.0],
+                        weight: wx * wy,
+                    });
                 }
             }
         }
@@ -102,14 +122,20 @@ pub fn rule(shape: Shape, nip: usize) -> Option<Vec<QuadPoint>> {
             for &(x, wx) in &g {
                 for &(y, wy) in &g {
                     for &(z, wz) in &g {
-                        out.push(QuadPoint { xi: [x, y, z], weight: wx * wy * wz });
+                        out.push(QuadPoint {
+                            xi: [x, y, z],
+                            weight: wx * wy * wz,
+                        });
                     }
                 }
             }
         }
         Shape::Tri3 => {
             for (p, w) in triangle(nip)? {
-                out.push(QuadPoint { xi: [p[0], p[1], 0.0], weight: w });
+                out.push(QuadPoint {
+                    xi: [p[0], p[1], 0.0],
+                    weight: w,
+                });
             }
         }
         Shape::Tet4 => {
@@ -126,7 +152,10 @@ pub fn rule(shape: Shape, nip: usize) -> Option<Vec<QuadPoint>> {
             };
             for (p, wt) in triangle(ntri)? {
                 for (z, wz) in gauss_line(nline)? {
-                    out.push(QuadPoint { xi: [p[0], p[1], z], weight: wt * wz });
+                    out.push(QuadPoint {
+                        xi: [p[0], p[1], z],
+                        weight: wt * wz,
+                    });
                 }
             }
         }
@@ -144,7 +173,11 @@ mod tests {
             let g = gauss_line(n).unwrap();
             for p in 0..2 * n {
                 let num: f64 = g.iter().map(|(x, w)| w * x.powi(p as i32)).sum();
-                let exact = if p % 2 == 1 { 0.0 } else { 2.0 / (p as f64 + 1.0) };
+                let exact = if p % 2 == 1 {
+                    0.0
+                } else {
+                    2.0 / (p as f64 + 1.0)
+                };
                 assert!((num - exact).abs() < 1e-13, "n={n} p={p}");
             }
         }
@@ -167,7 +200,10 @@ mod tests {
         for (s, n, m) in cases {
             let r = rule(s, n).unwrap();
             assert_eq!(r.len(), n);
-            assert!((r.iter().map(|p| p.weight).sum::<f64>() - m).abs() < 1e-14, "{s:?} {n}");
+            assert!(
+                (r.iter().map(|p| p.weight).sum::<f64>() - m).abs() < 1e-14,
+                "{s:?} {n}"
+            );
         }
     }
 
@@ -175,10 +211,18 @@ mod tests {
     fn triangle_and_tet_rules_integrate_quadratics() {
         // ∫_T x² = 1/12 on the unit triangle; ∫_tet x² = 1/60.
         for n in [3, 4] {
-            let v: f64 = rule(Shape::Tri3, n).unwrap().iter().map(|p| p.weight * p.xi[0] * p.xi[0]).sum();
+            let v: f64 = rule(Shape::Tri3, n)
+                .unwrap()
+                .iter()
+                .map(|p| p.weight * p.xi[0] * p.xi[0])
+                .sum();
             assert!((v - 1.0 / 12.0).abs() < 1e-14);
         }
-        let v: f64 = rule(Shape::Tet4, 4).unwrap().iter().map(|p| p.weight * p.xi[0] * p.xi[1]).sum();
+        let v: f64 = rule(Shape::Tet4, 4)
+            .unwrap()
+            .iter()
+            .map(|p| p.weight * p.xi[0] * p.xi[1])
+            .sum();
         assert!((v - 1.0 / 120.0).abs() < 1e-14);
     }
 

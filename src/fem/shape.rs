@@ -22,8 +22,16 @@ pub enum Shape {
 }
 
 const QUAD4_NODES: [[f64; 2]; 4] = [[1.0, 1.0], [-1.0, 1.0], [-1.0, -1.0], [1.0, -1.0]];
-const QUAD8_NODES: [[f64; 2]; 8] =
-    [[1.0, 1.0], [-1.0, 1.0], [-1.0, -1.0], [1.0, -1.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0], [1.0, 0.0]];
+const QUAD8_NODES: [[f64; 2]; 8] = [
+    [1.0, 1.0],
+    [-1.0, 1.0],
+    [-1.0, -1.0],
+    [1.0, -1.0],
+    [0.0, 1.0],
+    [-1.0, 0.0],
+    [0.0, -1.0],
+    [1.0, 0.0],
+];
 const HEXA8_NODES: [[f64; 3]; 8] = [
     [-1.0, -1.0, 1.0],
     [-1.0, 1.0, 1.0],
@@ -84,7 +92,11 @@ impl Shape {
             Shape::Quad4 => {
                 for (a, p) in QUAD4_NODES.iter().enumerate() {
                     n[a] = 0.25 * (1.0 + p[0] * x) * (1.0 + p[1] * y);
-                    dn[a] = [0.25 * p[0] * (1.0 + p[1] * y), 0.25 * p[1] * (1.0 + p[0] * x), 0.0];
+                    dn[a] = [
+                        0.25 * p[0] * (1.0 + p[1] * y),
+                        0.25 * p[1] * (1.0 + p[0] * x),
+                        0.0,
+                    ];
                 }
             }
             Shape::Quad8 => {
@@ -121,7 +133,11 @@ impl Shape {
                 for (a, p) in HEXA8_NODES.iter().enumerate() {
                     let (fx, fy, fz) = (1.0 + p[0] * x, 1.0 + p[1] * y, 1.0 + p[2] * z);
                     n[a] = 0.125 * fx * fy * fz;
-                    dn[a] = [0.125 * p[0] * fy * fz, 0.125 * p[1] * fx * fz, 0.125 * p[2] * fx * fy];
+                    dn[a] = [
+                        0.125 * p[0] * fy * fz,
+                        0.125 * p[1] * fx * fz,
+                        0.125 * p[2] * fx * fy,
+                    ];
                 }
             }
             Shape::Wedge6 => {
@@ -156,7 +172,13 @@ impl Shape {
                 &[2, 3, 7, 6],
                 &[3, 0, 4, 7],
             ],
-            Shape::Wedge6 => &[&[0, 1, 2], &[3, 4, 5], &[0, 1, 4, 3], &[1, 2, 5, 4], &[2, 0, 3, 5]],
+            Shape::Wedge6 => &[
+                &[0, 1, 2],
+                &[3, 4, 5],
+                &[0, 1, 4, 3],
+                &[1, 2, 5, 4],
+                &[2, 0, 3, 5],
+            ],
         }
     }
 
@@ -178,7 +200,17 @@ impl Shape {
                 &[2, 6],
                 &[3, 7],
             ],
-            Shape::Wedge6 => &[&[0, 1], &[1, 2], &[2, 0], &[3, 4], &[4, 5], &[5, 3], &[0, 3], &[1, 4], &[2, 5]],
+            Shape::Wedge6 => &[
+                &[0, 1],
+                &[1, 2],
+                &[2, 0],
+                &[3, 4],
+                &[4, 5],
+                &[5, 3],
+                &[0, 3],
+                &[1, 4],
+                &[2, 5],
+            ],
             s => s.boundaries(),
         }
     }
@@ -199,8 +231,16 @@ impl Shape {
 mod tests {
     use super::*;
 
-    const ALL: [Shape; 8] =
-        [Shape::Line2, Shape::Line3, Shape::Tri3, Shape::Quad4, Shape::Quad8, Shape::Tet4, Shape::Hexa8, Shape::Wedge6];
+    const ALL: [Shape; 8] = [
+        Shape::Line2,
+        Shape::Line3,
+        Shape::Tri3,
+        Shape::Quad4,
+        Shape::Quad8,
+        Shape::Tet4,
+        Shape::Hexa8,
+        Shape::Wedge6,
+    ];
 
     #[test]
     fn shape_functions_sum_to_one_and_derivatives_to_zero() {
@@ -211,7 +251,10 @@ mod tests {
             let m = s.n_nodes();
             assert!((n[..m].iter().sum::<f64>() - 1.0).abs() < 1e-14, "{s:?}");
             for k in 0..3 {
-                assert!(dn[..m].iter().map(|d| d[k]).sum::<f64>().abs() < 1e-14, "{s:?}");
+                assert!(
+                    dn[..m].iter().map(|d| d[k]).sum::<f64>().abs() < 1e-14,
+                    "{s:?}"
+                );
             }
         }
     }

@@ -61,10 +61,18 @@ fn read_into(path: &Path, out: &mut Vec<Line>, depth: usize) -> Result<()> {
             read_into(&inc, out, depth + 1)?;
             continue;
         }
-        out.push(Line { file: file.clone(), line: start, text });
+        out.push(Line {
+            file: file.clone(),
+            line: start,
+            text,
+        });
     }
     if let Some((start, text)) = pending {
-        out.push(Line { file, line: start, text });
+        out.push(Line {
+            file,
+            line: start,
+            text,
+        });
     }
     Ok(())
 }
@@ -94,7 +102,11 @@ pub fn tokenize(text: &str) -> Vec<String> {
                 tok.push(c);
             }
             while i < chars.len() && chars[i] != close {
-                tok.push(if c == '"' { chars[i] } else { chars[i].to_ascii_lowercase() });
+                tok.push(if c == '"' {
+                    chars[i]
+                } else {
+                    chars[i].to_ascii_lowercase()
+                });
                 i += 1;
             }
             if i < chars.len() {
@@ -121,6 +133,18 @@ mod tests {
     #[test]
     fn tokenizer_lowercases_outside_quotes_and_groups_braces() {
         let t = tokenize(r#"Set 1 noderanges {(1 5) 8} filename "A.in" CrossSect 2"#);
-        assert_eq!(t, vec!["set", "1", "noderanges", "{(1 5) 8}", "filename", "A.in", "crosssect", "2"]);
+        assert_eq!(
+            t,
+            vec![
+                "set",
+                "1",
+                "noderanges",
+                "{(1 5) 8}",
+                "filename",
+                "A.in",
+                "crosssect",
+                "2"
+            ]
+        );
     }
 }

@@ -15,9 +15,14 @@ pub struct ReadResult {
 }
 
 const SUPPORTED_ANALYSES: &str = "LinearStatic, NonLinearStatic, StaticStructural";
-const SUPPORTED_BCS: &str = "BoundaryCondition, NodalLoad, ConstantEdgeLoad, ConstantSurfaceLoad, DeadWeight";
-const CONTACT_BCS: [&str; 4] =
-    ["n2npenaltycontact", "n2nlagrangianmultipliercontact", "n2spenaltycontact", "n2slagrangianmultipliercontact"];
+const SUPPORTED_BCS: &str =
+    "BoundaryCondition, NodalLoad, ConstantEdgeLoad, ConstantSurfaceLoad, DeadWeight";
+const CONTACT_BCS: [&str; 4] = [
+    "n2npenaltycontact",
+    "n2nlagrangianmultipliercontact",
+    "n2spenaltycontact",
+    "n2slagrangianmultipliercontact",
+];
 
 struct Cursor {
     lines: Vec<Line>,
@@ -39,7 +44,13 @@ impl Cursor {
     }
 
     fn peek_keyword(&self) -> Option<String> {
-        self.lines.get(self.pos).map(|l| Record::new(l.clone()).tokens.first().cloned().unwrap_or_default())
+        self.lines.get(self.pos).map(|l| {
+            Record::new(l.clone())
+                .tokens
+                .first()
+                .cloned()
+                .unwrap_or_default()
+        })
     }
 
     /// Warn about tokens no lookup consumed (misspelled optional keywords).
@@ -65,13 +76,19 @@ struct Numbered<T> {
 
 impl<T> Numbered<T> {
     fn new(what: &'static str, count: usize) -> Self {
-        Numbered { what, items: (0..count).map(|_| None).collect() }
+        Numbered {
+            what,
+            items: (0..count).map(|_| None).collect(),
+        }
     }
     fn put(&mut self, r: &Record, value: T) -> Result<()> {
         let n = r.number()?;
         let count = self.items.len();
         let slot = self.items.get_mut(n - 1).ok_or_else(|| {
-            r.error(format!("{} number {n} is out of range 1..{count} (the counts record declares {count})", self.what))
+            r.error(format!(
+                "{} number {n} is out of range 1..{count} (the counts record declares {count})",
+                self.what
+            ))
         })?;
         if slot.is_some() {
             return Err(r.error(format!("{} number {n} is defined twice", self.what)));
@@ -80,7 +97,10 @@ impl<T> Numbered<T> {
         Ok(())
     }
     fn finish(self) -> Vec<T> {
-        self.items.into_iter().map(|x| x.expect("all slots filled: count records read")).collect()
+        self.items
+            .into_iter()
+            .map(|x| x.expect("all slots filled: count records read"))
+            .collect()
     }
 }
 
@@ -96,7 +116,12 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
     }
     let output_name = lines[0].text.trim().to_string();
     let description = lines[1].text.trim_end().to_string();
-    let mut c = Cursor { lines: lines[2..].to_vec(), pos: 0, file: file.clone(), warnings: Vec::new() };
+    let mut c = Cursor {
+        lines: lines[2..].to_vec(),
+        pos: 0,
+        file: file.clone(),
+        warnings: Vec::new(),
+    };
 
     // Engineering model record.
     let r = c.next("the engineering-model record (e.g. StaticStructural nsteps 1)")?;
@@ -104,19 +129,34 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
     c.finish(&r);
     for i in 0..ninit {
         let r = c.next(&format!("init module record {} of {ninit}", i + 1))?;
-        c.warnings.push(format!("{}:{}: init module `{}` ignored", file, r.line.line, r.keyword()));
+        c.warnings.push(format!(
+            "{}:{}: init module `{}` ignored",
+            file,
+            r.line.line,
+            r.keyword()
+        ));
     }
     for i in 0..nmodules {
         let r = c.next(&format!("export module record {} of {nmodules}", i + 1))?;
         if r.keyword() == "errorcheck" {
             analysis.errorcheck = true;
         } else {
-            c.warnings.push(format!("{}:{}: export module `{}` ignored", file, r.line.line, r.keyword()));
+            c.warnings.push(format!(
+                "{}:{}: export module `{}` ignored",
+                file,
+                r.line.line,
+                r.keyword()
+            ));
         }
     }
     for i in 0..nmonitors {
         let r = c.next(&format!("monitor record {} of {nmonitors}", i + 1))?;
-        c.warnings.push(format!("{}:{}: monitor `{}` ignored", file, r.line.line, r.keyword()));
+        c.warnings.push(format!(
+            "{}:{}: monitor `{}` ignored",
+            file,
+            r.line.line,
+            r.keyword()
+        ));
     }
 
     // Domain record.
@@ -127,7 +167,10 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
     // Output manager.
     let r = c.next("the OutputManager record")?;
     if r.keyword() != "outputmanager" {
-        return Err(r.error(format!("expected the OutputManager record, found `{}`", r.keyword())));
+        return Err(r.error(format!(
+            "expected the OutputManager record, found `{}`",
+            r.keyword()
+        )));
     }
     let output = OutputSelection {
         tstep_all: r.flag("tstep_all"),
@@ -154,7 +197,14 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
     let nltf = r.usize("nltf")?;
     let nset = r.opt_usize("nset")?.unwrap_or(0);
     let ncontactseg = r.opt_usize("ncontactseg")?.unwrap_or(0);
-    for k in ["nsd", "nbarrier", "nxfemman", "ncontactman", "nfracman", "ncontactsurf"] {
+    for k in [
+        "nsd",
+        "nbarrier",
+        "nxfemman",
+        "ncontactman",
+        "nfracman",
+        "ncontactsurf",
+    ] {
         if r.opt_usize(k)?.unwrap_or(0) > 0 && k != "nsd" {
             return Err(r.error(format!("`{k}` > 0 is not supported by hertz")));
         }
@@ -167,7 +217,10 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
     let mut node_index: HashMap<usize, usize> = HashMap::new();
     let mut slave_masters: Vec<(usize, Vec<i64>, Option<Vec<f64>>, Record)> = Vec::new();
     for i in 0..ndofman {
-        let r = c.next(&format!("node record {} of {ndofman} (ndofman {ndofman})", i + 1))?;
+        let r = c.next(&format!(
+            "node record {} of {ndofman} (ndofman {ndofman})",
+            i + 1
+        ))?;
         let kw = r.keyword().to_string();
         if kw != "node" && kw != "slavenode" {
             return Err(r.error(format!(
@@ -178,11 +231,16 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
         let label = r.number()?;
         let coords = r.float_array("coords")?;
         if coords.is_empty() || coords.len() > 3 {
-            return Err(r.error(format!("`coords` needs 1 to 3 values, found {}", coords.len())));
+            return Err(r.error(format!(
+                "`coords` needs 1 to 3 values, found {}",
+                coords.len()
+            )));
         }
         for k in ["bc", "load", "lcs", "dofidmask"] {
             if r.flag(k) {
-                return Err(r.error(format!("node keyword `{k}` is not supported; use sets and BC records")));
+                return Err(r.error(format!(
+                    "node keyword `{k}` is not supported; use sets and BC records"
+                )));
             }
         }
         let mut x = [0.0; 3];
@@ -196,7 +254,13 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
             r.opt_int_array("doftype")?;
             slave_masters.push((i, masters, weights, Record::new(r.line.clone())));
         }
-        nodes.push(Node { label, coords: x, ncoords: coords.len(), slave: None, span: r.span() });
+        nodes.push(Node {
+            label,
+            coords: x,
+            ncoords: coords.len(),
+            slave: None,
+            span: r.span(),
+        });
         c.finish(&r);
     }
     for (i, masters, weights, r) in slave_masters {
@@ -206,9 +270,11 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
         let idx = masters
             .iter()
             .map(|&m| {
-                node_index.get(&(m as usize)).copied().filter(|_| m > 0).ok_or_else(|| {
-                    r.error(format!("master node {m} does not exist"))
-                })
+                node_index
+                    .get(&(m as usize))
+                    .copied()
+                    .filter(|_| m > 0)
+                    .ok_or_else(|| r.error(format!("master node {m} does not exist")))
             })
             .collect::<Result<Vec<_>>>()?;
         if idx.contains(&i) {
@@ -216,9 +282,16 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
         }
         let w = weights.unwrap_or_else(|| vec![1.0 / idx.len() as f64; idx.len()]);
         if w.len() != idx.len() {
-            return Err(r.error(format!("`weights` has {} values for {} master nodes", w.len(), idx.len())));
+            return Err(r.error(format!(
+                "`weights` has {} values for {} master nodes",
+                w.len(),
+                idx.len()
+            )));
         }
-        nodes[i].slave = Some(SlaveLink { masters: idx, weights: w });
+        nodes[i].slave = Some(SlaveLink {
+            masters: idx,
+            weights: w,
+        });
     }
     for n in &nodes {
         if let Some(s) = &n.slave {
@@ -237,11 +310,18 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
     let mut elem_cs: Vec<Option<usize>> = Vec::with_capacity(nelem);
     let mut elem_mat: Vec<Option<usize>> = Vec::with_capacity(nelem);
     for i in 0..nelem {
-        let r = c.next(&format!("element record {} of {nelem} (nelem {nelem})", i + 1))?;
+        let r = c.next(&format!(
+            "element record {} of {nelem} (nelem {nelem})",
+            i + 1
+        ))?;
         let kw = r.keyword().to_string();
         let Some(etype) = ElementType::from_keyword(&kw) else {
             let names: Vec<&str> = ElementType::ALL.iter().map(|(_, t)| t.name()).collect();
-            let hint = if kw == "node" || kw == "slavenode" { " (is ndofman too small?)" } else { "" };
+            let hint = if kw == "node" || kw == "slavenode" {
+                " (is ndofman too small?)"
+            } else {
+                ""
+            };
             return Err(r.error(format!(
                 "unknown element type `{kw}`{hint}; supported: {}",
                 names.join(", ")
@@ -260,7 +340,11 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
         let mut enodes = Vec::with_capacity(labels.len());
         for &l in &labels {
             let idx = (l > 0).then(|| node_index.get(&(l as usize))).flatten();
-            enodes.push(*idx.ok_or_else(|| r.error(format!("element {label} refers to node {l}, which does not exist")))?);
+            enodes.push(*idx.ok_or_else(|| {
+                r.error(format!(
+                    "element {label} refers to node {l}, which does not exist"
+                ))
+            })?);
         }
         let mut sorted = enodes.clone();
         sorted.sort_unstable();
@@ -282,7 +366,9 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
         let truss_plane = match (etype, r.opt_int("cs")?) {
             (_, None) => 0,
             (ElementType::Truss2d, Some(v @ 0..=2)) => v as u8,
-            (ElementType::Truss2d, Some(v)) => return Err(r.error(format!("Truss2d `cs` must be 0, 1 or 2, found {v}"))),
+            (ElementType::Truss2d, Some(v)) => {
+                return Err(r.error(format!("Truss2d `cs` must be 0, 1 or 2, found {v}")))
+            }
             (_, Some(_)) => return Err(r.error("keyword `cs` only applies to Truss2d")),
         };
         if nlgeo && etype.is_truss() {
@@ -313,21 +399,31 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
         c.finish(&r);
     }
 
-    let refs = Refs { nodes: &node_index, elements: &elem_index, element_list: &elements };
+    let refs = Refs {
+        nodes: &node_index,
+        elements: &elem_index,
+        element_list: &elements,
+    };
     let mut sets: Option<Vec<Set>> = None;
     if nset > 0 && c.peek_keyword().as_deref() == Some("set") {
         sets = Some(read_sets(&mut c, nset, &refs)?);
     }
 
     for i in 0..ncontactseg {
-        let r = c.next(&format!("contact segment record {} of {ncontactseg}", i + 1))?;
+        let r = c.next(&format!(
+            "contact segment record {} of {ncontactseg}",
+            i + 1
+        ))?;
         return Err(r.error("contact segments are not supported by this version of hertz"));
     }
 
     // Cross sections.
     let mut cs = Numbered::new("cross section", ncs);
     for i in 0..ncs {
-        let r = c.next(&format!("cross-section record {} of {ncs} (ncrosssect {ncs})", i + 1))?;
+        let r = c.next(&format!(
+            "cross-section record {} of {ncs} (ncrosssect {ncs})",
+            i + 1
+        ))?;
         if r.keyword() != "simplecs" {
             return Err(r.error(format!(
                 "expected cross-section record {} of {ncs} (SimpleCS), found `{}`",
@@ -348,7 +444,15 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
         let set = r.opt_usize("set")?;
         check_ref(&r, "material", material, nmat)?;
         check_ref(&r, "set", set.filter(|&s| s > 0), nset)?;
-        cs.put(&r, CrossSection { thick, area, material, set: set.filter(|&s| s > 0) })?;
+        cs.put(
+            &r,
+            CrossSection {
+                thick,
+                area,
+                material,
+                set: set.filter(|&s| s > 0),
+            },
+        )?;
         c.finish(&r);
     }
     let cross_sections = cs.finish();
@@ -356,7 +460,10 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
     // Materials.
     let mut mats = Numbered::new("material", nmat);
     for i in 0..nmat {
-        let r = c.next(&format!("material record {} of {nmat} (nmat {nmat})", i + 1))?;
+        let r = c.next(&format!(
+            "material record {} of {nmat} (nmat {nmat})",
+            i + 1
+        ))?;
         if r.keyword() != "isole" {
             return Err(r.error(format!(
                 "unsupported material `{}`; supported: IsoLE (or is a count before nmat wrong?)",
@@ -371,10 +478,16 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
         };
         r.opt_float("referencetemperature")?;
         if !(m.young > 0.0) {
-            return Err(r.error(format!("Young's modulus E must be positive, found {}", m.young)));
+            return Err(r.error(format!(
+                "Young's modulus E must be positive, found {}",
+                m.young
+            )));
         }
         if !(m.poisson > -1.0 && m.poisson < 0.5) {
-            return Err(r.error(format!("Poisson's ratio n must lie in (-1, 0.5), found {}", m.poisson)));
+            return Err(r.error(format!(
+                "Poisson's ratio n must lie in (-1, 0.5), found {}",
+                m.poisson
+            )));
         }
         mats.put(&r, m)?;
         c.finish(&r);
@@ -385,12 +498,17 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
     let mut bcs: Numbered<Option<Dirichlet>> = Numbered::new("boundary condition", nbc);
     let mut loads = Vec::new();
     for i in 0..nbc {
-        let r = c.next(&format!("boundary-condition record {} of {nbc} (nbc {nbc})", i + 1))?;
+        let r = c.next(&format!(
+            "boundary-condition record {} of {nbc} (nbc {nbc})",
+            i + 1
+        ))?;
         let kw = r.keyword().to_string();
         let number = r.number()?;
         let function = r.usize("loadtimefunction")?;
         if function == 0 || function > nltf {
-            return Err(r.error(format!("loadTimeFunction {function} does not exist (nltf {nltf})")));
+            return Err(r.error(format!(
+                "loadTimeFunction {function} does not exist (nltf {nltf})"
+            )));
         }
         let set = r.opt_usize("set")?.unwrap_or(0);
         check_ref(&r, "set", Some(set).filter(|&s| s > 0), nset)?;
@@ -407,7 +525,8 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
                         if (1..=3).contains(&d) {
                             Ok(d as DofId)
                         } else {
-                            Err(r.error(format!("DOF id {d} is not a displacement DOF (1, 2 or 3)")))
+                            Err(r
+                                .error(format!("DOF id {d} is not a displacement DOF (1, 2 or 3)")))
                         }
                     })
                     .collect::<Result<Vec<_>>>()
@@ -422,17 +541,36 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
                     None => {
                         let v = match r.opt_float("prescribedvalue")? {
                             Some(v) => v,
-                            None => r.opt_float("d")?.ok_or_else(|| r.error("BoundaryCondition needs `values`"))?,
+                            None => r
+                                .opt_float("d")?
+                                .ok_or_else(|| r.error("BoundaryCondition needs `values`"))?,
                         };
                         vec![v; dofs.len()]
                     }
                 };
                 if values.len() != dofs.len() {
-                    return Err(r.error(format!("`values` has {} entries for {} dofs", values.len(), dofs.len())));
+                    return Err(r.error(format!(
+                        "`values` has {} entries for {} dofs",
+                        values.len(),
+                        dofs.len()
+                    )));
                 }
-                bcs.put(&r, Some(Dirichlet { number, function, dofs, values, set: Some(set).filter(|&s| s > 0) }))?;
+                bcs.put(
+                    &r,
+                    Some(Dirichlet {
+                        number,
+                        function,
+                        dofs,
+                        values,
+                        set: Some(set).filter(|&s| s > 0),
+                    }),
+                )?;
             }
-            "nodalload" | "constantedgeload" | "constantsurfaceload" | "constantpressureload" | "deadweight" => {
+            "nodalload"
+            | "constantedgeload"
+            | "constantsurfaceload"
+            | "constantpressureload"
+            | "deadweight" => {
                 let kind = match kw.as_str() {
                     "nodalload" => LoadKind::Nodal,
                     "constantedgeload" => LoadKind::Edge,
@@ -440,7 +578,9 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
                     _ => LoadKind::Surface,
                 };
                 if kw == "constantpressureload" {
-                    return Err(r.error("ConstantPressureLoad is not supported; use ConstantSurfaceLoad"));
+                    return Err(
+                        r.error("ConstantPressureLoad is not supported; use ConstantSurfaceLoad")
+                    );
                 }
                 let components = r.float_array("components")?;
                 let dofs = match (&kind, read_dofs(&r)?) {
@@ -460,13 +600,24 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
                 }
                 r.opt_int("loadtype")?;
                 if set == 0 {
-                    return Err(r.error(format!("{kw} needs `set` (legacy element boundaryloads are not supported)")));
+                    return Err(r.error(format!(
+                        "{kw} needs `set` (legacy element boundaryloads are not supported)"
+                    )));
                 }
-                loads.push(Load { number, kind, function, dofs, components, set });
+                loads.push(Load {
+                    number,
+                    kind,
+                    function,
+                    dofs,
+                    components,
+                    set,
+                });
                 bcs.put(&r, None)?;
             }
             k if CONTACT_BCS.contains(&k) => {
-                return Err(r.error(format!("contact condition `{k}` is not supported by this version of hertz")));
+                return Err(r.error(format!(
+                    "contact condition `{k}` is not supported by this version of hertz"
+                )));
             }
             _ => {
                 return Err(r.error(format!(
@@ -486,7 +637,10 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
     // Time functions.
     let mut funcs = Numbered::new("time function", nltf);
     for i in 0..nltf {
-        let r = c.next(&format!("time-function record {} of {nltf} (nltf {nltf})", i + 1))?;
+        let r = c.next(&format!(
+            "time-function record {} of {nltf} (nltf {nltf})",
+            i + 1
+        ))?;
         let f = match r.keyword() {
             "constantfunction" => TimeFunction::Constant(r.float("f(t)")?),
             "peakfunction" => TimeFunction::Peak { t: r.float("t")?, value: r.float("f(t)")? },
@@ -539,19 +693,34 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
         }
     }
     for (i, e) in model_elements.iter_mut().enumerate() {
-        let span_err = |msg: String| Error::Input { span: e.span.clone(), msg };
+        let span_err = |msg: String| Error::Input {
+            span: e.span.clone(),
+            msg,
+        };
         let csn = elem_cs[i].ok_or_else(|| {
-            span_err(format!("element {} has no cross section (`crossSect` or a SimpleCS with `set`)", e.label))
+            span_err(format!(
+                "element {} has no cross section (`crossSect` or a SimpleCS with `set`)",
+                e.label
+            ))
         })?;
         if csn == 0 || csn > ncs {
-            return Err(span_err(format!("element {} refers to cross section {csn}, which does not exist", e.label)));
+            return Err(span_err(format!(
+                "element {} refers to cross section {csn}, which does not exist",
+                e.label
+            )));
         }
         let csr = &cross_sections[csn - 1];
         let mat = csr.material.or(elem_mat[i]).ok_or_else(|| {
-            span_err(format!("element {} has no material (`mat` or the cross section's `material`)", e.label))
+            span_err(format!(
+                "element {} has no material (`mat` or the cross section's `material`)",
+                e.label
+            ))
         })?;
         if mat == 0 || mat > nmat {
-            return Err(span_err(format!("element {} refers to material {mat}, which does not exist", e.label)));
+            return Err(span_err(format!(
+                "element {} refers to material {mat}, which does not exist",
+                e.label
+            )));
         }
         if e.etype.mode() == StressMode::PlaneStress && csr.thick.is_none() {
             return Err(span_err(format!(
@@ -571,7 +740,10 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
             LoadKind::DeadWeight => s.elements.is_empty(),
         };
         if empty {
-            c.warnings.push(format!("load {} acts on set {}, which has no matching entities", l.number, l.set));
+            c.warnings.push(format!(
+                "load {} acts on set {}, which has no matching entities",
+                l.number, l.set
+            ));
         }
     }
 
@@ -607,14 +779,17 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
             ));
         }
     }
-    Ok(ReadResult { model, warnings: c.warnings })
+    Ok(ReadResult {
+        model,
+        warnings: c.warnings,
+    })
 }
 
 fn check_ref(r: &Record, what: &str, n: Option<usize>, count: usize) -> Result<()> {
     match n {
-        Some(v) if v == 0 || v > count => {
-            Err(r.error(format!("{what} {v} does not exist (the counts record declares {count})")))
-        }
+        Some(v) if v == 0 || v > count => Err(r.error(format!(
+            "{what} {v} does not exist (the counts record declares {count})"
+        ))),
         _ => Ok(()),
     }
 }
@@ -625,10 +800,16 @@ fn read_analysis(r: &Record) -> Result<(Analysis, usize, usize, usize)> {
         "nonlinearstatic" => AnalysisKind::NonLinearStatic,
         "staticstructural" => AnalysisKind::StaticStructural,
         k => {
-            return Err(r.error(format!("unsupported analysis type `{k}`; supported: {SUPPORTED_ANALYSES}")));
+            return Err(r.error(format!(
+                "unsupported analysis type `{k}`; supported: {SUPPORTED_ANALYSES}"
+            )));
         }
     };
-    let prescribed_times = if kind == AnalysisKind::StaticStructural { r.opt_float_array("prescribedtimes")? } else { None };
+    let prescribed_times = if kind == AnalysisKind::StaticStructural {
+        r.opt_float_array("prescribedtimes")?
+    } else {
+        None
+    };
     let nsteps = match (&prescribed_times, r.opt_usize("nsteps")?) {
         (Some(t), _) => t.len(),
         (None, Some(n)) => n,
@@ -667,13 +848,31 @@ fn read_analysis(r: &Record) -> Result<(Analysis, usize, usize, usize)> {
         v @ (0 | 1) => v as u8,
         v => return Err(r.error(format!("`refloadmode` must be 0 or 1, found {v}"))),
     };
-    let default_guess = if kind == AnalysisKind::StaticStructural { 1 } else { 0 };
+    let default_guess = if kind == AnalysisKind::StaticStructural {
+        1
+    } else {
+        0
+    };
     let initialguess = r.opt_int("initialguess")?.unwrap_or(default_guess) != 0;
-    for k in ["renumber", "lstype", "smtype", "stiffmode", "miniter", "nonlinform", "contextoutputstep", "profileopt"] {
+    for k in [
+        "renumber",
+        "lstype",
+        "smtype",
+        "stiffmode",
+        "miniter",
+        "nonlinform",
+        "contextoutputstep",
+        "profileopt",
+    ] {
         r.opt_int(k)?;
     }
     r.opt_string("solvertype")?;
-    for k in ["soldepextforces", "suppress_output", "keepll", "donotfixload"] {
+    for k in [
+        "soldepextforces",
+        "suppress_output",
+        "keepll",
+        "donotfixload",
+    ] {
         r.flag(k);
     }
     let nmodules = r.opt_usize("nmodules")?.unwrap_or(0);
@@ -697,7 +896,10 @@ fn read_analysis(r: &Record) -> Result<(Analysis, usize, usize, usize)> {
 
 fn read_domain(r: &Record) -> Result<DomainKind> {
     let i = r.tokens.iter().position(|t| t == "domain").ok_or_else(|| {
-        r.error(format!("expected the domain record (e.g. `domain 2dPlaneStress`), found `{}`", r.keyword()))
+        r.error(format!(
+            "expected the domain record (e.g. `domain 2dPlaneStress`), found `{}`",
+            r.keyword()
+        ))
     })?;
     r.flag("domain");
     r.opt_string("domain")?;
@@ -733,7 +935,11 @@ fn read_sets(c: &mut Cursor, nset: usize, refs: &Refs) -> Result<Vec<Set>> {
     for i in 0..nset {
         let r = c.next(&format!("set record {} of {nset} (nset {nset})", i + 1))?;
         if r.keyword() != "set" {
-            return Err(r.error(format!("expected set record {} of {nset}, found `{}`", i + 1, r.keyword())));
+            return Err(r.error(format!(
+                "expected set record {} of {nset}, found `{}`",
+                i + 1,
+                r.keyword()
+            )));
         }
         let node = |l: i64| -> Result<usize> {
             (l > 0)
@@ -750,13 +956,19 @@ fn read_sets(c: &mut Cursor, nset: usize, refs: &Refs) -> Result<Vec<Set>> {
         let pairs = |key: &str, edges: bool| -> Result<Vec<(usize, usize)>> {
             let v = r.opt_int_array(key)?.unwrap_or_default();
             if v.len() % 2 != 0 {
-                return Err(r.error(format!("`{key}` needs (element, number) pairs: an even count")));
+                return Err(r.error(format!(
+                    "`{key}` needs (element, number) pairs: an even count"
+                )));
             }
             v.chunks(2)
                 .map(|p| {
                     let e = elem(p[0])?;
                     let shape = refs.element_list[e].etype.shape();
-                    let n = if edges { shape.edges().len() } else { shape.boundaries().len() };
+                    let n = if edges {
+                        shape.edges().len()
+                    } else {
+                        shape.boundaries().len()
+                    };
                     if p[1] < 1 || p[1] as usize > n {
                         return Err(r.error(format!(
                             "`{key}`: element {} has boundaries 1..{n}, not {}",
@@ -767,11 +979,24 @@ fn read_sets(c: &mut Cursor, nset: usize, refs: &Refs) -> Result<Vec<Set>> {
                 })
                 .collect()
         };
-        let explicit: Vec<usize> = r.opt_int_array("nodes")?.unwrap_or_default().into_iter().map(node).collect::<Result<_>>()?;
-        let ranges: Vec<usize> =
-            r.opt_range_list("noderanges")?.unwrap_or_default().into_iter().map(node).collect::<Result<_>>()?;
-        let mut elements: Vec<usize> =
-            r.opt_int_array("elements")?.unwrap_or_default().into_iter().map(elem).collect::<Result<_>>()?;
+        let explicit: Vec<usize> = r
+            .opt_int_array("nodes")?
+            .unwrap_or_default()
+            .into_iter()
+            .map(node)
+            .collect::<Result<_>>()?;
+        let ranges: Vec<usize> = r
+            .opt_range_list("noderanges")?
+            .unwrap_or_default()
+            .into_iter()
+            .map(node)
+            .collect::<Result<_>>()?;
+        let mut elements: Vec<usize> = r
+            .opt_int_array("elements")?
+            .unwrap_or_default()
+            .into_iter()
+            .map(elem)
+            .collect::<Result<_>>()?;
         for e in r.opt_range_list("elementranges")?.unwrap_or_default() {
             elements.push(elem(e)?);
         }
@@ -798,7 +1023,11 @@ fn read_sets(c: &mut Cursor, nset: usize, refs: &Refs) -> Result<Vec<Set>> {
                 for &(e, b) in list {
                     let el = &refs.element_list[e];
                     let shape = el.etype.shape();
-                    let local = if edge { shape.edges()[b - 1] } else { shape.boundaries()[b - 1] };
+                    let local = if edge {
+                        shape.edges()[b - 1]
+                    } else {
+                        shape.boundaries()[b - 1]
+                    };
                     all.extend(local.iter().map(|&a| el.nodes[a]));
                 }
             }
@@ -808,7 +1037,16 @@ fn read_sets(c: &mut Cursor, nset: usize, refs: &Refs) -> Result<Vec<Set>> {
         };
         elements.sort_unstable();
         elements.dedup();
-        sets.put(&r, Set { nodes, elements, boundaries, edges, surfaces })?;
+        sets.put(
+            &r,
+            Set {
+                nodes,
+                elements,
+                boundaries,
+                edges,
+                surfaces,
+            },
+        )?;
         c.finish(&r);
     }
     Ok(sets.finish())

@@ -30,7 +30,10 @@ impl Record {
 
     /// An input error located at this record.
     pub fn error(&self, msg: impl Into<String>) -> Error {
-        Error::Input { span: self.span(), msg: msg.into() }
+        Error::Input {
+            span: self.span(),
+            msg: msg.into(),
+        }
     }
 
     /// The record keyword (first token, lower case).
@@ -62,7 +65,9 @@ impl Record {
     }
 
     fn value_token(&self, key: &str, offset: usize) -> Result<Option<&str>> {
-        let Some(i) = self.find(key) else { return Ok(None) };
+        let Some(i) = self.find(key) else {
+            return Ok(None);
+        };
         self.mark(i, 1);
         match self.tokens.get(i + 1 + offset) {
             Some(t) => {
@@ -74,7 +79,8 @@ impl Record {
     }
 
     fn parse_int(&self, key: &str, t: &str) -> Result<i64> {
-        t.parse::<i64>().map_err(|_| self.error(format!("`{key}` expects an integer, found `{t}`")))
+        t.parse::<i64>()
+            .map_err(|_| self.error(format!("`{key}` expects an integer, found `{t}`")))
     }
 
     fn parse_float(&self, key: &str, t: &str) -> Result<f64> {
@@ -89,7 +95,8 @@ impl Record {
     }
 
     pub fn int(&self, key: &str) -> Result<i64> {
-        self.opt_int(key)?.ok_or_else(|| self.error(format!("missing required keyword `{key}`")))
+        self.opt_int(key)?
+            .ok_or_else(|| self.error(format!("missing required keyword `{key}`")))
     }
 
     /// A non-negative count or index.
@@ -102,7 +109,8 @@ impl Record {
     }
 
     pub fn usize(&self, key: &str) -> Result<usize> {
-        self.opt_usize(key)?.ok_or_else(|| self.error(format!("missing required keyword `{key}`")))
+        self.opt_usize(key)?
+            .ok_or_else(|| self.error(format!("missing required keyword `{key}`")))
     }
 
     pub fn opt_float(&self, key: &str) -> Result<Option<f64>> {
@@ -113,7 +121,8 @@ impl Record {
     }
 
     pub fn float(&self, key: &str) -> Result<f64> {
-        self.opt_float(key)?.ok_or_else(|| self.error(format!("missing required keyword `{key}`")))
+        self.opt_float(key)?
+            .ok_or_else(|| self.error(format!("missing required keyword `{key}`")))
     }
 
     pub fn opt_string(&self, key: &str) -> Result<Option<String>> {
@@ -122,11 +131,15 @@ impl Record {
 
     /// The token right after the keyword token `key` (e.g. `domain 3d` -> "3d").
     fn array_len(&self, key: &str) -> Result<Option<(usize, usize)>> {
-        let Some(i) = self.find(key) else { return Ok(None) };
+        let Some(i) = self.find(key) else {
+            return Ok(None);
+        };
         let n_tok = self.value_token(key, 0)?.unwrap_or("");
         let n = self.parse_int(key, n_tok)?;
         if n < 0 {
-            return Err(self.error(format!("`{key}` array size must not be negative, found {n}")));
+            return Err(self.error(format!(
+                "`{key}` array size must not be negative, found {n}"
+            )));
         }
         let n = n as usize;
         if i + 2 + n > self.tokens.len() {
@@ -140,35 +153,64 @@ impl Record {
     }
 
     pub fn opt_int_array(&self, key: &str) -> Result<Option<Vec<i64>>> {
-        let Some((start, n)) = self.array_len(key)? else { return Ok(None) };
-        self.tokens[start..start + n].iter().map(|t| self.parse_int(key, t)).collect::<Result<_>>().map(Some)
+        let Some((start, n)) = self.array_len(key)? else {
+            return Ok(None);
+        };
+        self.tokens[start..start + n]
+            .iter()
+            .map(|t| self.parse_int(key, t))
+            .collect::<Result<_>>()
+            .map(Some)
     }
 
     pub fn int_array(&self, key: &str) -> Result<Vec<i64>> {
-        self.opt_int_array(key)?.ok_or_else(|| self.error(format!("missing required keyword `{key}`")))
+        self.opt_int_array(key)?
+            .ok_or_else(|| self.error(format!("missing required keyword `{key}`")))
     }
 
     pub fn opt_float_array(&self, key: &str) -> Result<Option<Vec<f64>>> {
-        let Some((start, n)) = self.array_len(key)? else { return Ok(None) };
-        self.tokens[start..start + n].iter().map(|t| self.parse_float(key, t)).collect::<Result<_>>().map(Some)
+        let Some((start, n)) = self.array_len(key)? else {
+            return Ok(None);
+        };
+        self.tokens[start..start + n]
+            .iter()
+            .map(|t| self.parse_float(key, t))
+            .collect::<Result<_>>()
+            .map(Some)
     }
 
     pub fn float_array(&self, key: &str) -> Result<Vec<f64>> {
-        self.opt_float_array(key)?.ok_or_else(|| self.error(format!("missing required keyword `{key}`")))
+        self.opt_float_array(key)?
+            .ok_or_else(|| self.error(format!("missing required keyword `{key}`")))
     }
 
     /// A range list `{1 (3 5) 8}` expanded to its integers.
     pub fn opt_range_list(&self, key: &str) -> Result<Option<Vec<i64>>> {
-        let Some(t) = self.value_token(key, 0)? else { return Ok(None) };
-        let bad = || self.error(format!("`{key}` expects a range list like {{1 (3 5) 8}}, found `{t}`"));
-        let inner = t.strip_prefix('{').and_then(|s| s.strip_suffix('}')).ok_or_else(bad)?;
+        let Some(t) = self.value_token(key, 0)? else {
+            return Ok(None);
+        };
+        let bad = || {
+            self.error(format!(
+                "`{key}` expects a range list like {{1 (3 5) 8}}, found `{t}`"
+            ))
+        };
+        let inner = t
+            .strip_prefix('{')
+            .and_then(|s| s.strip_suffix('}'))
+            .ok_or_else(bad)?;
         let spaced = inner.replace('(', " ( ").replace(')', " ) ");
         let mut words = spaced.split_whitespace();
         let mut out = Vec::new();
         while let Some(w) = words.next() {
             if w == "(" {
-                let lo = words.next().and_then(|s| s.parse::<i64>().ok()).ok_or_else(bad)?;
-                let hi = words.next().and_then(|s| s.parse::<i64>().ok()).ok_or_else(bad)?;
+                let lo = words
+                    .next()
+                    .and_then(|s| s.parse::<i64>().ok())
+                    .ok_or_else(bad)?;
+                let hi = words
+                    .next()
+                    .and_then(|s| s.parse::<i64>().ok())
+                    .ok_or_else(bad)?;
                 if words.next() != Some(")") || hi < lo || hi - lo > 100_000_000 {
                     return Err(bad());
                 }
@@ -183,17 +225,27 @@ impl Record {
     /// The record number (token 2), which must be a positive integer.
     pub fn number(&self) -> Result<usize> {
         self.mark(1, 1);
-        let t = self.tokens.get(1).ok_or_else(|| self.error("missing record number after the keyword"))?;
+        let t = self
+            .tokens
+            .get(1)
+            .ok_or_else(|| self.error("missing record number after the keyword"))?;
         match t.parse::<i64>() {
             Ok(v) if v > 0 => Ok(v as usize),
-            _ => Err(self.error(format!("record number must be a positive integer, found `{t}`"))),
+            _ => Err(self.error(format!(
+                "record number must be a positive integer, found `{t}`"
+            ))),
         }
     }
 
     /// Tokens that no field lookup consumed (for the "unread tokens" warning).
     pub fn unread(&self) -> Vec<&str> {
         let used = self.used.borrow();
-        self.tokens.iter().zip(used.iter()).filter(|(_, u)| !**u).map(|(t, _)| t.as_str()).collect()
+        self.tokens
+            .iter()
+            .zip(used.iter())
+            .filter(|(_, u)| !**u)
+            .map(|(t, _)| t.as_str())
+            .collect()
     }
 
     /// Mark every token as consumed (records that are accepted and ignored).
@@ -223,13 +275,20 @@ mod tests {
     use std::sync::Arc;
 
     fn rec(s: &str) -> Record {
-        Record::new(Line { file: Arc::new(PathBuf::from("t.in")), line: 3, text: s.into() })
+        Record::new(Line {
+            file: Arc::new(PathBuf::from("t.in")),
+            line: 3,
+            text: s.into(),
+        })
     }
 
     #[test]
     fn arrays_ranges_and_floats_parse_like_oofem() {
         let r = rec("Set 2 noderanges {(1 3) 7} nodes 2 4 5 coords 3 1.e-4 2 .5");
-        assert_eq!(r.opt_range_list("noderanges").unwrap().unwrap(), vec![1, 2, 3, 7]);
+        assert_eq!(
+            r.opt_range_list("noderanges").unwrap().unwrap(),
+            vec![1, 2, 3, 7]
+        );
         assert_eq!(r.int_array("nodes").unwrap(), vec![4, 5]);
         assert_eq!(r.float_array("coords").unwrap(), vec![1e-4, 2.0, 0.5]);
         assert!(r.unread().is_empty() || r.unread() == vec!["set", "2"]);

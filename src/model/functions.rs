@@ -55,7 +55,10 @@ mod tests {
 
     #[test]
     fn piecewise_linear_interpolates_and_clamps() {
-        let f = TimeFunction::PiecewiseLinear { t: vec![-1.0, 0.0, 500.0], f: vec![0.0, 1.0, 501.0] };
+        let f = TimeFunction::PiecewiseLinear {
+            t: vec![-1.0, 0.0, 500.0],
+            f: vec![0.0, 1.0, 501.0],
+        };
         assert_eq!(f.eval(3.0), 4.0);
         assert_eq!(f.eval(0.0), 1.0);
         assert_eq!(f.eval(600.0), 501.0);

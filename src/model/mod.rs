@@ -188,9 +188,9 @@ impl ElementType {
     pub fn mode(self) -> StressMode {
         match self {
             ElementType::Truss1d | ElementType::Truss2d => StressMode::Uniaxial,
-            ElementType::PlaneStress2d | ElementType::TrPlaneStress2d | ElementType::QPlaneStress2d => {
-                StressMode::PlaneStress
-            }
+            ElementType::PlaneStress2d
+            | ElementType::TrPlaneStress2d
+            | ElementType::QPlaneStress2d => StressMode::PlaneStress,
             ElementType::Quad1PlaneStrain | ElementType::TrPlaneStrain => StressMode::PlaneStrain,
             ElementType::LSpace | ElementType::LTRSpace | ElementType::LWedge => StressMode::ThreeD,
         }
@@ -215,7 +215,9 @@ impl ElementType {
         match self {
             ElementType::Truss1d | ElementType::Truss2d => 1,
             ElementType::TrPlaneStress2d | ElementType::TrPlaneStrain | ElementType::LTRSpace => 1,
-            ElementType::PlaneStress2d | ElementType::Quad1PlaneStrain | ElementType::QPlaneStress2d => 4,
+            ElementType::PlaneStress2d
+            | ElementType::Quad1PlaneStrain
+            | ElementType::QPlaneStress2d => 4,
             ElementType::LSpace => 8,
             ElementType::LWedge => 6,
         }

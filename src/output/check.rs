@@ -7,9 +7,22 @@ use crate::solve::StepResult;
 /// What a rule checks.
 #[derive(Debug, Clone, PartialEq)]
 pub enum RuleKind {
-    Node { node: usize, dof: u8, unknown: char },
-    Element { element: usize, irule: usize, gp: usize, keyword: usize, component: usize },
-    Reaction { node: usize, dof: u8 },
+    Node {
+        node: usize,
+        dof: u8,
+        unknown: char,
+    },
+    Element {
+        element: usize,
+        irule: usize,
+        gp: usize,
+        keyword: usize,
+        component: usize,
+    },
+    Reaction {
+        node: usize,
+        dof: u8,
+    },
     LoadLevel,
     /// A rule line that matches no supported format; it fails with this reason.
     Unsupported(String),
@@ -91,7 +104,10 @@ pub fn parse_rules(raw: &str) -> (Vec<Rule>, Vec<String>) {
                     match strtod_prefix(line.get(25..).unwrap_or("")) {
                         Some(t) => tol = t,
                         None => {
-                            warnings.push(format!("line {}: cannot read the block tolerance; using 0", i + 1));
+                            warnings.push(format!(
+                                "line {}: cannot read the block tolerance; using 0",
+                                i + 1
+                            ));
                             tol = 0.0;
                         }
                     }
@@ -102,7 +118,11 @@ pub fn parse_rules(raw: &str) -> (Vec<Rule>, Vec<String>) {
         if line.starts_with("#%END_CHECK%") {
             break;
         }
-        if line.len() < 3 || !line.starts_with('#') || line.starts_with("##") || line.starts_with("#TIME") {
+        if line.len() < 3
+            || !line.starts_with('#')
+            || line.starts_with("##")
+            || line.starts_with("#TIME")
+        {
             continue;
         }
         rules.push(parse_rule(i + 1, line, tol));
@@ -137,26 +157,43 @@ fn parse_rule(line: usize, text: &str, block_tol: f64) -> Rule {
     let rest = &toks[pos..];
     let parsed: Option<(RuleKind, f64, usize)> = match head {
         "#NODE" => scan(rest, "number %d dof %d unknown %c value %f").map(|(v, n)| {
-            let kind =
-                RuleKind::Node { node: v[0] as usize, dof: v[1] as u8, unknown: char::from_u32(v[2] as u32).unwrap_or('?') };
+            let kind = RuleKind::Node {
+                node: v[0] as usize,
+                dof: v[1] as u8,
+                unknown: char::from_u32(v[2] as u32).unwrap_or('?'),
+            };
             (kind, v[3], n)
         }),
-        "#ELEMENT" => scan(rest, "number %d irule %d gp %d keyword %d component %d value %f")
-            .map(|(v, n)| (v, n, true))
-            .or_else(|| scan(rest, "number %d gp %d keyword %d component %d value %f").map(|(v, n)| (v, n, false)))
-            .map(|(v, n, with_irule)| {
-                let o = usize::from(with_irule);
-                let kind = RuleKind::Element {
-                    element: v[0] as usize,
-                    irule: if with_irule { v[1] as usize } else { 0 },
-                    gp: v[1 + o] as usize,
-                    keyword: v[2 + o] as usize,
-                    component: v[3 + o] as usize,
-                };
-                (kind, v[4 + o], n)
-            }),
-        "#REACTION" => scan(rest, "number %d dof %d value %f")
-            .map(|(v, n)| (RuleKind::Reaction { node: v[0] as usize, dof: v[1] as u8 }, v[2], n)),
+        "#ELEMENT" => scan(
+            rest,
+            "number %d irule %d gp %d keyword %d component %d value %f",
+        )
+        .map(|(v, n)| (v, n, true))
+        .or_else(|| {
+            scan(rest, "number %d gp %d keyword %d component %d value %f")
+                .map(|(v, n)| (v, n, false))
+        })
+        .map(|(v, n, with_irule)| {
+            let o = usize::from(with_irule);
+            let kind = RuleKind::Element {
+                element: v[0] as usize,
+                irule: if with_irule { v[1] as usize } else { 0 },
+                gp: v[1 + o] as usize,
+                keyword: v[2 + o] as usize,
+                component: v[3 + o] as usize,
+            };
+            (kind, v[4 + o], n)
+        }),
+        "#REACTION" => scan(rest, "number %d dof %d value %f").map(|(v, n)| {
+            (
+                RuleKind::Reaction {
+                    node: v[0] as usize,
+                    dof: v[1] as u8,
+                },
+                v[2],
+                n,
+            )
+        }),
         "#LOADLEVEL" => scan(rest, "value %f").map(|(v, n)| (RuleKind::LoadLevel, v[0], n)),
         other => {
             rule.kind = RuleKind::Unsupported(format!("rule type `{other}` is not supported"));
@@ -187,17 +224,28 @@ pub fn evaluate_step(model: &Model, rules: &[Rule], res: &StepResult) -> Vec<Out
                 Ok(v) => Outcome {
                     rule: r.clone(),
                     computed: Some(v),
-                    passed: r.step_version == 0 && (r.value - r.tolerance..=r.value + r.tolerance).contains(&v),
-                    reason: (r.step_version != 0).then(|| "step versions other than 0 do not exist".to_string()),
+                    passed: r.step_version == 0
+                        && (r.value - r.tolerance..=r.value + r.tolerance).contains(&v),
+                    reason: (r.step_version != 0)
+                        .then(|| "step versions other than 0 do not exist".to_string()),
                 },
-                Err(reason) => Outcome { rule: r.clone(), computed: None, passed: false, reason: Some(reason) },
+                Err(reason) => Outcome {
+                    rule: r.clone(),
+                    computed: None,
+                    passed: false,
+                    reason: Some(reason),
+                },
             }
         })
         .collect()
 }
 
 fn node_index(model: &Model, label: usize) -> Result<usize, String> {
-    model.nodes.iter().position(|n| n.label == label).ok_or_else(|| format!("node {label} does not exist"))
+    model
+        .nodes
+        .iter()
+        .position(|n| n.label == label)
+        .ok_or_else(|| format!("node {label} does not exist"))
 }
 
 fn compute(model: &Model, rule: &Rule, res: &StepResult) -> Result<f64, String> {
@@ -207,9 +255,12 @@ fn compute(model: &Model, rule: &Rule, res: &StepResult) -> Result<f64, String> 
         RuleKind::Node { node, dof, unknown } => {
             let n = node_index(model, *node)?;
             if *unknown != 'd' {
-                return Err(format!("unknown `{unknown}`: static analyses only have displacements (d)"));
+                return Err(format!(
+                    "unknown `{unknown}`: static analyses only have displacements (d)"
+                ));
             }
-            res.displacement(n, *dof).ok_or_else(|| format!("node {node} has no DOF {dof}"))
+            res.displacement(n, *dof)
+                .ok_or_else(|| format!("node {node} has no DOF {dof}"))
         }
         RuleKind::Reaction { node, dof } => {
             let n = node_index(model, *node)?;
@@ -220,7 +271,13 @@ fn compute(model: &Model, rule: &Rule, res: &StepResult) -> Result<f64, String> 
                 .map(|i| res.reactions[i])
                 .ok_or_else(|| format!("DOF {dof} of node {node} is not prescribed: no reaction"))
         }
-        RuleKind::Element { element, irule, gp, keyword, component } => {
+        RuleKind::Element {
+            element,
+            irule,
+            gp,
+            keyword,
+            component,
+        } => {
             let e = model
                 .elements
                 .iter()
@@ -233,18 +290,26 @@ fn compute(model: &Model, rule: &Rule, res: &StepResult) -> Result<f64, String> 
             let st = gp
                 .checked_sub(1)
                 .and_then(|g| states.get(g))
-                .ok_or_else(|| format!("element {element} has integration points 1..{}", states.len()))?;
+                .ok_or_else(|| {
+                    format!(
+                        "element {element} has integration points 1..{}",
+                        states.len()
+                    )
+                })?;
             let vec6 = match keyword {
                 1 => st.stress,
                 4 => st.strain,
                 81 => {
                     let s = st.stress;
-                    let vm = (0.5 * ((s[0] - s[1]).powi(2) + (s[1] - s[2]).powi(2) + (s[2] - s[0]).powi(2))
+                    let vm = (0.5
+                        * ((s[0] - s[1]).powi(2) + (s[1] - s[2]).powi(2) + (s[2] - s[0]).powi(2))
                         + 3.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]))
                         .sqrt();
                     [vm, 0.0, 0.0, 0.0, 0.0, 0.0]
                 }
-                k => return Err(format!("internal state type {k} is not supported (1 stress, 4 strain, 81 von Mises)")),
+                k => return Err(format!(
+                    "internal state type {k} is not supported (1 stress, 4 strain, 81 von Mises)"
+                )),
             };
             let n = if *keyword == 81 { 1 } else { 6 };
             component
@@ -281,18 +346,45 @@ mod tests {
         let (rules, w) = parse_rules(raw);
         assert!(w.is_empty());
         assert_eq!(rules.len(), 4);
-        assert_eq!(rules[0].kind, RuleKind::Node { node: 3, dof: 1, unknown: 'd' });
+        assert_eq!(
+            rules[0].kind,
+            RuleKind::Node {
+                node: 3,
+                dof: 1,
+                unknown: 'd'
+            }
+        );
         assert_eq!(rules[0].tolerance, 1e-4);
-        assert_eq!(rules[1].kind, RuleKind::Element { element: 1, irule: 0, gp: 4, keyword: 1, component: 6 });
+        assert_eq!(
+            rules[1].kind,
+            RuleKind::Element {
+                element: 1,
+                irule: 0,
+                gp: 4,
+                keyword: 1,
+                component: 6
+            }
+        );
         assert_eq!(rules[1].step, 2);
         assert_eq!(rules[1].tolerance, 1e-2);
-        assert_eq!(rules[2].kind, RuleKind::Element { element: 1, irule: 0, gp: 2, keyword: 4, component: 1 });
+        assert_eq!(
+            rules[2].kind,
+            RuleKind::Element {
+                element: 1,
+                irule: 0,
+                gp: 2,
+                keyword: 4,
+                component: 1
+            }
+        );
         assert_eq!(rules[3].value, -1.40625);
     }
 
     #[test]
     fn lowercase_rule_keywords_do_not_match() {
-        let (rules, _) = parse_rules("#%BEGIN_CHECK%\n#NODE tstep 1 number 3 dof 1 unknown d value 1\n#%END_CHECK%\n");
+        let (rules, _) = parse_rules(
+            "#%BEGIN_CHECK%\n#NODE tstep 1 number 3 dof 1 unknown d value 1\n#%END_CHECK%\n",
+        );
         assert!(matches!(rules[0].kind, RuleKind::Unsupported(_)));
     }
 }

@@ -14,9 +14,14 @@ pub fn write_atomic(path: &Path, content: &[u8]) -> Result<()> {
         path.extension().and_then(|e| e.to_str()).unwrap_or(""),
         std::process::id()
     ));
-    std::fs::write(&tmp, content).map_err(|e| Error::Output(format!("cannot write {}: {e}", tmp.display())))?;
+    std::fs::write(&tmp, content)
+        .map_err(|e| Error::Output(format!("cannot write {}: {e}", tmp.display())))?;
     std::fs::rename(&tmp, path).map_err(|e| {
         let _ = std::fs::remove_file(&tmp);
-        Error::Output(format!("cannot rename {} to {}: {e}", tmp.display(), path.display()))
+        Error::Output(format!(
+            "cannot rename {} to {}: {e}",
+            tmp.display(),
+            path.display()
+        ))
     })
 }

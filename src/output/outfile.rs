@@ -20,11 +20,18 @@ pub fn header(model: &Model) -> String {
 
 /// Footer written once at the end.
 pub fn footer(total_seconds: f64) -> String {
-    format!("\nFinishing analysis on: {}\n\nReal time consumed: {:.3} [s]\n", timestamp(), total_seconds)
+    format!(
+        "\nFinishing analysis on: {}\n\nReal time consumed: {:.3} [s]\n",
+        timestamp(),
+        total_seconds
+    )
 }
 
 fn timestamp() -> String {
-    let secs = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.as_secs()).unwrap_or(0);
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_secs())
+        .unwrap_or(0);
     format!("{secs} s since the Unix epoch")
 }
 
@@ -53,10 +60,19 @@ pub fn step_block(model: &Model, res: &StepResult) -> String {
         if !model.output.node(n + 1) {
             continue;
         }
-        let class = if node.slave.is_some() { "SlaveNode" } else { "Node" };
+        let class = if node.slave.is_some() {
+            "SlaveNode"
+        } else {
+            "Node"
+        };
         let _ = writeln!(s, "{:<8}{:8} ({:8}):", class, node.label, n + 1);
         for &(d, code) in &res.dofs.node_dofs[n] {
-            let _ = writeln!(s, "  dof {}   d {}", d, sci_sign(res.dofs.value(res.u, code), 8));
+            let _ = writeln!(
+                s,
+                "  dof {}   d {}",
+                d,
+                sci_sign(res.dofs.value(res.u, code), 8)
+            );
         }
     }
     s.push_str("\n\nElement output:\n---------------\n");
@@ -68,7 +84,17 @@ pub fn step_block(model: &Model, res: &StepResult) -> String {
         for (g, st) in res.states[e].iter().enumerate() {
             let _ = write!(s, "  GP {:2}.{:<2} :", 1, g + 1);
             if el.nlgeo {
-                let order = [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1), (2, 1), (2, 0), (1, 0)];
+                let order = [
+                    (0, 0),
+                    (1, 1),
+                    (2, 2),
+                    (1, 2),
+                    (0, 2),
+                    (0, 1),
+                    (2, 1),
+                    (2, 0),
+                    (1, 0),
+                ];
                 s.push_str("  F ");
                 for (i, j) in order {
                     let _ = write!(s, " {}", sci(st.f[i][j], 4));
@@ -101,9 +127,20 @@ pub fn step_block(model: &Model, res: &StepResult) -> String {
         .collect();
     rows.sort_by_key(|r| (r.0, r.1));
     for (n, d, bc, r) in rows {
-        let _ = writeln!(s, "\tNode {:8} iDof {:2} reaction {}    [bc-id: {}]", model.nodes[n].label, d, sci_sign(r, 4), bc);
+        let _ = writeln!(
+            s,
+            "\tNode {:8} iDof {:2} reaction {}    [bc-id: {}]",
+            model.nodes[n].label,
+            d,
+            sci_sign(r, 4),
+            bc
+        );
     }
-    let _ = write!(s, "\nUser time consumed by solution step {}: {:.3} [s]\n\n", res.step, res.info.wall_seconds);
+    let _ = write!(
+        s,
+        "\nUser time consumed by solution step {}: {:.3} [s]\n\n",
+        res.step, res.info.wall_seconds
+    );
     s
 }
 

@@ -41,8 +41,15 @@ pub fn write_step(model: &Model, res: &StepResult, dir: &Path, stem: &str) -> Re
     s.push_str("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n");
     let _ = writeln!(s, "<Piece NumberOfPoints=\"{nn}\" NumberOfCells=\"{ne}\">");
     s.push_str("<Points>\n");
-    data_array(&mut s, "coordinates", 3, model.nodes.iter().flat_map(|n| n.coords));
-    s.push_str("</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
+    data_array(
+        &mut s,
+        "coordinates",
+        3,
+        model.nodes.iter().flat_map(|n| n.coords),
+    );
+    s.push_str(
+        "</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n",
+    );
     let mut offsets = Vec::with_capacity(ne);
     let mut types = Vec::with_capacity(ne);
     let mut off = 0;
@@ -65,7 +72,9 @@ pub fn write_step(model: &Model, res: &StepResult, dir: &Path, stem: &str) -> Re
         let _ = write!(s, "{t} ");
     }
     s.push_str("\n</DataArray>\n</Cells>\n<PointData Vectors=\"displacement\">\n");
-    let disp = (0..nn).flat_map(|n| (1..=3u8).map(move |d| (n, d))).map(|(n, d)| res.displacement(n, d).unwrap_or(0.0));
+    let disp = (0..nn)
+        .flat_map(|n| (1..=3u8).map(move |d| (n, d)))
+        .map(|(n, d)| res.displacement(n, d).unwrap_or(0.0));
     data_array(&mut s, "displacement", 3, disp);
     let mut reac = vec![0.0; 3 * nn];
     for (&(n, d, _), &r) in res.dofs.prescribed.iter().zip(res.reactions) {
@@ -94,9 +103,14 @@ pub fn write_step(model: &Model, res: &StepResult, dir: &Path, stem: &str) -> Re
 
 /// Write the `.pvd` collection of the step files written so far.
 pub fn write_collection(dir: &Path, stem: &str, steps: &[(f64, String)]) -> Result<()> {
-    let mut s = String::from("<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n");
+    let mut s = String::from(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n",
+    );
     for (t, f) in steps {
-        let _ = writeln!(s, "<DataSet timestep=\"{t}\" group=\"\" part=\"0\" file=\"{f}\"/>");
+        let _ = writeln!(
+            s,
+            "<DataSet timestep=\"{t}\" group=\"\" part=\"0\" file=\"{f}\"/>"
+        );
     }
     s.push_str("</Collection>\n</VTKFile>\n");
     write_atomic(&dir.join(format!("{stem}.pvd")), s.as_bytes())

@@ -71,8 +71,11 @@ impl ContinuumKernel<'_> {
         let mut b = [[0.0; MAX_DOFS]; 6];
         for (g, qp) in self.rule.iter().enumerate() {
             self.shape.eval(qp.xi, &mut n, &mut dn);
-            let det = map_derivatives(nsd, nn, x_ref, &dn, &mut dndx)
-                .ok_or_else(|| KernelError { gp: g + 1, msg: "degenerate element geometry (det J = 0)".into() })?;
+            let det =
+                map_derivatives(nsd, nn, x_ref, &dn, &mut dndx).ok_or_else(|| KernelError {
+                    gp: g + 1,
+                    msg: "degenerate element geometry (det J = 0)".into(),
+                })?;
             let jxw = det.abs() * qp.weight * self.thick;
             // Deformation gradient F = I + ∂u/∂X.
             let mut f = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
@@ -99,7 +102,10 @@ impl ContinuumKernel<'_> {
                 }
             }
             if self.nlgeo && det3(&f) <= 0.0 {
-                return Err(KernelError { gp: g + 1, msg: format!("element inverted (det F = {:.3e})", det3(&f)) });
+                return Err(KernelError {
+                    gp: g + 1,
+                    msg: format!("element inverted (det F = {:.3e})", det3(&f)),
+                });
             }
             let mut strain = [0.0; 6];
             for (k, &c) in comps.iter().enumerate() {
@@ -117,7 +123,11 @@ impl ContinuumKernel<'_> {
                 s[i][j] = sv[k];
                 s[j][i] = sv[k];
             }
-            let fm = if self.nlgeo { f } else { [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]] };
+            let fm = if self.nlgeo {
+                f
+            } else {
+                [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+            };
             // Internal force f_ai = ∫ F_iI S_IJ ∂N_a/∂X_J.
             let mut fs = [[0.0; 3]; 3];
             for i in 0..nsd {
@@ -127,7 +137,8 @@ impl ContinuumKernel<'_> {
             }
             for a in 0..nn {
                 for i in 0..nsd {
-                    fe[a * nsd + i] += jxw * (0..nsd).map(|jj| fs[i][jj] * dndx[a][jj]).sum::<f64>();
+                    fe[a * nsd + i] +=
+                        jxw * (0..nsd).map(|jj| fs[i][jj] * dndx[a][jj]).sum::<f64>();
                 }
             }
             if let Some(k) = ke.as_deref_mut() {
@@ -192,7 +203,12 @@ impl ContinuumKernel<'_> {
                         p[i][j] = (0..3).map(|t| fm[i][t] * s[t][j]).sum();
                     }
                 }
-                st.push(GpState { strain: full_e, stress: full_s, f, p });
+                st.push(GpState {
+                    strain: full_e,
+                    stress: full_s,
+                    f,
+                    p,
+                });
             }
         }
         Ok(())
@@ -207,8 +223,12 @@ impl ContinuumKernel<'_> {
         let mut dndx = [[0.0; 3]; MAX_NODES];
         for (g, qp) in self.rule.iter().enumerate() {
             self.shape.eval(qp.xi, &mut n, &mut dn);
-            let det = map_derivatives(self.nsd, nn, x_ref, &dn, &mut dndx)
-                .ok_or_else(|| KernelError { gp: g + 1, msg: "degenerate element geometry (det J = 0)".into() })?;
+            let det = map_derivatives(self.nsd, nn, x_ref, &dn, &mut dndx).ok_or_else(|| {
+                KernelError {
+                    gp: g + 1,
+                    msg: "degenerate element geometry (det J = 0)".into(),
+                }
+            })?;
             for a in 0..nn {
                 out[a] += n[a] * det.abs() * qp.weight * self.thick;
             }
@@ -243,14 +263,19 @@ pub fn map_derivatives(
     let inv = inverse3(&j, det);
     for a in 0..nn {
         for i in 0..3 {
-            dndx[a][i] = if i < nsd { (0..nsd).map(|k| dn[a][k] * inv[k][i]).sum() } else { 0.0 };
+            dndx[a][i] = if i < nsd {
+                (0..nsd).map(|k| dn[a][k] * inv[k][i]).sum()
+            } else {
+                0.0
+            };
         }
     }
     Some(det)
 }
 
 pub fn det3(m: &[[f64; 3]; 3]) -> f64 {
-    m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+    m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+        - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
         + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
 }
 

@@ -11,7 +11,12 @@ use crate::model::{DofId, Load, LoadKind, Model};
 pub fn reference_contributions(model: &Model, load: &Load) -> Result<Vec<(usize, DofId, f64)>> {
     let set = &model.sets[load.set - 1];
     let mut out = Vec::new();
-    let comps = || load.dofs.iter().copied().zip(load.components.iter().copied());
+    let comps = || {
+        load.dofs
+            .iter()
+            .copied()
+            .zip(load.components.iter().copied())
+    };
     match load.kind {
         LoadKind::Nodal => {
             for &n in &set.nodes {
@@ -33,8 +38,16 @@ pub fn reference_contributions(model: &Model, load: &Load) -> Result<Vec<(usize,
                 let el = &model.elements[e];
                 let shape = el.etype.shape();
                 let local = shape.edges()[b - 1];
-                let thick = if shape.dim() == 2 { element_thickness(model, e) } else { 1.0 };
-                let edge_shape = if local.len() == 3 { Shape::Line3 } else { Shape::Line2 };
+                let thick = if shape.dim() == 2 {
+                    element_thickness(model, e)
+                } else {
+                    1.0
+                };
+                let edge_shape = if local.len() == 3 {
+                    Shape::Line3
+                } else {
+                    Shape::Line2
+                };
                 let mut n = [0.0; 3];
                 let mut dn = [[0.0; 3]; 3];
                 for (xi, w) in gauss_line(3).expect("3-point rule") {
@@ -48,7 +61,9 @@ pub fn reference_contributions(model: &Model, load: &Load) -> Result<Vec<(usize,
                     }
                     let dl = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
                     for (k, &a) in local.iter().enumerate() {
-                        out.extend(comps().map(|(d, c)| (el.nodes[a], d, c * n[k] * dl * w * thick)));
+                        out.extend(
+                            comps().map(|(d, c)| (el.nodes[a], d, c * n[k] * dl * w * thick)),
+                        );
                     }
                 }
             }
@@ -60,11 +75,18 @@ pub fn reference_contributions(model: &Model, load: &Load) -> Result<Vec<(usize,
                 if shape.dim() != 3 {
                     return Err(Error::Input {
                         span: el.span.clone(),
-                        msg: format!("surface load {} acts on element {}, which is not a 3D element", load.number, el.label),
+                        msg: format!(
+                            "surface load {} acts on element {}, which is not a 3D element",
+                            load.number, el.label
+                        ),
                     });
                 }
                 let local = shape.boundaries()[b - 1];
-                let face = if local.len() == 3 { Shape::Tri3 } else { Shape::Quad4 };
+                let face = if local.len() == 3 {
+                    Shape::Tri3
+                } else {
+                    Shape::Quad4
+                };
                 let mut n = [0.0; 4];
                 let mut dn = [[0.0; 3]; 4];
                 for qp in rule(face, if local.len() == 3 { 3 } else { 4 }).expect("face rule") {
@@ -77,7 +99,11 @@ pub fn reference_contributions(model: &Model, load: &Load) -> Result<Vec<(usize,
                             g2[i] += dn[k][1] * x[i];
                         }
                     }
-                    let cr = [g1[1] * g2[2] - g1[2] * g2[1], g1[2] * g2[0] - g1[0] * g2[2], g1[0] * g2[1] - g1[1] * g2[0]];
+                    let cr = [
+                        g1[1] * g2[2] - g1[2] * g2[1],
+                        g1[2] * g2[0] - g1[0] * g2[2],
+                        g1[0] * g2[1] - g1[1] * g2[0],
+                    ];
                     let da = (cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]).sqrt() * qp.weight;
                     for (k, &a) in local.iter().enumerate() {
                         out.extend(comps().map(|(d, c)| (el.nodes[a], d, c * n[k] * da)));
@@ -91,7 +117,9 @@ pub fn reference_contributions(model: &Model, load: &Load) -> Result<Vec<(usize,
 
 /// Thickness of a 2D element (1 when the cross section gives none).
 pub fn element_thickness(model: &Model, e: usize) -> f64 {
-    model.cross_sections[model.elements[e].cross_section].thick.unwrap_or(1.0)
+    model.cross_sections[model.elements[e].cross_section]
+        .thick
+        .unwrap_or(1.0)
 }
 
 /// ∫ N_a dV over element e (with thickness in 2D and area for bars).
@@ -112,14 +140,21 @@ fn element_shape_integrals(model: &Model, e: usize) -> Result<Vec<f64>> {
         nsd: shape.dim(),
         rule: &qr,
         elasticity: &elasticity,
-        thick: if shape.dim() == 2 { element_thickness(model, e) } else { 1.0 },
+        thick: if shape.dim() == 2 {
+            element_thickness(model, e)
+        } else {
+            1.0
+        },
         nlgeo: false,
     };
     let x: Vec<[f64; 3]> = el.nodes.iter().map(|&n| model.nodes[n].coords).collect();
     let mut w = vec![0.0; el.nodes.len()];
     kernel
         .integrate_shape(&x, &mut w)
-        .map_err(|k| Error::Input { span: el.span.clone(), msg: format!("element {}: {}", el.label, k.msg) })?;
+        .map_err(|k| Error::Input {
+            span: el.span.clone(),
+            msg: format!("element {}: {}", el.label, k.msg),
+        })?;
     Ok(w)
 }
 
@@ -135,7 +170,14 @@ pub fn truss_coords(model: &Model, e: usize) -> [[f64; 2]; 2] {
     let mut out = [[0.0; 2]; 2];
     for (k, &n) in el.nodes.iter().enumerate() {
         let c = model.nodes[n].coords;
-        out[k] = [c[axes[0]], if el.etype == crate::model::ElementType::Truss1d { 0.0 } else { c[axes[1]] }];
+        out[k] = [
+            c[axes[0]],
+            if el.etype == crate::model::ElementType::Truss1d {
+                0.0
+            } else {
+                c[axes[1]]
+            },
+        ];
     }
     out
 }

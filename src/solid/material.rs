@@ -57,7 +57,11 @@ impl Elasticity {
                 }
             }
         }
-        Elasticity { mode, n: comps.len(), d }
+        Elasticity {
+            mode,
+            n: comps.len(),
+            d,
+        }
     }
 
     /// stress = D · strain (reduced vectors).
@@ -74,7 +78,12 @@ mod tests {
 
     #[test]
     fn plane_strain_gives_sigma_z_from_poisson_effect() {
-        let m = Material { density: 0.0, young: 10.0, poisson: 0.2, talpha: 0.0 };
+        let m = Material {
+            density: 0.0,
+            young: 10.0,
+            poisson: 0.2,
+            talpha: 0.0,
+        };
         let el = Elasticity::new(&m, StressMode::PlaneStrain);
         let mut s = [0.0; 4];
         el.stress(&[1e-3, 0.0, 0.0, 0.0], &mut s);

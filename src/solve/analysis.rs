@@ -27,7 +27,10 @@ pub struct SolveParams {
 
 impl Default for SolveParams {
     fn default() -> Self {
-        SolveParams { max_cutbacks: 5, log_steps: true }
+        SolveParams {
+            max_cutbacks: 5,
+            log_steps: true,
+        }
     }
 }
 
@@ -108,7 +111,13 @@ pub fn run_analysis(
     };
     let a = &model.analysis;
     let linear = !model.elements.iter().any(|e| e.nlgeo);
-    let mut ctx = NewtonContext { asm: &asm, dofs: &dofs, solver: LinearSolver::default(), factor_valid: false, linear };
+    let mut ctx = NewtonContext {
+        asm: &asm,
+        dofs: &dofs,
+        solver: LinearSolver::default(),
+        factor_valid: false,
+        linear,
+    };
     let mut u = vec![0.0; np];
     let mut applied = vec![0.0; np];
     let times = model.step_times();
@@ -140,9 +149,14 @@ pub fn run_analysis(
             let mut ok = true;
             for s in 1..=nsub {
                 let alpha = s as f64 / nsub as f64;
-                let f_sub: Vec<f64> = applied.iter().zip(&target).map(|(a0, a1)| a0 + alpha * (a1 - a0)).collect();
-                let up_sub: Vec<f64> =
-                    (0..dofs.n_prescribed).map(|i| start_u[nf + i] + alpha * (up_target[i] - start_u[nf + i])).collect();
+                let f_sub: Vec<f64> = applied
+                    .iter()
+                    .zip(&target)
+                    .map(|(a0, a1)| a0 + alpha * (a1 - a0))
+                    .collect();
+                let up_sub: Vec<f64> = (0..dofs.n_prescribed)
+                    .map(|i| start_u[nf + i] + alpha * (up_target[i] - start_u[nf + i]))
+                    .collect();
                 match ctx.newton(&mut u, &f_sub, &up_sub, a, &mut info) {
                     Ok(true) => {}
                     Ok(false) => {
@@ -166,7 +180,11 @@ pub fn run_analysis(
             }
             ctx.factor_valid = false;
             if params.log_steps && level < params.max_cutbacks {
-                eprintln!("step {step}: no convergence in {} iterations; retrying in {} substeps", a.maxiter, 2 * nsub);
+                eprintln!(
+                    "step {step}: no convergence in {} iterations; retrying in {} substeps",
+                    a.maxiter,
+                    2 * nsub
+                );
             }
         }
         if !done {
@@ -181,7 +199,9 @@ pub fn run_analysis(
         }
         applied = target;
         let ev: Evaluation = asm.evaluate(&u, false, true, None)?;
-        let reactions: Vec<f64> = (0..dofs.n_prescribed).map(|i| ev.f_int[nf + i] - applied[nf + i]).collect();
+        let reactions: Vec<f64> = (0..dofs.n_prescribed)
+            .map(|i| ev.f_int[nf + i] - applied[nf + i])
+            .collect();
         info.wall_seconds = clock.elapsed().as_secs_f64();
         info.solver = ctx.solver.stats.clone();
         if params.log_steps {
@@ -194,7 +214,15 @@ pub fn run_analysis(
             );
         }
         let states = ev.states.unwrap_or_default();
-        on_step(&StepResult { step, time: t, dofs: &dofs, u: &u, reactions: &reactions, states: &states, info: &info })?;
+        on_step(&StepResult {
+            step,
+            time: t,
+            dofs: &dofs,
+            u: &u,
+            reactions: &reactions,
+            states: &states,
+            info: &info,
+        })?;
     }
     Ok(())
 }
@@ -211,7 +239,18 @@ struct NewtonContext<'a> {
 impl NewtonContext<'_> {
     fn factorize(&mut self, ev: &Evaluation) -> Result<()> {
         let kv = ev.k_values.as_ref().expect("tangent requested");
-        self.solver.factorize(&self.asm.pattern, kv)?;
+        let dofs = self.dofs;
+        let model = self.asm.model;
+        let describe = |eq: usize| {
+            for (n, list) in dofs.node_dofs.iter().enumerate() {
+                if let Some((d, _)) = list.iter().find(|(_, c)| *c == eq) {
+                    return format!("node {} DOF {d}", model.nodes[n].label);
+                }
+            }
+            format!("equation {eq}")
+        };
+        self.solver
+            .factorize(&self.asm.pattern, kv, self.linear, &describe)?;
         self.factor_valid = self.linear;
         Ok(())
     }
@@ -248,7 +287,8 @@ impl NewtonContext<'_> {
         u[nf..].copy_from_slice(up);
         let mut du = vec![0.0; nf];
         for it in 0..=a.maxiter {
-            let refresh = !self.factor_valid && (it == 0 || a.manrmsteps.is_some_and(|k| it % k == 0));
+            let refresh =
+                !self.factor_valid && (it == 0 || a.manrmsteps.is_some_and(|k| it % k == 0));
             let ev = self.asm.evaluate(u, refresh, false, None)?;
             let mut rhs: Vec<f64> = (0..nf).map(|i| f_ext[i] - ev.f_int[i]).collect();
             let (force_err, converged) = self.check(&rhs, f_ext, &ev.ebe, &du, u, a, it);
@@ -308,13 +348,21 @@ impl NewtonContext<'_> {
                 continue;
             }
             let d = den[g] + ebe[g];
-            let fe = if d < 1e-6 { num[g].sqrt() } else { (num[g] / d).sqrt() };
+            let fe = if d < 1e-6 {
+                num[g].sqrt()
+            } else {
+                (num[g] / d).sqrt()
+            };
             worst = worst.max(fe);
             if !(fe <= a.rtolf) {
                 ok = false;
             }
             if a.rtold > 0.0 && it > 0 {
-                let de = if uu[g] < 1e-6 { dd[g].sqrt() } else { (dd[g] / uu[g]).sqrt() };
+                let de = if uu[g] < 1e-6 {
+                    dd[g].sqrt()
+                } else {
+                    (dd[g] / uu[g]).sqrt()
+                };
                 if !(de <= a.rtold) {
                     ok = false;
                 }

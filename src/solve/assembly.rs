@@ -26,7 +26,9 @@ impl Pattern {
     pub fn position(&self, row: usize, col: usize) -> usize {
         debug_assert!(row <= col);
         let (s, e) = (self.col_ptr[col], self.col_ptr[col + 1]);
-        s + self.row_idx[s..e].binary_search(&row).expect("entry in pattern")
+        s + self.row_idx[s..e]
+            .binary_search(&row)
+            .expect("entry in pattern")
     }
     pub fn nnz(&self) -> usize {
         self.row_idx.len()
@@ -101,9 +103,27 @@ impl<'m> Assembler<'m> {
             } else {
                 1.0
             };
-            elems.push(ElementInfo { loc_start, ndof: locs.len() - loc_start, rule: r, elasticity: k, thick });
+            elems.push(ElementInfo {
+                loc_start,
+                ndof: locs.len() - loc_start,
+                rule: r,
+                elasticity: k,
+                thick,
+            });
         }
-        let mut a = Assembler { model, dofs, pattern: Pattern { n: 0, col_ptr: vec![0], row_idx: vec![] }, elems, locs, rules, elasticities };
+        let mut a = Assembler {
+            model,
+            dofs,
+            pattern: Pattern {
+                n: 0,
+                col_ptr: vec![0],
+                row_idx: vec![],
+            },
+            elems,
+            locs,
+            rules,
+            elasticities,
+        };
         a.pattern = a.build_pattern();
         Ok(a)
     }
@@ -112,7 +132,12 @@ impl<'m> Assembler<'m> {
         out.clear();
         let info = &self.elems[e];
         for &c in &self.locs[info.loc_start..info.loc_start + info.ndof] {
-            out.extend(self.dofs.entries(c).map(|x| x.0).filter(|&p| p < self.dofs.n_free));
+            out.extend(
+                self.dofs
+                    .entries(c)
+                    .map(|x| x.0)
+                    .filter(|&p| p < self.dofs.n_free),
+            );
         }
         out.sort_unstable();
         out.dedup();
@@ -138,7 +163,11 @@ impl<'m> Assembler<'m> {
             row_idx.extend_from_slice(&rows);
             col_ptr.push(row_idx.len());
         }
-        Pattern { n, col_ptr, row_idx }
+        Pattern {
+            n,
+            col_ptr,
+            row_idx,
+        }
     }
 
     /// Evaluate one element at the primary state `u` into `fe`, `ke` (row-major) and states.
@@ -153,15 +182,28 @@ impl<'m> Assembler<'m> {
         let el = &self.model.elements[e];
         let info = &self.elems[e];
         let mut ue = [0.0; MAX_DOFS];
-        for (k, &c) in self.locs[info.loc_start..info.loc_start + info.ndof].iter().enumerate() {
+        for (k, &c) in self.locs[info.loc_start..info.loc_start + info.ndof]
+            .iter()
+            .enumerate()
+        {
             ue[k] = self.dofs.value(u, c);
         }
-        let fail = |gp: usize, msg: String| Error::Solve(format!("element {} (gp {gp}): {msg}", el.label));
+        let fail =
+            |gp: usize, msg: String| Error::Solve(format!("element {} (gp {gp}): {msg}", el.label));
         if el.etype.is_truss() {
             let dim = el.dof_ids().len();
             let young = self.model.materials[el.material].young;
-            truss::evaluate_into(dim, truss_coords(self.model, e), &ue, young, info.thick, fe, ke, states)
-                .map_err(|m| fail(1, m))
+            truss::evaluate_into(
+                dim,
+                truss_coords(self.model, e),
+                &ue,
+                young,
+                info.thick,
+                fe,
+                ke,
+                states,
+            )
+            .map_err(|m| fail(1, m))
         } else {
             let shape = el.etype.shape();
             let mut x = [[0.0; 3]; 8];
@@ -176,12 +218,20 @@ impl<'m> Assembler<'m> {
                 thick: info.thick,
                 nlgeo: el.nlgeo,
             };
-            kernel.evaluate_into(&x[..el.nodes.len()], &ue, fe, ke, states).map_err(|k| fail(k.gp, k.msg))
+            kernel
+                .evaluate_into(&x[..el.nodes.len()], &ue, fe, ke, states)
+                .map_err(|k| fail(k.gp, k.msg))
         }
     }
 
     /// The element loop at primary state `u`.
-    pub fn evaluate(&self, u: &[f64], want_k: bool, want_states: bool, dup: Option<&[f64]>) -> Result<Evaluation> {
+    pub fn evaluate(
+        &self,
+        u: &[f64],
+        want_k: bool,
+        want_states: bool,
+        dup: Option<&[f64]>,
+    ) -> Result<Evaluation> {
         let nf = self.dofs.n_free;
         let mut f_int = vec![0.0; self.dofs.n_primary()];
         let mut k_values = want_k.then(|| vec![0.0; self.pattern.nnz()]);
@@ -199,7 +249,11 @@ impl<'m> Assembler<'m> {
                 .map(|e| {
                     let nd = self.elems[e].ndof;
                     let mut fe = vec![0.0; nd];
-                    let mut ke = if need_k { vec![0.0; nd * nd] } else { Vec::new() };
+                    let mut ke = if need_k {
+                        vec![0.0; nd * nd]
+                    } else {
+                        Vec::new()
+                    };
                     let mut st = Vec::new();
                     self.element(
                         e,
@@ -257,6 +311,12 @@ impl<'m> Assembler<'m> {
             }
             start = end;
         }
-        Ok(Evaluation { f_int, k_values, k_fp_dup, ebe, states })
+        Ok(Evaluation {
+            f_int,
+            k_values,
+            k_fp_dup,
+            ebe,
+            states,
+        })
     }
 }

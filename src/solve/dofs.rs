@@ -97,26 +97,40 @@ impl DofMap {
         }
         let mut slaves = Vec::new();
         for n in 0..nn {
-            let Some(s) = &model.nodes[n].slave else { continue };
+            let Some(s) = &model.nodes[n].slave else {
+                continue;
+            };
             for d in 1..=3u8 {
                 if ids[n] & (1 << d) == 0 {
                     continue;
                 }
                 let mut entries = Vec::new();
                 for (&m, &w) in s.masters.iter().zip(&s.weights) {
-                    let code = node_dofs[m].iter().find(|(id, _)| *id == d).map(|x| x.1).ok_or_else(|| {
-                        Error::Input {
+                    let code = node_dofs[m]
+                        .iter()
+                        .find(|(id, _)| *id == d)
+                        .map(|x| x.1)
+                        .ok_or_else(|| Error::Input {
                             span: model.nodes[n].span.clone(),
-                            msg: format!("master node {} has no DOF {d} for slave node", model.nodes[m].label),
-                        }
-                    })?;
+                            msg: format!(
+                                "master node {} has no DOF {d} for slave node",
+                                model.nodes[m].label
+                            ),
+                        })?;
                     entries.push((code, w));
                 }
                 node_dofs[n].push((d, n_primary + slaves.len()));
                 slaves.push(entries);
             }
         }
-        Ok(DofMap { node_dofs, n_free, n_prescribed, primary_dof_id, prescribed, slaves })
+        Ok(DofMap {
+            node_dofs,
+            n_free,
+            n_prescribed,
+            primary_dof_id,
+            prescribed,
+            slaves,
+        })
     }
 
     pub fn n_primary(&self) -> usize {
@@ -125,7 +139,10 @@ impl DofMap {
 
     /// Location code of DOF `d` of node `n`, if the node has it.
     pub fn code(&self, n: usize, d: DofId) -> Option<usize> {
-        self.node_dofs[n].iter().find(|(id, _)| *id == d).map(|x| x.1)
+        self.node_dofs[n]
+            .iter()
+            .find(|(id, _)| *id == d)
+            .map(|x| x.1)
     }
 
     /// Primary (index, weight) entries of a location code.

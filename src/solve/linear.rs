@@ -7,7 +7,8 @@ use crate::error::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky, SymmetricOrdering,
+    factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky,
+    SymmetricOrdering,
 };
 use faer::sparse::{SparseColMat, SparseColMatRef, SymbolicSparseColMatRef, Triplet};
 use faer::{Conj, MatMut, Par, Side};
@@ -38,7 +39,11 @@ pub struct LinearSolver {
 
 impl Default for LinearSolver {
     fn default() -> Self {
-        LinearSolver { symbolic: None, factor: Factor::None, stats: SolverStats::default() }
+        LinearSolver {
+            symbolic: None,
+            factor: Factor::None,
+            stats: SolverStats::default(),
+        }
     }
 }
 
@@ -47,14 +52,28 @@ fn par() -> Par {
 }
 
 impl LinearSolver {
-    /// Factorize the symmetric matrix given by its upper triangle on `pattern`.
-    pub fn factorize(&mut self, pattern: &Pattern, values: &[f64]) -> Result<()> {
+    /// Factorize the symmetric matrix given by its upper triangle on `pattern`. When the matrix
+    /// must be positive definite (`spd`: linear elasticity) a failed LLᵀ is a mechanism and is
+    /// reported at its equation via `describe_eq`; otherwise a sparse LU takes over.
+    pub fn factorize(
+        &mut self,
+        pattern: &Pattern,
+        values: &[f64],
+        spd: bool,
+        describe_eq: &dyn Fn(usize) -> String,
+    ) -> Result<()> {
         let n = pattern.n;
-        let sym = SymbolicSparseColMatRef::new_checked(n, n, &pattern.col_ptr, None, &pattern.row_idx);
+        let sym =
+            SymbolicSparseColMatRef::new_checked(n, n, &pattern.col_ptr, None, &pattern.row_idx);
         if self.symbolic.is_none() {
             let t = Instant::now();
-            let s = factorize_symbolic_cholesky(sym, Side::Upper, SymmetricOrdering::Amd, CholeskySymbolicParams::default())
-                .map_err(|e| Error::Solve(format!("symbolic factorization failed: {e:?}")))?;
+            let s = factorize_symbolic_cholesky(
+                sym,
+                Side::Upper,
+                SymmetricOrdering::Amd,
+                CholeskySymbolicParams::default(),
+            )
+            .map_err(|e| Error::Solve(format!("symbolic factorization failed: {e:?}")))?;
             self.stats.symbolic_seconds = t.elapsed().as_secs_f64();
             self.stats.factor_nnz = s.len_val();
             self.symbolic = Some(s);
@@ -66,8 +85,10 @@ impl LinearSolver {
             Factor::Llt(v) => v,
             _ => vec![0.0; symbolic.len_val()],
         };
-        let mut mem = MemBuffer::try_new(symbolic.factorize_numeric_llt_scratch::<f64>(par(), Default::default()))
-            .map_err(|_| Error::Solve("out of memory for the factorization workspace".into()))?;
+        let mut mem = MemBuffer::try_new(
+            symbolic.factorize_numeric_llt_scratch::<f64>(par(), Default::default()),
+        )
+        .map_err(|_| Error::Solve("out of memory for the factorization workspace".into()))?;
         let llt = symbolic.factorize_numeric_llt::<f64>(
             &mut l_values,
             mat,
@@ -77,6 +98,25 @@ impl LinearSolver {
             MemStack::new(&mut mem),
             Default::default(),
         );
+        if let Err(err) = &llt {
+            if spd {
+                let eq = match err {
+                    faer::linalg::solvers::LltError::NonPositivePivot { index } => Some(
+                        symbolic
+                            .perm()
+                            .map(|p| p.arrays().0[*index])
+                            .unwrap_or(*index),
+                    ),
+                };
+                let at = eq
+                    .map(|e| format!(" at {}", describe_eq(e)))
+                    .unwrap_or_default();
+                return Err(Error::Singular(format!(
+                    "the stiffness matrix is singular{at}: a mechanism or an unrestrained rigid-body motion \
+                     (check the supports and the elements connected there)"
+                )));
+            }
+        }
         if llt.is_ok() {
             self.factor = Factor::Llt(l_values);
             self.stats.used_lu = false;
@@ -95,7 +135,10 @@ impl LinearSolver {
             let full = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &triplets)
                 .map_err(|e| Error::Solve(format!("cannot build the matrix: {e:?}")))?;
             let lu = full.sp_lu().map_err(|_| {
-                Error::Solve("the stiffness matrix is singular: are all rigid-body motions restrained?".into())
+                Error::Singular(
+                    "the stiffness matrix is singular: are all rigid-body motions restrained?"
+                        .into(),
+                )
             })?;
             self.factor = Factor::Lu(lu);
             self.stats.used_lu = true;
@@ -114,7 +157,12 @@ impl LinearSolver {
             Factor::Llt(values) => {
                 let symbolic = self.symbolic.as_ref().expect("factorized");
                 let mut mem = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, par()));
-                LltRef::new(symbolic, values).solve_in_place_with_conj(Conj::No, m, par(), MemStack::new(&mut mem));
+                LltRef::new(symbolic, values).solve_in_place_with_conj(
+                    Conj::No,
+                    m,
+                    par(),
+                    MemStack::new(&mut mem),
+                );
             }
             Factor::Lu(lu) => lu.solve_in_place(m),
         }

@@ -1,0 +1,707 @@
+//! Element verification: finite-difference tangents, rigid-body motion under nlgeo 1, and patch
+//! tests (a linear displacement field prescribed on the boundary of a distorted patch is
+//! reproduced exactly inside, small strain and total Lagrangian alike) for every element type.
+
+use hertz::fem::{rule, Shape};
+use hertz::input::read_model;
+use hertz::model::{Material, StressMode};
+use hertz::solid::{ContinuumKernel, Elasticity, GpState};
+use hertz::solve::{run_analysis, SolveParams};
+use std::fmt::Write;
+
+const MAT: Material = Material {
+    density: 0.0,
+    young: 100.0,
+    poisson: 0.3,
+    talpha: 0.0,
+};
+
+/// (shape, stress mode, default nip) of every continuum element type.
+const CONTINUUM: [(&str, Shape, StressMode, usize); 8] = [
+    ("PlaneStress2d", Shape::Quad4, StressMode::PlaneStress, 4),
+    ("Quad1PlaneStrain", Shape::Quad4, StressMode::PlaneStrain, 4),
+    ("TrPlaneStress2d", Shape::Tri3, StressMode::PlaneStress, 1),
+    ("TrPlaneStrain", Shape::Tri3, StressMode::PlaneStrain, 1),
+    ("QPlaneStress2d", Shape::Quad8, StressMode::PlaneStress, 4),
+    ("LSpace", Shape::Hexa8, StressMode::ThreeD, 8),
+    ("LTRSpace", Shape::Tet4, StressMode::ThreeD, 1),
+    ("LWedge", Shape::Wedge6, StressMode::ThreeD, 6),
+];
+
+/// A distorted reference element: node positions of the shape perturbed a little.
+fn distorted_nodes(shape: Shape) -> Vec<[f64; 3]> {
+    let base: Vec<[f64; 3]> = match shape {
+        Shape::Quad4 => vec![
+            [1.0, 1.0, 0.0],
+            [-1.0, 1.0, 0.0],
+            [-1.0, -1.0, 0.0],
+            [1.0, -1.0, 0.0],
+        ],
+        Shape::Tri3 => vec![[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 0.0]],
+        Shape::Quad8 => vec![
+            [1.0, 1.0, 0.0],
+            [-1.0, 1.0, 0.0],
+            [-1.0, -1.0, 0.0],
+            [1.0, -1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [-1.0, 0.0, 0.0],
+            [0.0, -1.0, 0.0],
+            [1.0, 0.0, 0.0],
+        ],
+        Shape::Hexa8 => vec![
+            [-1.0, -1.0, 1.0],
+            [-1.0, 1.0, 1.0],
+            [1.0, 1.0, 1.0],
+            [1.0, -1.0, 1.0],
+            [-1.0, -1.0, -1.0],
+            [-1.0, 1.0, -1.0],
+            [1.0, 1.0, -1.0],
+            [1.0, -1.0, -1.0],
+        ],
+        Shape::Tet4 => vec![
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [0.0, 0.0, 0.0],
+        ],
+        Shape::Wedge6 => vec![
+            [0.0, 0.0, -1.0],
+            [1.0, 0.0, -1.0],
+            [0.0, 1.0, -1.0],
+            [0.0, 0.0, 1.0],
+            [1.0, 0.0, 1.0],
+            [0.0, 1.0, 1.0],
+        ],
+        _ => unreachable!(),
+    };
+    base.iter()
+        .enumerate()
+        .map(|(a, x)| {
+            let s = 0.07 * ((a as f64 * 1.7).sin());
+            let z = if shape.dim() == 3 {
+                x[2] + 0.05 * ((a as f64 * 2.3).cos())
+            } else {
+                0.0
+            };
+            [x[0] + s, x[1] - 0.6 * s, z]
+        })
+        .collect()
+}
+
+fn kernel<'a>(
+    shape: Shape,
+    _mode: StressMode,
+    q: &'a [hertz::fem::QuadPoint],
+    el: &'a Elasticity,
+    nlgeo: bool,
+) -> ContinuumKernel<'a> {
+    ContinuumKernel {
+        shape,
+        nsd: shape.dim(),
+        rule: q,
+        elasticity: el,
+        thick: 0.7,
+        nlgeo,
+    }
+}
+
+/// The tangent of every continuum element is the Jacobian of its internal force (central
+/// differences), in small strain and in total Lagrangian large deformation.
+#[test]
+fn continuum_tangent_is_jacobian_of_internal_force() {
+    for (name, shape, mode, nip) in CONTINUUM {
+        for nlgeo in [false, true] {
+            let q = rule(shape, nip).unwrap();
+            let el = Elasticity::new(&MAT, mode);
+            let k = kernel(shape, mode, &q, &el, nlgeo);
+            let x = distorted_nodes(shape);
+            let nd = shape.n_nodes() * shape.dim();
+            let u: Vec<f64> = (0..nd)
+                .map(|i| 0.15 * ((i as f64 * 0.9 + 0.3).sin()))
+                .collect();
+            let mut f = vec![0.0; nd];
+            let mut kt = vec![0.0; nd * nd];
+            k.evaluate_into(&x, &u, &mut f, Some(&mut kt), None)
+                .unwrap();
+            let h = 1e-6;
+            let scale = kt.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let mut worst: f64 = 0.0;
+            for j in 0..nd {
+                let (mut up, mut um) = (u.clone(), u.clone());
+                up[j] += h;
+                um[j] -= h;
+                let (mut fp, mut fm) = (vec![0.0; nd], vec![0.0; nd]);
+                k.evaluate_into(&x, &up, &mut fp, None, None).unwrap();
+                k.evaluate_into(&x, &um, &mut fm, None, None).unwrap();
+                for i in 0..nd {
+                    let fd = (fp[i] - fm[i]) / (2.0 * h);
+                    worst = worst.max((fd - kt[i * nd + j]).abs() / scale);
+                }
+            }
+            assert!(
+                worst < 1e-7,
+                "{name} nlgeo {nlgeo}: relative tangent error {worst:e}"
+            );
+            // The tangent is symmetric (hyperelastic St. Venant–Kirchhoff / linear elasticity).
+            for i in 0..nd {
+                for j in 0..nd {
+                    assert!(
+                        (kt[i * nd + j] - kt[j * nd + i]).abs() < 1e-10 * scale,
+                        "{name} symmetric"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// A large rigid rotation plus translation gives zero Green–Lagrange strain, zero stress and
+/// zero internal force under nlgeo 1 (and, as a control, non-zero strain in small strain).
+#[test]
+fn rigid_body_motion_gives_zero_strain_under_nlgeo() {
+    for (name, shape, mode, nip) in CONTINUUM {
+        let q = rule(shape, nip).unwrap();
+        let el = Elasticity::new(&MAT, mode);
+        let x = distorted_nodes(shape);
+        let (c, s) = (1.1f64.cos(), 1.1f64.sin());
+        // 3D: rotation about an inclined axis; 2D: about z.
+        let r: [[f64; 3]; 3] = if shape.dim() == 2 {
+            [[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]
+        } else {
+            let a = [1.0 / 3f64.sqrt(); 3];
+            let mut r = [[0.0; 3]; 3];
+            for i in 0..3 {
+                for j in 0..3 {
+                    let cross = match (i, j) {
+                        (0, 1) => -a[2],
+                        (0, 2) => a[1],
+                        (1, 0) => a[2],
+                        (1, 2) => -a[0],
+                        (2, 0) => -a[1],
+                        (2, 1) => a[0],
+                        _ => 0.0,
+                    };
+                    r[i][j] = c * f64::from(u8::from(i == j)) + s * cross + (1.0 - c) * a[i] * a[j];
+                }
+            }
+            r
+        };
+        let d = shape.dim();
+        let mut u = Vec::new();
+        for p in &x {
+            for i in 0..d {
+                u.push((0..d).map(|j| r[i][j] * p[j]).sum::<f64>() - p[i] + 0.3 * (i as f64 + 1.0));
+            }
+        }
+        let nd = u.len();
+        for nlgeo in [true, false] {
+            let k = kernel(shape, mode, &q, &el, nlgeo);
+            let mut f = vec![0.0; nd];
+            let mut st: Vec<GpState> = Vec::new();
+            k.evaluate_into(&x, &u, &mut f, None, Some(&mut st))
+                .unwrap();
+            let emax = st
+                .iter()
+                .flat_map(|g| g.strain)
+                .fold(0.0f64, |m, v| m.max(v.abs()));
+            if nlgeo {
+                assert!(emax < 1e-14, "{name}: Green–Lagrange strain {emax:e}");
+                assert!(
+                    f.iter().all(|v| v.abs() < 1e-12),
+                    "{name}: internal force of a rigid motion"
+                );
+            } else {
+                assert!(
+                    emax > 0.1,
+                    "{name}: small strain is not rotation invariant ({emax})"
+                );
+            }
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Patch tests through the whole program (reader, DOF numbering, assembly, solver).
+
+struct Patch {
+    domain: &'static str,
+    nodes: Vec<[f64; 3]>,
+    /// (element keyword, node numbers 1-based, extra keywords)
+    elements: Vec<(&'static str, Vec<usize>, String)>,
+    boundary: Vec<bool>,
+    dofs: Vec<u8>,
+    /// DOFs prescribed on interior nodes too (a straight bar chain has no transverse stiffness).
+    interior_fixed: Vec<u8>,
+    cs: &'static str,
+}
+
+fn grid(
+    n: [usize; 3],
+) -> (
+    Vec<[f64; 3]>,
+    impl Fn(usize, usize, usize) -> usize,
+    Vec<bool>,
+) {
+    let idx = move |i: usize, j: usize, k: usize| (k * (n[1] + 1) + j) * (n[0] + 1) + i;
+    let mut x = Vec::new();
+    let mut bnd = Vec::new();
+    for k in 0..=n[2] {
+        for j in 0..=n[1] {
+            for i in 0..=n[0] {
+                let on = |v: usize, m: usize| v == 0 || v == m;
+                let interior = !on(i, n[0]) && !on(j, n[1]) && (n[2] == 0 || !on(k, n[2]));
+                // Distort interior nodes so the elements are not parallelograms.
+                let d = if interior {
+                    [0.13, -0.11, 0.09]
+                } else {
+                    [0.0; 3]
+                };
+                x.push([
+                    i as f64 + d[0],
+                    j as f64 + d[1],
+                    k as f64 + if n[2] == 0 { 0.0 } else { d[2] },
+                ]);
+                bnd.push(!interior);
+            }
+        }
+    }
+    (x, idx, bnd)
+}
+
+fn patch_2d(kind: &'static str) -> Patch {
+    let (mut nodes, idx, mut boundary) = grid([2, 2, 0]);
+    let mut elements = Vec::new();
+    let domain = if kind.contains("Strain") {
+        "PlaneStrain"
+    } else {
+        "2dPlaneStress"
+    };
+    for j in 0..2 {
+        for i in 0..2 {
+            // OOFEM quad order: (x1,y1), (x0,y1), (x0,y0), (x1,y0).
+            let q = [
+                idx(i + 1, j + 1, 0),
+                idx(i, j + 1, 0),
+                idx(i, j, 0),
+                idx(i + 1, j, 0),
+            ];
+            match kind {
+                "TrPlaneStress2d" | "TrPlaneStrain" => {
+                    elements.push((kind, vec![q[0] + 1, q[1] + 1, q[2] + 1], String::new()));
+                    elements.push((kind, vec![q[0] + 1, q[2] + 1, q[3] + 1], String::new()));
+                }
+                "QPlaneStress2d" => {
+                    let mut ids: Vec<usize> = q.iter().map(|v| v + 1).collect();
+                    for s in 0..4 {
+                        let (a, b) = (q[s], q[(s + 1) % 4]);
+                        let m = [0, 1, 2].map(|c| 0.5 * (nodes[a][c] + nodes[b][c]));
+                        let found = nodes
+                            .iter()
+                            .position(|p| (0..3).all(|c| (p[c] - m[c]).abs() < 1e-12));
+                        let id = found.unwrap_or_else(|| {
+                            nodes.push(m);
+                            let on = |v: f64| v.abs() < 1e-12 || (v - 2.0).abs() < 1e-12;
+                            boundary.push(
+                                on(m[0]) && boundary[a] && boundary[b]
+                                    || on(m[1]) && boundary[a] && boundary[b],
+                            );
+                            nodes.len() - 1
+                        });
+                        ids.push(id + 1);
+                    }
+                    elements.push((kind, ids, "nip 9".into()));
+                }
+                _ => elements.push((kind, q.iter().map(|v| v + 1).collect(), String::new())),
+            }
+        }
+    }
+    Patch {
+        domain,
+        nodes,
+        elements,
+        boundary,
+        dofs: vec![1, 2],
+        interior_fixed: vec![],
+        cs: "thick 0.5",
+    }
+}
+
+fn patch_3d(kind: &'static str) -> Patch {
+    let (nodes, idx, boundary) = grid([2, 2, 2]);
+    let mut elements = Vec::new();
+    for k in 0..2 {
+        for j in 0..2 {
+            for i in 0..2 {
+                let c = |a: usize, b: usize, d: usize| idx(i + a, j + b, k + d) + 1;
+                match kind {
+                    "LSpace" => elements.push((
+                        kind,
+                        vec![
+                            c(0, 0, 1),
+                            c(0, 1, 1),
+                            c(1, 1, 1),
+                            c(1, 0, 1),
+                            c(0, 0, 0),
+                            c(0, 1, 0),
+                            c(1, 1, 0),
+                            c(1, 0, 0),
+                        ],
+                        String::new(),
+                    )),
+                    "LWedge" => {
+                        elements.push((
+                            kind,
+                            vec![
+                                c(0, 0, 0),
+                                c(1, 0, 0),
+                                c(1, 1, 0),
+                                c(0, 0, 1),
+                                c(1, 0, 1),
+                                c(1, 1, 1),
+                            ],
+                            String::new(),
+                        ));
+                        elements.push((
+                            kind,
+                            vec![
+                                c(0, 0, 0),
+                                c(1, 1, 0),
+                                c(0, 1, 0),
+                                c(0, 0, 1),
+                                c(1, 1, 1),
+                                c(0, 1, 1),
+                            ],
+                            String::new(),
+                        ));
+                    }
+                    _ => {
+                        // Kuhn split of the cube into 6 tetrahedra along the (0,0,0)-(1,1,1) diagonal.
+                        for p in [
+                            [0, 1, 2],
+                            [0, 2, 1],
+                            [1, 0, 2],
+                            [1, 2, 0],
+                            [2, 0, 1],
+                            [2, 1, 0],
+                        ] {
+                            let mut v = [0usize; 3];
+                            let mut ids = vec![c(0, 0, 0)];
+                            for &ax in &p[..2] {
+                                v[ax] = 1;
+                                ids.push(c(v[0], v[1], v[2]));
+                            }
+                            ids.push(c(1, 1, 1));
+                            elements.push((kind, ids, String::new()));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    Patch {
+        domain: "3d",
+        nodes,
+        elements,
+        boundary,
+        dofs: vec![1, 2, 3],
+        interior_fixed: vec![],
+        cs: "",
+    }
+}
+
+fn patch_truss(kind: &'static str) -> Patch {
+    // A straight chain of 3 bars with an inclined axis (Truss2d cs 1: x–y plane).
+    let dir = if kind == "Truss1d" {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.8, 0.6, 0.0]
+    };
+    let nodes: Vec<[f64; 3]> = [0.0, 0.7, 1.9, 3.0]
+        .iter()
+        .map(|s| [s * dir[0], s * dir[1], 0.0])
+        .collect();
+    let extra = if kind == "Truss2d" {
+        "cs 1".to_string()
+    } else {
+        String::new()
+    };
+    let elements = (0..3)
+        .map(|e| (kind, vec![e + 1, e + 2], extra.clone()))
+        .collect();
+    let (domain, dofs, interior_fixed) = if kind == "Truss1d" {
+        ("1dTruss", vec![1], vec![])
+    } else {
+        ("PlaneStrain", vec![1, 2], vec![2])
+    };
+    Patch {
+        domain,
+        nodes,
+        elements,
+        boundary: vec![true, false, false, true],
+        dofs,
+        interior_fixed,
+        cs: "area 0.3",
+    }
+}
+
+/// Solve the patch with u = field(X) prescribed on boundary nodes; return (u per node, GP states).
+fn solve_patch(
+    p: &Patch,
+    field: &dyn Fn([f64; 3]) -> [f64; 3],
+    nlgeo: bool,
+) -> (Vec<[f64; 3]>, Vec<Vec<GpState>>) {
+    let prescribed = |i: usize| {
+        if p.boundary[i] {
+            p.dofs.clone()
+        } else {
+            p.interior_fixed.clone()
+        }
+    };
+    let nb = (0..p.nodes.len())
+        .filter(|&i| !prescribed(i).is_empty())
+        .count();
+    let mut s = String::from(
+        "patch.out\ngenerated patch test\nStaticStructural nsteps 1 rtolf 1e-13 maxiter 20\n",
+    );
+    let _ = writeln!(s, "domain {}\nOutputManager", p.domain);
+    let _ = writeln!(
+        s,
+        "ndofman {} nelem {} ncrosssect 1 nmat 1 nbc {nb} nic 0 nltf 1 nset {}",
+        p.nodes.len(),
+        p.elements.len(),
+        nb + 1
+    );
+    for (i, x) in p.nodes.iter().enumerate() {
+        let _ = writeln!(s, "node {} coords 3 {} {} {}", i + 1, x[0], x[1], x[2]);
+    }
+    for (e, (kind, ids, extra)) in p.elements.iter().enumerate() {
+        let ids: Vec<String> = ids.iter().map(|v| v.to_string()).collect();
+        let nl = if nlgeo { "nlgeo 1" } else { "" };
+        let _ = writeln!(
+            s,
+            "{kind} {} nodes {} {} {extra} {nl}",
+            e + 1,
+            ids.len(),
+            ids.join(" ")
+        );
+    }
+    let _ = writeln!(s, "SimpleCS 1 {} material 1 set 1", p.cs);
+    let _ = writeln!(s, "IsoLE 1 d 0 E {} n {} tAlpha 0", MAT.young, MAT.poisson);
+    let mut k = 0;
+    let mut sets = String::from("Set 1 allelements\n");
+    for (i, x) in p.nodes.iter().enumerate() {
+        let fixed = prescribed(i);
+        if fixed.is_empty() {
+            continue;
+        }
+        k += 1;
+        let u = field(*x);
+        let ids: Vec<String> = fixed.iter().map(|d| d.to_string()).collect();
+        let vals: Vec<String> = fixed
+            .iter()
+            .map(|&d| format!("{:e}", u[d as usize - 1]))
+            .collect();
+        let n = fixed.len();
+        let _ = writeln!(
+            s,
+            "BoundaryCondition {k} loadTimeFunction 1 dofs {n} {} values {n} {} set {}",
+            ids.join(" "),
+            vals.join(" "),
+            k + 1
+        );
+        let _ = writeln!(sets, "Set {} nodes 1 {}", k + 1, i + 1);
+    }
+    s.push_str("ConstantFunction 1 f(t) 1.0\n");
+    s.push_str(&sets);
+    static COUNTER: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let k = COUNTER.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let path = std::env::temp_dir().join(format!("hertz-patch-{}-{k}.in", std::process::id()));
+    std::fs::write(&path, s).unwrap();
+    let model = read_model(&path).unwrap_or_else(|e| panic!("{e}")).model;
+    std::fs::remove_file(&path).ok();
+    let mut out = (Vec::new(), Vec::new());
+    run_analysis(
+        &model,
+        &SolveParams {
+            log_steps: false,
+            ..Default::default()
+        },
+        |r| {
+            out.0 = (0..model.nodes.len())
+                .map(|n| [1u8, 2, 3].map(|d| r.displacement(n, d).unwrap_or(0.0)))
+                .collect();
+            out.1 = r.states.to_vec();
+            Ok(())
+        },
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    out
+}
+
+/// Linear field u = c + G·X; small-strain patch: every node and every GP is exact.
+#[test]
+fn patch_test_small_strain_every_element_type() {
+    let g = [
+        [0.012, -0.007, 0.004],
+        [0.003, -0.009, 0.006],
+        [-0.005, 0.002, 0.011],
+    ];
+    let field = |x: [f64; 3]| {
+        [0, 1, 2].map(|i| 0.01 * (i as f64 + 1.0) + (0..3).map(|j| g[i][j] * x[j]).sum::<f64>())
+    };
+    let kinds = [
+        "PlaneStress2d",
+        "Quad1PlaneStrain",
+        "TrPlaneStress2d",
+        "TrPlaneStrain",
+        "QPlaneStress2d",
+        "LSpace",
+        "LTRSpace",
+        "LWedge",
+        "Truss1d",
+        "Truss2d",
+    ];
+    for kind in kinds {
+        let p = match kind {
+            "LSpace" | "LTRSpace" | "LWedge" => patch_3d(kind),
+            "Truss1d" | "Truss2d" => patch_truss(kind),
+            _ => patch_2d(kind),
+        };
+        let dim = p.dofs.len();
+        let gl = |i: usize, j: usize| if i < dim && j < dim { g[i][j] } else { 0.0 };
+        let field_d = |x: [f64; 3]| {
+            let f = field(x);
+            [0, 1, 2].map(|i| if i < dim { f[i] } else { 0.0 })
+        };
+        let (u, states) = solve_patch(&p, &field_d, false);
+        for (n, x) in p.nodes.iter().enumerate() {
+            let e = field_d(*x);
+            for i in 0..dim {
+                assert!(
+                    (u[n][i] - e[i]).abs() < 1e-12,
+                    "{kind}: node {} dof {} = {} expected {}",
+                    n + 1,
+                    i + 1,
+                    u[n][i],
+                    e[i]
+                );
+            }
+        }
+        let expected_strain: [f64; 6] = if kind.starts_with("Truss") {
+            let d = [p.nodes[1][0] - p.nodes[0][0], p.nodes[1][1] - p.nodes[0][1]];
+            let l = (d[0] * d[0] + d[1] * d[1]).sqrt();
+            let e = [d[0] / l, d[1] / l];
+            let mut eps = 0.0;
+            for i in 0..dim {
+                for j in 0..dim {
+                    eps += e[i] * gl(i, j) * e[j];
+                }
+            }
+            [eps, 0.0, 0.0, 0.0, 0.0, 0.0]
+        } else {
+            let mut v = [
+                gl(0, 0),
+                gl(1, 1),
+                gl(2, 2),
+                gl(1, 2) + gl(2, 1),
+                gl(0, 2) + gl(2, 0),
+                gl(0, 1) + gl(1, 0),
+            ];
+            if dim == 2 {
+                v[2] = 0.0;
+            }
+            v
+        };
+        for (e, st) in states.iter().enumerate() {
+            for (gp, s) in st.iter().enumerate() {
+                for c in 0..6 {
+                    assert!(
+                        (s.strain[c] - expected_strain[c]).abs() < 1e-12,
+                        "{kind}: element {} gp {} strain {} = {} expected {}",
+                        e + 1,
+                        gp + 1,
+                        c + 1,
+                        s.strain[c],
+                        expected_strain[c]
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// Homogeneous large deformation x = F·X prescribed on the boundary: under nlgeo 1 the interior
+/// nodes follow F·X exactly and every GP carries E = ½(FᵀF − I).
+#[test]
+fn patch_test_total_lagrangian_every_continuum_element() {
+    let f3 = [[1.25, 0.18, -0.07], [-0.12, 0.9, 0.1], [0.05, -0.08, 1.15]];
+    for (kind, shape, _, _) in CONTINUUM {
+        let p = if shape.dim() == 3 {
+            patch_3d(kind)
+        } else {
+            patch_2d(kind)
+        };
+        let d = shape.dim();
+        let f = |i: usize, j: usize| {
+            if i < d && j < d {
+                f3[i][j]
+            } else if i == j {
+                1.0
+            } else {
+                0.0
+            }
+        };
+        let field = |x: [f64; 3]| {
+            [0, 1, 2].map(|i| {
+                if i < d {
+                    (0..d).map(|j| f(i, j) * x[j]).sum::<f64>() - x[i]
+                } else {
+                    0.0
+                }
+            })
+        };
+        let (u, states) = solve_patch(&p, &field, true);
+        for (n, x) in p.nodes.iter().enumerate() {
+            let e = field(*x);
+            for i in 0..d {
+                assert!(
+                    (u[n][i] - e[i]).abs() < 1e-10,
+                    "{kind}: node {} dof {}: {} vs {}",
+                    n + 1,
+                    i + 1,
+                    u[n][i],
+                    e[i]
+                );
+            }
+        }
+        let mut ee = [[0.0; 3]; 3];
+        for i in 0..3 {
+            for j in 0..3 {
+                ee[i][j] = 0.5
+                    * ((0..3).map(|k| f(k, i) * f(k, j)).sum::<f64>()
+                        - if i == j { 1.0 } else { 0.0 });
+            }
+        }
+        let expected = [
+            ee[0][0],
+            ee[1][1],
+            if d == 3 { ee[2][2] } else { 0.0 },
+            2.0 * ee[1][2],
+            2.0 * ee[0][2],
+            2.0 * ee[0][1],
+        ];
+        for st in &states {
+            for s in st {
+                for c in 0..6 {
+                    assert!(
+                        (s.strain[c] - expected[c]).abs() < 1e-10,
+                        "{kind}: E{} = {} expected {}",
+                        c + 1,
+                        s.strain[c],
+                        expected[c]
+                    );
+                }
+            }
+        }
+    }
+}
