@@ -1,6 +1,7 @@
 //! Reference-element geometry: shape functions, quadrature rules, element boundaries.
 //! Nothing here knows about physics.
 
+pub mod geometry;
 pub mod quadrature;
 pub mod shape;
 

@@ -747,6 +747,7 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
         }
     }
 
+    check_geometry(&elements_ref_nodes(&nodes), &model_elements)?;
     let model = Model {
         input_path: path.to_path_buf(),
         output_name,
@@ -1050,4 +1051,56 @@ fn read_sets(c: &mut Cursor, nset: usize, refs: &Refs) -> Result<Vec<Set>> {
         c.finish(&r);
     }
     Ok(sets.finish())
+}
+
+fn elements_ref_nodes(nodes: &[Node]) -> Vec<[f64; 3]> {
+    nodes.iter().map(|n| n.coords).collect()
+}
+
+/// Every element must have a non-degenerate reference geometry whose Jacobian keeps one sign
+/// (OOFEM integrates with |det J|, so a consistently clockwise element is fine).
+fn check_geometry(coords: &[[f64; 3]], elements: &[Element]) -> Result<()> {
+    for el in elements {
+        let x: Vec<[f64; 3]> = el.nodes.iter().map(|&n| coords[n]).collect();
+        let size = x
+            .iter()
+            .flat_map(|a| {
+                x.iter()
+                    .map(move |b| (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>())
+            })
+            .fold(0.0f64, f64::max)
+            .sqrt();
+        let err = |msg: String| Error::Input {
+            span: el.span.clone(),
+            msg,
+        };
+        if size == 0.0 {
+            return Err(err(format!(
+                "element {} has all its nodes at one point",
+                el.label
+            )));
+        }
+        if el.etype.is_truss() {
+            continue;
+        }
+        let shape = el.etype.shape();
+        let nip = el.nip.unwrap_or(el.etype.default_nip());
+        let rule = crate::fem::rule(shape, nip).expect("nip validated");
+        let dets = crate::fem::geometry::jacobian_dets(shape, &x, &rule);
+        let tiny = 1e-10 * size.powi(shape.dim() as i32);
+        if let Some(g) = dets.iter().position(|d| d.abs() <= tiny) {
+            return Err(err(format!(
+                "element {} has a degenerate geometry (det J = 0 at integration point {}): check its node coordinates and order",
+                el.label,
+                g + 1
+            )));
+        }
+        if dets.iter().any(|d| *d > 0.0) && dets.iter().any(|d| *d < 0.0) {
+            return Err(err(format!(
+                "element {} is folded (det J changes sign between integration points): check its node order",
+                el.label
+            )));
+        }
+    }
+    Ok(())
 }

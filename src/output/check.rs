@@ -2,6 +2,7 @@
 //! the raw file with OOFEM's case-sensitive formats and evaluated after every step.
 
 use crate::model::Model;
+use crate::output::outfile::sci;
 use crate::solve::StepResult;
 
 /// What a rule checks.
@@ -307,9 +308,11 @@ fn compute(model: &Model, rule: &Rule, res: &StepResult) -> Result<f64, String> 
                         .sqrt();
                     [vm, 0.0, 0.0, 0.0, 0.0, 0.0]
                 }
-                k => return Err(format!(
+                k => {
+                    return Err(format!(
                     "internal state type {k} is not supported (1 stress, 4 strain, 81 von Mises)"
-                )),
+                ))
+                }
             };
             let n = if *keyword == 81 { 1 } else { 6 };
             component
@@ -325,8 +328,12 @@ fn compute(model: &Model, rule: &Rule, res: &StepResult) -> Result<f64, String> 
 pub fn describe_failure(o: &Outcome) -> String {
     match (&o.computed, &o.reason) {
         (Some(v), None) => format!(
-            "FAILED line {}: {}\n    computed {:.10e}, expected {:.10e} ± {:.1e}",
-            o.rule.line, o.rule.text, v, o.rule.value, o.rule.tolerance
+            "FAILED line {}: {}\n    computed {}, expected {} ± {}",
+            o.rule.line,
+            o.rule.text,
+            sci(*v, 10),
+            sci(o.rule.value, 10),
+            sci(o.rule.tolerance, 1)
         ),
         (_, Some(r)) => format!("FAILED line {}: {}\n    {r}", o.rule.line, o.rule.text),
         (None, None) => format!("FAILED line {}: {}", o.rule.line, o.rule.text),

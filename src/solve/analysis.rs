@@ -12,6 +12,7 @@ use super::dofs::DofMap;
 use super::linear::{LinearSolver, SolverStats};
 use crate::error::{Error, Result};
 use crate::model::{AnalysisKind, Model};
+use crate::output::outfile::sci;
 use crate::solid::loads::reference_contributions;
 use crate::solid::GpState;
 use std::time::Instant;
@@ -206,9 +207,10 @@ pub fn run_analysis(
         info.solver = ctx.solver.stats.clone();
         if params.log_steps {
             eprintln!(
-                "step {step}/{nsteps}  t = {t:.4e}  iterations {}  residual {:.2e}  substeps {}  {:.3} s",
+                "step {step}/{nsteps}  t = {}  iterations {}  residual {}  substeps {}  {:.3} s",
+                sci(t, 4),
                 info.iterations,
-                info.residual_history.last().copied().unwrap_or(0.0),
+                sci(info.residual_history.last().copied().unwrap_or(0.0), 2),
                 info.substeps,
                 info.wall_seconds
             );

@@ -101,12 +101,13 @@ impl LinearSolver {
         if let Err(err) = &llt {
             if spd {
                 let eq = match err {
-                    faer::linalg::solvers::LltError::NonPositivePivot { index } => Some(
-                        symbolic
-                            .perm()
-                            .map(|p| p.arrays().0[*index])
-                            .unwrap_or(*index),
-                    ),
+                    // faer reports the failing pivot 1-based, in the permuted order.
+                    faer::linalg::solvers::LltError::NonPositivePivot { index } => {
+                        index.checked_sub(1).and_then(|k| match symbolic.perm() {
+                            Some(p) => p.arrays().0.get(k).copied(),
+                            None => Some(k).filter(|&i| i < n),
+                        })
+                    }
                 };
                 let at = eq
                     .map(|e| format!(" at {}", describe_eq(e)))

@@ -1,0 +1,189 @@
+//! The `hertz` binary: help, exit codes, and one malformed input file per error class
+//! (tests/data/bad, expectations in tests/data/bad/EXPECTED.txt): each must give its specific
+//! message with file:line, exit code 2, and write nothing.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn hertz(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_hertz"))
+        .args(args)
+        .output()
+        .expect("run hertz")
+}
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn temp_dir(tag: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("hertz-cli-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+#[test]
+fn help_explains_run_and_check() {
+    let out = hertz(&["--help"]);
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("hertz run FILE.in") && text.contains("hertz check FILE.in"),
+        "{text}"
+    );
+}
+
+#[test]
+fn usage_errors_exit_2() {
+    for args in [
+        &["frobnicate"][..],
+        &["run"][..],
+        &["check", "a.in", "b.in"][..],
+        &[][..],
+    ] {
+        let out = hertz(args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        assert!(
+            String::from_utf8_lossy(&out.stderr).starts_with("error: "),
+            "{args:?}"
+        );
+    }
+}
+
+#[test]
+fn missing_file_exits_2() {
+    let out = hertz(&["check", "no/such/file.in"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no/such/file.in: cannot read file"));
+}
+
+#[test]
+fn malformed_inputs_give_their_message_line_and_exit_2() {
+    let bad = root().join("tests/data/bad");
+    let table = std::fs::read_to_string(bad.join("EXPECTED.txt")).unwrap();
+    let mut n = 0;
+    for row in table
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
+    {
+        let parts: Vec<&str> = row.splitn(3, " | ").collect();
+        let (file, line, msg) = (parts[0], parts[1], parts[2]);
+        let path = bad.join(file);
+        let shown = path.display().to_string();
+        let dir = temp_dir(file);
+        let out = hertz(&["run", "-q", &shown, "-o", dir.to_str().unwrap()]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(
+            out.status.code(),
+            Some(2),
+            "{file}: exit code; stderr: {stderr}"
+        );
+        let location = if line == "-" {
+            format!("{shown}: ")
+        } else {
+            format!("{shown}:{line}: ")
+        };
+        assert!(
+            stderr.contains(&location),
+            "{file}: expected location `{location}` in\n{stderr}"
+        );
+        assert!(
+            stderr.contains(msg),
+            "{file}: expected `{msg}` in\n{stderr}"
+        );
+        assert!(!stderr.contains("panicked"), "{file}: panic");
+        assert!(
+            !dir.exists() || std::fs::read_dir(&dir).unwrap().next().is_none(),
+            "{file}: output written"
+        );
+        n += 1;
+    }
+    assert!(n >= 20, "only {n} malformed inputs");
+    // Every file in the folder is in the table.
+    let files = std::fs::read_dir(&bad)
+        .unwrap()
+        .filter(|e| {
+            e.as_ref()
+                .unwrap()
+                .path()
+                .extension()
+                .is_some_and(|x| x == "in")
+        })
+        .count();
+    assert_eq!(files, n, "every tests/data/bad/*.in has an expectation");
+}
+
+#[test]
+fn mechanism_is_a_solver_error_naming_the_node() {
+    let out = hertz(&[
+        "check",
+        "-q",
+        root().join("tests/data/mechanism.in").to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(3));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("singular at node 2 DOF") || stderr.contains("singular at node 3 DOF"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn check_reports_rules_and_exits_1_on_a_failed_rule() {
+    let src = std::fs::read_to_string(root().join("tests/data/oofem/patch100.in")).unwrap();
+    let broken = src.replace(
+        "#NODE tStep 1 number 4 dof 1 unknown d value -1.5625",
+        "#NODE tStep 1 number 4 dof 1 unknown d value -1.6",
+    );
+    assert_ne!(src, broken);
+    let dir = temp_dir("failrule");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("patch100.in");
+    std::fs::write(&path, broken).unwrap();
+    let out = hertz(&["check", "-q", path.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("computed -1.5625000000e+00"), "{stdout}");
+    assert!(stdout.contains("expected -1.6000000000e+00"), "{stdout}");
+    assert!(
+        stdout.trim_end().ends_with("35 passed, 1 failed"),
+        "{stdout}"
+    );
+    assert!(
+        !Path::new(&dir.join("patch100.out")).exists(),
+        "check writes no .out"
+    );
+    std::fs::remove_dir_all(dir).ok();
+}
+
+#[test]
+fn run_writes_out_vtu_and_pvd_next_to_the_input() {
+    let dir = temp_dir("run");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::copy(
+        root().join("tests/data/oofem/brick_nlgeo_1.in"),
+        dir.join("b.in"),
+    )
+    .unwrap();
+    let out = hertz(&["run", "-q", dir.join("b.in").to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(dir.join("brick_nlgeo_1.out")).unwrap();
+    // Step 5: all nodes translated by 0.5·(f(5) = 4) = 2 in every direction.
+    assert!(text.contains("  dof 3   d  2.00000000e+00"), "{text}");
+    assert_eq!(text.matches("Output for time").count(), 5);
+    for k in 1..=5 {
+        assert!(dir.join(format!("brick_nlgeo_1.{k}.vtu")).is_file());
+    }
+    let pvd = std::fs::read_to_string(dir.join("brick_nlgeo_1.pvd")).unwrap();
+    assert_eq!(pvd.matches("<DataSet").count(), 5);
+    assert!(std::fs::read_dir(&dir).unwrap().all(|e| !e
+        .unwrap()
+        .file_name()
+        .to_string_lossy()
+        .contains(".tmp")));
+    std::fs::remove_dir_all(dir).ok();
+}
