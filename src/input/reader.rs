@@ -14,6 +14,8 @@ pub struct ReadResult {
     pub warnings: Vec<String>,
 }
 
+/// Upper bound on the number of steps (guards allocations against absurd inputs).
+const MAX_STEPS: usize = 10_000_000;
 const SUPPORTED_ANALYSES: &str = "LinearStatic, NonLinearStatic, StaticStructural";
 const SUPPORTED_BCS: &str =
     "BoundaryCondition, NodalLoad, ConstantEdgeLoad, ConstantSurfaceLoad, DeadWeight";
@@ -172,16 +174,27 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
             r.keyword()
         )));
     }
+    let left_records = c.lines.len() - c.pos;
     let output = OutputSelection {
         tstep_all: r.flag("tstep_all"),
         tstep_step: r.opt_usize("tstep_step")?,
-        tsteps_out: r.opt_range_list("tsteps_out")?.unwrap_or_default(),
+        tsteps_out: r
+            .opt_range_list("tsteps_out", MAX_STEPS)?
+            .unwrap_or_default(),
         dofman_all: r.flag("dofman_all"),
-        dofman_output: r.opt_range_list("dofman_output")?.unwrap_or_default(),
-        dofman_except: r.opt_range_list("dofman_except")?.unwrap_or_default(),
+        dofman_output: r
+            .opt_range_list("dofman_output", left_records)?
+            .unwrap_or_default(),
+        dofman_except: r
+            .opt_range_list("dofman_except", left_records)?
+            .unwrap_or_default(),
         element_all: r.flag("element_all"),
-        element_output: r.opt_range_list("element_output")?.unwrap_or_default(),
-        element_except: r.opt_range_list("element_except")?.unwrap_or_default(),
+        element_output: r
+            .opt_range_list("element_output", left_records)?
+            .unwrap_or_default(),
+        element_except: r
+            .opt_range_list("element_except", left_records)?
+            .unwrap_or_default(),
     };
     c.finish(&r);
 
@@ -197,6 +210,24 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
     let nltf = r.usize("nltf")?;
     let nset = r.opt_usize("nset")?.unwrap_or(0);
     let ncontactseg = r.opt_usize("ncontactseg")?.unwrap_or(0);
+    let left = c.lines.len() - c.pos;
+    for (k, v) in [
+        ("ndofman", ndofman),
+        ("nelem", nelem),
+        ("ncrosssect", ncs),
+        ("nmat", nmat),
+        ("nbc", nbc),
+        ("nic", nic),
+        ("nltf", nltf),
+        ("nset", nset),
+        ("ncontactseg", ncontactseg),
+    ] {
+        if v > left {
+            return Err(r.error(format!(
+                "`{k} {v}` is more than the {left} records left in the file"
+            )));
+        }
+    }
     for k in [
         "nsd",
         "nbarrier",
@@ -819,6 +850,11 @@ fn read_analysis(r: &Record) -> Result<(Analysis, usize, usize, usize)> {
     if nsteps == 0 {
         return Err(r.error("`nsteps` must be positive"));
     }
+    if nsteps > MAX_STEPS {
+        return Err(r.error(format!(
+            "`nsteps {nsteps}` is more than hertz runs ({MAX_STEPS})"
+        )));
+    }
     if r.opt_usize("nmsteps")?.unwrap_or(0) > 0 {
         return Err(r.error("metasteps (`nmsteps` > 0) are not supported"));
     }
@@ -987,7 +1023,7 @@ fn read_sets(c: &mut Cursor, nset: usize, refs: &Refs) -> Result<Vec<Set>> {
             .map(node)
             .collect::<Result<_>>()?;
         let ranges: Vec<usize> = r
-            .opt_range_list("noderanges")?
+            .opt_range_list("noderanges", refs.nodes.len())?
             .unwrap_or_default()
             .into_iter()
             .map(node)
@@ -998,7 +1034,10 @@ fn read_sets(c: &mut Cursor, nset: usize, refs: &Refs) -> Result<Vec<Set>> {
             .into_iter()
             .map(elem)
             .collect::<Result<_>>()?;
-        for e in r.opt_range_list("elementranges")?.unwrap_or_default() {
+        for e in r
+            .opt_range_list("elementranges", refs.element_list.len())?
+            .unwrap_or_default()
+        {
             elements.push(elem(e)?);
         }
         if r.flag("allelements") {

@@ -184,8 +184,9 @@ impl Record {
             .ok_or_else(|| self.error(format!("missing required keyword `{key}`")))
     }
 
-    /// A range list `{1 (3 5) 8}` expanded to its integers.
-    pub fn opt_range_list(&self, key: &str) -> Result<Option<Vec<i64>>> {
+    /// A range list `{1 (3 5) 8}` expanded to its integers; more than `limit` entries (the number
+    /// of things it can name) is an error.
+    pub fn opt_range_list(&self, key: &str, limit: usize) -> Result<Option<Vec<i64>>> {
         let Some(t) = self.value_token(key, 0)? else {
             return Ok(None);
         };
@@ -211,8 +212,13 @@ impl Record {
                     .next()
                     .and_then(|s| s.parse::<i64>().ok())
                     .ok_or_else(bad)?;
-                if words.next() != Some(")") || hi < lo || hi - lo > 100_000_000 {
+                if words.next() != Some(")") || hi < lo {
                     return Err(bad());
+                }
+                if (hi - lo) as u64 + out.len() as u64 >= limit as u64 {
+                    return Err(self.error(format!(
+                        "`{key}` names more than the {limit} entities there are"
+                    )));
                 }
                 out.extend(lo..=hi);
             } else {
@@ -286,7 +292,7 @@ mod tests {
     fn arrays_ranges_and_floats_parse_like_oofem() {
         let r = rec("Set 2 noderanges {(1 3) 7} nodes 2 4 5 coords 3 1.e-4 2 .5");
         assert_eq!(
-            r.opt_range_list("noderanges").unwrap().unwrap(),
+            r.opt_range_list("noderanges", 10).unwrap().unwrap(),
             vec![1, 2, 3, 7]
         );
         assert_eq!(r.int_array("nodes").unwrap(), vec![4, 5]);
