@@ -297,7 +297,8 @@ mod tests {
         );
         assert_eq!(r.int_array("nodes").unwrap(), vec![4, 5]);
         assert_eq!(r.float_array("coords").unwrap(), vec![1e-4, 2.0, 0.5]);
-        assert!(r.unread().is_empty() || r.unread() == vec!["set", "2"]);
+        assert_eq!(r.unread(), vec!["set", "2"]);
+        assert!(r.opt_range_list("noderanges", 2).is_err());
     }
 
     #[test]

@@ -76,19 +76,7 @@ pub fn run_analysis(
     let asm = Assembler::new(model, &dofs)?;
     let nf = dofs.n_free;
     let np = dofs.n_primary();
-    // Reference load vectors per load, in primary numbering.
-    let mut ref_loads = Vec::with_capacity(model.loads.len());
-    for load in &model.loads {
-        let mut v = vec![0.0; np];
-        for (node, d, val) in reference_contributions(model, load)? {
-            if let Some(code) = dofs.code(node, d) {
-                for (p, w) in dofs.entries(code) {
-                    v[p] += w * val;
-                }
-            }
-        }
-        ref_loads.push((load.function - 1, v));
-    }
+    let ref_loads = reference_load_vectors(model, &dofs)?;
     let external = |scale: &dyn Fn(usize) -> f64| -> Vec<f64> {
         let mut f = vec![0.0; np];
         for (func, v) in &ref_loads {
@@ -112,10 +100,12 @@ pub fn run_analysis(
     };
     let a = &model.analysis;
     let linear = !model.elements.iter().any(|e| e.nlgeo);
+    let mut solver = LinearSolver::default();
+    solver.groups = Some(dofs.free_eq_nodes());
     let mut ctx = NewtonContext {
         asm: &asm,
         dofs: &dofs,
-        solver: LinearSolver::default(),
+        solver,
         factor_valid: false,
         linear,
     };
@@ -227,6 +217,25 @@ pub fn run_analysis(
         })?;
     }
     Ok(())
+}
+
+/// Reference load vector of every load (components at f = 1) in primary numbering, with the
+/// index of its time function.
+pub fn reference_load_vectors(model: &Model, dofs: &DofMap) -> Result<Vec<(usize, Vec<f64>)>> {
+    let np = dofs.n_primary();
+    let mut out = Vec::with_capacity(model.loads.len());
+    for load in &model.loads {
+        let mut v = vec![0.0; np];
+        for (node, d, val) in reference_contributions(model, load)? {
+            if let Some(code) = dofs.code(node, d) {
+                for (p, w) in dofs.entries(code) {
+                    v[p] += w * val;
+                }
+            }
+        }
+        out.push((load.function - 1, v));
+    }
+    Ok(out)
 }
 
 struct NewtonContext<'a> {

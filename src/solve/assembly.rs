@@ -69,6 +69,16 @@ pub struct Assembler<'m> {
 }
 
 const CHUNK: usize = 2048;
+/// Elements per parallel task.
+const RUN: usize = 64;
+
+/// Kernel results of a run of consecutive elements.
+#[derive(Default)]
+struct RunBuffer {
+    values: Vec<f64>,
+    offsets: Vec<usize>,
+    states: Vec<Vec<GpState>>,
+}
 
 impl<'m> Assembler<'m> {
     pub fn new(model: &'m Model, dofs: &'m DofMap) -> Result<Assembler<'m>> {
@@ -243,70 +253,86 @@ impl<'m> Assembler<'m> {
         let mut start = 0;
         while start < n_el {
             let end = (start + CHUNK * rayon::current_num_threads().max(1)).min(n_el);
-            // Parallel kernels on this block of elements, each into its own buffers.
-            let results: Vec<Result<(Vec<f64>, Vec<f64>, Vec<GpState>)>> = (start..end)
+            // Parallel kernels on this block of elements: each task fills one flat buffer with the
+            // (fe, ke) of a run of consecutive elements.
+            let runs: Vec<(usize, usize)> = (start..end)
+                .step_by(RUN)
+                .map(|a| (a, (a + RUN).min(end)))
+                .collect();
+            let results: Vec<Result<RunBuffer>> = runs
                 .into_par_iter()
-                .map(|e| {
-                    let nd = self.elems[e].ndof;
-                    let mut fe = vec![0.0; nd];
-                    let mut ke = if need_k {
-                        vec![0.0; nd * nd]
-                    } else {
-                        Vec::new()
-                    };
-                    let mut st = Vec::new();
-                    self.element(
-                        e,
-                        u,
-                        &mut fe,
-                        need_k.then_some(ke.as_mut_slice()),
-                        want_states.then_some(&mut st),
-                    )?;
-                    Ok((fe, ke, st))
+                .map(|(a, b)| {
+                    let mut buf = RunBuffer::default();
+                    for e in a..b {
+                        let nd = self.elems[e].ndof;
+                        let off = buf.values.len();
+                        buf.offsets.push(off);
+                        buf.values
+                            .resize(off + nd + if need_k { nd * nd } else { 0 }, 0.0);
+                        let (fe, ke) = buf.values[off..].split_at_mut(nd);
+                        let mut st = Vec::new();
+                        self.element(
+                            e,
+                            u,
+                            fe,
+                            need_k.then_some(ke),
+                            want_states.then_some(&mut st),
+                        )?;
+                        buf.states.push(st);
+                    }
+                    Ok(buf)
                 })
                 .collect();
-            for (off, res) in results.into_iter().enumerate() {
-                let e = start + off;
-                let (fe, ke, st) = res?;
-                let info = &self.elems[e];
-                let loc = &self.locs[info.loc_start..info.loc_start + info.ndof];
-                let nd = info.ndof;
-                for (a, &ca) in loc.iter().enumerate() {
-                    for (p, wp) in self.dofs.entries(ca) {
-                        f_int[p] += wp * fe[a];
-                        if p < nf {
-                            ebe[self.dofs.primary_dof_id[p] as usize] += (wp * fe[a]).powi(2);
-                        }
-                    }
-                }
-                if need_k {
+            let mut e = start;
+            for res in results {
+                let buf = res?;
+                for (k, st) in buf.states.into_iter().enumerate() {
+                    let nd = self.elems[e].ndof;
+                    let fe = &buf.values[buf.offsets[k]..buf.offsets[k] + nd];
+                    let ke = &buf.values[buf.offsets[k] + nd..];
+                    let info = &self.elems[e];
+                    let loc = &self.locs[info.loc_start..info.loc_start + info.ndof];
+                    let nd = info.ndof;
                     for (a, &ca) in loc.iter().enumerate() {
                         for (p, wp) in self.dofs.entries(ca) {
-                            if p >= nf {
-                                continue;
+                            f_int[p] += wp * fe[a];
+                            if p < nf {
+                                ebe[self.dofs.primary_dof_id[p] as usize] += (wp * fe[a]).powi(2);
                             }
-                            for (b, &cb) in loc.iter().enumerate() {
-                                let kab = ke[a * nd + b];
-                                if kab == 0.0 {
+                        }
+                    }
+                    if need_k {
+                        for (a, &ca) in loc.iter().enumerate() {
+                            for (p, wp) in self.dofs.entries(ca) {
+                                if p >= nf {
                                     continue;
                                 }
-                                for (q, wq) in self.dofs.entries(cb) {
-                                    if q < nf {
-                                        if let Some(kv) = k_values.as_mut() {
-                                            if p <= q {
-                                                kv[self.pattern.position(p, q)] += wp * wq * kab;
+                                for (b, &cb) in loc.iter().enumerate() {
+                                    let kab = ke[a * nd + b];
+                                    if kab == 0.0 {
+                                        continue;
+                                    }
+                                    for (q, wq) in self.dofs.entries(cb) {
+                                        if q < nf {
+                                            if let Some(kv) = k_values.as_mut() {
+                                                if p <= q {
+                                                    kv[self.pattern.position(p, q)] +=
+                                                        wp * wq * kab;
+                                                }
                                             }
+                                        } else if let (Some(kd), Some(d)) = (k_fp_dup.as_mut(), dup)
+                                        {
+                                            kd[p] += wp * wq * kab * d[q - nf];
                                         }
-                                    } else if let (Some(kd), Some(d)) = (k_fp_dup.as_mut(), dup) {
-                                        kd[p] += wp * wq * kab * d[q - nf];
                                     }
                                 }
                             }
                         }
                     }
-                }
-                if let Some(s) = states.as_mut() {
-                    s.push(st);
+                    if let Some(s) = states.as_mut() {
+                        s.push(st);
+                    }
+                    e += 1;
                 }
             }
             start = end;

@@ -133,6 +133,19 @@ impl DofMap {
         })
     }
 
+    /// Node of every free equation (for node-graph orderings).
+    pub fn free_eq_nodes(&self) -> Vec<usize> {
+        let mut g = vec![0; self.n_free];
+        for (n, list) in self.node_dofs.iter().enumerate() {
+            for &(_, c) in list {
+                if c < self.n_free {
+                    g[c] = n;
+                }
+            }
+        }
+        g
+    }
+
     pub fn n_primary(&self) -> usize {
         self.n_free + self.n_prescribed
     }

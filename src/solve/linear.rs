@@ -3,6 +3,7 @@
 //! (e.g. under compressive geometric stiffness).
 
 use super::assembly::Pattern;
+use super::ordering::{self, OrderingKind};
 use crate::error::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::solvers::Solve;
@@ -17,6 +18,8 @@ use std::time::Instant;
 /// Timings and sizes of the last factorization (for logs and benchmarks).
 #[derive(Debug, Clone, Default)]
 pub struct SolverStats {
+    pub ordering: &'static str,
+    pub ordering_seconds: f64,
     pub symbolic_seconds: f64,
     pub numeric_seconds: f64,
     pub solve_seconds: f64,
@@ -32,6 +35,10 @@ enum Factor {
 
 /// Factorizes matrices that share one pattern.
 pub struct LinearSolver {
+    /// Fill-reducing ordering to use.
+    pub ordering: OrderingKind,
+    /// Node of every equation (lets METIS order the node graph).
+    pub groups: Option<Vec<usize>>,
     symbolic: Option<SymbolicCholesky<usize>>,
     factor: Factor,
     pub stats: SolverStats,
@@ -40,6 +47,8 @@ pub struct LinearSolver {
 impl Default for LinearSolver {
     fn default() -> Self {
         LinearSolver {
+            ordering: OrderingKind::Auto,
+            groups: None,
             symbolic: None,
             factor: Factor::None,
             stats: SolverStats::default(),
@@ -67,10 +76,15 @@ impl LinearSolver {
             SymbolicSparseColMatRef::new_checked(n, n, &pattern.col_ptr, None, &pattern.row_idx);
         if self.symbolic.is_none() {
             let t = Instant::now();
+            let ord = ordering::compute(pattern, self.groups.as_deref(), self.ordering)?;
+            self.stats.ordering_seconds = t.elapsed().as_secs_f64();
+            self.stats.ordering = ord.name;
+            let t = Instant::now();
+            let perm = faer::perm::PermRef::new_checked(&ord.fwd, &ord.inv, n);
             let s = factorize_symbolic_cholesky(
                 sym,
                 Side::Upper,
-                SymmetricOrdering::Amd,
+                SymmetricOrdering::Custom(perm),
                 CholeskySymbolicParams::default(),
             )
             .map_err(|e| Error::Solve(format!("symbolic factorization failed: {e:?}")))?;
@@ -178,6 +192,7 @@ impl LinearSolver {
 
     /// Forget the symbolic analysis (the pattern changed).
     pub fn reset(&mut self) {
-        *self = LinearSolver::default();
+        self.symbolic = None;
+        self.factor = Factor::None;
     }
 }
