@@ -1,3 +1,4 @@
+#![allow(clippy::needless_range_loop, clippy::type_complexity)]
 //! Element verification: finite-difference tangents, rigid-body motion under nlgeo 1, and patch
 //! tests (a linear displacement field prescribed on the boundary of a distorted patch is
 //! reproduced exactly inside, small strain and total Lagrangian alike) for every element type.
@@ -301,10 +302,7 @@ fn patch_2d(kind: &'static str) -> Patch {
                         let id = found.unwrap_or_else(|| {
                             nodes.push(m);
                             let on = |v: f64| v.abs() < 1e-12 || (v - 2.0).abs() < 1e-12;
-                            boundary.push(
-                                on(m[0]) && boundary[a] && boundary[b]
-                                    || on(m[1]) && boundary[a] && boundary[b],
-                            );
+                            boundary.push((on(m[0]) || on(m[1])) && boundary[a] && boundary[b]);
                             nodes.len() - 1
                         });
                         ids.push(id + 1);

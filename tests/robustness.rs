@@ -43,7 +43,7 @@ fn mutate(src: &str, rng: &mut Lcg) -> String {
             let mut toks: Vec<String> = lines[i].split_whitespace().map(str::to_string).collect();
             if !toks.is_empty() {
                 let j = rng.next() % toks.len();
-                if rng.next() % 2 == 0 {
+                if rng.next().is_multiple_of(2) {
                     toks.remove(j);
                 } else {
                     toks[j] = GARBAGE[rng.next() % GARBAGE.len()].to_string();

@@ -246,7 +246,9 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
     // Nodes.
     let mut nodes = Vec::with_capacity(ndofman);
     let mut node_index: HashMap<usize, usize> = HashMap::new();
-    let mut slave_masters: Vec<(usize, Vec<i64>, Option<Vec<f64>>, Record)> = Vec::new();
+    // (slave node index, master labels, weights, record) resolved once all nodes are known.
+    type SlaveSpec = (usize, Vec<i64>, Option<Vec<f64>>, Record);
+    let mut slave_masters: Vec<SlaveSpec> = Vec::new();
     for i in 0..ndofman {
         let r = c.next(&format!(
             "node record {} of {ndofman} (ndofman {ndofman})",
@@ -440,11 +442,8 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
         sets = Some(read_sets(&mut c, nset, &refs)?);
     }
 
-    for i in 0..ncontactseg {
-        let r = c.next(&format!(
-            "contact segment record {} of {ncontactseg}",
-            i + 1
-        ))?;
+    if ncontactseg > 0 {
+        let r = c.next("contact segment record 1")?;
         return Err(r.error("contact segments are not supported by this version of hertz"));
     }
 
@@ -660,8 +659,8 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
     }
     let dirichlet: Vec<Dirichlet> = bcs.finish().into_iter().flatten().collect();
 
-    for i in 0..nic {
-        let r = c.next(&format!("initial-condition record {} of {nic}", i + 1))?;
+    if nic > 0 {
+        let r = c.next("initial-condition record 1")?;
         return Err(r.error("initial conditions are not supported (set nic 0)"));
     }
 

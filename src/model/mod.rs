@@ -85,7 +85,9 @@ pub struct OutputSelection {
 impl OutputSelection {
     pub fn step(&self, n: usize) -> bool {
         self.tstep_all
-            || self.tstep_step.is_some_and(|k| k > 0 && n % k == 0)
+            || self
+                .tstep_step
+                .is_some_and(|k| k > 0 && n.is_multiple_of(k))
             || self.tsteps_out.contains(&(n as i64))
     }
     pub fn node(&self, number: usize) -> bool {

@@ -7,6 +7,7 @@
 use super::GpState;
 
 /// Internal force `fe`, tangent `ke` (row-major) and the single GP state of a bar.
+#[allow(clippy::too_many_arguments)]
 pub fn evaluate_into(
     dim: usize,
     x_ref: [[f64; 2]; 2],

@@ -30,7 +30,7 @@ pub struct SolverStats {
 enum Factor {
     None,
     Llt(Vec<f64>),
-    Lu(faer::sparse::linalg::solvers::Lu<usize, f64>),
+    Lu(Box<faer::sparse::linalg::solvers::Lu<usize, f64>>),
 }
 
 /// Factorizes matrices that share one pattern.
@@ -155,7 +155,7 @@ impl LinearSolver {
                         .into(),
                 )
             })?;
-            self.factor = Factor::Lu(lu);
+            self.factor = Factor::Lu(Box::new(lu));
             self.stats.used_lu = true;
         }
         self.stats.numeric_seconds = t.elapsed().as_secs_f64();

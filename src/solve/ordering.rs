@@ -19,8 +19,6 @@ pub enum OrderingKind {
 
 /// 3D-like systems at least this large use METIS under `Auto`.
 pub const AUTO_METIS_MIN: usize = 20_000;
-/// Any system at least this large uses METIS under `Auto`.
-pub const AUTO_METIS_MIN_2D: usize = 400_000;
 
 /// A permutation: `fwd[new] = old`, `inv[old] = new`.
 pub struct Ordering {
@@ -39,12 +37,9 @@ pub fn compute(
     let use_metis = match kind {
         OrderingKind::Amd => false,
         OrderingKind::Metis => true,
-        // Nested dissection pays off early on 3D-like patterns (many nonzeros per column); on
-        // 2D patterns AMD orders faster at equal fill until far larger sizes (BENCHMARKS.md).
-        OrderingKind::Auto => {
-            let per_col = pattern.nnz() as f64 / n.max(1) as f64;
-            (n >= AUTO_METIS_MIN && per_col > 20.0) || n >= AUTO_METIS_MIN_2D
-        }
+        // Nested dissection pays off on 3D-like patterns (many nonzeros per column); on 2D
+        // patterns AMD gives a faster factorization up to 10^6 unknowns (BENCHMARKS.md).
+        OrderingKind::Auto => n >= AUTO_METIS_MIN && pattern.nnz() as f64 / n.max(1) as f64 > 20.0,
     };
     if use_metis && n > 1 {
         metis(pattern, groups)
