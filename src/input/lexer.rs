@@ -131,6 +131,36 @@ mod tests {
     use super::*;
 
     #[test]
+    fn include_splices_lines_and_continuations_join() {
+        let dir = std::env::temp_dir().join(format!("hertz-inc-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(
+            dir.join("part.in"),
+            "# comment\nnode 2 coords 2 \\\n 1.0 0.0\n",
+        )
+        .unwrap();
+        std::fs::write(
+            dir.join("main.in"),
+            "out\ndesc\nnode 1 coords 2 0 0\n@include \"part.in\"\nlast\n",
+        )
+        .unwrap();
+        let lines = read_lines(&dir.join("main.in")).unwrap();
+        let texts: Vec<&str> = lines.iter().map(|l| l.text.as_str()).collect();
+        assert_eq!(
+            texts,
+            vec![
+                "out",
+                "desc",
+                "node 1 coords 2 0 0",
+                "node 2 coords 2   1.0 0.0",
+                "last"
+            ]
+        );
+        assert!(lines[3].file.ends_with("part.in") && lines[3].line == 2);
+        std::fs::remove_dir_all(dir).ok();
+    }
+
+    #[test]
     fn tokenizer_lowercases_outside_quotes_and_groups_braces() {
         let t = tokenize(r#"Set 1 noderanges {(1 5) 8} filename "A.in" CrossSect 2"#);
         assert_eq!(

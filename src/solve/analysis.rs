@@ -15,6 +15,7 @@ use crate::model::{AnalysisKind, Model};
 use crate::output::outfile::sci;
 use crate::solid::loads::reference_contributions;
 use crate::solid::GpState;
+use std::io::IsTerminal;
 use std::time::Instant;
 
 /// Driver settings beyond what the input file says.
@@ -108,6 +109,7 @@ pub fn run_analysis(
         solver,
         factor_valid: false,
         linear,
+        progress: params.log_steps && std::io::stderr().is_terminal(),
     };
     let mut u = vec![0.0; np];
     let mut applied = vec![0.0; np];
@@ -196,6 +198,9 @@ pub fn run_analysis(
         info.wall_seconds = clock.elapsed().as_secs_f64();
         info.solver = ctx.solver.stats.clone();
         if params.log_steps {
+            if ctx.progress {
+                eprint!("\r\x1b[2K");
+            }
             eprintln!(
                 "step {step}/{nsteps}  t = {}  iterations {}  residual {}  substeps {}  {:.3} s",
                 sci(t, 4),
@@ -245,6 +250,8 @@ struct NewtonContext<'a> {
     /// The current factorization is the (constant) tangent of a linear problem.
     factor_valid: bool,
     linear: bool,
+    /// Show the iteration count on a terminal (overwritten by the step's log line).
+    progress: bool,
 }
 
 impl NewtonContext<'_> {
@@ -305,6 +312,9 @@ impl NewtonContext<'_> {
             let (force_err, converged) = self.check(&rhs, f_ext, &ev.ebe, &du, u, a, it);
             info.residual_history.push(force_err);
             info.iterations += 1;
+            if self.progress {
+                eprint!("\r  iteration {it:3}  residual {}   ", sci(force_err, 2));
+            }
             if converged && (it > 0 || force_err == 0.0) {
                 info.iterations -= 1;
                 return Ok(true);
