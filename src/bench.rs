@@ -194,7 +194,7 @@ pub fn run(dim: usize, n: usize, ordering: OrderingKind) -> Result<BenchFigures>
     f.matrix_nnz = 2 * asm.pattern.nnz() - asm.pattern.n;
     let u0 = vec![0.0; dofs.n_primary()];
     let t = Instant::now();
-    let ev = asm.evaluate(&u0, true, false, None)?;
+    let ev = asm.evaluate(&u0, true, false, None, &[])?;
     f.assembly_s = t.elapsed().as_secs_f64();
     let mut solver = LinearSolver::default();
     solver.ordering = ordering;

@@ -32,6 +32,7 @@
 
 pub mod app;
 pub mod bench;
+pub mod contact;
 pub mod error;
 pub mod fem;
 pub mod input;

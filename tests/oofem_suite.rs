@@ -76,3 +76,23 @@ fn deadweight03_trplanestress2d_body_load() {
 fn brick_nlgeo_1_rigid_translation_has_zero_green_lagrange_strain() {
     check_file("brick_nlgeo_1.in");
 }
+
+#[test]
+fn contact_n2n_penalty_with_slave_node_and_ordered_sets() {
+    check_file("contact_N2N_P.in");
+}
+
+#[test]
+fn contact_n2n_lagrange_multiplier() {
+    check_file("contact_N2N_LM.in");
+}
+
+#[test]
+fn contact_n2s_penalty_on_large_deformation_edge() {
+    check_file("contact_N2S_P.in");
+}
+
+#[test]
+fn contact_n2s_lagrange_multiplier_two_steps() {
+    check_file("contact_N2S_LM.in");
+}

@@ -1,5 +1,6 @@
 //! OOFEM text input: lexer with line numbers -> records -> [`Model`](crate::model::Model).
 
+pub mod contact;
 pub mod lexer;
 pub mod reader;
 pub mod record;

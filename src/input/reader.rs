@@ -18,13 +18,9 @@ pub struct ReadResult {
 const MAX_STEPS: usize = 10_000_000;
 const SUPPORTED_ANALYSES: &str = "LinearStatic, NonLinearStatic, StaticStructural";
 const SUPPORTED_BCS: &str =
-    "BoundaryCondition, NodalLoad, ConstantEdgeLoad, ConstantSurfaceLoad, DeadWeight";
-const CONTACT_BCS: [&str; 4] = [
-    "n2npenaltycontact",
-    "n2nlagrangianmultipliercontact",
-    "n2spenaltycontact",
-    "n2slagrangianmultipliercontact",
-];
+    "BoundaryCondition, NodalLoad, ConstantEdgeLoad, ConstantSurfaceLoad, DeadWeight, \
+                             n2npenaltycontact, n2nlagrangianmultipliercontact, n2spenaltycontact, \
+                             n2slagrangianmultipliercontact";
 
 struct Cursor {
     lines: Vec<Line>,
@@ -442,10 +438,18 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
         sets = Some(read_sets(&mut c, nset, &refs)?);
     }
 
-    if ncontactseg > 0 {
-        let r = c.next("contact segment record 1")?;
-        return Err(r.error("contact segments are not supported by this version of hertz"));
+    let mut pending_segments = Numbered::new("contact segment", ncontactseg);
+    for i in 0..ncontactseg {
+        let r = c.next(&format!(
+            "contact segment record {} of {ncontactseg} (ncontactseg {ncontactseg})",
+            i + 1
+        ))?;
+        let seg = super::contact::read_segment(&r, &node_index, domain.nsd(), nset)?;
+        pending_segments.put(&r, seg)?;
+        c.finish(&r);
     }
+    let pending_segments = pending_segments.finish();
+    let mut pending_contacts = Vec::new();
 
     // Cross sections.
     let mut cs = Numbered::new("cross section", ncs);
@@ -644,10 +648,20 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
                 });
                 bcs.put(&r, None)?;
             }
-            k if CONTACT_BCS.contains(&k) => {
-                return Err(r.error(format!(
-                    "contact condition `{k}` is not supported by this version of hertz"
-                )));
+            k if super::contact::CONDITION_KEYWORDS.contains(&k) => {
+                if analysis.kind == AnalysisKind::LinearStatic {
+                    return Err(r.error(
+                        "contact needs NonLinearStatic or StaticStructural, not LinearStatic",
+                    ));
+                }
+                pending_contacts.push(super::contact::read_condition(
+                    &r,
+                    &node_index,
+                    domain.nsd(),
+                    nset,
+                    ncontactseg,
+                )?);
+                bcs.put(&r, None)?;
             }
             _ => {
                 return Err(r.error(format!(
@@ -778,6 +792,8 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
     }
 
     check_geometry(&elements_ref_nodes(&nodes), &model_elements)?;
+    let (segments, contacts) =
+        super::contact::resolve(pending_segments, pending_contacts, &sets, &model_elements)?;
     let model = Model {
         input_path: path.to_path_buf(),
         output_name,
@@ -793,6 +809,8 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
         loads,
         functions,
         sets,
+        segments,
+        contacts,
     };
     // Earliest time a function is evaluated at: the first step, or one Δt before it for the
     // incremental loads of NonLinearStatic `refloadmode 1`.

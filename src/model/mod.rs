@@ -1,7 +1,9 @@
 //! The problem as read from the input: nodes, elements, sets, materials, loads, functions and the
 //! analysis settings. Indices are 0-based positions; labels are the numbers written in the file.
 
+pub mod contact;
 pub mod functions;
+pub use contact::{ContactCondition, ContactLaw, ContactSegment, Pairing, SegmentKind};
 pub use functions::TimeFunction;
 
 use crate::error::Span;
@@ -346,6 +348,8 @@ pub struct Model {
     pub loads: Vec<Load>,
     pub functions: Vec<TimeFunction>,
     pub sets: Vec<Set>,
+    pub segments: Vec<ContactSegment>,
+    pub contacts: Vec<ContactCondition>,
 }
 
 impl Model {

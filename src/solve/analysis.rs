@@ -10,6 +10,7 @@
 use super::assembly::{Assembler, Evaluation};
 use super::dofs::DofMap;
 use super::linear::{LinearSolver, SolverStats};
+use crate::contact::{ContactSystem, SlotState};
 use crate::error::{Error, Result};
 use crate::model::{AnalysisKind, Model};
 use crate::output::outfile::sci;
@@ -57,6 +58,8 @@ pub struct StepResult<'a> {
     /// Reaction per prescribed DOF (same order as `dofs.prescribed`).
     pub reactions: &'a [f64],
     pub states: &'a [Vec<GpState>],
+    /// Contact state of every contact node.
+    pub contact: &'a [SlotState],
     pub info: &'a StepInfo,
 }
 
@@ -75,6 +78,7 @@ pub fn run_analysis(
 ) -> Result<()> {
     let dofs = DofMap::new(model)?;
     let asm = Assembler::new(model, &dofs)?;
+    let contact = ContactSystem::new(model, dofs.n_free - dofs.n_lambda)?;
     let nf = dofs.n_free;
     let np = dofs.n_primary();
     let ref_loads = reference_load_vectors(model, &dofs)?;
@@ -100,11 +104,12 @@ pub fn run_analysis(
             .collect()
     };
     let a = &model.analysis;
-    let linear = !model.elements.iter().any(|e| e.nlgeo);
+    let linear = !model.elements.iter().any(|e| e.nlgeo) && contact.is_empty();
     let mut solver = LinearSolver::default();
     solver.groups = Some(dofs.free_eq_nodes());
     let mut ctx = NewtonContext {
-        asm: &asm,
+        asm,
+        contact,
         dofs: &dofs,
         solver,
         factor_valid: false,
@@ -191,7 +196,7 @@ pub fn run_analysis(
             )));
         }
         applied = target;
-        let ev: Evaluation = asm.evaluate(&u, false, true, None)?;
+        let (ev, contact_states) = ctx.evaluate(&u, false, true, None)?;
         let reactions: Vec<f64> = (0..dofs.n_prescribed)
             .map(|i| ev.f_int[nf + i] - applied[nf + i])
             .collect();
@@ -218,6 +223,7 @@ pub fn run_analysis(
             u: &u,
             reactions: &reactions,
             states: &states,
+            contact: &contact_states,
             info: &info,
         })?;
     }
@@ -244,7 +250,8 @@ pub fn reference_load_vectors(model: &Model, dofs: &DofMap) -> Result<Vec<(usize
 }
 
 struct NewtonContext<'a> {
-    asm: &'a Assembler<'a>,
+    asm: Assembler<'a>,
+    contact: ContactSystem,
     dofs: &'a DofMap,
     solver: LinearSolver,
     /// The current factorization is the (constant) tangent of a linear problem.
@@ -255,6 +262,27 @@ struct NewtonContext<'a> {
 }
 
 impl NewtonContext<'_> {
+    /// Elements and contact at state `u`. A change of the contact couplings rebuilds the sparse
+    /// pattern and forgets the symbolic factorization.
+    fn evaluate(
+        &mut self,
+        u: &[f64],
+        want_k: bool,
+        want_states: bool,
+        dup: Option<&[f64]>,
+    ) -> Result<(Evaluation, Vec<SlotState>)> {
+        let (contribs, states) = self.contact.evaluate(self.asm.model, self.dofs, u)?;
+        if !self.contact.is_empty() {
+            let couplings: Vec<Vec<usize>> = contribs.iter().map(|c| c.codes.clone()).collect();
+            if self.asm.set_couplings(&couplings) {
+                self.solver.reset();
+                self.factor_valid = false;
+            }
+        }
+        let ev = self.asm.evaluate(u, want_k, want_states, dup, &contribs)?;
+        Ok((ev, states))
+    }
+
     fn factorize(&mut self, ev: &Evaluation) -> Result<()> {
         let kv = ev.k_values.as_ref().expect("tangent requested");
         let dofs = self.dofs;
@@ -291,8 +319,8 @@ impl NewtonContext<'_> {
         let dup: Vec<f64> = (0..up.len()).map(|i| up[i] - u[nf + i]).collect();
         if a.initialguess && dup.iter().any(|&d| d != 0.0) {
             // Tangent predictor: K_ff Δu_f = −K_fp Δu_p at the current state.
-            let need_k = !self.factor_valid;
-            let ev = self.asm.evaluate(u, need_k, false, Some(&dup))?;
+            let need_k = !self.factor_valid || !self.contact.is_empty();
+            let (ev, _) = self.evaluate(u, need_k, false, Some(&dup))?;
             if need_k {
                 self.factorize(&ev)?;
             }
@@ -305,9 +333,12 @@ impl NewtonContext<'_> {
         u[nf..].copy_from_slice(up);
         let mut du = vec![0.0; nf];
         for it in 0..=a.maxiter {
-            let refresh =
-                !self.factor_valid && (it == 0 || a.manrmsteps.is_some_and(|k| it % k == 0));
-            let ev = self.asm.evaluate(u, refresh, false, None)?;
+            // Contact changes the tangent from one iteration to the next: always full Newton.
+            let refresh = !self.factor_valid
+                && (it == 0
+                    || !self.contact.is_empty()
+                    || a.manrmsteps.is_some_and(|k| it % k == 0));
+            let (ev, _) = self.evaluate(u, refresh, false, None)?;
             let mut rhs: Vec<f64> = (0..nf).map(|i| f_ext[i] - ev.f_int[i]).collect();
             let (force_err, converged) = self.check(&rhs, f_ext, &ev.ebe, &du, u, a, it);
             info.residual_history.push(force_err);
@@ -364,6 +395,13 @@ impl NewtonContext<'_> {
         }
         let mut worst: f64 = 0.0;
         let mut ok = true;
+        // Multiplier rows (each its own group in OOFEM, with a negligible reference): absolute.
+        for i in (self.dofs.n_free - self.dofs.n_lambda)..rhs.len() {
+            worst = worst.max(rhs[i].abs());
+            if !(rhs[i].abs() <= a.rtolf) {
+                ok = false;
+            }
+        }
         for g in 1..4 {
             if !present[g] {
                 continue;

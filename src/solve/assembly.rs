@@ -3,6 +3,7 @@
 //! scatter is serial in element order, so results do not depend on the thread count.
 
 use super::dofs::DofMap;
+use crate::contact::Contribution;
 use crate::error::{Error, Result};
 use crate::fem::{rule, QuadPoint};
 use crate::model::Model;
@@ -44,6 +45,15 @@ struct ElementInfo {
     thick: f64,
 }
 
+/// Accumulators of one evaluation.
+struct Sink<'a> {
+    f_int: Vec<f64>,
+    k_values: Option<Vec<f64>>,
+    k_fp_dup: Option<Vec<f64>>,
+    dup: Option<&'a [f64]>,
+    ebe: [f64; 4],
+}
+
 /// Global quantities from one element loop.
 pub struct Evaluation {
     /// Internal forces in primary numbering (free then prescribed).
@@ -66,6 +76,8 @@ pub struct Assembler<'m> {
     locs: Vec<usize>,
     rules: Vec<Vec<QuadPoint>>,
     elasticities: Vec<Elasticity>,
+    /// Free-equation lists of the contact pairs, included in the pattern.
+    couplings: Vec<Vec<usize>>,
 }
 
 const CHUNK: usize = 2048;
@@ -133,15 +145,16 @@ impl<'m> Assembler<'m> {
             locs,
             rules,
             elasticities,
+            couplings: Vec::new(),
         };
         a.pattern = a.build_pattern();
         Ok(a)
     }
 
-    fn free_eqs(&self, e: usize, out: &mut Vec<usize>) {
+    /// Sorted free equations behind a list of location codes.
+    fn free_eqs(&self, codes: &[usize], out: &mut Vec<usize>) {
         out.clear();
-        let info = &self.elems[e];
-        for &c in &self.locs[info.loc_start..info.loc_start + info.ndof] {
+        for &c in codes {
             out.extend(
                 self.dofs
                     .entries(c)
@@ -153,12 +166,42 @@ impl<'m> Assembler<'m> {
         out.dedup();
     }
 
+    /// Set the couplings of the contact pairs (location codes per pair); rebuilds the pattern and
+    /// returns true when they changed.
+    pub fn set_couplings(&mut self, couplings: &[Vec<usize>]) -> bool {
+        let mut norm: Vec<Vec<usize>> = Vec::with_capacity(couplings.len());
+        let mut eqs = Vec::new();
+        for c in couplings {
+            self.free_eqs(c, &mut eqs);
+            if eqs.len() > 1 {
+                norm.push(eqs.clone());
+            }
+        }
+        norm.sort_unstable();
+        norm.dedup();
+        if norm == self.couplings {
+            return false;
+        }
+        self.couplings = norm;
+        self.pattern = self.build_pattern();
+        true
+    }
+
     fn build_pattern(&self) -> Pattern {
         let n = self.dofs.n_free;
         let mut cols: Vec<Vec<usize>> = vec![Vec::new(); n];
         let mut eqs = Vec::new();
         for e in 0..self.elems.len() {
-            self.free_eqs(e, &mut eqs);
+            let info = &self.elems[e];
+            self.free_eqs(
+                &self.locs[info.loc_start..info.loc_start + info.ndof],
+                &mut eqs,
+            );
+            for (j, &c) in eqs.iter().enumerate() {
+                cols[c].extend_from_slice(&eqs[..=j]);
+            }
+        }
+        for eqs in &self.couplings {
             for (j, &c) in eqs.iter().enumerate() {
                 cols[c].extend_from_slice(&eqs[..=j]);
             }
@@ -234,19 +277,69 @@ impl<'m> Assembler<'m> {
         }
     }
 
-    /// The element loop at primary state `u`.
+    /// Add one local contribution (location codes, residual, row-major tangent) to the sink.
+    fn scatter(
+        &self,
+        loc: &[usize],
+        fe: &[f64],
+        ke: Option<&[f64]>,
+        sink: &mut Sink,
+        count_ebe: bool,
+    ) {
+        let nf = self.dofs.n_free;
+        let nd = loc.len();
+        for (a, &ca) in loc.iter().enumerate() {
+            for (p, wp) in self.dofs.entries(ca) {
+                sink.f_int[p] += wp * fe[a];
+                if count_ebe && p < nf {
+                    sink.ebe[self.dofs.primary_dof_id[p] as usize] += (wp * fe[a]).powi(2);
+                }
+            }
+        }
+        let Some(ke) = ke else { return };
+        for (a, &ca) in loc.iter().enumerate() {
+            for (p, wp) in self.dofs.entries(ca) {
+                if p >= nf {
+                    continue;
+                }
+                for (b, &cb) in loc.iter().enumerate() {
+                    let kab = ke[a * nd + b];
+                    if kab == 0.0 {
+                        continue;
+                    }
+                    for (q, wq) in self.dofs.entries(cb) {
+                        if q < nf {
+                            if let Some(kv) = sink.k_values.as_mut() {
+                                if p <= q {
+                                    kv[self.pattern.position(p, q)] += wp * wq * kab;
+                                }
+                            }
+                        } else if let (Some(kd), Some(d)) = (sink.k_fp_dup.as_mut(), sink.dup) {
+                            kd[p] += wp * wq * kab * d[q - nf];
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// The element loop at primary state `u`, plus the `extra` (contact) contributions.
     pub fn evaluate(
         &self,
         u: &[f64],
         want_k: bool,
         want_states: bool,
         dup: Option<&[f64]>,
+        extra: &[Contribution],
     ) -> Result<Evaluation> {
         let nf = self.dofs.n_free;
-        let mut f_int = vec![0.0; self.dofs.n_primary()];
-        let mut k_values = want_k.then(|| vec![0.0; self.pattern.nnz()]);
-        let mut k_fp_dup = dup.map(|_| vec![0.0; nf]);
-        let mut ebe = [0.0; 4];
+        let mut sink = Sink {
+            f_int: vec![0.0; self.dofs.n_primary()],
+            k_values: want_k.then(|| vec![0.0; self.pattern.nnz()]),
+            k_fp_dup: dup.map(|_| vec![0.0; nf]),
+            dup,
+            ebe: [0.0; 4],
+        };
         let mut states = want_states.then(|| Vec::with_capacity(self.elems.len()));
         let need_k = want_k || dup.is_some();
         let n_el = self.elems.len();
@@ -292,43 +385,7 @@ impl<'m> Assembler<'m> {
                     let ke = &buf.values[buf.offsets[k] + nd..];
                     let info = &self.elems[e];
                     let loc = &self.locs[info.loc_start..info.loc_start + info.ndof];
-                    let nd = info.ndof;
-                    for (a, &ca) in loc.iter().enumerate() {
-                        for (p, wp) in self.dofs.entries(ca) {
-                            f_int[p] += wp * fe[a];
-                            if p < nf {
-                                ebe[self.dofs.primary_dof_id[p] as usize] += (wp * fe[a]).powi(2);
-                            }
-                        }
-                    }
-                    if need_k {
-                        for (a, &ca) in loc.iter().enumerate() {
-                            for (p, wp) in self.dofs.entries(ca) {
-                                if p >= nf {
-                                    continue;
-                                }
-                                for (b, &cb) in loc.iter().enumerate() {
-                                    let kab = ke[a * nd + b];
-                                    if kab == 0.0 {
-                                        continue;
-                                    }
-                                    for (q, wq) in self.dofs.entries(cb) {
-                                        if q < nf {
-                                            if let Some(kv) = k_values.as_mut() {
-                                                if p <= q {
-                                                    kv[self.pattern.position(p, q)] +=
-                                                        wp * wq * kab;
-                                                }
-                                            }
-                                        } else if let (Some(kd), Some(d)) = (k_fp_dup.as_mut(), dup)
-                                        {
-                                            kd[p] += wp * wq * kab * d[q - nf];
-                                        }
-                                    }
-                                }
-                            }
-                        }
-                    }
+                    self.scatter(loc, fe, need_k.then_some(ke), &mut sink, true);
                     if let Some(s) = states.as_mut() {
                         s.push(st);
                     }
@@ -337,11 +394,22 @@ impl<'m> Assembler<'m> {
             }
             start = end;
         }
+        for c in extra {
+            if !c.fe.is_empty() {
+                self.scatter(
+                    &c.codes,
+                    &c.fe,
+                    need_k.then_some(c.ke.as_slice()),
+                    &mut sink,
+                    false,
+                );
+            }
+        }
         Ok(Evaluation {
-            f_int,
-            k_values,
-            k_fp_dup,
-            ebe,
+            f_int: sink.f_int,
+            k_values: sink.k_values,
+            k_fp_dup: sink.k_fp_dup,
+            ebe: sink.ebe,
             states,
         })
     }

@@ -12,14 +12,17 @@ use crate::model::{DofId, Model};
 pub struct DofMap {
     /// Per node: (DOF id, location code), sorted by DOF id.
     pub node_dofs: Vec<Vec<(DofId, usize)>>,
+    /// Free equations: displacements, then multipliers.
     pub n_free: usize,
     pub n_prescribed: usize,
-    /// DOF id of every primary DOF.
+    /// DOF id of every primary DOF (0 for multipliers).
     pub primary_dof_id: Vec<DofId>,
     /// Per prescribed DOF: (node, DOF id, Dirichlet index into `model.dirichlet`).
     pub prescribed: Vec<(usize, DofId, usize)>,
     /// Slave entries: (primary index, weight) lists.
     pub slaves: Vec<Vec<(usize, f64)>>,
+    /// Lagrange multipliers: the last `n_lambda` free equations.
+    pub n_lambda: usize,
 }
 
 impl DofMap {
@@ -37,6 +40,15 @@ impl DofMap {
                 }
             }
         }
+        // Contact nodes carry the domain's displacement DOFs even without elements (e.g. the
+        // reference node of a rigid indenter).
+        let nsd = model.domain.nsd();
+        for n in crate::contact::ContactSystem::nodes_needing_dofs(model) {
+            for d in 1..=nsd as u8 {
+                ids[n] |= 1 << d;
+            }
+        }
+        let n_lambda = crate::contact::ContactSystem::count_multipliers(model);
         // Dirichlet condition per (node, dof): later conditions override earlier ones.
         let mut bc_of: Vec<[Option<usize>; 4]> = vec![[None; 4]; nn];
         for (bi, bc) in model.dirichlet.iter().enumerate() {
@@ -67,6 +79,8 @@ impl DofMap {
                 }
             }
         }
+        // Multipliers are free equations after the displacement ones (DOF id 0).
+        n_free += n_lambda;
         let n_primary = n_free + n_prescribed;
         let mut node_dofs = vec![Vec::new(); nn];
         let mut primary_dof_id = vec![0; n_primary];
@@ -130,12 +144,15 @@ impl DofMap {
             primary_dof_id,
             prescribed,
             slaves,
+            n_lambda,
         })
     }
 
     /// Node of every free equation (for node-graph orderings).
     pub fn free_eq_nodes(&self) -> Vec<usize> {
-        let mut g = vec![0; self.n_free];
+        // Multipliers get groups of their own.
+        let nn = self.node_dofs.len();
+        let mut g: Vec<usize> = (0..self.n_free).map(|c| nn + c).collect();
         for (n, list) in self.node_dofs.iter().enumerate() {
             for &(_, c) in list {
                 if c < self.n_free {

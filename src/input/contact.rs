@@ -1,0 +1,318 @@
+//! Contact records: segments (block `ncontactseg`) and conditions (in the BC block), resolved
+//! against the sets once those are read.
+
+use super::record::Record;
+use crate::error::{Error, Result, Span};
+use crate::model::{
+    ContactCondition, ContactLaw, ContactSegment, Element, Pairing, SegmentKind, Set,
+};
+use std::collections::HashMap;
+
+/// Contact condition record keywords.
+pub const CONDITION_KEYWORDS: [&str; 4] = [
+    "n2npenaltycontact",
+    "n2nlagrangianmultipliercontact",
+    "n2spenaltycontact",
+    "n2slagrangianmultipliercontact",
+];
+
+const SEGMENT_KEYWORDS: &str = "linear2delementedgecontactsegment, qelementedgecontactsegment, \
+                                circlecontactsegment, polynomialcontactsegment, planecontactsegment";
+
+/// A segment whose edge set is not resolved yet.
+pub struct PendingSegment {
+    number: usize,
+    kind: Option<SegmentKind>,
+    edge_set: Option<usize>,
+    span: Span,
+}
+
+/// A condition whose sets are not resolved yet.
+pub struct PendingCondition {
+    number: usize,
+    law: ContactLaw,
+    sets: Option<(usize, usize)>,
+    nodes: Vec<usize>,
+    segments: Vec<usize>,
+    normal: Option<[f64; 3]>,
+    span: Span,
+}
+
+fn node_ref(r: &Record, nodes: &HashMap<usize, usize>, label: i64, what: &str) -> Result<usize> {
+    (label > 0)
+        .then(|| nodes.get(&(label as usize)).copied())
+        .flatten()
+        .ok_or_else(|| {
+            r.error(format!(
+                "{what} refers to node {label}, which does not exist"
+            ))
+        })
+}
+
+fn point(r: &Record, key: &str, nsd: usize) -> Result<[f64; 3]> {
+    let v = r.float_array(key)?;
+    if v.len() != nsd {
+        return Err(r.error(format!(
+            "`{key}` needs {nsd} components in this {nsd}D domain, found {}",
+            v.len()
+        )));
+    }
+    let mut p = [0.0; 3];
+    p[..nsd].copy_from_slice(&v);
+    Ok(p)
+}
+
+fn unit(r: &Record, key: &str, v: [f64; 3]) -> Result<[f64; 3]> {
+    let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    if !(len > 1e-12) {
+        return Err(r.error(format!("`{key}` must not be the zero vector")));
+    }
+    // OOFEM truncates the norm to an int before normalizing (spec §2.10 item 4); hertz always
+    // normalizes.
+    Ok([v[0] / len, v[1] / len, v[2] / len])
+}
+
+/// Read one record of the `ncontactseg` block.
+pub fn read_segment(
+    r: &Record,
+    nodes: &HashMap<usize, usize>,
+    nsd: usize,
+    nset: usize,
+) -> Result<PendingSegment> {
+    let kw = r.keyword().to_string();
+    let number = r.number()?;
+    r.opt_int("normmode")?;
+    let ref_node = |r: &Record| -> Result<Option<usize>> {
+        r.opt_int("node")?
+            .map(|l| node_ref(r, nodes, l, "the segment"))
+            .transpose()
+    };
+    let mut seg = PendingSegment {
+        number,
+        kind: None,
+        edge_set: None,
+        span: r.span(),
+    };
+    match kw.as_str() {
+        "linear2delementedgecontactsegment" | "qelementedgecontactsegment" => {
+            if nsd != 2 {
+                return Err(r.error(format!("`{kw}` needs a 2D domain")));
+            }
+            // `edgeset` in the OOFEM versions the tests were written for, `boundaryset` later.
+            let set = match r.opt_usize("boundaryset")? {
+                Some(s) => s,
+                None => r
+                    .opt_usize("edgeset")?
+                    .ok_or_else(|| r.error("missing `edgeset` (or `boundaryset`)"))?,
+            };
+            if set == 0 || set > nset {
+                return Err(r.error(format!(
+                    "set {set} does not exist (the counts record declares {nset})"
+                )));
+            }
+            match r.opt_int("pairupdatemode")? {
+                None | Some(0..=2) => {}
+                Some(v) => {
+                    return Err(r.error(format!("`pairupdatemode` must be 0, 1 or 2, found {v}")))
+                }
+            }
+            seg.edge_set = Some(set);
+        }
+        "circlecontactsegment" => {
+            let center = point(r, "centerpoint", nsd)?;
+            let radius = r.float("radius")?;
+            if !(radius > 0.0) {
+                return Err(r.error(format!("`radius` must be positive, found {radius}")));
+            }
+            seg.kind = Some(SegmentKind::Circle {
+                center,
+                radius,
+                node: ref_node(r)?,
+            });
+        }
+        "polynomialcontactsegment" => {
+            if nsd != 2 {
+                return Err(r.error("`polynomialcontactsegment` needs a 2D domain"));
+            }
+            let coeffs = r.float_array("coeffs")?;
+            if coeffs.is_empty() {
+                return Err(r.error("`coeffs` needs at least one coefficient"));
+            }
+            seg.kind = Some(SegmentKind::Polynomial { coeffs });
+        }
+        "planecontactsegment" => {
+            let p = point(r, "point", nsd)?;
+            let n = unit(r, "normal", point(r, "normal", nsd)?)?;
+            seg.kind = Some(SegmentKind::Plane {
+                point: p,
+                normal: n,
+                node: ref_node(r)?,
+            });
+        }
+        _ => {
+            return Err(r.error(format!(
+                "unsupported contact segment `{kw}`; supported: {SEGMENT_KEYWORDS}"
+            )));
+        }
+    }
+    Ok(seg)
+}
+
+/// Read a contact condition record of the BC block.
+pub fn read_condition(
+    r: &Record,
+    nodes: &HashMap<usize, usize>,
+    nsd: usize,
+    nset: usize,
+    nseg: usize,
+) -> Result<PendingCondition> {
+    let kw = r.keyword().to_string();
+    let number = r.number()?;
+    let law = if kw.contains("penalty") {
+        let p = r.float("penalty")?;
+        if !(p > 0.0) {
+            return Err(r.error(format!("`penalty` must be positive, found {p}")));
+        }
+        ContactLaw::Penalty(p)
+    } else {
+        ContactLaw::Multiplier
+    };
+    // The tangent is always the exact one; `usetangent` is accepted for compatibility.
+    r.flag("usetangent");
+    let normal = match r.opt_float_array("normal")? {
+        None => None,
+        Some(v) if v.len() == nsd => {
+            let mut p = [0.0; 3];
+            p[..nsd].copy_from_slice(&v);
+            Some(unit(r, "normal", p)?)
+        }
+        Some(v) => {
+            return Err(r.error(format!(
+                "`normal` needs {nsd} components, found {}",
+                v.len()
+            )))
+        }
+    };
+    let mut c = PendingCondition {
+        number,
+        law,
+        sets: None,
+        nodes: vec![],
+        segments: vec![],
+        normal,
+        span: r.span(),
+    };
+    if kw.starts_with("n2n") {
+        let m = r.usize("masterset")?;
+        let s = r.usize("slaveset")?;
+        for v in [m, s] {
+            if v == 0 || v > nset {
+                return Err(r.error(format!(
+                    "set {v} does not exist (the counts record declares {nset})"
+                )));
+            }
+        }
+        c.sets = Some((m, s));
+    } else {
+        // OOFEM uses these numbers as raw node indices (spec §2.10 item 11); hertz maps labels.
+        c.nodes = r
+            .int_array("nodeset")?
+            .into_iter()
+            .map(|l| node_ref(r, nodes, l, "`nodeset`"))
+            .collect::<Result<_>>()?;
+        c.segments = r
+            .int_array("segmentset")?
+            .into_iter()
+            .map(|s| {
+                if s < 1 || s as usize > nseg {
+                    Err(r.error(format!(
+                        "contact segment {s} does not exist (ncontactseg {nseg})"
+                    )))
+                } else {
+                    Ok(s as usize - 1)
+                }
+            })
+            .collect::<Result<_>>()?;
+        if c.nodes.is_empty() || c.segments.is_empty() {
+            return Err(r.error("`nodeset` and `segmentset` must not be empty"));
+        }
+    }
+    Ok(c)
+}
+
+fn err(span: &Span, msg: String) -> Error {
+    Error::Input {
+        span: span.clone(),
+        msg,
+    }
+}
+
+/// Resolve sets into segments' edges and node-to-node pairs.
+pub fn resolve(
+    segs: Vec<PendingSegment>,
+    conds: Vec<PendingCondition>,
+    sets: &[Set],
+    elements: &[Element],
+) -> Result<(Vec<ContactSegment>, Vec<ContactCondition>)> {
+    let mut segments = Vec::with_capacity(segs.len());
+    for s in segs {
+        let kind = match (s.kind, s.edge_set) {
+            (Some(k), _) => k,
+            (None, Some(set)) => {
+                let st = &sets[set - 1];
+                let edges: Vec<(usize, usize)> =
+                    st.boundaries.iter().chain(&st.edges).copied().collect();
+                if edges.is_empty() {
+                    return Err(err(
+                        &s.span,
+                        format!("set {set} lists no `elementboundaries` for the segment"),
+                    ));
+                }
+                for &(e, _) in &edges {
+                    if elements[e].etype.shape().dim() != 2 {
+                        return Err(err(
+                            &s.span,
+                            format!("element {} of set {set} has no 2D edges", elements[e].label),
+                        ));
+                    }
+                }
+                SegmentKind::Edges { edges }
+            }
+            (None, None) => unreachable!("segments have a kind or an edge set"),
+        };
+        segments.push(ContactSegment {
+            number: s.number,
+            kind,
+            span: s.span,
+        });
+    }
+    let mut contacts = Vec::with_capacity(conds.len());
+    for c in conds {
+        let pairing = match c.sets {
+            Some((m, s)) => {
+                let (mn, sn) = (&sets[m - 1].nodes, &sets[s - 1].nodes);
+                if mn.len() != sn.len() || mn.is_empty() {
+                    return Err(err(
+                        &c.span,
+                        format!("master set {m} has {} nodes and slave set {s} has {}: they pair one to one", mn.len(), sn.len()),
+                    ));
+                }
+                Pairing::NodeToNode {
+                    pairs: mn.iter().copied().zip(sn.iter().copied()).collect(),
+                }
+            }
+            None => Pairing::NodeToSegment {
+                nodes: c.nodes,
+                segments: c.segments,
+            },
+        };
+        contacts.push(ContactCondition {
+            number: c.number,
+            law: c.law,
+            pairing,
+            normal: c.normal,
+            span: c.span,
+        });
+    }
+    Ok((segments, contacts))
+}

@@ -1,0 +1,66 @@
+//! Contact segments and contact conditions as read from the input (spec §2).
+
+use crate::error::Span;
+
+/// What a node can come into contact with.
+#[derive(Debug, Clone)]
+pub enum SegmentKind {
+    /// Edges of 2D elements, (element index, boundary number): straight for linear elements,
+    /// quadratic (3 nodes) for QPlaneStress2d.
+    Edges { edges: Vec<(usize, usize)> },
+    /// Rigid circle (2D) or sphere (3D); the body is the disk/ball. With `node`, the centre moves
+    /// with that node's displacement (load or prescribe the node to drive the indenter).
+    Circle {
+        center: [f64; 3],
+        radius: f64,
+        node: Option<usize>,
+    },
+    /// Rigid curve y = Σ a_i x^(k−1−i) (highest power first), 2D.
+    Polynomial { coeffs: Vec<f64> },
+    /// Rigid line (2D) or plane (3D) through `point` with unit `normal` pointing out of the rigid
+    /// body; with `node`, it translates with that node (hertz extension: `planecontactsegment`).
+    Plane {
+        point: [f64; 3],
+        normal: [f64; 3],
+        node: Option<usize>,
+    },
+}
+
+#[derive(Debug, Clone)]
+pub struct ContactSegment {
+    pub number: usize,
+    pub kind: SegmentKind,
+    pub span: Span,
+}
+
+/// How the non-penetration condition is enforced.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ContactLaw {
+    Penalty(f64),
+    /// Lagrange multipliers: one extra unknown per contact node.
+    Multiplier,
+}
+
+/// Which nodes meet what.
+#[derive(Debug, Clone)]
+pub enum Pairing {
+    /// Fixed (master, slave) node pairs.
+    NodeToNode { pairs: Vec<(usize, usize)> },
+    /// Every node meets the closest of the segments it projects onto.
+    NodeToSegment {
+        nodes: Vec<usize>,
+        segments: Vec<usize>,
+    },
+}
+
+#[derive(Debug, Clone)]
+pub struct ContactCondition {
+    /// BC record number.
+    pub number: usize,
+    pub law: ContactLaw,
+    pub pairing: Pairing,
+    /// Prescribed unit normal (N2N: instead of the initial master-to-slave direction; N2S:
+    /// instead of the segment normal).
+    pub normal: Option<[f64; 3]>,
+    pub span: Span,
+}
