@@ -224,10 +224,23 @@ impl ContactSystem {
         dofs: &DofMap,
         u: &[f64],
     ) -> Result<(Vec<Contribution>, Vec<SlotState>)> {
+        self.evaluate_with(model, dofs, u, None)
+    }
+
+    /// As [`evaluate`](Self::evaluate), with the partners (search results, including the contact
+    /// point) taken from `frozen` instead of searched: the tangent is the exact derivative of the
+    /// residual at fixed search results, which is what the finite-difference tests check.
+    pub fn evaluate_with(
+        &self,
+        model: &Model,
+        dofs: &DofMap,
+        u: &[f64],
+        frozen: Option<&[SlotState]>,
+    ) -> Result<(Vec<Contribution>, Vec<SlotState>)> {
         let mut contribs = Vec::with_capacity(self.slots.len());
         let mut states = Vec::with_capacity(self.slots.len());
-        for slot in &self.slots {
-            let (c, st) = self.evaluate_slot(model, dofs, u, slot)?;
+        for (k, slot) in self.slots.iter().enumerate() {
+            let (c, st) = self.evaluate_slot(model, dofs, u, slot, frozen.map(|f| f[k].partner))?;
             contribs.push(c);
             states.push(st);
         }
@@ -374,6 +387,7 @@ impl ContactSystem {
         dofs: &DofMap,
         u: &[f64],
         slot: &Slot,
+        frozen: Option<Partner>,
     ) -> Result<(Contribution, SlotState)> {
         let d = self.nsd;
         let cond = &model.contacts[slot.cond];
@@ -388,9 +402,10 @@ impl ContactSystem {
             active: false,
             x: xs,
         };
-        let partner = match slot.master {
-            Some((m, _)) => Partner::Node(m),
-            None => self.search(model, dofs, u, slot, &xs)?,
+        let partner = match (slot.master, frozen) {
+            (Some((m, _)), _) => Partner::Node(m),
+            (None, Some(p)) => p,
+            (None, None) => self.search(model, dofs, u, slot, &xs)?,
         };
         state.partner = partner;
         // Local unknowns: slave position, then the partner's nodes.
