@@ -1,3 +1,4 @@
+#![allow(clippy::needless_range_loop)]
 //! Every contact tangent is the Jacobian of its residual: central finite differences of the local
 //! contact residual, for every law (penalty, multiplier active and inactive) and every partner
 //! (node, straight and quadratic edge in small and large deformation, circle, sphere, polynomial,
