@@ -91,6 +91,8 @@ pub fn run_file(path: &Path, opts: &RunOptions) -> Result<RunReport> {
     }
     let mut out_text = outfile::header(&model);
     let mut vtus: Vec<(f64, String)> = Vec::new();
+    let mut csv = String::from(outfile::CONTACT_CSV_HEADER);
+    csv.push('\n');
     let params = SolveParams {
         log_steps: opts.log_steps,
         ..Default::default()
@@ -103,6 +105,7 @@ pub fn run_file(path: &Path, opts: &RunOptions) -> Result<RunReport> {
             if model.output.step(res.step) {
                 out_text.push_str(&outfile::step_block(&model, res));
             }
+            csv.push_str(&outfile::contact_csv_rows(&model, res));
             let name = vtu::write_step(&model, res, &dir, &stem)?;
             report.written.push(dir.join(&name));
             vtus.push((res.time, name));
@@ -117,6 +120,11 @@ pub fn run_file(path: &Path, opts: &RunOptions) -> Result<RunReport> {
         let out_path = dir.join(&out_name);
         write_atomic(&out_path, out_text.as_bytes())?;
         report.written.push(out_path);
+        if !model.contacts.is_empty() {
+            let csv_path = dir.join(format!("{stem}.contact.csv"));
+            write_atomic(&csv_path, csv.as_bytes())?;
+            report.written.push(csv_path);
+        }
         if !vtus.is_empty() {
             vtu::write_collection(&dir, &stem, &vtus)?;
             report.written.push(dir.join(format!("{stem}.pvd")));

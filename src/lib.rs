@@ -30,6 +30,7 @@
 // `!(x > 0.0)` is deliberate where NaN must count as failure.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+pub mod analytic;
 pub mod app;
 pub mod bench;
 pub mod contact;

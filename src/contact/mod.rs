@@ -542,14 +542,16 @@ impl ContactSystem {
         }
         match (cond.law, slot.lambda_eq) {
             (ContactLaw::Penalty(p), _) => {
-                if let Some(g) = gap.filter(|g| g.v < 0.0) {
+                // Closed at g ≤ 0: at g = 0 the force is zero but the tangent is on (as OOFEM), so
+                // a load-controlled indenter that starts touching has stiffness.
+                if let Some(g) = gap.filter(|g| g.v <= 0.0) {
                     out.codes = codes;
                     out.fe = (0..m).map(|i| p * g.v * g.g[i]).collect();
                     out.ke = (0..m * m)
                         .map(|k| p * (g.g[k / m] * g.g[k % m] + g.v * g.h[k / m][k % m]))
                         .collect();
                     state.force = -p * g.v;
-                    state.active = true;
+                    state.active = g.v < 0.0;
                 } else {
                     out.codes = codes;
                 }

@@ -136,6 +136,9 @@ pub fn step_block(model: &Model, res: &StepResult) -> String {
             bc
         );
     }
+    if !res.contact.is_empty() {
+        s.push_str(&contact_table(model, res));
+    }
     let _ = write!(
         s,
         "\nUser time consumed by solution step {}: {:.3} [s]\n\n",
@@ -144,8 +147,62 @@ pub fn step_block(model: &Model, res: &StepResult) -> String {
     s
 }
 
+/// The contact table of a step: one row per contact node.
+fn contact_table(model: &Model, res: &StepResult) -> String {
+    let mut s =
+        String::from("\n\n\tC O N T A C T   O U T P U T:\n\t___________________________\n\n");
+    s.push_str("\tcondition     node          gap         force      pressure  active\n");
+    for c in res.contact {
+        let _ = writeln!(
+            s,
+            "\t{:9} {:8} {} {} {} {:>7}",
+            c.condition,
+            model.nodes[c.node].label,
+            sci_sign(c.gap, 4),
+            sci_sign(c.force, 4),
+            sci_sign(c.pressure, 4),
+            if c.active { "yes" } else { "no" }
+        );
+    }
+    s
+}
+
+/// The `.contact.csv` header (one row per contact node and step).
+pub const CONTACT_CSV_HEADER: &str = "step,condition,node,x,y,z,gap,force,pressure,active";
+
+/// CSV rows of one step's contact states.
+pub fn contact_csv_rows(model: &Model, res: &StepResult) -> String {
+    let mut s = String::new();
+    for c in res.contact {
+        let _ = writeln!(
+            s,
+            "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{}",
+            res.step,
+            c.condition,
+            model.nodes[c.node].label,
+            c.x[0],
+            c.x[1],
+            c.x[2],
+            c.gap,
+            c.force,
+            c.pressure,
+            u8::from(c.active)
+        );
+    }
+    s
+}
+
 /// C `%.Ne` formatting (exponent with sign and at least two digits).
 pub fn sci(v: f64, prec: usize) -> String {
+    if !v.is_finite() {
+        return if v.is_nan() {
+            "nan".into()
+        } else if v > 0.0 {
+            "inf".into()
+        } else {
+            "-inf".into()
+        };
+    }
     let s = format!("{v:.prec$e}");
     let (mant, exp) = s.split_once('e').expect("exponent");
     let e: i32 = exp.parse().expect("integer exponent");
@@ -153,7 +210,7 @@ pub fn sci(v: f64, prec: usize) -> String {
 }
 
 /// C `% .Ne` (a space in place of the plus sign).
-fn sci_sign(v: f64, prec: usize) -> String {
+pub fn sci_sign(v: f64, prec: usize) -> String {
     let s = sci(v, prec);
     if v < 0.0 || s.starts_with('-') {
         s
@@ -169,5 +226,7 @@ mod tests {
         assert_eq!(super::sci(-1.5625, 8), "-1.56250000e+00");
         assert_eq!(super::sci(4.975e6, 4), "4.9750e+06");
         assert_eq!(super::sci(1.2e-12, 4), "1.2000e-12");
+        assert_eq!(super::sci(f64::NAN, 4), "nan");
+        assert_eq!(super::sci(f64::NEG_INFINITY, 4), "-inf");
     }
 }

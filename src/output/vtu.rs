@@ -81,6 +81,27 @@ pub fn write_step(model: &Model, res: &StepResult, dir: &Path, stem: &str) -> Re
         reac[3 * n + d as usize - 1] = r;
     }
     data_array(&mut s, "reaction", 3, reac.into_iter());
+    if !res.contact.is_empty() {
+        // Contact point data; NaN gap where a node takes no part in contact.
+        let mut gap = vec![f64::NAN; nn];
+        let mut force = vec![0.0; nn];
+        let mut pressure = vec![0.0; nn];
+        let mut active = vec![0.0; nn];
+        for c in res.contact {
+            gap[c.node] = c.gap;
+            force[c.node] += c.force;
+            pressure[c.node] += if c.pressure.is_finite() {
+                c.pressure
+            } else {
+                0.0
+            };
+            active[c.node] = f64::from(u8::from(c.active)).max(active[c.node]);
+        }
+        data_array(&mut s, "contact_gap", 1, gap.into_iter());
+        data_array(&mut s, "contact_force", 1, force.into_iter());
+        data_array(&mut s, "contact_pressure", 1, pressure.into_iter());
+        data_array(&mut s, "contact_active", 1, active.into_iter());
+    }
     s.push_str("</PointData>\n<CellData>\n");
     for (name, pick) in [("strain", 0), ("stress", 1)] {
         let vals = res.states.iter().flat_map(|st| {

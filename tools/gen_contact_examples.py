@@ -1,0 +1,232 @@
+#!/usr/bin/env python3
+"""Generates the contact verification examples of examples/:
+  hertz_rigid_circle.in  rigid cylinder pressed into an elastic block (plane strain, N2S penalty)
+  hertz_cylinder.in      elastic cylinder cap on an elastic block (plane strain, N2S penalty)
+  flat_punch.in          rigid flat punch under a prescribed force (plane strain, N2S penalty)
+All are half models (x >= 0) with symmetry conditions on x = 0. Meshes are structured and graded:
+a fine zone of spacing h near the contact, then geometric growth."""
+
+
+def graded(length, h, fine, growth=1.15):
+    """Coordinates 0..length: spacing h up to `fine`, then growing by `growth`."""
+    xs = [0.0]
+    while xs[-1] < fine - 1e-12:
+        xs.append(min(xs[-1] + h, fine))
+    step = h
+    while xs[-1] < length - 1e-12:
+        step *= growth
+        nxt = xs[-1] + step
+        if length - nxt < step:
+            nxt = length
+        xs.append(min(nxt, length))
+    return xs
+
+
+class Mesh:
+    def __init__(self):
+        self.nodes = []  # (x, y)
+        self.elems = []  # (kind, nodes, extra)
+
+    def node(self, x, y):
+        self.nodes.append((x, y))
+        return len(self.nodes)
+
+    def block(self, xs, ys_of_x, kind="Quad1PlaneStrain"):
+        """Structured quads over columns xs; ys_of_x(i) gives the column's y list (bottom to top).
+        Returns the node id grid ids[i][j] and the element ids grid."""
+        ids = [[self.node(x, y) for y in ys_of_x(i)] for i, x in enumerate(xs)]
+        eids = []
+        for i in range(len(xs) - 1):
+            col = []
+            for j in range(len(ids[i]) - 1):
+                # OOFEM quad order: (x1,y1), (x0,y1), (x0,y0), (x1,y0); edge 1 = top (nodes 1-2).
+                n = [ids[i + 1][j + 1], ids[i][j + 1], ids[i][j], ids[i + 1][j]]
+                self.elems.append((kind, n, ""))
+                col.append(len(self.elems))
+            eids.append(col)
+        return ids, eids
+
+
+def header(out, desc, comment):
+    return [out, desc] + ["# " + l if l else "#" for l in comment.strip("\n").split("\n")]
+
+
+def write(path, lines):
+    open(path, "w").write("\n".join(lines) + "\n")
+
+
+def common_records(m, ncs_lines, mat_lines, bcs, funcs, sets, nsegs, seg_lines, analysis):
+    lines = [analysis, "domain PlaneStrain", "OutputManager tstep_all"]
+    lines.append(
+        f"ndofman {len(m.nodes)} nelem {len(m.elems)} ncrosssect {len(ncs_lines)} nmat {len(mat_lines)} "
+        f"nbc {len(bcs)} nic 0 nltf {len(funcs)} nset {len(sets)} ncontactseg {nsegs}"
+    )
+    for k, (x, y) in enumerate(m.nodes):
+        lines.append(f"node {k + 1} coords 2 {x:.10g} {y:.10g}")
+    for k, (kind, n, extra) in enumerate(m.elems):
+        lines.append(f"{kind} {k + 1} nodes {len(n)} " + " ".join(map(str, n)) + (" " + extra if extra else ""))
+    return lines + seg_lines + ncs_lines + mat_lines + bcs + funcs + sets
+
+
+def nodeset(name_id, ids):
+    return f"Set {name_id} nodes {len(ids)} " + " ".join(map(str, ids))
+
+
+# ---------------------------------------------------------------------------------------------
+E, NU = 1000.0, 0.3
+ESTAR_RIGID = E / (1 - NU * NU)
+
+
+def hertz_rigid():
+    R, h, fine, W, H, delta = 10.0, 0.04, 2.0, 12.0, 12.0, 0.045
+    m = Mesh()
+    xs = graded(W, h, fine)
+    depth = graded(H, h, 1.0)
+    ys = [-d for d in reversed(depth)]
+    ids, eids = m.block(xs, lambda i: ys)
+    ref = m.node(0.0, R)
+    top = [col[-1] for col in ids]
+    contact_nodes = [top[i] for i, x in enumerate(xs) if x <= 3.0]
+    sym = [ids[0][j] for j in range(len(ys))]
+    bottom = [col[0] for col in ids]
+    comment = f"""
+Hertz contact of a rigid cylinder on an elastic block, plane strain, half model (x >= 0).
+Rigid circle of radius R = {R:g} (circlecontactsegment moving with node {ref}) is pushed down by
+delta = {delta:g} into a block {W:g} wide and {H:g} deep, E = {E:g}, nu = {NU:g}, node-to-segment penalty
+contact on the top nodes with x <= 3. The block is fine (h = {h:g}) near the contact.
+Analytical solution (Hertz, rigid indenter, force F per unit thickness of the full cylinder):
+  E* = E/(1 - nu^2),  a = sqrt(4 F R/(pi E*)),  p0 = sqrt(F E*/(pi R)),  p(x) = p0 sqrt(1 - x^2/a^2)
+F is the computed indentation force: twice the reaction of node {ref} (half model).
+Run:  cargo run --release --example hertz -- examples/hertz_rigid_circle.in
+      (prints p0 and a against Hertz; `hertz run` solves and writes the results)
+"""
+    lines = header("hertz_rigid_circle.out", "Hertz: rigid cylinder on an elastic block (plane strain)", comment)
+    sets = [
+        f"Set 1 elementranges {{(1 {len(m.elems)})}}",
+        nodeset(2, sym),
+        nodeset(3, bottom),
+        nodeset(4, [ref]),
+    ]
+    bcs = [
+        "BoundaryCondition 1 loadTimeFunction 1 dofs 1 1 values 1 0.0 set 2",
+        "BoundaryCondition 2 loadTimeFunction 1 dofs 1 2 values 1 0.0 set 3",
+        f"BoundaryCondition 3 loadTimeFunction 1 dofs 2 1 2 values 2 0.0 {-delta:g} set 4",
+        f"n2spenaltycontact 4 loadTimeFunction 1 penalty {1e4 * E:g} nodeset {len(contact_nodes)} "
+        + " ".join(map(str, contact_nodes)) + " segmentset 1 1",
+    ]
+    lines += common_records(
+        m, ["SimpleCS 1 thick 1.0 material 1 set 1"], [f"IsoLE 1 d 0. E {E:g} n {NU:g} tAlpha 0."], bcs,
+        ["ConstantFunction 1 f(t) 1.0"], sets, 1,
+        [f"circlecontactsegment 1 centerpoint 2 0 {R:g} radius {R:g} node {ref}"],
+        "NonLinearStatic nsteps 1 controlmode 1 rtolf 1e-8 manrmsteps 1 maxiter 40",
+    )
+    write("examples/hertz_rigid_circle.in", lines)
+
+
+def hertz_cylinder():
+    R, h, fine, W, H, delta = 20.0, 0.02, 1.0, 8.0, 8.0, 0.022
+    Wc, Hc = 6.0, 6.0
+    m = Mesh()
+    xs = graded(W, h, fine)
+    depth = graded(H, h, 0.6)
+    ys = [-d for d in reversed(depth)]
+    bids, beids = m.block(xs, lambda i: ys)
+    btop_elems = [col[-1] for col in beids]
+    xc = graded(Wc, h, fine)
+    hc = graded(Hc, h, 0.6)
+
+    def cap_col(i):
+        yb = R - (R * R - xc[i] ** 2) ** 0.5
+        return [yb + t * (Hc - yb) / Hc for t in hc]
+
+    nb = len(m.elems)
+    cids, ceids = m.block(xc, cap_col)
+    cap_bottom = [col[0] for col in cids]
+    contact_nodes = [cap_bottom[i] for i, x in enumerate(xc) if x <= 1.5]
+    sym = [bids[0][j] for j in range(len(ys))] + [cids[0][j] for j in range(len(hc))]
+    bottom = [col[0] for col in bids]
+    cap_top = [col[-1] for col in cids]
+    comment = f"""
+Hertz contact of an elastic cylinder on an elastic block, plane strain, half model (x >= 0).
+The cylinder (radius R = {R:g}) is modelled by the cap of it within x <= {Wc:g}, whose flat top is
+pushed down by delta = {delta:g}; the block is {W:g} wide and {H:g} deep. Both E = {E:g}, nu = {NU:g}.
+Node-to-segment penalty contact: cylinder nodes with x <= 1.5 against the block's top edges.
+Analytical solution (Hertz, force F per unit thickness of the full cylinder):
+  1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2,  a = sqrt(4 F R/(pi E*)),  p0 = sqrt(F E*/(pi R))
+F is twice the sum of the reactions on the cap's top (half model).
+Run:  cargo run --release --example hertz -- examples/hertz_cylinder.in
+"""
+    lines = header("hertz_cylinder.out", "Hertz: elastic cylinder on an elastic block (plane strain)", comment)
+    sets = [
+        f"Set 1 elementranges {{(1 {nb})}}",
+        f"Set 2 elementranges {{({nb + 1} {len(m.elems)})}}",
+        nodeset(3, sym),
+        nodeset(4, bottom),
+        nodeset(5, cap_top),
+        f"Set 6 elementboundaries {2 * len(btop_elems)} " + " ".join(f"{e} 1" for e in btop_elems),
+    ]
+    bcs = [
+        "BoundaryCondition 1 loadTimeFunction 1 dofs 1 1 values 1 0.0 set 3",
+        "BoundaryCondition 2 loadTimeFunction 1 dofs 1 2 values 1 0.0 set 4",
+        f"BoundaryCondition 3 loadTimeFunction 1 dofs 1 2 values 1 {-delta:g} set 5",
+        f"n2spenaltycontact 4 loadTimeFunction 1 penalty {1e4 * E:g} nodeset {len(contact_nodes)} "
+        + " ".join(map(str, contact_nodes)) + " segmentset 1 1",
+    ]
+    lines += common_records(
+        m,
+        ["SimpleCS 1 thick 1.0 material 1 set 1", "SimpleCS 2 thick 1.0 material 2 set 2"],
+        [f"IsoLE 1 d 0. E {E:g} n {NU:g} tAlpha 0.", f"IsoLE 2 d 0. E {E:g} n {NU:g} tAlpha 0."],
+        bcs, ["ConstantFunction 1 f(t) 1.0"], sets, 1, ["linear2delementedgecontactsegment 1 edgeset 6"],
+        "NonLinearStatic nsteps 1 controlmode 1 rtolf 1e-8 manrmsteps 1 maxiter 40",
+    )
+    write("examples/hertz_cylinder.in", lines)
+
+
+def flat_punch():
+    a, h, W, H, F = 1.0, 0.025, 20.0, 20.0, 100.0
+    m = Mesh()
+    xs = graded(W, h, 1.5 * a)
+    depth = graded(H, h, 0.5)
+    ys = [-d for d in reversed(depth)]
+    ids, eids = m.block(xs, lambda i: ys)
+    ref = m.node(0.0, 1.0)
+    top = [col[-1] for col in ids]
+    contact_nodes = [top[i] for i, x in enumerate(xs) if x <= a + 1e-9]
+    sym = [ids[0][j] for j in range(len(ys))]
+    bottom = [col[0] for col in ids]
+    comment = f"""
+Rigid flat punch of half-width a = {a:g} pressed by a force F = {F:g} (per unit thickness, full punch) into
+an elastic block {2 * W:g} wide and {H:g} deep (half model x >= 0), E = {E:g}, nu = {NU:g}, plane strain.
+The punch is a rigid line (planecontactsegment moving with node {ref}, loaded by F/2); the block's
+top nodes with x <= a are the contact nodes (node-to-segment penalty, frictionless).
+Analytical solution (rigid flat punch on a half-space):
+  p(x) = F / (pi sqrt(a^2 - x^2)),  |x| < a
+Checks: the contact forces add up to F; p(x) within 5 % of the formula for |x| <= 0.8 a.
+Run:  cargo run --release --example flat_punch
+"""
+    lines = header("flat_punch.out", "Rigid flat punch on an elastic block (plane strain)", comment)
+    sets = [
+        f"Set 1 elementranges {{(1 {len(m.elems)})}}",
+        nodeset(2, sym),
+        nodeset(3, bottom),
+        nodeset(4, [ref]),
+    ]
+    bcs = [
+        "BoundaryCondition 1 loadTimeFunction 1 dofs 1 1 values 1 0.0 set 2",
+        "BoundaryCondition 2 loadTimeFunction 1 dofs 1 2 values 1 0.0 set 3",
+        "BoundaryCondition 3 loadTimeFunction 1 dofs 1 1 values 1 0.0 set 4",
+        f"NodalLoad 4 loadTimeFunction 1 dofs 2 1 2 components 2 0.0 {-F / 2:g} set 4",
+        f"n2spenaltycontact 5 loadTimeFunction 1 penalty {1e4 * E:g} nodeset {len(contact_nodes)} "
+        + " ".join(map(str, contact_nodes)) + " segmentset 1 1",
+    ]
+    lines += common_records(
+        m, ["SimpleCS 1 thick 1.0 material 1 set 1"], [f"IsoLE 1 d 0. E {E:g} n {NU:g} tAlpha 0."], bcs,
+        ["ConstantFunction 1 f(t) 1.0"], sets, 1, [f"planecontactsegment 1 point 2 0 0 normal 2 0 -1 node {ref}"],
+        "StaticStructural nsteps 1 rtolf 1e-8 manrmsteps 1 maxiter 40",
+    )
+    write("examples/flat_punch.in", lines)
+
+
+hertz_rigid()
+hertz_cylinder()
+flat_punch()
