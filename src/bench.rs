@@ -156,6 +156,112 @@ pub fn write_block_input(path: &Path, dim: usize, n: usize) -> Result<()> {
         .map_err(|e| Error::Output(format!("cannot write {}: {e}", path.display())))
 }
 
+/// Write the contact benchmark: a plane-strain block of `2n × n` unit quads whose bottom is pushed
+/// up by `delta` against a fixed rigid circle of radius `2n` touching the middle of its top, with
+/// node-to-segment penalty contact on all top nodes (spec issue: n = 200 gives 161k unknowns).
+pub fn write_contact_block_input(path: &Path, n: usize, delta: f64) -> Result<()> {
+    let (nx, ny) = (2 * n, n);
+    let id = |i: usize, j: usize| j * (nx + 1) + i + 1;
+    let mut s = String::new();
+    let _ = writeln!(s, "contact_block.out\ncontact benchmark block {nx}x{ny}\nStaticStructural nsteps 1 rtolf 1e-8 manrmsteps 1 maxiter 30");
+    let _ = writeln!(s, "domain PlaneStrain\nOutputManager");
+    let _ = writeln!(
+        s,
+        "ndofman {} nelem {} ncrosssect 1 nmat 1 nbc 2 nic 0 nltf 1 nset 2 ncontactseg 1",
+        (nx + 1) * (ny + 1),
+        nx * ny
+    );
+    for j in 0..=ny {
+        for i in 0..=nx {
+            let _ = writeln!(s, "node {} coords 2 {i} {j}", id(i, j));
+        }
+    }
+    let mut e = 0;
+    for j in 0..ny {
+        for i in 0..nx {
+            e += 1;
+            let _ = writeln!(
+                s,
+                "Quad1PlaneStrain {e} nodes 4 {} {} {} {}",
+                id(i + 1, j + 1),
+                id(i, j + 1),
+                id(i, j),
+                id(i + 1, j)
+            );
+        }
+    }
+    let r = nx as f64;
+    let _ = writeln!(
+        s,
+        "circlecontactsegment 1 centerpoint 2 {} {} radius {r}",
+        n as f64 * 2.0 / 2.0 * 1.0 + (nx as f64 / 2.0 - n as f64),
+        ny as f64 + r
+    );
+    let _ = writeln!(
+        s,
+        "SimpleCS 1 thick 1.0 material 1 set 1\nIsoLE 1 d 0. E {YOUNG} n {POISSON} tAlpha 0."
+    );
+    let _ = writeln!(
+        s,
+        "BoundaryCondition 1 loadTimeFunction 1 dofs 2 1 2 values 2 0.0 {delta} set 2"
+    );
+    let top: Vec<String> = (0..=nx).map(|i| id(i, ny).to_string()).collect();
+    let _ = writeln!(
+        s,
+        "n2spenaltycontact 2 loadTimeFunction 1 penalty {} nodeset {} {} segmentset 1 1",
+        1e3 * YOUNG,
+        top.len(),
+        top.join(" ")
+    );
+    let bottom: Vec<String> = (0..=nx).map(|i| id(i, 0).to_string()).collect();
+    let _ = writeln!(
+        s,
+        "ConstantFunction 1 f(t) 1.0\nSet 1 elementranges {{(1 {})}}",
+        nx * ny
+    );
+    let _ = writeln!(s, "Set 2 nodes {} {}", bottom.len(), bottom.join(" "));
+    std::fs::write(path, s)
+        .map_err(|e| Error::Output(format!("cannot write {}: {e}", path.display())))
+}
+
+/// Figures of the contact benchmark.
+#[derive(Debug, Clone, Default)]
+pub struct ContactBenchFigures {
+    pub unknowns: usize,
+    pub iterations: usize,
+    pub active: usize,
+    pub solve_s: f64,
+    pub residual_history: Vec<f64>,
+}
+
+/// Run the contact benchmark of size `n` (block `2n × n`).
+pub fn run_contact(n: usize) -> Result<ContactBenchFigures> {
+    let path = std::env::temp_dir().join(format!("hertz-cbench-{}-{n}.in", std::process::id()));
+    // Push by 1/40 of the block height: a contact zone of a few dozen nodes.
+    write_contact_block_input(&path, n, n as f64 / 40.0)?;
+    let read = read_model(&path);
+    let _ = std::fs::remove_file(&path);
+    let model = read?.model;
+    let mut f = ContactBenchFigures::default();
+    let t = Instant::now();
+    crate::solve::run_analysis(
+        &model,
+        &crate::solve::SolveParams {
+            log_steps: false,
+            ..Default::default()
+        },
+        |r| {
+            f.unknowns = r.dofs.n_free;
+            f.iterations = r.info.iterations;
+            f.active = r.contact.iter().filter(|c| c.active).count();
+            f.residual_history = r.info.residual_history.clone();
+            Ok(())
+        },
+    )?;
+    f.solve_s = t.elapsed().as_secs_f64();
+    Ok(f)
+}
+
 /// Figures of one bench run.
 #[derive(Debug, Clone, Default)]
 pub struct BenchFigures {
@@ -255,8 +361,13 @@ pub fn peak_rss_mb() -> f64 {
 /// CLI entry: `hertz bench [--dim 2|3] [--n N] [--ordering auto|amd|metis]`.
 pub fn main(args: &[String]) -> ExitCode {
     let (mut dim, mut n, mut ordering) = (2usize, 100usize, OrderingKind::Auto);
+    let mut contact = false;
     let mut it = args.iter();
     while let Some(a) = it.next() {
+        if a == "--contact" {
+            contact = true;
+            continue;
+        }
         let v = it.next().map(String::as_str);
         let ok = match (a.as_str(), v) {
             ("--dim", Some("2")) => {
@@ -285,9 +396,29 @@ pub fn main(args: &[String]) -> ExitCode {
             _ => false,
         };
         if !ok {
-            eprintln!("error: bench takes --dim 2|3, --n N (N >= 1), --ordering auto|amd|metis; got `{a}`");
+            eprintln!("error: bench takes --dim 2|3, --n N (N >= 1), --ordering auto|amd|metis, --contact; got `{a}`");
             return ExitCode::from(2);
         }
+    }
+    if contact {
+        return match run_contact(n) {
+            Ok(f) => {
+                println!(
+                    "contact block {}x{n}, rigid circle, node-to-segment penalty on the top nodes",
+                    2 * n
+                );
+                println!("unknowns           {:>12}", f.unknowns);
+                println!("Newton iterations  {:>12}", f.iterations);
+                println!("active contacts    {:>12}", f.active);
+                println!("solve (all steps)  {:>12.3} s", f.solve_s);
+                println!("residuals          {:?}", f.residual_history);
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::from(e.exit_code() as u8)
+            }
+        };
     }
     match run(dim, n, ordering) {
         Ok(f) => {

@@ -82,6 +82,8 @@ pub struct ContactSystem {
     edge_sides: Vec<Vec<f64>>,
     /// Constant of the active-set rule λ − c·g > 0 (stiffness scale).
     c: f64,
+    /// Bound of the curvature safeguard (force · ‖∇²g‖).
+    curvature_limit: f64,
     pub n_lambda: usize,
 }
 
@@ -209,12 +211,35 @@ impl ContactSystem {
             nsd,
             edge_sides,
             c,
+            curvature_limit: 0.1 * c,
             n_lambda: next_lambda - first_lambda,
         })
     }
 
     pub fn is_empty(&self) -> bool {
         self.slots.is_empty()
+    }
+
+    /// Set the bound of the curvature safeguard (see [`curvature_allowed`](Self::curvature_allowed));
+    /// `f64::INFINITY` always uses the exact tangent.
+    pub fn set_curvature_limit(&mut self, limit: f64) {
+        self.curvature_limit = limit;
+    }
+
+    /// Whether the curvature part of a node's tangent (force · ∇²g) is assembled. It is part of
+    /// the exact tangent, but far from the solution — a node deep inside a curved master — it is a
+    /// large negative stiffness that makes the tangent indefinite and the Newton step useless. It
+    /// is kept while force·‖∇²g‖ stays below a tenth of the stiffest material's modulus, which
+    /// always holds near convergence (force = p|g| with |g| small), so the tangent is exact where
+    /// quadratic convergence matters.
+    fn curvature_allowed(&self, force: f64, g: &Jet) -> bool {
+        let mut h2 = 0.0;
+        for i in 0..g.n {
+            for j in 0..g.n {
+                h2 += g.h[i][j] * g.h[i][j];
+            }
+        }
+        force * h2.sqrt() <= self.curvature_limit
     }
 
     /// Evaluate every slot at the primary state `u`: local contributions and states.
@@ -547,8 +572,13 @@ impl ContactSystem {
                 if let Some(g) = gap.filter(|g| g.v <= 0.0) {
                     out.codes = codes;
                     out.fe = (0..m).map(|i| p * g.v * g.g[i]).collect();
+                    let curv = if self.curvature_allowed(p * g.v.abs(), &g) {
+                        1.0
+                    } else {
+                        0.0
+                    };
                     out.ke = (0..m * m)
-                        .map(|k| p * (g.g[k / m] * g.g[k % m] + g.v * g.h[k / m][k % m]))
+                        .map(|k| p * (g.g[k / m] * g.g[k % m] + curv * g.v * g.h[k / m][k % m]))
                         .collect();
                     state.force = -p * g.v;
                     state.active = g.v < 0.0;
@@ -569,8 +599,10 @@ impl ContactSystem {
                         out.fe[i] = -lambda * g.g[i];
                         out.ke[i * mm + m] = -g.g[i];
                         out.ke[m * mm + i] = -g.g[i];
-                        for j in 0..m {
-                            out.ke[i * mm + j] = -lambda * g.h[i][j];
+                        if self.curvature_allowed(lambda.abs(), &g) {
+                            for j in 0..m {
+                                out.ke[i * mm + j] = -lambda * g.h[i][j];
+                            }
                         }
                     }
                     out.fe[m] = -g.v;
