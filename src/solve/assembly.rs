@@ -78,6 +78,10 @@ pub struct Assembler<'m> {
     elasticities: Vec<Elasticity>,
     /// Free-equation lists of the contact pairs, included in the pattern.
     couplings: Vec<Vec<usize>>,
+    /// No element has `nlgeo`: element stiffnesses are constant.
+    small_strain: bool,
+    /// Element stiffness values on the current pattern when no element has `nlgeo` (constant).
+    linear_k: std::sync::Mutex<Option<Vec<f64>>>,
 }
 
 const CHUNK: usize = 2048;
@@ -146,6 +150,8 @@ impl<'m> Assembler<'m> {
             rules,
             elasticities,
             couplings: Vec::new(),
+            linear_k: std::sync::Mutex::new(None),
+            small_strain: !model.elements.iter().any(|e| e.nlgeo),
         };
         a.pattern = a.build_pattern();
         Ok(a)
@@ -184,6 +190,7 @@ impl<'m> Assembler<'m> {
         }
         self.couplings = norm;
         self.pattern = self.build_pattern();
+        *self.linear_k.lock().expect("not poisoned") = None;
         true
     }
 
@@ -342,6 +349,19 @@ impl<'m> Assembler<'m> {
         };
         let mut states = want_states.then(|| Vec::with_capacity(self.elems.len()));
         let need_k = want_k || dup.is_some();
+        // Small strain: the element stiffness is constant, reuse it on this pattern.
+        let cacheable = want_k && dup.is_none() && self.small_strain;
+        if cacheable {
+            if let Some(k) = self.linear_k.lock().expect("not poisoned").as_ref() {
+                sink.k_values = Some(k.clone());
+            }
+        }
+        let from_cache = cacheable
+            && sink
+                .k_values
+                .as_ref()
+                .is_some_and(|k| k.iter().any(|v| *v != 0.0));
+        let elem_k = need_k && !from_cache;
         let n_el = self.elems.len();
         let mut start = 0;
         while start < n_el {
@@ -361,14 +381,14 @@ impl<'m> Assembler<'m> {
                         let off = buf.values.len();
                         buf.offsets.push(off);
                         buf.values
-                            .resize(off + nd + if need_k { nd * nd } else { 0 }, 0.0);
+                            .resize(off + nd + if elem_k { nd * nd } else { 0 }, 0.0);
                         let (fe, ke) = buf.values[off..].split_at_mut(nd);
                         let mut st = Vec::new();
                         self.element(
                             e,
                             u,
                             fe,
-                            need_k.then_some(ke),
+                            elem_k.then_some(ke),
                             want_states.then_some(&mut st),
                         )?;
                         buf.states.push(st);
@@ -385,7 +405,7 @@ impl<'m> Assembler<'m> {
                     let ke = &buf.values[buf.offsets[k] + nd..];
                     let info = &self.elems[e];
                     let loc = &self.locs[info.loc_start..info.loc_start + info.ndof];
-                    self.scatter(loc, fe, need_k.then_some(ke), &mut sink, true);
+                    self.scatter(loc, fe, elem_k.then_some(ke), &mut sink, true);
                     if let Some(s) = states.as_mut() {
                         s.push(st);
                     }
@@ -393,6 +413,9 @@ impl<'m> Assembler<'m> {
                 }
             }
             start = end;
+        }
+        if cacheable && !from_cache {
+            *self.linear_k.lock().expect("not poisoned") = sink.k_values.clone();
         }
         for c in extra {
             if !c.fe.is_empty() {

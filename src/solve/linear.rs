@@ -190,6 +190,38 @@ impl LinearSolver {
         Ok(())
     }
 
+    /// Solve for `ncols` right-hand sides stored column-major in `data` (n × ncols).
+    pub fn solve_columns(&mut self, data: &mut [f64], ncols: usize) -> Result<()> {
+        if ncols == 0 {
+            return Ok(());
+        }
+        let n = data.len() / ncols;
+        let m = MatMut::from_column_major_slice_mut(data, n, ncols);
+        match &self.factor {
+            Factor::None => return Err(Error::Solve("solve called before factorize".into())),
+            Factor::Llt(values) => {
+                let symbolic = self.symbolic.as_ref().expect("factorized");
+                let mut mem = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(ncols, par()));
+                LltRef::new(symbolic, values).solve_in_place_with_conj(
+                    Conj::No,
+                    m,
+                    par(),
+                    MemStack::new(&mut mem),
+                );
+            }
+            Factor::Lu(lu) => lu.solve_in_place(m),
+        }
+        if data.iter().any(|v| !v.is_finite()) {
+            return Err(Error::Singular("the stiffness matrix is singular".into()));
+        }
+        Ok(())
+    }
+
+    /// Whether the last factorization was a Cholesky factorization (the matrix is SPD).
+    pub fn is_cholesky(&self) -> bool {
+        matches!(self.factor, Factor::Llt(_))
+    }
+
     /// Forget the symbolic analysis (the pattern changed).
     pub fn reset(&mut self) {
         self.symbolic = None;
