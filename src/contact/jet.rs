@@ -159,6 +159,14 @@ impl Mul<f64> for Jet {
     }
 }
 
+/// The unknowns `vals` as jets: q_i = vals[i] with ∂q_i/∂q_j = δ_ij.
+pub fn seed(vals: &[f64]) -> Vec<Jet> {
+    vals.iter()
+        .enumerate()
+        .map(|(i, &v)| Jet::variable(v, i, vals.len()))
+        .collect()
+}
+
 /// Dot product of two small vectors of jets.
 pub fn dot(a: &[Jet], b: &[Jet]) -> Jet {
     let mut s = a[0] * b[0];

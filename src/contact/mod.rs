@@ -447,12 +447,7 @@ impl ContactSystem {
             Partner::None => None,
             Partner::Node(m) => {
                 push_node(m, &mut codes, &mut vals)?;
-                let nv = vals.len();
-                let q: Vec<Jet> = vals
-                    .iter()
-                    .enumerate()
-                    .map(|(i, &v)| Jet::variable(v, i, nv))
-                    .collect();
+                let q = jet::seed(&vals);
                 let n = slot.master.expect("node partner").1;
                 let dvec: Vec<Jet> = (0..d).map(|i| q[i] - q[d + i]).collect();
                 Some(jet::dot_const(&dvec, &n[..d]))
@@ -467,12 +462,7 @@ impl ContactSystem {
                 for &a in local {
                     push_node(el.nodes[a], &mut codes, &mut vals)?;
                 }
-                let nv = vals.len();
-                let q: Vec<Jet> = vals
-                    .iter()
-                    .enumerate()
-                    .map(|(i, &v)| Jet::variable(v, i, nv))
-                    .collect();
+                let q = jet::seed(&vals);
                 let side = self.edge_sides[g][k];
                 let xsj = [q[0], q[1]];
                 let xn = |a: usize| [q[2 + 2 * a], q[3 + 2 * a]];
@@ -523,12 +513,8 @@ impl ContactSystem {
                 if let Some(n) = node {
                     push_node(n, &mut codes, &mut vals)?;
                 }
+                let q = jet::seed(&vals);
                 let nv = vals.len();
-                let q: Vec<Jet> = vals
-                    .iter()
-                    .enumerate()
-                    .map(|(i, &v)| Jet::variable(v, i, nv))
-                    .collect();
                 let xsj = &q[..d];
                 // Origin of the rigid body: fixed, or the reference point plus the node's motion.
                 let o: Vec<Jet> = (0..d)
