@@ -10,7 +10,6 @@
 use super::assembly::{Assembler, Evaluation};
 use super::dofs::DofMap;
 use super::linear::{LinearSolver, SolverStats};
-use super::lowrank::LowRankSolver;
 use crate::contact::{ContactSystem, Contribution, SlotState};
 use crate::error::{Error, Result};
 use crate::model::{AnalysisKind, Model};
@@ -105,10 +104,7 @@ pub fn run_analysis(
             .collect()
     };
     let a = &model.analysis;
-    let small_strain = !model.elements.iter().any(|e| e.nlgeo);
-    let linear = small_strain && contact.is_empty();
-    // Linear elastic bodies in penalty contact: a constant K_el plus low-rank contact terms.
-    let lowrank_applies = small_strain && !contact.is_empty() && dofs.n_lambda == 0;
+    let linear = !model.elements.iter().any(|e| e.nlgeo) && contact.is_empty();
     let mut solver = LinearSolver::default();
     solver.groups = Some(dofs.free_eq_nodes());
     let mut ctx = NewtonContext {
@@ -119,11 +115,6 @@ pub fn run_analysis(
         factor_valid: false,
         linear,
         progress: params.log_steps && std::io::stderr().is_terminal(),
-        lowrank: if lowrank_applies {
-            LowRankState::Pending
-        } else {
-            LowRankState::Off
-        },
     };
     let mut u = vec![0.0; np];
     let mut applied = vec![0.0; np];
@@ -268,22 +259,11 @@ struct NewtonContext<'a> {
     linear: bool,
     /// Show the iteration count on a terminal (overwritten by the step's log line).
     progress: bool,
-    /// Low-rank contact updates of a constant elastic factorization (see [`LowRankSolver`]).
-    lowrank: LowRankState,
-}
-
-/// Whether the Newton systems are solved by low-rank contact updates.
-enum LowRankState {
-    /// Not applicable: large deformation, multipliers, or no contact.
-    Off,
-    /// Applicable; K_el not factorized yet.
-    Pending,
-    Ready(Box<LowRankSolver>),
 }
 
 impl NewtonContext<'_> {
-    /// Elements and contact at state `u`, with the contact contributions. Outside the low-rank
-    /// mode, a change of the contact couplings rebuilds the sparse pattern and forgets the
+    /// Elements and contact at state `u`, with the contact contributions. When a tangent is
+    /// wanted, a change of the contact couplings rebuilds the sparse pattern and forgets the
     /// symbolic factorization.
     fn evaluate(
         &mut self,
@@ -322,52 +302,6 @@ impl NewtonContext<'_> {
         Ok(())
     }
 
-    /// Make the low-rank solver ready if it applies: factorize the elastic stiffness alone once.
-    /// If K_el is singular on its own (a body held only by contact) the mode is switched off.
-    fn prepare_lowrank(&mut self, u: &[f64]) -> Result<()> {
-        if !matches!(self.lowrank, LowRankState::Pending) {
-            return Ok(());
-        }
-        let ev = self.asm.evaluate(u, true, false, None, &[])?;
-        let mut base = LinearSolver::default();
-        base.groups = self.solver.groups.clone();
-        let ok = base.factorize(
-            &self.asm.pattern,
-            ev.k_values.as_ref().expect("requested"),
-            true,
-            &|_| String::new(),
-        );
-        self.lowrank = match ok {
-            Ok(()) => LowRankState::Ready(Box::new(LowRankSolver::new(base, self.dofs.n_free))),
-            Err(_) => LowRankState::Off,
-        };
-        Ok(())
-    }
-
-    /// Solve the Newton system at state `u` for `rhs` (in place): low-rank update when it
-    /// applies, else assemble (if `refresh`) and factorize the tangent.
-    fn solve_tangent(
-        &mut self,
-        u: &[f64],
-        rhs: &mut [f64],
-        contribs: &[Contribution],
-        refresh: bool,
-    ) -> Result<()> {
-        self.prepare_lowrank(u)?;
-        if let LowRankState::Ready(lr) = &mut self.lowrank {
-            if lr.solve(rhs, contribs, self.dofs)? {
-                return Ok(());
-            }
-            // The update would cost more than a factorization: factorize this iteration.
-            self.factor_valid = false;
-        }
-        if refresh || !self.factor_valid {
-            let (ev, _, _) = self.evaluate(u, true, false, None)?;
-            self.factorize(&ev)?;
-        }
-        self.solver.solve_in_place(rhs)
-    }
-
     /// Newton iterations towards external forces `f_ext` and prescribed values `up`.
     /// Ok(false) = no convergence within maxiter.
     fn newton(
@@ -386,14 +320,13 @@ impl NewtonContext<'_> {
         let dup: Vec<f64> = (0..up.len()).map(|i| up[i] - u[nf + i]).collect();
         if a.initialguess && dup.iter().any(|&d| d != 0.0) {
             // Tangent predictor: K_ff Δu_f = −K_fp Δu_p at the current state.
-            let (ev, _, contribs) = self.evaluate(u, false, false, Some(&dup))?;
+            let need_k = !self.factor_valid || !self.contact.is_empty();
+            let (ev, _, _) = self.evaluate(u, need_k, false, Some(&dup))?;
+            if need_k {
+                self.factorize(&ev)?;
+            }
             let mut rhs: Vec<f64> = ev.k_fp_dup.expect("requested").iter().map(|v| -v).collect();
-            self.solve_tangent(
-                u,
-                &mut rhs,
-                &contribs,
-                !self.factor_valid || !self.contact.is_empty(),
-            )?;
+            self.solver.solve_in_place(&mut rhs)?;
             for i in 0..nf {
                 u[i] += rhs[i];
             }
@@ -406,7 +339,7 @@ impl NewtonContext<'_> {
                 && (it == 0
                     || !self.contact.is_empty()
                     || a.manrmsteps.is_some_and(|k| it % k == 0));
-            let (ev, _, contribs) = self.evaluate(u, false, false, None)?;
+            let (ev, _, _) = self.evaluate(u, refresh, false, None)?;
             let mut rhs: Vec<f64> = (0..nf).map(|i| f_ext[i] - ev.f_int[i]).collect();
             let (force_err, converged) = self.check(&rhs, f_ext, &ev.ebe, &du, u, a, it);
             info.residual_history.push(force_err);
@@ -424,7 +357,10 @@ impl NewtonContext<'_> {
             if it == a.maxiter {
                 break;
             }
-            self.solve_tangent(u, &mut rhs, &contribs, refresh)?;
+            if refresh {
+                self.factorize(&ev)?;
+            }
+            self.solver.solve_in_place(&mut rhs)?;
             for i in 0..nf {
                 u[i] += rhs[i];
             }

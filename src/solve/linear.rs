@@ -40,6 +40,8 @@ pub struct LinearSolver {
     /// Node of every equation (lets METIS order the node graph).
     pub groups: Option<Vec<usize>>,
     symbolic: Option<SymbolicCholesky<usize>>,
+    /// Parallelism chosen with the symbolic analysis.
+    par: Par,
     factor: Factor,
     pub stats: SolverStats,
 }
@@ -50,14 +52,21 @@ impl Default for LinearSolver {
             ordering: OrderingKind::Auto,
             groups: None,
             symbolic: None,
+            par: Par::Seq,
             factor: Factor::None,
             stats: SolverStats::default(),
         }
     }
 }
 
-fn par() -> Par {
-    faer::get_global_parallelism()
+/// Parallelism for a pattern: faer's parallel supernodal kernels pay off on 3D-like patterns with
+/// large supernodes; on 2D patterns the sequential factorization is faster (BENCHMARKS.md).
+fn par_for(pattern: &Pattern) -> Par {
+    if pattern.nnz() as f64 / pattern.n.max(1) as f64 > super::ordering::DENSE_PATTERN_PER_COLUMN {
+        faer::get_global_parallelism()
+    } else {
+        Par::Seq
+    }
 }
 
 impl LinearSolver {
@@ -91,6 +100,7 @@ impl LinearSolver {
             self.stats.symbolic_seconds = t.elapsed().as_secs_f64();
             self.stats.factor_nnz = s.len_val();
             self.symbolic = Some(s);
+            self.par = par_for(pattern);
         }
         let symbolic = self.symbolic.as_ref().expect("set above");
         let mat = SparseColMatRef::new(sym, values);
@@ -100,7 +110,7 @@ impl LinearSolver {
             _ => vec![0.0; symbolic.len_val()],
         };
         let mut mem = MemBuffer::try_new(
-            symbolic.factorize_numeric_llt_scratch::<f64>(par(), Default::default()),
+            symbolic.factorize_numeric_llt_scratch::<f64>(self.par, Default::default()),
         )
         .map_err(|_| Error::Solve("out of memory for the factorization workspace".into()))?;
         let llt = symbolic.factorize_numeric_llt::<f64>(
@@ -108,7 +118,7 @@ impl LinearSolver {
             mat,
             Side::Upper,
             Default::default(),
-            par(),
+            self.par,
             MemStack::new(&mut mem),
             Default::default(),
         );
@@ -171,11 +181,11 @@ impl LinearSolver {
             Factor::None => return Err(Error::Solve("solve called before factorize".into())),
             Factor::Llt(values) => {
                 let symbolic = self.symbolic.as_ref().expect("factorized");
-                let mut mem = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, par()));
+                let mut mem = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, self.par));
                 LltRef::new(symbolic, values).solve_in_place_with_conj(
                     Conj::No,
                     m,
-                    par(),
+                    self.par,
                     MemStack::new(&mut mem),
                 );
             }
@@ -188,38 +198,6 @@ impl LinearSolver {
             ));
         }
         Ok(())
-    }
-
-    /// Solve for `ncols` right-hand sides stored column-major in `data` (n × ncols).
-    pub fn solve_columns(&mut self, data: &mut [f64], ncols: usize) -> Result<()> {
-        if ncols == 0 {
-            return Ok(());
-        }
-        let n = data.len() / ncols;
-        let m = MatMut::from_column_major_slice_mut(data, n, ncols);
-        match &self.factor {
-            Factor::None => return Err(Error::Solve("solve called before factorize".into())),
-            Factor::Llt(values) => {
-                let symbolic = self.symbolic.as_ref().expect("factorized");
-                let mut mem = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(ncols, par()));
-                LltRef::new(symbolic, values).solve_in_place_with_conj(
-                    Conj::No,
-                    m,
-                    par(),
-                    MemStack::new(&mut mem),
-                );
-            }
-            Factor::Lu(lu) => lu.solve_in_place(m),
-        }
-        if data.iter().any(|v| !v.is_finite()) {
-            return Err(Error::Singular("the stiffness matrix is singular".into()));
-        }
-        Ok(())
-    }
-
-    /// Whether the last factorization was a Cholesky factorization (the matrix is SPD).
-    pub fn is_cholesky(&self) -> bool {
-        matches!(self.factor, Factor::Llt(_))
     }
 
     /// Forget the symbolic analysis (the pattern changed).

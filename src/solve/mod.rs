@@ -4,7 +4,6 @@ pub mod analysis;
 pub mod assembly;
 pub mod dofs;
 pub mod linear;
-pub mod lowrank;
 pub mod ordering;
 
 pub use analysis::{run_analysis, SolveParams, StepInfo, StepResult};

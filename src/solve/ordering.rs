@@ -17,6 +17,9 @@ pub enum OrderingKind {
     Metis,
 }
 
+/// Upper-triangle nonzeros per column above which a pattern counts as 3D-like.
+pub const DENSE_PATTERN_PER_COLUMN: f64 = 20.0;
+
 /// 3D-like systems at least this large use METIS under `Auto`.
 pub const AUTO_METIS_MIN: usize = 20_000;
 
@@ -39,7 +42,9 @@ pub fn compute(
         OrderingKind::Metis => true,
         // Nested dissection pays off on 3D-like patterns (many nonzeros per column); on 2D
         // patterns AMD gives a faster factorization up to 10^6 unknowns (BENCHMARKS.md).
-        OrderingKind::Auto => n >= AUTO_METIS_MIN && pattern.nnz() as f64 / n.max(1) as f64 > 20.0,
+        OrderingKind::Auto => {
+            n >= AUTO_METIS_MIN && pattern.nnz() as f64 / n.max(1) as f64 > DENSE_PATTERN_PER_COLUMN
+        }
     };
     if use_metis && n > 1 {
         metis(pattern, groups)
