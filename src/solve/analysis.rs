@@ -10,7 +10,7 @@
 use super::assembly::{Assembler, Evaluation};
 use super::dofs::DofMap;
 use super::linear::{LinearSolver, SolverStats};
-use crate::contact::{ContactSystem, Contribution, SlotState};
+use crate::contact::{ContactSystem, Contribution, Partner, SlotState};
 use crate::error::{Error, Result};
 use crate::model::{AnalysisKind, Model};
 use crate::output::outfile::sci;
@@ -115,6 +115,7 @@ pub fn run_analysis(
         factor_valid: false,
         linear,
         progress: params.log_steps && std::io::stderr().is_terminal(),
+        factored_contact: None,
     };
     let mut u = vec![0.0; np];
     let mut applied = vec![0.0; np];
@@ -259,6 +260,8 @@ struct NewtonContext<'a> {
     linear: bool,
     /// Show the iteration count on a terminal (overwritten by the step's log line).
     progress: bool,
+    /// Contact state (partner, active) of every contact node at the last factorization.
+    factored_contact: Option<Vec<(Partner, bool)>>,
 }
 
 impl NewtonContext<'_> {
@@ -273,6 +276,19 @@ impl NewtonContext<'_> {
         dup: Option<&[f64]>,
     ) -> Result<(Evaluation, Vec<SlotState>, Vec<Contribution>)> {
         let (contribs, states) = self.contact.evaluate(self.asm.model, self.dofs, u)?;
+        let ev = self.evaluate_with_contact(u, want_k, want_states, dup, &contribs)?;
+        Ok((ev, states, contribs))
+    }
+
+    /// The element loop plus already evaluated contact contributions.
+    fn evaluate_with_contact(
+        &mut self,
+        u: &[f64],
+        want_k: bool,
+        want_states: bool,
+        dup: Option<&[f64]>,
+        contribs: &[Contribution],
+    ) -> Result<Evaluation> {
         if want_k && !self.contact.is_empty() {
             let couplings: Vec<Vec<usize>> = contribs.iter().map(|c| c.codes.clone()).collect();
             if self.asm.set_couplings(&couplings) {
@@ -280,8 +296,7 @@ impl NewtonContext<'_> {
                 self.factor_valid = false;
             }
         }
-        let ev = self.asm.evaluate(u, want_k, want_states, dup, &contribs)?;
-        Ok((ev, states, contribs))
+        self.asm.evaluate(u, want_k, want_states, dup, contribs)
     }
 
     fn factorize(&mut self, ev: &Evaluation) -> Result<()> {
@@ -333,13 +348,13 @@ impl NewtonContext<'_> {
         }
         u[nf..].copy_from_slice(up);
         let mut du = vec![0.0; nf];
+        let start = info.residual_history.len();
+        let has_contact = !self.contact.is_empty();
         for it in 0..=a.maxiter {
-            // Contact changes the tangent from one iteration to the next: always full Newton.
-            let refresh = !self.factor_valid
-                && (it == 0
-                    || !self.contact.is_empty()
-                    || a.manrmsteps.is_some_and(|k| it % k == 0));
-            let (ev, _, _) = self.evaluate(u, refresh, false, None)?;
+            let (contribs, states) = self.contact.evaluate(self.asm.model, self.dofs, u)?;
+            let want_k = !self.factor_valid
+                && (it == 0 || has_contact || a.manrmsteps.is_some_and(|k| it % k == 0));
+            let ev = self.evaluate_with_contact(u, want_k, false, None, &contribs)?;
             let mut rhs: Vec<f64> = (0..nf).map(|i| f_ext[i] - ev.f_int[i]).collect();
             let (force_err, converged) = self.check(&rhs, f_ext, &ev.ebe, &du, u, a, it);
             info.residual_history.push(force_err);
@@ -357,6 +372,22 @@ impl NewtonContext<'_> {
             if it == a.maxiter {
                 break;
             }
+            // With contact, hertz chooses the iteration (manrmsteps does not apply): full Newton
+            // while the contact state (pairings, active set) changes or the residual falls less
+            // than tenfold; once it is settled and contracting, the tangent has barely moved and
+            // the factorization is reused (a chord step: one solve instead of a factorization).
+            let refresh = if has_contact {
+                let signature: Vec<(Partner, bool)> = states.iter().map(|s| (s.partner, s.active)).collect();
+                let hist = &info.residual_history[start..];
+                let contracting = hist.len() >= 2 && hist[hist.len() - 1] <= 0.1 * hist[hist.len() - 2];
+                let refresh = it == 0 || self.factored_contact.as_ref() != Some(&signature) || !contracting;
+                if refresh {
+                    self.factored_contact = Some(signature);
+                }
+                refresh
+            } else {
+                want_k
+            };
             if refresh {
                 self.factorize(&ev)?;
             }
