@@ -122,6 +122,27 @@ impl ContactSystem {
         out
     }
 
+    /// Every node whose DOFs a contact contribution can touch: contact nodes, masters, the nodes of
+    /// all edge segments and the reference nodes of rigid segments.
+    pub fn candidate_nodes(model: &Model) -> Vec<usize> {
+        let mut out = Self::nodes_needing_dofs(model);
+        for s in &model.segments {
+            if let SegmentKind::Edges { edges } = &s.kind {
+                for &(e, b) in edges {
+                    let el = &model.elements[e];
+                    out.extend(
+                        el.etype.shape().boundaries()[b - 1]
+                            .iter()
+                            .map(|&a| el.nodes[a]),
+                    );
+                }
+            }
+        }
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+
     /// Build the slots; `first_lambda` is the free-equation index of the first multiplier.
     pub fn new(model: &Model, first_lambda: usize) -> Result<ContactSystem> {
         let nsd = model.domain.nsd();

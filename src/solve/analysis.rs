@@ -8,6 +8,7 @@
 //! interpolated linearly); after `max_cutbacks` halvings the run stops with an error.
 
 use super::assembly::{Assembler, Evaluation};
+use super::condensed::CondensedContact;
 use super::dofs::DofMap;
 use super::linear::{LinearSolver, SolverStats};
 use crate::contact::{ContactSystem, Contribution, Partner, SlotState};
@@ -104,7 +105,27 @@ pub fn run_analysis(
             .collect()
     };
     let a = &model.analysis;
-    let linear = !model.elements.iter().any(|e| e.nlgeo) && contact.is_empty();
+    let small_strain = !model.elements.iter().any(|e| e.nlgeo);
+    let linear = small_strain && contact.is_empty();
+    // Linear elastic bodies in penalty contact: condense the Newton systems on the contact DOFs.
+    let condensed = if small_strain && !contact.is_empty() && dofs.n_lambda == 0 {
+        let mut eqs: Vec<usize> = ContactSystem::candidate_nodes(model)
+            .into_iter()
+            .flat_map(|n| {
+                dofs.node_dofs[n]
+                    .iter()
+                    .map(|&(_, c)| c)
+                    .collect::<Vec<_>>()
+            })
+            .flat_map(|c| dofs.entries(c).map(|(p, _)| p).collect::<Vec<_>>())
+            .filter(|&p| p < dofs.n_free)
+            .collect();
+        eqs.sort_unstable();
+        eqs.dedup();
+        Condensed::Pending(eqs)
+    } else {
+        Condensed::Off
+    };
     let mut solver = LinearSolver::default();
     solver.groups = Some(dofs.free_eq_nodes());
     let mut ctx = NewtonContext {
@@ -116,6 +137,7 @@ pub fn run_analysis(
         linear,
         progress: params.log_steps && std::io::stderr().is_terminal(),
         factored_contact: None,
+        condensed,
     };
     let mut u = vec![0.0; np];
     let mut applied = vec![0.0; np];
@@ -262,6 +284,16 @@ struct NewtonContext<'a> {
     progress: bool,
     /// Contact state (partner, active) of every contact node at the last factorization.
     factored_contact: Option<Vec<(Partner, bool)>>,
+    condensed: Condensed,
+}
+
+/// Whether Newton systems are solved condensed on the contact DOFs (see [`CondensedContact`]).
+enum Condensed {
+    /// Not applicable: large deformation, multipliers, no contact, or K_el singular alone.
+    Off,
+    /// Applicable; K_el is factorized at the first solve. Holds the candidate equations.
+    Pending(Vec<usize>),
+    Ready(Box<CondensedContact>),
 }
 
 impl NewtonContext<'_> {
@@ -317,6 +349,34 @@ impl NewtonContext<'_> {
         Ok(())
     }
 
+    /// Solve the Newton system condensed on the contact DOFs, if that mode applies; Ok(false) when
+    /// the caller must factorize the full tangent instead.
+    fn solve_condensed(
+        &mut self,
+        u: &[f64],
+        rhs: &mut [f64],
+        contribs: &[Contribution],
+    ) -> Result<bool> {
+        if let Condensed::Pending(eqs) = &self.condensed {
+            let eqs = eqs.clone();
+            let ev = self.asm.evaluate(u, true, false, None, &[])?;
+            let k = ev.k_values.as_ref().expect("requested");
+            self.condensed = match CondensedContact::new(
+                &self.asm.pattern,
+                k,
+                eqs,
+                self.solver.groups.clone(),
+            ) {
+                Some(c) => Condensed::Ready(Box::new(c)),
+                None => Condensed::Off,
+            };
+        }
+        match &mut self.condensed {
+            Condensed::Ready(c) => c.solve(rhs, contribs, self.dofs),
+            _ => Ok(false),
+        }
+    }
+
     /// Newton iterations towards external forces `f_ext` and prescribed values `up`.
     /// Ok(false) = no convergence within maxiter.
     fn newton(
@@ -335,13 +395,25 @@ impl NewtonContext<'_> {
         let dup: Vec<f64> = (0..up.len()).map(|i| up[i] - u[nf + i]).collect();
         if a.initialguess && dup.iter().any(|&d| d != 0.0) {
             // Tangent predictor: K_ff Δu_f = −K_fp Δu_p at the current state.
-            let need_k = !self.factor_valid || !self.contact.is_empty();
-            let (ev, _, _) = self.evaluate(u, need_k, false, Some(&dup))?;
-            if need_k {
-                self.factorize(&ev)?;
+            let condensed = !matches!(self.condensed, Condensed::Off);
+            let need_k = !condensed && (!self.factor_valid || !self.contact.is_empty());
+            let (ev, _, contribs) = self.evaluate(u, need_k, false, Some(&dup))?;
+            let mut rhs: Vec<f64> = ev
+                .k_fp_dup
+                .as_ref()
+                .expect("requested")
+                .iter()
+                .map(|v| -v)
+                .collect();
+            if !(condensed && self.solve_condensed(u, &mut rhs, &contribs)?) {
+                if !need_k || condensed {
+                    let (ev, _, _) = self.evaluate(u, true, false, None)?;
+                    self.factorize(&ev)?;
+                } else {
+                    self.factorize(&ev)?;
+                }
+                self.solver.solve_in_place(&mut rhs)?;
             }
-            let mut rhs: Vec<f64> = ev.k_fp_dup.expect("requested").iter().map(|v| -v).collect();
-            self.solver.solve_in_place(&mut rhs)?;
             for i in 0..nf {
                 u[i] += rhs[i];
             }
@@ -352,7 +424,9 @@ impl NewtonContext<'_> {
         let has_contact = !self.contact.is_empty();
         for it in 0..=a.maxiter {
             let (contribs, states) = self.contact.evaluate(self.asm.model, self.dofs, u)?;
-            let want_k = !self.factor_valid
+            let condensed = !matches!(self.condensed, Condensed::Off);
+            let want_k = !condensed
+                && !self.factor_valid
                 && (it == 0 || has_contact || a.manrmsteps.is_some_and(|k| it % k == 0));
             let ev = self.evaluate_with_contact(u, want_k, false, None, &contribs)?;
             let mut rhs: Vec<f64> = (0..nf).map(|i| f_ext[i] - ev.f_int[i]).collect();
@@ -377,10 +451,13 @@ impl NewtonContext<'_> {
             // than tenfold; once it is settled and contracting, the tangent has barely moved and
             // the factorization is reused (a chord step: one solve instead of a factorization).
             let refresh = if has_contact {
-                let signature: Vec<(Partner, bool)> = states.iter().map(|s| (s.partner, s.active)).collect();
+                let signature: Vec<(Partner, bool)> =
+                    states.iter().map(|s| (s.partner, s.active)).collect();
                 let hist = &info.residual_history[start..];
-                let contracting = hist.len() >= 2 && hist[hist.len() - 1] <= 0.1 * hist[hist.len() - 2];
-                let refresh = it == 0 || self.factored_contact.as_ref() != Some(&signature) || !contracting;
+                let contracting =
+                    hist.len() >= 2 && hist[hist.len() - 1] <= 0.1 * hist[hist.len() - 2];
+                let refresh =
+                    it == 0 || self.factored_contact.as_ref() != Some(&signature) || !contracting;
                 if refresh {
                     self.factored_contact = Some(signature);
                 }
@@ -388,10 +465,16 @@ impl NewtonContext<'_> {
             } else {
                 want_k
             };
-            if refresh {
-                self.factorize(&ev)?;
+            if !(condensed && self.solve_condensed(u, &mut rhs, &contribs)?) {
+                if condensed || (refresh && ev.k_values.is_none()) {
+                    // Condensing did not apply: factorize the full tangent.
+                    let ev = self.evaluate_with_contact(u, true, false, None, &contribs)?;
+                    self.factorize(&ev)?;
+                } else if refresh {
+                    self.factorize(&ev)?;
+                }
+                self.solver.solve_in_place(&mut rhs)?;
             }
-            self.solver.solve_in_place(&mut rhs)?;
             for i in 0..nf {
                 u[i] += rhs[i];
             }

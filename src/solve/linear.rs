@@ -11,6 +11,7 @@ use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky,
     SymmetricOrdering,
 };
+use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMat, SparseColMatRef, SymbolicSparseColMatRef, Triplet};
 use faer::{Conj, MatMut, Par, Side};
 use std::time::Instant;
@@ -39,6 +40,8 @@ pub struct LinearSolver {
     pub ordering: OrderingKind,
     /// Node of every equation (lets METIS order the node graph).
     pub groups: Option<Vec<usize>>,
+    /// Equations to eliminate last (their Schur complement is then the trailing factor block).
+    pub last_block: Option<Vec<usize>>,
     symbolic: Option<SymbolicCholesky<usize>>,
     /// Parallelism chosen with the symbolic analysis.
     par: Par,
@@ -51,6 +54,7 @@ impl Default for LinearSolver {
         LinearSolver {
             ordering: OrderingKind::Auto,
             groups: None,
+            last_block: None,
             symbolic: None,
             par: Par::Seq,
             factor: Factor::None,
@@ -85,7 +89,10 @@ impl LinearSolver {
             SymbolicSparseColMatRef::new_checked(n, n, &pattern.col_ptr, None, &pattern.row_idx);
         if self.symbolic.is_none() {
             let t = Instant::now();
-            let ord = ordering::compute(pattern, self.groups.as_deref(), self.ordering)?;
+            let mut ord = ordering::compute(pattern, self.groups.as_deref(), self.ordering)?;
+            if let Some(last) = &self.last_block {
+                ord.move_to_end(last);
+            }
             self.stats.ordering_seconds = t.elapsed().as_secs_f64();
             self.stats.ordering = ord.name;
             let t = Instant::now();
@@ -94,7 +101,14 @@ impl LinearSolver {
                 sym,
                 Side::Upper,
                 SymmetricOrdering::Custom(perm),
-                CholeskySymbolicParams::default(),
+                CholeskySymbolicParams {
+                    supernodal_flop_ratio_threshold: if self.last_block.is_some() {
+                        SupernodalThreshold::FORCE_SUPERNODAL
+                    } else {
+                        SupernodalThreshold::AUTO
+                    },
+                    ..Default::default()
+                },
             )
             .map_err(|e| Error::Solve(format!("symbolic factorization failed: {e:?}")))?;
             self.stats.symbolic_seconds = t.elapsed().as_secs_f64();
@@ -198,6 +212,62 @@ impl LinearSolver {
             ));
         }
         Ok(())
+    }
+
+    /// The trailing m × m block L₂₂ of the Cholesky factor (lower triangle, dense) and the equation
+    /// at each of its positions, if the factor is supernodal and the `last_block` equations really
+    /// are its last m positions. L₂₂L₂₂ᵀ is the Schur complement of the matrix on those equations.
+    pub fn trailing_factor_block(&self) -> Option<(Vec<usize>, faer::Mat<f64>)> {
+        use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
+        use faer::sparse::linalg::cholesky::SymbolicCholeskyRaw;
+        let last = self.last_block.as_ref()?;
+        let symbolic = self.symbolic.as_ref()?;
+        let Factor::Llt(values) = &self.factor else {
+            return None;
+        };
+        let SymbolicCholeskyRaw::Supernodal(sn) = symbolic.raw() else {
+            return None;
+        };
+        let n = symbolic.nrows();
+        let m = last.len();
+        let fwd: Vec<usize> = match symbolic.perm() {
+            Some(p) => p.arrays().0.to_vec(),
+            None => (0..n).collect(),
+        };
+        let eqs: Vec<usize> = fwd[n - m..].to_vec();
+        let mut sorted_eqs = eqs.clone();
+        sorted_eqs.sort_unstable();
+        let mut sorted_last = last.clone();
+        sorted_last.sort_unstable();
+        if sorted_eqs != sorted_last {
+            return None;
+        }
+        let llt = SupernodalLltRef::<usize, f64>::new(sn, values);
+        let b = n - m;
+        let mut l22 = faer::Mat::<f64>::zeros(m, m);
+        for s in 0..sn.n_supernodes() {
+            let node = llt.supernode(s);
+            let start = node.start();
+            let ncols = node.val().ncols();
+            if start + ncols <= b {
+                continue;
+            }
+            let pattern = node.pattern();
+            let val = node.val();
+            for jl in 0..ncols {
+                let j = start + jl;
+                if j < b {
+                    continue;
+                }
+                for il in jl..ncols {
+                    l22[(start + il - b, j - b)] = val[(il, jl)];
+                }
+                for (k, &r) in pattern.iter().enumerate() {
+                    l22[(r - b, j - b)] = val[(ncols + k, jl)];
+                }
+            }
+        }
+        Some((eqs, l22))
     }
 
     /// Forget the symbolic analysis (the pattern changed).

@@ -2,6 +2,7 @@
 
 pub mod analysis;
 pub mod assembly;
+pub mod condensed;
 pub mod dofs;
 pub mod linear;
 pub mod ordering;

@@ -30,6 +30,21 @@ pub struct Ordering {
     pub name: &'static str,
 }
 
+impl Ordering {
+    /// Move `eqs` to the end of the elimination order, keeping the relative order of the rest.
+    pub fn move_to_end(&mut self, eqs: &[usize]) {
+        let mut last = vec![false; self.fwd.len()];
+        for &e in eqs {
+            last[e] = true;
+        }
+        let (front, back): (Vec<usize>, Vec<usize>) = self.fwd.iter().partition(|&&e| !last[e]);
+        self.fwd = front.into_iter().chain(back).collect();
+        for (new, &old) in self.fwd.iter().enumerate() {
+            self.inv[old] = new;
+        }
+    }
+}
+
 /// Compute the ordering of `pattern` (upper CSC). `groups[eq]` names the node of each equation.
 pub fn compute(
     pattern: &Pattern,
