@@ -347,3 +347,43 @@ fn n2s_penalty_tangent_matches_the_consistent_closed_form_of_the_spec() {
         "OOFEM's form is off by {d_oofem}"
     );
 }
+
+/// Node-to-node contact in 3D (a brick node against a free node above it), penalty and multiplier.
+#[test]
+fn n2n_tangents_in_3d_are_jacobians_of_residuals() {
+    for cond in [
+        "n2npenaltycontact 1 loadTimeFunction 1 penalty 1000 masterset 2 slaveset 3",
+        "n2nlagrangianmultipliercontact 1 loadTimeFunction 1 masterset 2 slaveset 3",
+    ] {
+        let mut text = String::from(
+            "fd3n.out\nfd\nNonLinearStatic nsteps 1 controlmode 1\ndomain 3d\nOutputManager\n\
+             ndofman 9 nelem 1 ncrosssect 1 nmat 1 nbc 1 nic 0 nltf 1 nset 3\n",
+        );
+        let pts = [
+            [0, 0, 1],
+            [0, 1, 1],
+            [1, 1, 1],
+            [1, 0, 1],
+            [0, 0, 0],
+            [0, 1, 0],
+            [1, 1, 0],
+            [1, 0, 0],
+        ];
+        for (i, p) in pts.iter().enumerate() {
+            text += &format!("node {} coords 3 {} {} {}\n", i + 1, p[0], p[1], p[2]);
+        }
+        text += &format!(
+            "node 9 coords 3 0.1 1.2 1.3\nLSpace 1 nodes 8 1 2 3 4 5 6 7 8\nSimpleCS 1 material 1 set 1\n\
+             IsoLE 1 d 0 E 100 n 0.3 tAlpha 0\n{cond}\nConstantFunction 1 f(t) 1\nSet 1 allelements\n\
+             Set 2 nodes 1 2\nSet 3 nodes 1 9\n"
+        );
+        let disp = vec![(9, [-0.05, -0.3, -0.45]), (2, [0.02, 0.01, 0.03])];
+        check(&Case {
+            name: "n2n-3d",
+            text,
+            disp,
+            lambda: 2.0,
+            active: 1,
+        });
+    }
+}
