@@ -50,17 +50,7 @@ fn condensed_contact_solve_equals_direct_factorization() {
         .unwrap()
         .k_values
         .unwrap();
-    let mut cands: Vec<usize> = ContactSystem::candidate_nodes(&model)
-        .into_iter()
-        .flat_map(|n| {
-            dofs.node_dofs[n]
-                .iter()
-                .map(|&(_, c)| c)
-                .collect::<Vec<_>>()
-        })
-        .filter(|&c| c < dofs.n_free)
-        .collect();
-    cands.sort_unstable();
+    let cands = ContactSystem::candidate_equations(&model, &dofs);
     let mut cc = CondensedContact::new(&asm.pattern, &k_el, cands, None)
         .expect("supernodal with trailing candidates");
     let mut x_cond = rhs.clone();

@@ -255,11 +255,11 @@ fn rigid_segment_tangents_are_jacobians_of_residuals() {
     }
 }
 
-#[test]
-fn sphere_tangent_in_3d_is_jacobian_of_residual() {
-    let mut text = String::from(
+/// A 3D input with one unit brick (nodes 1..8), node 9 at `node9` and the given extra records.
+fn brick_input(ncontactseg: usize, nset: usize, node9: &str, records: &str) -> String {
+    let mut text = format!(
         "fd3.out\nfd\nNonLinearStatic nsteps 1 controlmode 1\ndomain 3d\nOutputManager\n\
-         ndofman 9 nelem 1 ncrosssect 1 nmat 1 nbc 1 nic 0 nltf 1 nset 1 ncontactseg 1\n",
+         ndofman 9 nelem 1 ncrosssect 1 nmat 1 nbc 1 nic 0 nltf 1 nset {nset} ncontactseg {ncontactseg}\n"
     );
     let pts = [
         [0, 0, 1],
@@ -274,11 +274,20 @@ fn sphere_tangent_in_3d_is_jacobian_of_residual() {
     for (i, p) in pts.iter().enumerate() {
         text += &format!("node {} coords 3 {} {} {}\n", i + 1, p[0], p[1], p[2]);
     }
-    text += "node 9 coords 3 0.4 0.5 2.5\nLSpace 1 nodes 8 1 2 3 4 5 6 7 8\n\
-             circlecontactsegment 1 centerpoint 3 0.4 0.5 2.5 radius 1.6 node 9\n\
-             SimpleCS 1 material 1 set 1\nIsoLE 1 d 0 E 100 n 0.3 tAlpha 0\n\
-             n2spenaltycontact 1 loadTimeFunction 1 penalty 1000 nodeset 2 2 3 segmentset 1 1\n\
-             ConstantFunction 1 f(t) 1\nSet 1 allelements\n";
+    text + &format!("node 9 coords 3 {node9}\nLSpace 1 nodes 8 1 2 3 4 5 6 7 8\n{records}")
+}
+
+#[test]
+fn sphere_tangent_in_3d_is_jacobian_of_residual() {
+    let text = brick_input(
+        1,
+        1,
+        "0.4 0.5 2.5",
+        "circlecontactsegment 1 centerpoint 3 0.4 0.5 2.5 radius 1.6 node 9\n\
+         SimpleCS 1 material 1 set 1\nIsoLE 1 d 0 E 100 n 0.3 tAlpha 0\n\
+         n2spenaltycontact 1 loadTimeFunction 1 penalty 1000 nodeset 2 2 3 segmentset 1 1\n\
+         ConstantFunction 1 f(t) 1\nSet 1 allelements\n",
+    );
     let disp = vec![
         (2, [0.02, 0.01, 0.1]),
         (3, [-0.01, 0.0, 0.08]),
@@ -355,27 +364,14 @@ fn n2n_tangents_in_3d_are_jacobians_of_residuals() {
         "n2npenaltycontact 1 loadTimeFunction 1 penalty 1000 masterset 2 slaveset 3",
         "n2nlagrangianmultipliercontact 1 loadTimeFunction 1 masterset 2 slaveset 3",
     ] {
-        let mut text = String::from(
-            "fd3n.out\nfd\nNonLinearStatic nsteps 1 controlmode 1\ndomain 3d\nOutputManager\n\
-             ndofman 9 nelem 1 ncrosssect 1 nmat 1 nbc 1 nic 0 nltf 1 nset 3\n",
-        );
-        let pts = [
-            [0, 0, 1],
-            [0, 1, 1],
-            [1, 1, 1],
-            [1, 0, 1],
-            [0, 0, 0],
-            [0, 1, 0],
-            [1, 1, 0],
-            [1, 0, 0],
-        ];
-        for (i, p) in pts.iter().enumerate() {
-            text += &format!("node {} coords 3 {} {} {}\n", i + 1, p[0], p[1], p[2]);
-        }
-        text += &format!(
-            "node 9 coords 3 0.1 1.2 1.3\nLSpace 1 nodes 8 1 2 3 4 5 6 7 8\nSimpleCS 1 material 1 set 1\n\
-             IsoLE 1 d 0 E 100 n 0.3 tAlpha 0\n{cond}\nConstantFunction 1 f(t) 1\nSet 1 allelements\n\
-             Set 2 nodes 1 2\nSet 3 nodes 1 9\n"
+        let text = brick_input(
+            0,
+            3,
+            "0.1 1.2 1.3",
+            &format!(
+                "SimpleCS 1 material 1 set 1\nIsoLE 1 d 0 E 100 n 0.3 tAlpha 0\n{cond}\n\
+                 ConstantFunction 1 f(t) 1\nSet 1 allelements\nSet 2 nodes 1 2\nSet 3 nodes 1 9\n"
+            ),
         );
         let disp = vec![(9, [-0.05, -0.3, -0.45]), (2, [0.02, 0.01, 0.03])];
         check(&Case {

@@ -143,6 +143,22 @@ impl ContactSystem {
         out
     }
 
+    /// Free equations of the candidate nodes (through slave-node weights), sorted.
+    pub fn candidate_equations(model: &Model, dofs: &DofMap) -> Vec<usize> {
+        let mut eqs: Vec<usize> = Self::candidate_nodes(model)
+            .into_iter()
+            .flat_map(|n| {
+                dofs.node_dofs[n]
+                    .iter()
+                    .flat_map(|&(_, c)| dofs.entries(c).map(|(p, _)| p))
+            })
+            .filter(|&p| p < dofs.n_free)
+            .collect();
+        eqs.sort_unstable();
+        eqs.dedup();
+        eqs
+    }
+
     /// Build the slots; `first_lambda` is the free-equation index of the first multiplier.
     pub fn new(model: &Model, first_lambda: usize) -> Result<ContactSystem> {
         let nsd = model.domain.nsd();

@@ -109,20 +109,7 @@ pub fn run_analysis(
     let linear = small_strain && contact.is_empty();
     // Linear elastic bodies in penalty contact: condense the Newton systems on the contact DOFs.
     let condensed = if small_strain && !contact.is_empty() && dofs.n_lambda == 0 {
-        let mut eqs: Vec<usize> = ContactSystem::candidate_nodes(model)
-            .into_iter()
-            .flat_map(|n| {
-                dofs.node_dofs[n]
-                    .iter()
-                    .map(|&(_, c)| c)
-                    .collect::<Vec<_>>()
-            })
-            .flat_map(|c| dofs.entries(c).map(|(p, _)| p).collect::<Vec<_>>())
-            .filter(|&p| p < dofs.n_free)
-            .collect();
-        eqs.sort_unstable();
-        eqs.dedup();
-        Condensed::Pending(eqs)
+        Condensed::Pending(ContactSystem::candidate_equations(model, &dofs))
     } else {
         Condensed::Off
     };
