@@ -13,9 +13,11 @@ USAGE:
     hertz run FILE.in [-o DIR] [-q]   solve; write FILE's .out, .vtu per step and .pvd; evaluate
                                       the #%BEGIN_CHECK% rules if the file has an errorcheck module
     hertz check FILE.in [-q]          solve and evaluate the check rules; write nothing else
-    hertz bench [--dim 2|3] [--n N] [--reps R]
+    hertz bench [--dim 2|3] [--n N] [--ordering auto|amd|metis]
                                       solve a generated linear-elastic block with N elements per
                                       side and print sizes and timings
+    hertz bench --contact [--n N]     the contact benchmark: a 2N x N block pushed against a rigid
+                                      circle with node-to-segment penalty contact
     hertz --help | --version
 
 OPTIONS:
