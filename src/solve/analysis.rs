@@ -393,10 +393,11 @@ impl NewtonContext<'_> {
                 .map(|v| -v)
                 .collect();
             if !(condensed && self.solve_condensed(u, &mut rhs, &contribs)?) {
-                if !need_k || condensed {
+                if condensed {
+                    // Condensing did not apply: factorize the full tangent.
                     let (ev, _, _) = self.evaluate(u, true, false, None)?;
                     self.factorize(&ev)?;
-                } else {
+                } else if need_k {
                     self.factorize(&ev)?;
                 }
                 self.solver.solve_in_place(&mut rhs)?;
@@ -453,7 +454,7 @@ impl NewtonContext<'_> {
                 want_k
             };
             if !(condensed && self.solve_condensed(u, &mut rhs, &contribs)?) {
-                if condensed || (refresh && ev.k_values.is_none()) {
+                if condensed {
                     // Condensing did not apply: factorize the full tangent.
                     let ev = self.evaluate_with_contact(u, true, false, None, &contribs)?;
                     self.factorize(&ev)?;
