@@ -5,6 +5,7 @@
 //! as a self-check.
 
 use crate::error::{Error, Result};
+use crate::fem::shape::HEXA8_CORNERS;
 use crate::input::read_model;
 use crate::solve::analysis::reference_load_vectors;
 use crate::solve::assembly::Assembler;
@@ -70,19 +71,11 @@ pub fn write_block_input(path: &Path, dim: usize, n: usize) -> Result<()> {
                         loaded.push(format!("{e} 4"));
                     }
                 } else {
-                    let c = |a, b, d| id(i + a, j + b, k + d);
-                    let _ = writeln!(
-                        s,
-                        "LSpace {e} nodes 8 {} {} {} {} {} {} {} {}",
-                        c(0, 0, 1),
-                        c(0, 1, 1),
-                        c(1, 1, 1),
-                        c(1, 0, 1),
-                        c(0, 0, 0),
-                        c(0, 1, 0),
-                        c(1, 1, 0),
-                        c(1, 0, 0)
-                    );
+                    let ids: Vec<String> = HEXA8_CORNERS
+                        .iter()
+                        .map(|c| id(i + c[0], j + c[1], k + c[2]).to_string())
+                        .collect();
+                    let _ = writeln!(s, "LSpace {e} nodes 8 {}", ids.join(" "));
                     if i + 1 == nx {
                         // Hexa surface 5 = nodes (3, 4, 8, 7): the x = max face.
                         loaded.push(format!("{e} 5"));

@@ -6,6 +6,7 @@
 //! are held fixed, as in the linearization.
 
 use hertz::contact::ContactSystem;
+use hertz::fem::shape::HEXA8_CORNERS;
 use hertz::input::read_model;
 use hertz::solve::DofMap;
 
@@ -261,17 +262,7 @@ fn brick_input(ncontactseg: usize, nset: usize, node9: &str, records: &str) -> S
         "fd3.out\nfd\nNonLinearStatic nsteps 1 controlmode 1\ndomain 3d\nOutputManager\n\
          ndofman 9 nelem 1 ncrosssect 1 nmat 1 nbc 1 nic 0 nltf 1 nset {nset} ncontactseg {ncontactseg}\n"
     );
-    let pts = [
-        [0, 0, 1],
-        [0, 1, 1],
-        [1, 1, 1],
-        [1, 0, 1],
-        [0, 0, 0],
-        [0, 1, 0],
-        [1, 1, 0],
-        [1, 0, 0],
-    ];
-    for (i, p) in pts.iter().enumerate() {
+    for (i, p) in HEXA8_CORNERS.iter().enumerate() {
         text += &format!("node {} coords 3 {} {} {}\n", i + 1, p[0], p[1], p[2]);
     }
     text + &format!("node 9 coords 3 {node9}\nLSpace 1 nodes 8 1 2 3 4 5 6 7 8\n{records}")

@@ -3,6 +3,7 @@
 //! tests (a linear displacement field prescribed on the boundary of a distorted patch is
 //! reproduced exactly inside, small strain and total Lagrangian alike) for every element type.
 
+use hertz::fem::shape::HEXA8_CORNERS;
 use hertz::fem::{rule, Shape};
 use hertz::input::read_model;
 use hertz::model::{Material, StressMode};
@@ -334,16 +335,7 @@ fn patch_3d(kind: &'static str) -> Patch {
                 match kind {
                     "LSpace" => elements.push((
                         kind,
-                        vec![
-                            c(0, 0, 1),
-                            c(0, 1, 1),
-                            c(1, 1, 1),
-                            c(1, 0, 1),
-                            c(0, 0, 0),
-                            c(0, 1, 0),
-                            c(1, 1, 0),
-                            c(1, 0, 0),
-                        ],
+                        HEXA8_CORNERS.iter().map(|p| c(p[0], p[1], p[2])).collect(),
                         String::new(),
                     )),
                     "LWedge" => {

@@ -43,6 +43,22 @@ const HEXA8_NODES: [[f64; 3]; 8] = [
     [1.0, -1.0, -1.0],
 ];
 
+/// Corners of the unit cube [0,1]³ in OOFEM's LSpace node order (node a at `HEXA8_CORNERS[a]`),
+/// for generating brick meshes.
+pub const HEXA8_CORNERS: [[usize; 3]; 8] = {
+    let mut c = [[0usize; 3]; 8];
+    let mut a = 0;
+    while a < 8 {
+        let mut i = 0;
+        while i < 3 {
+            c[a][i] = if HEXA8_NODES[a][i] > 0.0 { 1 } else { 0 };
+            i += 1;
+        }
+        a += 1;
+    }
+    c
+};
+
 impl Shape {
     /// Dimension of the reference domain.
     pub fn dim(self) -> usize {
