@@ -231,13 +231,13 @@ impl Shape {
         }
     }
 
-    /// Shape of a boundary with `n` nodes of this element.
+    /// Shape of a boundary (edge or face) with `n` nodes of this element: 2 → Line2, 3 → Line3
+    /// on a 2D element (quadratic edge) or Tri3 on a 3D one, 4 → Quad4.
     pub fn boundary_shape(self, n: usize) -> Shape {
         match (self.dim(), n) {
-            (2, 2) | (3, 2) => Shape::Line2,
             (2, 3) => Shape::Line3,
             (3, 3) => Shape::Tri3,
-            (3, 4) => Shape::Quad4,
+            (_, 4) => Shape::Quad4,
             _ => Shape::Line2,
         }
     }

@@ -286,7 +286,6 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
         nodes.push(Node {
             label,
             coords: x,
-            ncoords: coords.len(),
             slave: None,
             span: r.span(),
         });

@@ -253,11 +253,6 @@ impl Record {
             .map(|(t, _)| t.as_str())
             .collect()
     }
-
-    /// Mark every token as consumed (records that are accepted and ignored).
-    pub fn consume_all(&self) {
-        self.mark(0, self.tokens.len());
-    }
 }
 
 /// Parse a whole token as f64 (C `strtod` semantics: `1.e-4`, `1e8`, `.5`, `-0.`), no trailing junk.

@@ -108,8 +108,6 @@ pub struct Node {
     pub label: usize,
     /// Coordinates padded to 3 components.
     pub coords: [f64; 3],
-    /// Number of coordinates given in the file.
-    pub ncoords: usize,
     pub slave: Option<SlaveLink>,
     pub span: Span,
 }

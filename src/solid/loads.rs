@@ -4,7 +4,7 @@
 use super::continuum::ContinuumKernel;
 use super::Elasticity;
 use crate::error::{Error, Result};
-use crate::fem::{gauss_line, rule, Shape};
+use crate::fem::{gauss_line, rule};
 use crate::model::{DofId, Load, LoadKind, Model};
 
 /// Contributions of one load at unit time-function value.
@@ -43,11 +43,7 @@ pub fn reference_contributions(model: &Model, load: &Load) -> Result<Vec<(usize,
                 } else {
                     1.0
                 };
-                let edge_shape = if local.len() == 3 {
-                    Shape::Line3
-                } else {
-                    Shape::Line2
-                };
+                let edge_shape = shape.boundary_shape(local.len());
                 let mut n = [0.0; 3];
                 let mut dn = [[0.0; 3]; 3];
                 for (xi, w) in gauss_line(3).expect("3-point rule") {
@@ -82,11 +78,7 @@ pub fn reference_contributions(model: &Model, load: &Load) -> Result<Vec<(usize,
                     });
                 }
                 let local = shape.boundaries()[b - 1];
-                let face = if local.len() == 3 {
-                    Shape::Tri3
-                } else {
-                    Shape::Quad4
-                };
+                let face = shape.boundary_shape(local.len());
                 let mut n = [0.0; 4];
                 let mut dn = [[0.0; 3]; 4];
                 for qp in rule(face, if local.len() == 3 { 3 } else { 4 }).expect("face rule") {
