@@ -5,9 +5,10 @@
 //! plane, with and without a moving reference node). Search results (partner and contact point)
 //! are held fixed, as in the linearization.
 
+mod common;
+
 use hertz::contact::ContactSystem;
 use hertz::fem::shape::HEXA8_CORNERS;
-use hertz::input::read_model;
 use hertz::solve::DofMap;
 
 struct Case {
@@ -21,13 +22,8 @@ struct Case {
 }
 
 fn check(case: &Case) {
-    let path =
-        std::env::temp_dir().join(format!("hertz-fd-{}-{}.in", std::process::id(), case.name));
-    std::fs::write(&path, &case.text).unwrap();
-    let model = read_model(&path)
-        .unwrap_or_else(|e| panic!("{}: {e}", case.name))
-        .model;
-    std::fs::remove_file(&path).ok();
+    let model =
+        common::model_from_text(&case.text).unwrap_or_else(|e| panic!("{}: {e}", case.name));
     let dofs = DofMap::new(&model).unwrap();
     let mut contact = ContactSystem::new(&model, dofs.n_free - dofs.n_lambda).unwrap();
     contact.set_curvature_limit(f64::INFINITY);

@@ -3,9 +3,10 @@
 //! tests (a linear displacement field prescribed on the boundary of a distorted patch is
 //! reproduced exactly inside, small strain and total Lagrangian alike) for every element type.
 
+mod common;
+
 use hertz::fem::shape::HEXA8_CORNERS;
 use hertz::fem::{rule, Shape};
-use hertz::input::read_model;
 use hertz::model::{Material, StressMode};
 use hertz::solid::{ContinuumKernel, Elasticity, GpState};
 use hertz::solve::{run_analysis, SolveParams};
@@ -503,12 +504,7 @@ fn solve_patch(
     }
     s.push_str("ConstantFunction 1 f(t) 1.0\n");
     s.push_str(&sets);
-    static COUNTER: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-    let k = COUNTER.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    let path = std::env::temp_dir().join(format!("hertz-patch-{}-{k}.in", std::process::id()));
-    std::fs::write(&path, s).unwrap();
-    let model = read_model(&path).unwrap_or_else(|e| panic!("{e}")).model;
-    std::fs::remove_file(&path).ok();
+    let model = common::model_from_text(&s).unwrap_or_else(|e| panic!("{e}"));
     let mut out = (Vec::new(), Vec::new());
     run_analysis(
         &model,

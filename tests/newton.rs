@@ -1,7 +1,8 @@
 //! Newton driver: quadratic convergence of full Newton on a geometrically nonlinear problem,
 //! step cut-back when an iteration limit is hit, and a clear error when cutting cannot help.
 
-use hertz::input::read_model;
+mod common;
+
 use hertz::solve::{run_analysis, SolveParams};
 use std::path::PathBuf;
 
@@ -11,11 +12,7 @@ fn solve(maxiter: usize) -> hertz::error::Result<(f64, usize, Vec<f64>)> {
         PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/cantilever_nlgeo.in"),
     )
     .unwrap();
-    let path =
-        std::env::temp_dir().join(format!("hertz-newton-{}-{maxiter}.in", std::process::id()));
-    std::fs::write(&path, src.replace("MAXITER", &maxiter.to_string())).unwrap();
-    let model = read_model(&path)?.model;
-    std::fs::remove_file(&path).ok();
+    let model = common::model_from_text(&src.replace("MAXITER", &maxiter.to_string()))?;
     let tip = model.nodes.iter().position(|n| n.label == 63).unwrap();
     let mut out = (0.0, 0, Vec::new());
     run_analysis(
