@@ -32,6 +32,7 @@
 
 pub mod analytic;
 pub mod app;
+pub mod assembly;
 pub mod bench;
 pub mod contact;
 pub mod error;

@@ -3,10 +3,9 @@
 
 use hertz::contact::ContactSystem;
 use hertz::input::read_model;
-use hertz::solve::assembly::Assembler;
+use hertz::assembly::Assembler;
 use hertz::solve::condensed::CondensedContact;
 use hertz::solve::linear::LinearSolver;
-use hertz::solve::DofMap;
 
 #[test]
 fn condensed_contact_solve_equals_direct_factorization() {
@@ -14,7 +13,7 @@ fn condensed_contact_solve_equals_direct_factorization() {
     hertz::bench::write_contact_block_input(&path, 8, 0.4).unwrap();
     let model = read_model(&path).unwrap().model;
     std::fs::remove_file(&path).ok();
-    let dofs = DofMap::new(&model).unwrap();
+    let dofs = hertz::solve::number_dofs(&model).unwrap();
     let mut asm = Assembler::new(&model, &dofs).unwrap();
     let contact = ContactSystem::new(&model, dofs.n_free).unwrap();
     // Lift the whole block into the rigid circle so that several top nodes penetrate.

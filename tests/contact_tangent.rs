@@ -9,7 +9,6 @@ mod common;
 
 use hertz::contact::ContactSystem;
 use hertz::fem::shape::HEXA8_CORNERS;
-use hertz::solve::DofMap;
 
 struct Case {
     name: &'static str,
@@ -24,7 +23,7 @@ struct Case {
 fn check(case: &Case) {
     let model =
         common::model_from_text(&case.text).unwrap_or_else(|e| panic!("{}: {e}", case.name));
-    let dofs = DofMap::new(&model).unwrap();
+    let dofs = hertz::solve::number_dofs(&model).unwrap();
     let mut contact = ContactSystem::new(&model, dofs.n_free - dofs.n_lambda).unwrap();
     contact.set_curvature_limit(f64::INFINITY);
     let mut u = vec![0.0; dofs.n_primary()];

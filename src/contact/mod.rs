@@ -19,7 +19,7 @@ pub mod kinematics;
 
 use crate::error::{Error, Result};
 use crate::model::{ContactLaw, Model, Pairing, SegmentKind};
-use crate::solve::DofMap;
+use crate::assembly::{Contribution, DofMap, ExtraDofs};
 use jet::{Jet, MAXV};
 use kinematics as kin;
 
@@ -66,13 +66,6 @@ pub struct SlotState {
     pub x: [f64; 3],
 }
 
-/// A local contribution: location codes, residual and row-major tangent.
-#[derive(Debug, Clone, Default)]
-pub struct Contribution {
-    pub codes: Vec<usize>,
-    pub fe: Vec<f64>,
-    pub ke: Vec<f64>,
-}
 
 /// All contact conditions of a model.
 pub struct ContactSystem {
@@ -88,6 +81,14 @@ pub struct ContactSystem {
 }
 
 impl ContactSystem {
+    /// What the DOF numbering must provide for the model's contact conditions.
+    pub fn extra_dofs(model: &Model) -> ExtraDofs {
+        ExtraDofs {
+            nodes: Self::nodes_needing_dofs(model),
+            n_multipliers: Self::count_multipliers(model),
+        }
+    }
+
     /// Number of multiplier unknowns the model's conditions need (before DOF numbering).
     pub fn count_multipliers(model: &Model) -> usize {
         model

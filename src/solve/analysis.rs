@@ -7,11 +7,10 @@
 //! A step that does not converge is restarted in 2, 4, … substeps (loads and prescribed values
 //! interpolated linearly); after `max_cutbacks` halvings the run stops with an error.
 
-use super::assembly::{Assembler, Evaluation};
 use super::condensed::CondensedContact;
-use super::dofs::DofMap;
 use super::linear::{LinearSolver, SolverStats};
-use crate::contact::{ContactSystem, Contribution, Partner, SlotState};
+use crate::assembly::{Assembler, Contribution, DofMap, Evaluation};
+use crate::contact::{ContactSystem, Partner, SlotState};
 use crate::error::{Error, Result};
 use crate::model::{AnalysisKind, Model};
 use crate::output::outfile::sci;
@@ -77,7 +76,7 @@ pub fn run_analysis(
     params: &SolveParams,
     mut on_step: impl FnMut(&StepResult) -> Result<()>,
 ) -> Result<()> {
-    let dofs = DofMap::new(model)?;
+    let dofs = super::number_dofs(model)?;
     let asm = Assembler::new(model, &dofs)?;
     let contact = ContactSystem::new(model, dofs.n_free - dofs.n_lambda)?;
     let nf = dofs.n_free;

@@ -8,10 +8,8 @@
 //! so a Newton iteration costs two sparse solves and a dense system of the size of the active set,
 //! instead of a factorization.
 
-use super::assembly::Pattern;
-use super::dofs::DofMap;
 use super::linear::LinearSolver;
-use crate::contact::Contribution;
+use crate::assembly::{Contribution, DofMap, Pattern};
 use crate::error::{Error, Result};
 use faer::linalg::solvers::Solve;
 use faer::Mat;

@@ -2,7 +2,7 @@
 //! pattern, numeric LLᵀ per call; a sparse LU fallback when the matrix is not positive definite
 //! (e.g. under compressive geometric stiffness).
 
-use super::assembly::Pattern;
+use crate::assembly::Pattern;
 use super::ordering::{self, OrderingKind};
 use crate::error::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};

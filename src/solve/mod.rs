@@ -1,11 +1,18 @@
-//! DOF numbering, sparse assembly, linear solvers and the Newton/load-stepping driver.
+//! Linear solvers, the condensed contact solve and the Newton/load-stepping driver.
 
 pub mod analysis;
-pub mod assembly;
 pub mod condensed;
-pub mod dofs;
 pub mod linear;
 pub mod ordering;
 
 pub use analysis::{run_analysis, SolveParams, StepInfo, StepResult};
-pub use dofs::DofMap;
+
+use crate::assembly::DofMap;
+use crate::contact::ContactSystem;
+use crate::error::Result;
+use crate::model::Model;
+
+/// Number the DOFs of a model: its elements' DOFs plus what its contact conditions need.
+pub fn number_dofs(model: &Model) -> Result<DofMap> {
+    DofMap::new(model, &ContactSystem::extra_dofs(model))
+}

@@ -2,7 +2,7 @@
 //! nested dissection for large ones. METIS runs on the node graph (the DOFs of one node form a
 //! group), which is d² times smaller than the DOF graph and orders as well.
 
-use super::assembly::Pattern;
+use crate::assembly::Pattern;
 use crate::error::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::SymbolicSparseColMatRef;

@@ -8,6 +8,16 @@
 use crate::error::{Error, Result};
 use crate::model::{DofId, Model};
 
+/// What other parts of the model (contact) need from the numbering beyond the elements' DOFs.
+#[derive(Debug, Clone, Default)]
+pub struct ExtraDofs {
+    /// Nodes that carry the domain's displacement DOFs even without elements (e.g. the reference
+    /// node of a rigid indenter).
+    pub nodes: Vec<usize>,
+    /// Lagrange multipliers, numbered after all displacement equations.
+    pub n_multipliers: usize,
+}
+
 #[derive(Debug, Clone)]
 pub struct DofMap {
     /// Per node: (DOF id, location code), sorted by DOF id.
@@ -26,7 +36,7 @@ pub struct DofMap {
 }
 
 impl DofMap {
-    pub fn new(model: &Model) -> Result<DofMap> {
+    pub fn new(model: &Model, extra: &ExtraDofs) -> Result<DofMap> {
         let nn = model.nodes.len();
         let mut ids: Vec<u8> = vec![0; nn]; // bit mask of DOF ids 1..3
         for el in &model.elements {
@@ -40,15 +50,13 @@ impl DofMap {
                 }
             }
         }
-        // Contact nodes carry the domain's displacement DOFs even without elements (e.g. the
-        // reference node of a rigid indenter).
         let nsd = model.domain.nsd();
-        for n in crate::contact::ContactSystem::nodes_needing_dofs(model) {
+        for &n in &extra.nodes {
             for d in 1..=nsd as u8 {
                 ids[n] |= 1 << d;
             }
         }
-        let n_lambda = crate::contact::ContactSystem::count_multipliers(model);
+        let n_lambda = extra.n_multipliers;
         // Dirichlet condition per (node, dof): later conditions override earlier ones.
         let mut bc_of: Vec<[Option<usize>; 4]> = vec![[None; 4]; nn];
         for (bi, bc) in model.dirichlet.iter().enumerate() {

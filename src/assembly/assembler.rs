@@ -3,7 +3,7 @@
 //! scatter is serial in element order, so results do not depend on the thread count.
 
 use super::dofs::DofMap;
-use crate::contact::Contribution;
+use super::Contribution;
 use crate::error::{Error, Result};
 use crate::fem::{rule, QuadPoint};
 use crate::model::Model;
