@@ -97,7 +97,9 @@ pub fn run_file(path: &Path, opts: &RunOptions) -> Result<RunReport> {
         log_steps: opts.log_steps,
         ..Default::default()
     };
+    let mut steps_done = 0;
     let result = run_analysis(&model, &params, |res| {
+        steps_done += 1;
         report
             .outcomes
             .extend(check::evaluate_step(&model, &rules, res));
@@ -112,7 +114,10 @@ pub fn run_file(path: &Path, opts: &RunOptions) -> Result<RunReport> {
         }
         Ok(())
     });
-    if opts.write_outputs {
+    // A run that fails before its first step converged (a singular model, a step that cannot
+    // converge) has no results: it leaves no files behind. After a converged step, the results so
+    // far are written with the reason the analysis stopped.
+    if opts.write_outputs && (result.is_ok() || steps_done > 0) {
         if let Err(e) = &result {
             out_text.push_str(&format!("\nAnalysis stopped: {e}\n"));
         }

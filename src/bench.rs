@@ -4,11 +4,11 @@
 //! so the exact solution is the uniform uniaxial-stress field: the maximum nodal error is printed
 //! as a self-check.
 
+use crate::assembly::Assembler;
 use crate::error::{Error, Result};
 use crate::fem::shape::HEXA8_CORNERS;
 use crate::input::read_model;
 use crate::solve::analysis::reference_load_vectors;
-use crate::assembly::Assembler;
 use crate::solve::linear::LinearSolver;
 use crate::solve::ordering::OrderingKind;
 use std::fmt::Write as _;

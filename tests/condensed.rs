@@ -1,9 +1,9 @@
 //! The condensed contact solve (Schur complement from the trailing factor block + Woodbury on the
 //! active contact DOFs) equals a direct factorization of the full tangent.
 
+use hertz::assembly::Assembler;
 use hertz::contact::ContactSystem;
 use hertz::input::read_model;
-use hertz::assembly::Assembler;
 use hertz::solve::condensed::CondensedContact;
 use hertz::solve::linear::LinearSolver;
 

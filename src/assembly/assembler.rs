@@ -1,5 +1,6 @@
-//! Element loop: internal forces, tangent values on a fixed sparse pattern (upper triangle of the
-//! free-free block, CSC), integration-point states. Element kernels run in parallel chunks; the
+//! Element loop: internal forces, tangent values on a fixed sparse pattern of the free-free block
+//! (CSC; the upper triangle when the tangent is symmetric, both triangles when a contribution is
+//! not), integration-point states. Element kernels run in parallel chunks; the
 //! scatter is serial in element order, so results do not depend on the thread count.
 
 use super::dofs::DofMap;
@@ -13,19 +14,21 @@ use crate::solid::{truss, Elasticity, GpState};
 use rayon::prelude::*;
 use std::collections::HashMap;
 
-/// Upper-triangular CSC pattern of the free-free stiffness block.
+/// CSC pattern of the free-free stiffness block: its upper triangle when `symmetric`, else both
+/// triangles.
 #[derive(Debug, Clone)]
 pub struct Pattern {
     pub n: usize,
     pub col_ptr: Vec<usize>,
     pub row_idx: Vec<usize>,
+    pub symmetric: bool,
 }
 
 impl Pattern {
-    /// Position of entry (row, col), row <= col, in the value array.
+    /// Position of entry (row, col) in the value array (row <= col when symmetric).
     #[inline]
     pub fn position(&self, row: usize, col: usize) -> usize {
-        debug_assert!(row <= col);
+        debug_assert!(!self.symmetric || row <= col);
         let (s, e) = (self.col_ptr[col], self.col_ptr[col + 1]);
         s + self.row_idx[s..e]
             .binary_search(&row)
@@ -144,6 +147,7 @@ impl<'m> Assembler<'m> {
                 n: 0,
                 col_ptr: vec![0],
                 row_idx: vec![],
+                symmetric: true,
             },
             elems,
             locs,
@@ -194,24 +198,39 @@ impl<'m> Assembler<'m> {
         true
     }
 
+    /// Store both triangles (a contribution's tangent is not symmetric) or only the upper one;
+    /// rebuilds the pattern and returns true when that changes.
+    pub fn set_symmetric(&mut self, symmetric: bool) -> bool {
+        if self.pattern.symmetric == symmetric {
+            return false;
+        }
+        self.pattern.symmetric = symmetric;
+        self.pattern = self.build_pattern();
+        *self.linear_k.lock().expect("not poisoned") = None;
+        true
+    }
+
     fn build_pattern(&self) -> Pattern {
         let n = self.dofs.n_free;
+        let symmetric = self.pattern.symmetric;
         let mut cols: Vec<Vec<usize>> = vec![Vec::new(); n];
         let mut eqs = Vec::new();
+        // Rows of column eqs[j]: eqs[..=j] (upper triangle) or all of eqs.
+        let mut add = |eqs: &[usize]| {
+            for (j, &c) in eqs.iter().enumerate() {
+                cols[c].extend_from_slice(if symmetric { &eqs[..=j] } else { eqs });
+            }
+        };
         for e in 0..self.elems.len() {
             let info = &self.elems[e];
             self.free_eqs(
                 &self.locs[info.loc_start..info.loc_start + info.ndof],
                 &mut eqs,
             );
-            for (j, &c) in eqs.iter().enumerate() {
-                cols[c].extend_from_slice(&eqs[..=j]);
-            }
+            add(&eqs);
         }
         for eqs in &self.couplings {
-            for (j, &c) in eqs.iter().enumerate() {
-                cols[c].extend_from_slice(&eqs[..=j]);
-            }
+            add(eqs);
         }
         let mut col_ptr = Vec::with_capacity(n + 1);
         col_ptr.push(0);
@@ -227,6 +246,7 @@ impl<'m> Assembler<'m> {
             n,
             col_ptr,
             row_idx,
+            symmetric,
         }
     }
 
@@ -317,7 +337,7 @@ impl<'m> Assembler<'m> {
                     for (q, wq) in self.dofs.entries(cb) {
                         if q < nf {
                             if let Some(kv) = sink.k_values.as_mut() {
-                                if p <= q {
+                                if p <= q || !self.pattern.symmetric {
                                     kv[self.pattern.position(p, q)] += wp * wq * kab;
                                 }
                             }

@@ -17,9 +17,9 @@
 pub mod jet;
 pub mod kinematics;
 
+use crate::assembly::{Contribution, DofMap, ExtraDofs};
 use crate::error::{Error, Result};
 use crate::model::{ContactLaw, Model, Pairing, SegmentKind};
-use crate::assembly::{Contribution, DofMap, ExtraDofs};
 use jet::{Jet, MAXV};
 use kinematics as kin;
 
@@ -65,7 +65,6 @@ pub struct SlotState {
     /// Current node position.
     pub x: [f64; 3],
 }
-
 
 /// All contact conditions of a model.
 pub struct ContactSystem {

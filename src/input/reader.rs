@@ -466,7 +466,15 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
         }
         let thick = r.opt_float("thick")?;
         let width = r.opt_float("width")?;
-        let area = r.opt_float("area")?.unwrap_or(match (thick, width) {
+        let given_area = r.opt_float("area")?;
+        for (key, v) in [("thick", thick), ("width", width), ("area", given_area)] {
+            if let Some(v) = v.filter(|v| !(*v > 0.0)) {
+                return Err(r.error(format!("`{key}` must be positive, found {v}")));
+            }
+        }
+        // Without `area` (or `thick` and `width`) a bar has no section: OOFEM's own contact
+        // tests use such zero-stiffness bars; they are accepted with a warning (see below).
+        let area = given_area.unwrap_or(match (thick, width) {
             (Some(t), Some(w)) => t * w,
             _ => 0.0,
         });
@@ -770,6 +778,15 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
                 "element {} is a plane-stress element but cross section {csn} has no `thick`",
                 e.label
             )));
+        }
+        if e.etype.is_truss() && csr.area == 0.0 {
+            c.warnings.push(format!(
+                "{}:{}: bar element {} has no cross-section area (cross section {csn} gives no \
+                 `area`): it carries no force",
+                e.span.file.display(),
+                e.span.line,
+                e.label
+            ));
         }
         e.cross_section = csn - 1;
         e.material = mat - 1;

@@ -424,6 +424,11 @@ impl NewtonContext<'_> {
                 eprint!("\r  iteration {it:3}  residual {}   ", sci(force_err, 2));
             }
             if converged && (it > 0 || force_err == 0.0) {
+                if it == 0 && !has_contact && !self.factor_valid && ev.k_values.is_some() {
+                    // An unloaded step needs no solve, but a model must not pass as solved when
+                    // its stiffness is singular (an unloaded mechanism): factorize once.
+                    self.factorize(&ev)?;
+                }
                 info.iterations -= 1;
                 return Ok(true);
             }

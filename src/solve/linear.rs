@@ -1,20 +1,33 @@
-//! Sparse symmetric solver on faer: fill-reducing ordering and symbolic analysis once per
-//! pattern, numeric LLᵀ per call; a sparse LU fallback when the matrix is not positive definite
-//! (e.g. under compressive geometric stiffness).
+//! Sparse solver on faer: for symmetric patterns a fill-reducing ordering and symbolic analysis
+//! once per pattern and a numeric LLᵀ per call, with a sparse LU fallback when the matrix is not
+//! positive definite (e.g. under compressive geometric stiffness); for general patterns (a
+//! contribution that is not symmetric) a sparse LU. The LU's symbolic analysis is reused too.
+//!
+//! A Cholesky factorization succeeds on a matrix that is singular in exact arithmetic whenever
+//! round-off leaves its zero pivots slightly positive; the solution is then arbitrary (a rigid
+//! motion of an unsupported body). Every LLᵀ pivot is therefore compared with the diagonal entry
+//! it came from: L_jj² < [`PIVOT_RATIO`]·A_jj means column j is a linear combination of the
+//! columns before it, i.e. a mechanism.
 
-use crate::assembly::Pattern;
 use super::ordering::{self, OrderingKind};
+use crate::assembly::Pattern;
 use crate::error::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky,
-    SymmetricOrdering,
+    SymbolicCholeskyRaw, SymmetricOrdering,
 };
+use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
 use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::{SparseColMat, SparseColMatRef, SymbolicSparseColMatRef, Triplet};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
 use std::time::Instant;
+
+/// Smallest admissible ratio of a Cholesky pivot to its diagonal entry, L_jj² / A_jj. A column
+/// that loses all but this fraction of its diagonal to the columns before it is dependent on them
+/// up to round-off: exact rigid-body modes give ratios near 1e-16, the stiffest well-posed models
+/// (slender structures, penalty contact 10⁹ times stiffer than the bodies) stay above 1e-11.
+pub const PIVOT_RATIO: f64 = 1e-13;
 
 /// Timings and sizes of the last factorization (for logs and benchmarks).
 #[derive(Debug, Clone, Default)]
@@ -28,10 +41,107 @@ pub struct SolverStats {
     pub used_lu: bool,
 }
 
+/// A sparse LU on a fixed pattern: the symbolic analysis once, a numeric factorization per call.
+/// The matrix is the general pattern's values, or a symmetric pattern's upper triangle mirrored.
+struct GeneralLu {
+    col_ptr: Vec<usize>,
+    row_idx: Vec<usize>,
+    /// Index into the caller's value array of every entry of the full pattern.
+    source: Vec<usize>,
+    values: Vec<f64>,
+    symbolic: SymbolicLu<usize>,
+    numeric: NumericLu<usize, f64>,
+}
+
+impl GeneralLu {
+    fn new(pattern: &Pattern) -> Result<GeneralLu> {
+        let n = pattern.n;
+        let (col_ptr, row_idx, source) = if pattern.symmetric {
+            // Both triangles of the upper pattern, rows sorted within each column.
+            let mut cols: Vec<Vec<(usize, usize)>> = vec![Vec::new(); n];
+            for c in 0..n {
+                for k in pattern.col_ptr[c]..pattern.col_ptr[c + 1] {
+                    let r = pattern.row_idx[k];
+                    cols[c].push((r, k));
+                    if r != c {
+                        cols[r].push((c, k));
+                    }
+                }
+            }
+            let mut col_ptr = Vec::with_capacity(n + 1);
+            let (mut row_idx, mut source) = (Vec::new(), Vec::new());
+            col_ptr.push(0);
+            for mut col in cols {
+                col.sort_unstable();
+                row_idx.extend(col.iter().map(|e| e.0));
+                source.extend(col.iter().map(|e| e.1));
+                col_ptr.push(row_idx.len());
+            }
+            (col_ptr, row_idx, source)
+        } else {
+            (
+                pattern.col_ptr.clone(),
+                pattern.row_idx.clone(),
+                (0..pattern.nnz()).collect(),
+            )
+        };
+        let sym = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
+        let symbolic = factorize_symbolic_lu(sym, Default::default())
+            .map_err(|e| Error::Solve(format!("symbolic LU factorization failed: {e:?}")))?;
+        Ok(GeneralLu {
+            values: vec![0.0; row_idx.len()],
+            col_ptr,
+            row_idx,
+            source,
+            symbolic,
+            numeric: NumericLu::new(),
+        })
+    }
+
+    fn factorize(&mut self, values: &[f64], par: Par) -> Result<()> {
+        for (v, &k) in self.values.iter_mut().zip(&self.source) {
+            *v = values[k];
+        }
+        let n = self.col_ptr.len() - 1;
+        let sym = SymbolicSparseColMatRef::new_checked(n, n, &self.col_ptr, None, &self.row_idx);
+        let mat = SparseColMatRef::new(sym, &self.values);
+        let mut mem = MemBuffer::try_new(
+            self.symbolic
+                .factorize_numeric_lu_scratch::<f64>(par, Default::default()),
+        )
+        .map_err(|_| Error::Solve("out of memory for the LU workspace".into()))?;
+        self.symbolic
+            .factorize_numeric_lu(
+                &mut self.numeric,
+                mat,
+                par,
+                MemStack::new(&mut mem),
+                Default::default(),
+            )
+            .map_err(|_| {
+                Error::Singular(
+                    "the tangent matrix is singular: are all rigid-body motions restrained?".into(),
+                )
+            })?;
+        Ok(())
+    }
+
+    fn solve_in_place(&self, rhs: MatMut<'_, f64>, par: Par) {
+        let mut mem = MemBuffer::new(self.symbolic.solve_in_place_scratch::<f64>(1, par));
+        // SAFETY-free: `numeric` was produced by `symbolic` on this pattern.
+        LuRef::new_unchecked(&self.symbolic, &self.numeric).solve_in_place_with_conj(
+            Conj::No,
+            rhs,
+            par,
+            MemStack::new(&mut mem),
+        );
+    }
+}
+
 enum Factor {
     None,
     Llt(Vec<f64>),
-    Lu(Box<faer::sparse::linalg::solvers::Lu<usize, f64>>),
+    Lu,
 }
 
 /// Factorizes matrices that share one pattern.
@@ -43,6 +153,7 @@ pub struct LinearSolver {
     /// Equations to eliminate last (their Schur complement is then the trailing factor block).
     pub last_block: Option<Vec<usize>>,
     symbolic: Option<SymbolicCholesky<usize>>,
+    lu: Option<GeneralLu>,
     /// Parallelism chosen with the symbolic analysis.
     par: Par,
     factor: Factor,
@@ -56,6 +167,7 @@ impl Default for LinearSolver {
             groups: None,
             last_block: None,
             symbolic: None,
+            lu: None,
             par: Par::Seq,
             factor: Factor::None,
             stats: SolverStats::default(),
@@ -66,17 +178,70 @@ impl Default for LinearSolver {
 /// Parallelism for a pattern: faer's parallel supernodal kernels pay off on 3D-like patterns with
 /// large supernodes; on 2D patterns the sequential factorization is faster (BENCHMARKS.md).
 fn par_for(pattern: &Pattern) -> Par {
-    if pattern.nnz() as f64 / pattern.n.max(1) as f64 > super::ordering::DENSE_PATTERN_PER_COLUMN {
+    let per_column = pattern.nnz() as f64 / pattern.n.max(1) as f64;
+    let per_column = if pattern.symmetric {
+        per_column
+    } else {
+        0.5 * per_column
+    };
+    if per_column > super::ordering::DENSE_PATTERN_PER_COLUMN {
         faer::get_global_parallelism()
     } else {
         Par::Seq
     }
 }
 
+/// The smallest L_jj² / A_jj of a Cholesky factor and its position in elimination order.
+fn smallest_pivot_ratio(
+    symbolic: &SymbolicCholesky<usize>,
+    l_values: &[f64],
+    diag_of: &dyn Fn(usize) -> f64,
+) -> (f64, usize) {
+    let mut worst = (f64::INFINITY, 0);
+    let mut visit = |j: usize, l: f64| {
+        let a = diag_of(j);
+        let ratio = if a > 0.0 { l * l / a } else { f64::INFINITY };
+        if ratio < worst.0 {
+            worst = (ratio, j);
+        }
+    };
+    match symbolic.raw() {
+        SymbolicCholeskyRaw::Supernodal(sn) => {
+            use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
+            let llt = SupernodalLltRef::<usize, f64>::new(sn, l_values);
+            for s in 0..sn.n_supernodes() {
+                let node = llt.supernode(s);
+                let val = node.val();
+                for jl in 0..val.ncols() {
+                    visit(node.start() + jl, val[(jl, jl)]);
+                }
+            }
+        }
+        SymbolicCholeskyRaw::Simplicial(sp) => {
+            let (cp, ri) = (sp.col_ptr(), sp.row_idx());
+            for j in 0..sp.nrows() {
+                if let Some(k) = (cp[j]..cp[j + 1]).find(|&k| ri[k] == j) {
+                    visit(j, l_values[k]);
+                }
+            }
+        }
+    }
+    worst
+}
+
+fn singular_message(at: &str) -> String {
+    format!(
+        "the stiffness matrix is singular{at}: a mechanism or an unrestrained rigid-body motion \
+         (check the supports and the elements connected there)"
+    )
+}
+
 impl LinearSolver {
-    /// Factorize the symmetric matrix given by its upper triangle on `pattern`. When the matrix
-    /// must be positive definite (`spd`: linear elasticity) a failed LLᵀ is a mechanism and is
-    /// reported at its equation via `describe_eq`; otherwise a sparse LU takes over.
+    /// Factorize the matrix given by its values on `pattern` (upper triangle of a symmetric
+    /// matrix, or all entries of a general one). When a symmetric matrix must be positive definite
+    /// (`spd`: linear elasticity) a failed LLᵀ is a mechanism and is reported at its equation via
+    /// `describe_eq`; otherwise a sparse LU takes over. A singular matrix is an
+    /// [`Error::Singular`] naming the equation where it shows, whichever the factorization.
     pub fn factorize(
         &mut self,
         pattern: &Pattern,
@@ -84,6 +249,12 @@ impl LinearSolver {
         spd: bool,
         describe_eq: &dyn Fn(usize) -> String,
     ) -> Result<()> {
+        let t = Instant::now();
+        if !pattern.symmetric {
+            self.factorize_lu(pattern, values)?;
+            self.stats.numeric_seconds = t.elapsed().as_secs_f64();
+            return Ok(());
+        }
         let n = pattern.n;
         let sym =
             SymbolicSparseColMatRef::new_checked(n, n, &pattern.col_ptr, None, &pattern.row_idx);
@@ -127,62 +298,70 @@ impl LinearSolver {
             symbolic.factorize_numeric_llt_scratch::<f64>(self.par, Default::default()),
         )
         .map_err(|_| Error::Solve("out of memory for the factorization workspace".into()))?;
-        let llt = symbolic.factorize_numeric_llt::<f64>(
-            &mut l_values,
-            mat,
-            Side::Upper,
-            Default::default(),
-            self.par,
-            MemStack::new(&mut mem),
-            Default::default(),
-        );
-        if let Err(err) = &llt {
-            if spd {
-                let eq = match err {
-                    // faer reports the failing pivot 1-based, in the permuted order.
-                    faer::linalg::solvers::LltError::NonPositivePivot { index } => {
-                        index.checked_sub(1).and_then(|k| match symbolic.perm() {
-                            Some(p) => p.arrays().0.get(k).copied(),
-                            None => Some(k).filter(|&i| i < n),
-                        })
-                    }
+        let llt = symbolic
+            .factorize_numeric_llt::<f64>(
+                &mut l_values,
+                mat,
+                Side::Upper,
+                Default::default(),
+                self.par,
+                MemStack::new(&mut mem),
+                Default::default(),
+            )
+            .map(|_| ());
+        // Original equation at elimination position k.
+        let original = |k: usize| match symbolic.perm() {
+            Some(p) => p.arrays().0[k],
+            None => k,
+        };
+        // A pivot that is not positive (faer, 1-based) or negligible against its diagonal.
+        let failed_at = match &llt {
+            Err(faer::linalg::solvers::LltError::NonPositivePivot { index }) => {
+                Some(index.checked_sub(1).filter(|&k| k < n).map(original))
+            }
+            Ok(_) => {
+                let diag = |k: usize| {
+                    let e = original(k);
+                    values[pattern.position(e, e)]
                 };
+                let (ratio, k) = smallest_pivot_ratio(symbolic, &l_values, &diag);
+                (ratio < PIVOT_RATIO).then(|| Some(original(k)))
+            }
+        };
+        match failed_at {
+            None => {
+                self.factor = Factor::Llt(l_values);
+                self.stats.used_lu = false;
+            }
+            Some(eq) if spd || llt.is_ok() => {
+                // Positive definite by construction, or positive pivots that vanish: singular.
                 let at = eq
                     .map(|e| format!(" at {}", describe_eq(e)))
                     .unwrap_or_default();
-                return Err(Error::Singular(format!(
-                    "the stiffness matrix is singular{at}: a mechanism or an unrestrained rigid-body motion \
-                     (check the supports and the elements connected there)"
-                )));
+                return Err(Error::Singular(singular_message(&at)));
             }
-        }
-        if llt.is_ok() {
-            self.factor = Factor::Llt(l_values);
-            self.stats.used_lu = false;
-        } else {
-            // Not positive definite: full LU on both triangles.
-            let mut triplets = Vec::with_capacity(2 * values.len());
-            for c in 0..n {
-                for k in pattern.col_ptr[c]..pattern.col_ptr[c + 1] {
-                    let r = pattern.row_idx[k];
-                    triplets.push(Triplet::new(r, c, values[k]));
-                    if r != c {
-                        triplets.push(Triplet::new(c, r, values[k]));
-                    }
-                }
+            Some(_) => {
+                // Not positive definite: LU on both triangles.
+                self.factorize_lu(pattern, values)?;
             }
-            let full = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &triplets)
-                .map_err(|e| Error::Solve(format!("cannot build the matrix: {e:?}")))?;
-            let lu = full.sp_lu().map_err(|_| {
-                Error::Singular(
-                    "the stiffness matrix is singular: are all rigid-body motions restrained?"
-                        .into(),
-                )
-            })?;
-            self.factor = Factor::Lu(Box::new(lu));
-            self.stats.used_lu = true;
         }
         self.stats.numeric_seconds = t.elapsed().as_secs_f64();
+        Ok(())
+    }
+
+    fn factorize_lu(&mut self, pattern: &Pattern, values: &[f64]) -> Result<()> {
+        if self.lu.is_none() {
+            let t = Instant::now();
+            self.lu = Some(GeneralLu::new(pattern)?);
+            self.stats.symbolic_seconds = t.elapsed().as_secs_f64();
+            self.par = par_for(pattern);
+        }
+        self.lu
+            .as_mut()
+            .expect("set above")
+            .factorize(values, self.par)?;
+        self.factor = Factor::Lu;
+        self.stats.used_lu = true;
         Ok(())
     }
 
@@ -203,12 +382,16 @@ impl LinearSolver {
                     MemStack::new(&mut mem),
                 );
             }
-            Factor::Lu(lu) => lu.solve_in_place(m),
+            Factor::Lu => self
+                .lu
+                .as_ref()
+                .expect("factorized")
+                .solve_in_place(m, self.par),
         }
         self.stats.solve_seconds = t.elapsed().as_secs_f64();
         if rhs.iter().any(|v| !v.is_finite()) {
-            return Err(Error::Solve(
-                "the stiffness matrix is singular: are all rigid-body motions restrained?".into(),
+            return Err(Error::Singular(
+                "the tangent matrix is singular: are all rigid-body motions restrained?".into(),
             ));
         }
         Ok(())
@@ -270,9 +453,10 @@ impl LinearSolver {
         Some((eqs, l22))
     }
 
-    /// Forget the symbolic analysis (the pattern changed).
+    /// Forget the symbolic analyses (the pattern changed).
     pub fn reset(&mut self) {
         self.symbolic = None;
+        self.lu = None;
         self.factor = Factor::None;
     }
 }
