@@ -2,7 +2,7 @@
 //! active contact DOFs) equals a direct factorization of the full tangent.
 
 use hertz::assembly::Assembler;
-use hertz::contact::ContactSystem;
+use hertz::contact::{ContactSystem, Search};
 use hertz::input::read_model;
 use hertz::solve::condensed::CondensedContact;
 use hertz::solve::linear::LinearSolver;
@@ -13,9 +13,9 @@ fn condensed_contact_solve_equals_direct_factorization() {
     hertz::bench::write_contact_block_input(&path, 8, 0.4).unwrap();
     let model = read_model(&path).unwrap().model;
     std::fs::remove_file(&path).ok();
-    let dofs = hertz::solve::number_dofs(&model).unwrap();
+    let contact = ContactSystem::new(&model).unwrap();
+    let dofs = hertz::assembly::DofMap::new(&model, &contact.extra_dofs()).unwrap();
     let mut asm = Assembler::new(&model, &dofs).unwrap();
-    let contact = ContactSystem::new(&model, dofs.n_free).unwrap();
     // Lift the whole block into the rigid circle so that several top nodes penetrate.
     let mut u = vec![0.0; dofs.n_primary()];
     for (n, node) in model.nodes.iter().enumerate() {
@@ -23,7 +23,7 @@ fn condensed_contact_solve_equals_direct_factorization() {
             u[c] = 0.4 + 0.01 * node.coords[0].sin();
         }
     }
-    let (contribs, states) = contact.evaluate(&model, &dofs, &u).unwrap();
+    let (contribs, states) = contact.evaluate(&model, &dofs, &u, Search::Fresh).unwrap();
     let n_active = states.iter().filter(|s| s.active).count();
     assert!(n_active >= 3, "{n_active} active contacts");
     let rhs: Vec<f64> = (0..dofs.n_free)
@@ -49,7 +49,7 @@ fn condensed_contact_solve_equals_direct_factorization() {
         .unwrap()
         .k_values
         .unwrap();
-    let cands = ContactSystem::candidate_equations(&model, &dofs);
+    let cands = contact.candidate_equations(&dofs);
     let mut cc = CondensedContact::new(&asm.pattern, &k_el, cands, None)
         .expect("supernodal with trailing candidates");
     let mut x_cond = rhs.clone();

@@ -1,17 +1,19 @@
 #![allow(clippy::needless_range_loop)]
 //! Every contact tangent is the Jacobian of its residual: central finite differences of the local
 //! contact residual, for every law (penalty, multiplier active and inactive) and every partner
-//! (node, straight and quadratic edge in small and large deformation, circle, sphere, polynomial,
-//! plane, with and without a moving reference node). Search results (partner and contact point)
-//! are held fixed, as in the linearization.
+//! (node; straight and quadratic edges in small and large deformation, in the middle of an edge,
+//! on a vertex whose normal is averaged with the neighbouring edge, past the open end of the
+//! master where the force is weighted down; circle, cavity, sphere, polynomial above and below,
+//! plane, with and without a moving reference node; a prescribed normal). Partners are held fixed
+//! while the contact point moves with the unknowns, as in the linearization.
 
 mod common;
 
-use hertz::contact::ContactSystem;
+use hertz::contact::{ContactSystem, Search};
 use hertz::fem::shape::HEXA8_CORNERS;
 
 struct Case {
-    name: &'static str,
+    name: String,
     text: String,
     /// (node label, displacement) applied before evaluating.
     disp: Vec<(usize, [f64; 3])>,
@@ -20,34 +22,17 @@ struct Case {
     active: usize,
 }
 
-fn check(case: &Case) {
-    let model =
-        common::model_from_text(&case.text).unwrap_or_else(|e| panic!("{}: {e}", case.name));
-    let dofs = hertz::solve::number_dofs(&model).unwrap();
-    let mut contact = ContactSystem::new(&model, dofs.n_free - dofs.n_lambda).unwrap();
-    contact.set_curvature_limit(f64::INFINITY);
-    let mut u = vec![0.0; dofs.n_primary()];
-    for &(label, d) in &case.disp {
-        let Some(n) = model.nodes.iter().position(|x| x.label == label) else {
-            continue;
-        };
-        for k in 0..3 {
-            if let Some(c) = dofs.code(n, k as u8 + 1) {
-                u[c] = d[k];
-            }
-        }
-    }
-    for i in dofs.n_free - dofs.n_lambda..dofs.n_free {
-        u[i] = case.lambda;
-    }
-    let (contribs, states) = contact.evaluate(&model, &dofs, &u).unwrap();
-    let n_active = states.iter().filter(|s| s.active).count();
-    assert_eq!(
-        n_active, case.active,
-        "{}: active contact nodes ({states:?})",
-        case.name
-    );
+/// Largest relative difference between the assembled local tangents and central differences of
+/// the local residuals at `u`, over all contributions; and the evaluated states.
+fn fd_error(
+    model: &hertz::model::Model,
+    contact: &ContactSystem,
+    dofs: &hertz::assembly::DofMap,
+    u: &[f64],
+) -> (f64, Vec<hertz::contact::SlotState>, usize) {
+    let (contribs, states) = contact.evaluate(model, dofs, u, Search::Fresh).unwrap();
     let h = 1e-6;
+    let mut worst = 0.0f64;
     let mut checked = 0;
     for (k, c) in contribs.iter().enumerate() {
         if c.fe.is_empty() {
@@ -58,193 +43,348 @@ fn check(case: &Case) {
         for j in 0..m {
             let code = c.codes[j];
             assert!(code < dofs.n_primary(), "plain DOFs in these cases");
-            let (mut up, mut um) = (u.clone(), u.clone());
+            let (mut up, mut um) = (u.to_vec(), u.to_vec());
             up[code] += h;
             um[code] -= h;
             let fp = &contact
-                .evaluate_with(&model, &dofs, &up, Some(&states))
+                .evaluate(model, dofs, &up, Search::Frozen(&states))
                 .unwrap()
                 .0[k];
             let fm = &contact
-                .evaluate_with(&model, &dofs, &um, Some(&states))
+                .evaluate(model, dofs, &um, Search::Frozen(&states))
                 .unwrap()
                 .0[k];
             for i in 0..m {
                 let fd = (fp.fe[i] - fm.fe[i]) / (2.0 * h);
-                let err = (fd - c.ke[i * m + j]).abs() / scale;
-                assert!(
-                    err < 1e-6,
-                    "{}: K[{i}][{j}] = {} but dr/du = {fd} (relative error {err:e})",
-                    case.name,
-                    c.ke[i * m + j]
-                );
+                worst = worst.max((fd - c.ke[i * m + j]).abs() / scale);
             }
         }
         checked += 1;
     }
-    assert!(checked > 0, "{}: no contribution checked", case.name);
+    (worst, states, checked)
 }
 
-/// Two quads: the lower one's top edge (element 1, edge 3) is the master segment; node 5 of the
-/// upper one is the contact node.
-fn two_quads(
+fn displaced(model: &hertz::model::Model, dofs: &hertz::assembly::DofMap, case: &Case) -> Vec<f64> {
+    let mut u = vec![0.0; dofs.n_primary()];
+    for &(label, d) in &case.disp {
+        let n = model
+            .nodes
+            .iter()
+            .position(|x| x.label == label)
+            .unwrap_or_else(|| panic!("{}: node {label}", case.name));
+        for k in 0..3 {
+            if let Some(c) = dofs.code(n, k as u8 + 1) {
+                u[c] = d[k];
+            }
+        }
+    }
+    for i in dofs.n_free - dofs.n_lambda..dofs.n_free {
+        u[i] = case.lambda;
+    }
+    u
+}
+
+fn check(case: &Case) {
+    let model =
+        common::model_from_text(&case.text).unwrap_or_else(|e| panic!("{}: {e}", case.name));
+    let mut contact = ContactSystem::new(&model).unwrap();
+    let dofs = hertz::solve::number_dofs(&model).unwrap();
+    contact.set_geometric_limit(f64::INFINITY);
+    let u = displaced(&model, &dofs, case);
+    let (err, states, checked) = fd_error(&model, &contact, &dofs, &u);
+    let n_active = states.iter().filter(|s| s.active).count();
+    assert_eq!(
+        n_active, case.active,
+        "{}: active contact nodes ({states:?})",
+        case.name
+    );
+    assert!(checked > 0, "{}: no contribution checked", case.name);
+    assert!(
+        err < 1e-6,
+        "{}: tangent off by {err:e} (relative)",
+        case.name
+    );
+}
+
+/// A strip of `nm` unit elements (Q4 or Q8) side by side whose top edges form the master segment,
+/// and a slave quad above it whose bottom-left node (label `s`, printed first) is the contact
+/// node at (sx, sy).
+fn strip(
     kind: &str,
     nlgeo: u8,
-    segment: &str,
+    nm: usize,
+    (sx, sy): (f64, f64),
+    segment: Option<&str>,
     condition: &str,
-    extra_nodes: &str,
-    nextra: usize,
 ) -> String {
-    let (e1, n1) = if kind == "q8" {
-        ("QPlaneStress2d 1 nodes 8 3 4 1 2 9 10 11 12", 12)
-    } else {
-        ("Quad1PlaneStrain 1 nodes 4 3 4 1 2", 8)
-    };
-    let q8 = if kind == "q8" {
-        "node 9 coords 2 0.5 1.02\nnode 10 coords 2 0 0.5\nnode 11 coords 2 0.5 0\nnode 12 coords 2 1 0.5\n"
-    } else {
-        ""
-    };
+    let q8 = kind == "q8";
+    let mut nodes = Vec::new();
+    let mut elems = Vec::new();
+    let id = |i: usize, j: usize| 1 + j * (nm + 1) + i;
+    for j in 0..2 {
+        for i in 0..=nm {
+            // A slightly wavy top so that vertex normals are averages of different edge normals.
+            let y = if j == 1 {
+                1.0 + 0.03 * (i as f64 * 1.7).sin()
+            } else {
+                0.0
+            };
+            nodes.push(format!("node {} coords 2 {i} {y}", id(i, j)));
+        }
+    }
+    let mut next = 2 * (nm + 1) + 1;
+    let mut edges = Vec::new();
+    for i in 0..nm {
+        let c = [id(i + 1, 1), id(i, 1), id(i, 0), id(i + 1, 0)];
+        if q8 {
+            let mids: Vec<usize> = (0..4).map(|k| next + k).collect();
+            let xy = |n: usize| -> (f64, f64) {
+                let (ii, jj) = ((n - 1) % (nm + 1), (n - 1) / (nm + 1));
+                let y = if jj == 1 {
+                    1.0 + 0.03 * (ii as f64 * 1.7).sin()
+                } else {
+                    0.0
+                };
+                (ii as f64, y)
+            };
+            for k in 0..4 {
+                let (a, b) = (xy(c[k]), xy(c[(k + 1) % 4]));
+                let bulge = if k == 0 { 0.02 } else { 0.0 };
+                nodes.push(format!(
+                    "node {} coords 2 {} {}",
+                    mids[k],
+                    0.5 * (a.0 + b.0),
+                    0.5 * (a.1 + b.1) + bulge
+                ));
+            }
+            next += 4;
+            elems.push(format!(
+                "QPlaneStress2d {} nodes 8 {} {} {} {} {} {} {} {} nlgeo {nlgeo}",
+                i + 1,
+                c[0],
+                c[1],
+                c[2],
+                c[3],
+                mids[0],
+                mids[1],
+                mids[2],
+                mids[3]
+            ));
+        } else {
+            elems.push(format!(
+                "Quad1PlaneStrain {} nodes 4 {} {} {} {} nlgeo {nlgeo}",
+                i + 1,
+                c[0],
+                c[1],
+                c[2],
+                c[3]
+            ));
+        }
+        edges.push(format!("{} 1", i + 1));
+    }
+    let s = next;
+    for (k, (dx, dy)) in [(0.0, 0.0), (0.6, 0.0), (0.6, 1.0), (0.0, 1.0)]
+        .iter()
+        .enumerate()
+    {
+        nodes.push(format!("node {} coords 2 {} {}", s + k, sx + dx, sy + dy));
+    }
+    elems.push(format!(
+        "Quad1PlaneStrain {} nodes 4 {} {} {} {}",
+        nm + 1,
+        s + 2,
+        s + 3,
+        s,
+        s + 1
+    ));
+    let extra_node = segment.is_some_and(|g| g.contains(" node 900"));
+    if extra_node {
+        nodes.push("node 900 coords 2 0.3 5.0".into());
+    }
+    let segment = segment
+        .map(str::to_string)
+        .unwrap_or_else(|| "linear2delementedgecontactsegment 1 edgeset 2".to_string());
+    let condition = condition.replace("NODE", &s.to_string());
     format!(
         "fd.out\nfd\nNonLinearStatic nsteps 1 controlmode 1\ndomain {}\nOutputManager\n\
-         ndofman {} nelem 2 ncrosssect 1 nmat 1 nbc 1 nic 0 nltf 1 nset 3 ncontactseg 1\n\
-         node 1 coords 2 0 0\nnode 2 coords 2 1 0\nnode 3 coords 2 1 1\nnode 4 coords 2 0 1\n\
-         node 5 coords 2 0.3 1.05\nnode 6 coords 2 1.3 1.05\nnode 7 coords 2 1.3 2.05\nnode 8 coords 2 0.3 2.05\n{q8}{extra_nodes}\
-         {e1} nlgeo {nlgeo}\nQuad1PlaneStrain 2 nodes 4 5 6 7 8\n{segment}\n\
+         ndofman {} nelem {} ncrosssect 1 nmat 1 nbc 1 nic 0 nltf 1 nset 2 ncontactseg 1\n{}\n{}\n{segment}\n\
          SimpleCS 1 thick 1 material 1 set 1\nIsoLE 1 d 0 E 100 n 0.3 tAlpha 0\n{condition}\n\
-         ConstantFunction 1 f(t) 1\nSet 1 allelements\nSet 2 elementboundaries 2 1 1\nSet 3 nodes 1 5\n",
-        if kind == "q8" { "2dPlaneStress" } else { "PlaneStrain" },
-        n1 + nextra
+         ConstantFunction 1 f(t) 1\nSet 1 allelements\nSet 2 elementboundaries {} {}\n",
+        if q8 { "2dPlaneStress" } else { "PlaneStrain" },
+        nodes.len(),
+        elems.len(),
+        nodes.join("\n"),
+        elems.join("\n"),
+        2 * edges.len(),
+        edges.join(" ")
     )
 }
 
-const EDGE: &str = "linear2delementedgecontactsegment 1 edgeset 2";
-const PEN: &str = "n2spenaltycontact 1 loadTimeFunction 1 penalty 1000 nodeset 1 5 segmentset 1 1";
-const LM: &str = "n2slagrangianmultipliercontact 1 loadTimeFunction 1 nodeset 1 5 segmentset 1 1";
+const PEN: &str =
+    "n2spenaltycontact 1 loadTimeFunction 1 penalty 1000 nodeset 1 NODE segmentset 1 1";
+const LM: &str =
+    "n2slagrangianmultipliercontact 1 loadTimeFunction 1 nodeset 1 NODE segmentset 1 1";
 
-fn edge_disp() -> Vec<(usize, [f64; 3])> {
+/// The contact node: the `NODE` substituted into the condition, read back from the nodeset.
+fn label_of_slave(text: &str) -> usize {
+    let line = text.lines().find(|l| l.contains("nodeset 1 ")).unwrap();
+    let after = line.split("nodeset 1 ").nth(1).unwrap();
+    after.split_whitespace().next().unwrap().parse().unwrap()
+}
+
+/// Displacements by node label.
+type Disp = Vec<(usize, [f64; 3])>;
+
+/// Edge cases: (name, number of master elements, slave position, displacement of the contact
+/// node, displacements of master nodes by label).
+fn edge_cases() -> Vec<(&'static str, usize, (f64, f64), [f64; 3], Disp)> {
     vec![
-        (5, [0.04, -0.11, 0.0]),
-        (3, [0.02, -0.01, 0.0]),
-        (4, [-0.01, 0.03, 0.0]),
-        (9, [0.01, 0.015, 0.0]),
+        // In the middle of an edge, nodes of the edge moved.
+        (
+            "mid-edge",
+            1,
+            (0.3, 1.05),
+            [0.04, -0.11, 0.0],
+            vec![(3, [0.02, -0.01, 0.0]), (4, [-0.01, 0.03, 0.0])],
+        ),
+        // Near the vertex shared by two edges (normal averaged over both; neighbours move).
+        (
+            "vertex",
+            3,
+            (1.02, 1.05),
+            [-0.03, -0.09, 0.0],
+            vec![
+                (5, [0.01, -0.02, 0.0]),
+                (6, [0.0, 0.03, 0.0]),
+                (7, [0.02, 0.01, 0.0]),
+                (8, [-0.01, -0.015, 0.0]),
+            ],
+        ),
+        // Just past the open end of the master: the force is weighted down (0 < w < 1).
+        // (an isolated node: the ramp is 1 % of the end edge long, here 0.01).
+        (
+            "open-end",
+            2,
+            (2.0, 1.0),
+            [0.002, -0.01, 0.0],
+            vec![(5, [0.01, -0.02, 0.0]), (6, [0.0, 0.01, 0.0])],
+        ),
     ]
 }
 
 #[test]
-fn n2s_penalty_tangent_is_jacobian_of_residual_on_straight_edges() {
-    for nlgeo in [0, 1] {
-        check(&Case {
-            name: "edge-pen",
-            text: two_quads("q4", nlgeo, EDGE, PEN, "", 0),
-            disp: edge_disp(),
-            lambda: 0.0,
-            active: 1,
-        });
-    }
-}
-
-#[test]
-fn n2s_penalty_tangent_is_jacobian_of_residual_on_quadratic_edges() {
-    for nlgeo in [0, 1] {
-        check(&Case {
-            name: "q8-pen",
-            text: two_quads("q8", nlgeo, EDGE, PEN, "", 0),
-            disp: edge_disp(),
-            lambda: 0.0,
-            active: 1,
-        });
-    }
-}
-
-#[test]
-fn n2s_multiplier_tangent_is_jacobian_of_residual_active_and_inactive() {
+fn n2s_tangents_are_jacobians_of_residuals_on_straight_and_quadratic_edges() {
     for kind in ["q4", "q8"] {
-        for nlgeo in [0, 1] {
-            let text = two_quads(kind, nlgeo, EDGE, LM, "", 0);
+        for nlgeo in [0u8, 1] {
+            for (name, nm, pos, ds, dm) in edge_cases() {
+                for (law, lambda, label) in [(PEN, 0.0, "pen"), (LM, 7.0, "lm")] {
+                    let text = strip(kind, nlgeo, nm, pos, None, law);
+                    let mut disp = dm.clone();
+                    disp.push((label_of_slave(&text), ds));
+                    check(&Case {
+                        name: format!("{name}-{kind}-nlgeo{nlgeo}-{label}"),
+                        text,
+                        disp,
+                        lambda,
+                        active: 1,
+                    });
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn n2s_tangent_with_a_prescribed_normal_is_jacobian_of_residual() {
+    for nlgeo in [0u8, 1] {
+        for law in [PEN, LM] {
+            let text = strip(
+                "q4",
+                nlgeo,
+                2,
+                (0.8, 1.02),
+                None,
+                &format!("{law} normal 2 0.2 1"),
+            );
+            let disp = vec![
+                (label_of_slave(&text), [0.03, -0.1, 0.0]),
+                (4, [0.01, 0.02, 0.0]),
+            ];
             check(&Case {
-                name: "edge-lm",
-                text: text.clone(),
-                disp: edge_disp(),
-                lambda: 7.0,
-                active: 1,
-            });
-            // Separated and without force: inactive, the row enforces λ = 0.
-            check(&Case {
-                name: "edge-lm-off",
+                name: format!("normal-nlgeo{nlgeo}"),
                 text,
-                disp: vec![],
-                lambda: 0.0,
-                active: 0,
+                disp,
+                lambda: 3.0,
+                active: 1,
             });
         }
     }
 }
 
 #[test]
-fn n2n_tangents_are_jacobians_of_residuals() {
-    for cond in [
-        "n2npenaltycontact 1 loadTimeFunction 1 penalty 1000 masterset 4 slaveset 3",
-        "n2nlagrangianmultipliercontact 1 loadTimeFunction 1 masterset 4 slaveset 3",
-        "n2npenaltycontact 1 loadTimeFunction 1 penalty 1000 masterset 4 slaveset 3 normal 2 0.1 1",
-    ] {
-        let text =
-            two_quads("q4", 0, EDGE, cond, "", 0).replace("nset 3", "nset 4") + "Set 4 nodes 1 4\n";
-        let text = text
-            .replace("ncontactseg 1", "ncontactseg 0")
-            .replace(&format!("{EDGE}\n"), "");
-        check(&Case {
-            name: "n2n",
-            text,
-            disp: vec![(5, [-0.3, -0.2, 0.0]), (4, [0.01, 0.02, 0.0])],
-            lambda: 3.0,
-            active: 1,
-        });
-    }
+fn n2s_multiplier_inactive_row_holds_lambda_at_zero() {
+    let text = strip("q4", 0, 1, (0.3, 1.05), None, LM);
+    check(&Case {
+        name: "lm-off".into(),
+        text,
+        disp: vec![],
+        lambda: 0.0,
+        active: 0,
+    });
 }
 
 #[test]
 fn rigid_segment_tangents_are_jacobians_of_residuals() {
-    let cases = [
+    // (name, segment, displacement of the contact node): the node starts at (0.3, 1.05)..(0.9, 2.05).
+    let cases: [(&str, &str, [f64; 3]); 7] = [
         (
             "circle",
-            "circlecontactsegment 1 centerpoint 2 0.3 2.0 radius 0.9",
-            "",
+            "circlecontactsegment 1 centerpoint 2 0.3 0.2 radius 0.9",
+            [0.05, -0.12, 0.0],
         ),
         (
             "circle-node",
-            "circlecontactsegment 1 centerpoint 2 0.3 2.0 radius 0.9 node 13",
-            "node 13 coords 2 0.3 2.0\n",
+            "circlecontactsegment 1 centerpoint 2 0.3 0.2 radius 0.9 node 900",
+            [0.05, -0.12, 0.0],
         ),
         (
-            "poly",
+            "cavity",
+            "circlecontactsegment 1 centerpoint 2 0.3 0.6 radius 0.4 cavity",
+            [0.05, 0.02, 0.0],
+        ),
+        (
+            "poly-below",
             "polynomialcontactsegment 1 coeffs 3 0.4 -0.1 1.0",
-            "",
+            [0.05, -0.12, 0.0],
+        ),
+        (
+            "poly-above",
+            "polynomialcontactsegment 1 coeffs 3 0.4 -0.1 0.9 bodyabove",
+            [0.05, 0.02, 0.0],
+        ),
+        (
+            "plane",
+            "planecontactsegment 1 point 2 0 1.0 normal 2 0.2 1",
+            [0.05, -0.15, 0.0],
         ),
         (
             "plane-node",
-            "planecontactsegment 1 point 2 0 1.0 normal 2 0.2 1 node 13",
-            "node 13 coords 2 5 5\n",
+            "planecontactsegment 1 point 2 0 1.0 normal 2 0.2 1 node 900",
+            [0.05, -0.15, 0.0],
         ),
     ];
-    for (name, seg, extra) in cases {
-        for cond in [PEN, LM] {
-            let nextra = usize::from(!extra.is_empty());
-            let text = two_quads("q4", 0, seg, cond, extra, nextra)
-                .replace("ndofman 8", &format!("ndofman {}", 8 + nextra));
-            let mut disp = vec![(5, [0.05, -0.12, 0.0])];
-            if nextra == 1 {
-                disp.push((13, [0.01, 0.03, 0.0]));
-            }
-            // Circles: the node starts outside the disk (centre (0.3, 2), radius 0.9) and moves in.
-            if name.starts_with("circle") {
-                disp[0].1 = [0.05, 0.12, 0.0];
+    for (name, seg, d) in cases {
+        for (law, lambda) in [(PEN, 0.0), (LM, 5.0)] {
+            let text = strip("q4", 0, 1, (0.3, 1.05), Some(seg), law);
+            let mut disp = vec![(label_of_slave(&text), d)];
+            if seg.contains("node 900") {
+                disp.push((900, [0.01, 0.03, 0.0]));
             }
             check(&Case {
-                name,
+                name: name.to_string(),
                 text,
                 disp,
-                lambda: 5.0,
+                lambda,
                 active: 1,
             });
         }
@@ -265,49 +405,89 @@ fn brick_input(ncontactseg: usize, nset: usize, node9: &str, records: &str) -> S
 
 #[test]
 fn sphere_tangent_in_3d_is_jacobian_of_residual() {
-    let text = brick_input(
-        1,
-        1,
-        "0.4 0.5 2.5",
-        "circlecontactsegment 1 centerpoint 3 0.4 0.5 2.5 radius 1.6 node 9\n\
-         SimpleCS 1 material 1 set 1\nIsoLE 1 d 0 E 100 n 0.3 tAlpha 0\n\
-         n2spenaltycontact 1 loadTimeFunction 1 penalty 1000 nodeset 2 2 3 segmentset 1 1\n\
-         ConstantFunction 1 f(t) 1\nSet 1 allelements\n",
-    );
-    let disp = vec![
-        (2, [0.02, 0.01, 0.1]),
-        (3, [-0.01, 0.0, 0.08]),
-        (9, [0.0, 0.02, -0.03]),
-    ];
-    check(&Case {
-        name: "sphere",
-        text,
-        disp,
-        lambda: 0.0,
-        active: 2,
-    });
+    for cond in [
+        "n2spenaltycontact 1 loadTimeFunction 1 penalty 1000 nodeset 2 2 3 segmentset 1 1",
+        "n2slagrangianmultipliercontact 1 loadTimeFunction 1 nodeset 2 2 3 segmentset 1 1",
+    ] {
+        let text = brick_input(
+            1,
+            1,
+            "0.4 0.5 2.5",
+            &format!(
+                "circlecontactsegment 1 centerpoint 3 0.4 0.5 2.5 radius 1.6 node 9\n\
+                 SimpleCS 1 material 1 set 1\nIsoLE 1 d 0 E 100 n 0.3 tAlpha 0\n{cond}\n\
+                 ConstantFunction 1 f(t) 1\nSet 1 allelements\n"
+            ),
+        );
+        let disp = vec![
+            (2, [0.02, 0.01, 0.1]),
+            (3, [-0.01, 0.0, 0.08]),
+            (9, [0.0, 0.02, -0.03]),
+        ];
+        check(&Case {
+            name: "sphere".into(),
+            text,
+            disp,
+            lambda: 2.0,
+            active: 2,
+        });
+    }
+}
+
+#[test]
+fn n2n_tangents_in_2d_and_3d_are_jacobians_of_residuals() {
+    for cond in [
+        "n2npenaltycontact 1 loadTimeFunction 1 penalty 1000 masterset 2 slaveset 3",
+        "n2nlagrangianmultipliercontact 1 loadTimeFunction 1 masterset 2 slaveset 3",
+        "n2npenaltycontact 1 loadTimeFunction 1 penalty 1000 masterset 2 slaveset 3 normal 3 0.1 0.2 1",
+    ] {
+        let text = brick_input(
+            0,
+            3,
+            "0.1 1.2 1.3",
+            &format!(
+                "SimpleCS 1 material 1 set 1\nIsoLE 1 d 0 E 100 n 0.3 tAlpha 0\n{cond}\n\
+                 ConstantFunction 1 f(t) 1\nSet 1 allelements\nSet 2 nodes 1 2\nSet 3 nodes 1 9\n"
+            ),
+        );
+        let disp = vec![(9, [-0.05, -0.3, -0.45]), (2, [0.02, 0.01, 0.03])];
+        check(&Case {
+            name: "n2n-3d".into(),
+            text,
+            disp,
+            lambda: 2.0,
+            active: 1,
+        });
+    }
 }
 
 /// Port of the spec's finite-difference check (spec §2.9, fd_check_n2s_tangent.py): edge
-/// x1 = (1, 1.02), x2 = (0, 0.98), node xs = (0.7, 0.95), p = 1, deformed normal. hertz's jet
-/// tangent equals Wriggers' consistent form K = p NvNvᵀ + (p g/l)(Bv Tvᵀ + Tv Bvᵀ) − (p g²/l²) Bv Bvᵀ
-/// and differs from OOFEM's (mixed term with the wrong sign) by the published 0.116.
+/// x1 = (1, 1.02), x2 = (0, 0.98), node xs = (0.7, 0.95), p = 1, deformed normal. For a single
+/// straight edge the force direction is the gradient of the gap, and hertz's tangent equals
+/// Wriggers' consistent form K = p NvNvᵀ + (p g/l)(Bv Tvᵀ + Tv Bvᵀ) − (p g²/l²) Bv Bvᵀ; OOFEM's
+/// (mixed term with the wrong sign) differs from it by the published 0.116.
 #[test]
 fn n2s_penalty_tangent_matches_the_consistent_closed_form_of_the_spec() {
-    use hertz::contact::jet::Jet;
-    use hertz::contact::kinematics::gap_line;
-    let q0 = [0.7, 0.95, 1.0, 1.02, 0.0, 0.98];
-    let q: Vec<Jet> = q0
-        .iter()
-        .enumerate()
-        .map(|(i, &v)| Jet::variable(v, i, 6))
-        .collect();
-    let g = gap_line(&[q[0], q[1]], &[q[2], q[3]], &[q[4], q[5]], 1.0);
+    let text =
+        "fd.out\nfd\nNonLinearStatic nsteps 1 controlmode 1\ndomain PlaneStrain\nOutputManager\n\
+        ndofman 5 nelem 1 ncrosssect 1 nmat 1 nbc 1 nic 0 nltf 1 nset 2 ncontactseg 1\n\
+        node 1 coords 2 1 1.02\nnode 2 coords 2 0 0.98\nnode 3 coords 2 0 0\nnode 4 coords 2 1 0\n\
+        node 5 coords 2 0.7 0.95\nQuad1PlaneStrain 1 nodes 4 1 2 3 4 nlgeo 1\n\
+        linear2delementedgecontactsegment 1 edgeset 2\nSimpleCS 1 thick 1 material 1 set 1\n\
+        IsoLE 1 d 0 E 100 n 0.3 tAlpha 0\n\
+        n2spenaltycontact 1 loadTimeFunction 1 penalty 1 nodeset 1 5 segmentset 1 1\n\
+        ConstantFunction 1 f(t) 1\nSet 1 allelements\nSet 2 elementboundaries 2 1 1\n";
+    let model = common::model_from_text(text).unwrap();
+    let mut contact = ContactSystem::new(&model).unwrap();
+    contact.set_geometric_limit(f64::INFINITY);
+    let dofs = hertz::solve::number_dofs(&model).unwrap();
+    let u = vec![0.0; dofs.n_primary()];
+    let (contribs, states) = contact.evaluate(&model, &dofs, &u, Search::Fresh).unwrap();
+    let c = &contribs[0];
+    assert_eq!(c.codes.len(), 6, "node 5, then edge nodes 1 and 2");
+    let k_hertz = |i: usize, j: usize| c.ke[i * 6 + j];
     let p = 1.0;
-    // hertz residual r = p g ∇g (internal force) and tangent K = p(∇g∇gᵀ + g∇²g).
-    let k_hertz = |i: usize, j: usize| p * (g.g[i] * g.g[j] + g.v * g.h[i][j]);
-    // Closed forms of the spec.
-    let (xs, x1, x2) = ([q0[0], q0[1]], [q0[2], q0[3]], [q0[4], q0[5]]);
+    let (xs, x1, x2): ([f64; 2], [f64; 2], [f64; 2]) = ([0.7, 0.95], [1.0, 1.02], [0.0, 0.98]);
     let t = [x2[0] - x1[0], x2[1] - x1[1]];
     let l = (t[0] * t[0] + t[1] * t[1]).sqrt();
     let e = [t[0] / l, t[1] / l];
@@ -315,7 +495,11 @@ fn n2s_penalty_tangent_matches_the_consistent_closed_form_of_the_spec() {
     let xi = 2.0 * (e[0] * (xs[0] - x1[0]) + e[1] * (xs[1] - x1[1])) / l - 1.0;
     let (n1, n2) = ((1.0 - xi) / 2.0, (1.0 + xi) / 2.0);
     let gap = (xs[0] - x1[0]) * n[0] + (xs[1] - x1[1]) * n[1];
-    assert!((gap - g.v).abs() < 1e-15, "gap {gap} vs {}", g.v);
+    assert!(
+        (gap - states[0].gap).abs() < 1e-15,
+        "gap {gap} vs {}",
+        states[0].gap
+    );
     assert!((gap + 0.058).abs() < 1e-3);
     let nv = [n[0], n[1], -n1 * n[0], -n1 * n[1], -n2 * n[0], -n2 * n[1]];
     let tv = [e[0], e[1], -n1 * e[0], -n1 * e[1], -n2 * e[0], -n2 * e[1]];
@@ -341,31 +525,4 @@ fn n2s_penalty_tangent_matches_the_consistent_closed_form_of_the_spec() {
         (d_oofem - 0.116).abs() < 2e-3,
         "OOFEM's form is off by {d_oofem}"
     );
-}
-
-/// Node-to-node contact in 3D (a brick node against a free node above it), penalty and multiplier.
-#[test]
-fn n2n_tangents_in_3d_are_jacobians_of_residuals() {
-    for cond in [
-        "n2npenaltycontact 1 loadTimeFunction 1 penalty 1000 masterset 2 slaveset 3",
-        "n2nlagrangianmultipliercontact 1 loadTimeFunction 1 masterset 2 slaveset 3",
-    ] {
-        let text = brick_input(
-            0,
-            3,
-            "0.1 1.2 1.3",
-            &format!(
-                "SimpleCS 1 material 1 set 1\nIsoLE 1 d 0 E 100 n 0.3 tAlpha 0\n{cond}\n\
-                 ConstantFunction 1 f(t) 1\nSet 1 allelements\nSet 2 nodes 1 2\nSet 3 nodes 1 9\n"
-            ),
-        );
-        let disp = vec![(9, [-0.05, -0.3, -0.45]), (2, [0.02, 0.01, 0.03])];
-        check(&Case {
-            name: "n2n-3d",
-            text,
-            disp,
-            lambda: 2.0,
-            active: 1,
-        });
-    }
 }

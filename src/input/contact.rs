@@ -128,6 +128,7 @@ pub fn read_segment(
                 center,
                 radius,
                 node: ref_node(r)?,
+                cavity: r.flag("cavity"),
             });
         }
         "polynomialcontactsegment" => {
@@ -138,7 +139,10 @@ pub fn read_segment(
             if coeffs.is_empty() {
                 return Err(r.error("`coeffs` needs at least one coefficient"));
             }
-            seg.kind = Some(SegmentKind::Polynomial { coeffs });
+            seg.kind = Some(SegmentKind::Polynomial {
+                coeffs,
+                body_above: r.flag("bodyabove"),
+            });
         }
         "planecontactsegment" => {
             let p = point(r, "point", nsd)?;

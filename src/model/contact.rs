@@ -8,15 +8,18 @@ pub enum SegmentKind {
     /// Edges of 2D elements, (element index, boundary number): straight for linear elements,
     /// quadratic (3 nodes) for QPlaneStress2d.
     Edges { edges: Vec<(usize, usize)> },
-    /// Rigid circle (2D) or sphere (3D); the body is the disk/ball. With `node`, the centre moves
-    /// with that node's displacement (load or prescribe the node to drive the indenter).
+    /// Rigid circle (2D) or sphere (3D); the body is the disk/ball, or everything outside it with
+    /// `cavity`. With `node`, the centre moves with that node's displacement (load or prescribe
+    /// the node to drive the indenter).
     Circle {
         center: [f64; 3],
         radius: f64,
         node: Option<usize>,
+        cavity: bool,
     },
-    /// Rigid curve y = Σ a_i x^(k−1−i) (highest power first), 2D.
-    Polynomial { coeffs: Vec<f64> },
+    /// Rigid curve y = Σ a_i x^(k−1−i) (highest power first), 2D; the body is below the curve, or
+    /// above it with `bodyabove`.
+    Polynomial { coeffs: Vec<f64>, body_above: bool },
     /// Rigid line (2D) or plane (3D) through `point` with unit `normal` pointing out of the rigid
     /// body; with `node`, it translates with that node (hertz extension: `planecontactsegment`).
     Plane {

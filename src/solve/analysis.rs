@@ -10,7 +10,7 @@
 use super::condensed::CondensedContact;
 use super::linear::{LinearSolver, SolverStats};
 use crate::assembly::{Assembler, Contribution, DofMap, Evaluation};
-use crate::contact::{ContactSystem, Partner, SlotState};
+use crate::contact::{ContactSystem, Partner, Search, SlotState};
 use crate::error::{Error, Result};
 use crate::model::{AnalysisKind, Model};
 use crate::output::outfile::sci;
@@ -76,9 +76,10 @@ pub fn run_analysis(
     params: &SolveParams,
     mut on_step: impl FnMut(&StepResult) -> Result<()>,
 ) -> Result<()> {
-    let dofs = super::number_dofs(model)?;
-    let asm = Assembler::new(model, &dofs)?;
-    let contact = ContactSystem::new(model, dofs.n_free - dofs.n_lambda)?;
+    let contact = ContactSystem::new(model)?;
+    let dofs = DofMap::new(model, &contact.extra_dofs())?;
+    let mut asm = Assembler::new(model, &dofs)?;
+    asm.set_symmetric(contact.symmetric());
     let nf = dofs.n_free;
     let np = dofs.n_primary();
     let ref_loads = reference_load_vectors(model, &dofs)?;
@@ -108,7 +109,7 @@ pub fn run_analysis(
     let linear = small_strain && contact.is_empty();
     // Linear elastic bodies in penalty contact: condense the Newton systems on the contact DOFs.
     let condensed = if small_strain && !contact.is_empty() && dofs.n_lambda == 0 {
-        Condensed::Pending(ContactSystem::candidate_equations(model, &dofs))
+        Condensed::Pending(contact.candidate_equations(&dofs))
     } else {
         Condensed::Off
     };
@@ -293,7 +294,9 @@ impl NewtonContext<'_> {
         want_states: bool,
         dup: Option<&[f64]>,
     ) -> Result<(Evaluation, Vec<SlotState>, Vec<Contribution>)> {
-        let (contribs, states) = self.contact.evaluate(self.asm.model, self.dofs, u)?;
+        let (contribs, states) =
+            self.contact
+                .evaluate(self.asm.model, self.dofs, u, Search::Fresh)?;
         let ev = self.evaluate_with_contact(u, want_k, want_states, dup, &contribs)?;
         Ok((ev, states, contribs))
     }
@@ -410,7 +413,9 @@ impl NewtonContext<'_> {
         let start = info.residual_history.len();
         let has_contact = !self.contact.is_empty();
         for it in 0..=a.maxiter {
-            let (contribs, states) = self.contact.evaluate(self.asm.model, self.dofs, u)?;
+            let (contribs, states) =
+                self.contact
+                    .evaluate(self.asm.model, self.dofs, u, Search::Fresh)?;
             let condensed = !matches!(self.condensed, Condensed::Off);
             let want_k = !condensed
                 && !self.factor_valid

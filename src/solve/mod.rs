@@ -14,5 +14,5 @@ use crate::model::Model;
 
 /// Number the DOFs of a model: its elements' DOFs plus what its contact conditions need.
 pub fn number_dofs(model: &Model) -> Result<DofMap> {
-    DofMap::new(model, &ContactSystem::extra_dofs(model))
+    DofMap::new(model, &ContactSystem::new(model)?.extra_dofs())
 }

@@ -1,0 +1,233 @@
+//! First-order forward automatic differentiation: a value with its gradient with respect to up to
+//! [`MAXV`] local unknowns of a contact pair. Contact kinematics (projection point, normal, gap,
+//! force direction) are written once in this arithmetic; the tangent of a contact force f(q) is the
+//! gradient of its components, so it is exact by construction, including the variation of the
+//! projection point. An implicit quantity (a projection parameter that solves r(ξ, q) = 0) gets its
+//! exact derivative from one Newton step in dual arithmetic taken from the converged value.
+
+use std::ops::{Add, Div, Mul, Neg, Sub};
+
+/// Most local unknowns of one contact pair: a 2D node against a quadratic edge whose end normals
+/// are averaged with the neighbouring quadratic edges (9 nodes × 2) plus a multiplier, with room
+/// for 3D pairs.
+pub const MAXV: usize = 32;
+
+/// f with ∂f/∂q_i for i < n.
+#[derive(Clone, Copy, Debug)]
+pub struct Dual {
+    pub v: f64,
+    pub d: [f64; MAXV],
+    pub n: usize,
+}
+
+impl Dual {
+    pub fn constant(v: f64, n: usize) -> Dual {
+        debug_assert!(n <= MAXV);
+        Dual {
+            v,
+            d: [0.0; MAXV],
+            n,
+        }
+    }
+
+    /// The i-th unknown with value v.
+    pub fn variable(v: f64, i: usize, n: usize) -> Dual {
+        let mut x = Dual::constant(v, n);
+        x.d[i] = 1.0;
+        x
+    }
+
+    /// f(self) for a scalar function with value f and derivative f1.
+    pub fn chain(self, f: f64, f1: f64) -> Dual {
+        let mut r = Dual::constant(f, self.n);
+        for i in 0..self.n {
+            r.d[i] = f1 * self.d[i];
+        }
+        r
+    }
+
+    pub fn sqrt(self) -> Dual {
+        let s = self.v.sqrt();
+        self.chain(s, 0.5 / s)
+    }
+
+    pub fn recip(self) -> Dual {
+        let r = 1.0 / self.v;
+        self.chain(r, -r * r)
+    }
+
+    /// The gradient as a slice.
+    pub fn grad(&self) -> &[f64] {
+        &self.d[..self.n]
+    }
+}
+
+impl Add for Dual {
+    type Output = Dual;
+    fn add(mut self, b: Dual) -> Dual {
+        self.n = self.n.max(b.n);
+        self.v += b.v;
+        for i in 0..self.n {
+            self.d[i] += b.d[i];
+        }
+        self
+    }
+}
+
+impl Sub for Dual {
+    type Output = Dual;
+    fn sub(mut self, b: Dual) -> Dual {
+        self.n = self.n.max(b.n);
+        self.v -= b.v;
+        for i in 0..self.n {
+            self.d[i] -= b.d[i];
+        }
+        self
+    }
+}
+
+impl Neg for Dual {
+    type Output = Dual;
+    fn neg(self) -> Dual {
+        self * -1.0
+    }
+}
+
+impl Mul for Dual {
+    type Output = Dual;
+    fn mul(self, b: Dual) -> Dual {
+        let n = self.n.max(b.n);
+        let mut r = Dual::constant(self.v * b.v, n);
+        for i in 0..n {
+            r.d[i] = self.d[i] * b.v + self.v * b.d[i];
+        }
+        r
+    }
+}
+
+impl Div for Dual {
+    type Output = Dual;
+    fn div(self, b: Dual) -> Dual {
+        let n = self.n.max(b.n);
+        let q = self.v / b.v;
+        let mut r = Dual::constant(q, n);
+        for i in 0..n {
+            r.d[i] = (self.d[i] - q * b.d[i]) / b.v;
+        }
+        r
+    }
+}
+
+impl Add<f64> for Dual {
+    type Output = Dual;
+    fn add(mut self, b: f64) -> Dual {
+        self.v += b;
+        self
+    }
+}
+
+impl Sub<f64> for Dual {
+    type Output = Dual;
+    fn sub(mut self, b: f64) -> Dual {
+        self.v -= b;
+        self
+    }
+}
+
+impl Mul<f64> for Dual {
+    type Output = Dual;
+    fn mul(mut self, b: f64) -> Dual {
+        self.v *= b;
+        for i in 0..self.n {
+            self.d[i] *= b;
+        }
+        self
+    }
+}
+
+/// A small vector of duals (a position, a normal) of dimension ≤ 3.
+pub type DVec = [Dual; 3];
+
+/// The unknowns `vals` as duals: q_i = vals[i] with ∂q_i/∂q_j = δ_ij, in a space of `n` unknowns.
+pub fn seed(vals: &[f64], n: usize) -> Vec<Dual> {
+    vals.iter()
+        .enumerate()
+        .map(|(i, &v)| Dual::variable(v, i, n))
+        .collect()
+}
+
+/// A constant vector as duals.
+pub fn constant_vec(x: &[f64], n: usize) -> DVec {
+    let mut r = [Dual::constant(0.0, n); 3];
+    for (ri, &xi) in r.iter_mut().zip(x) {
+        *ri = Dual::constant(xi, n);
+    }
+    r
+}
+
+/// a·b over the first `dim` components.
+pub fn dot(a: &DVec, b: &DVec, dim: usize) -> Dual {
+    let mut s = a[0] * b[0];
+    for i in 1..dim {
+        s = s + a[i] * b[i];
+    }
+    s
+}
+
+/// a − b.
+pub fn sub(a: &DVec, b: &DVec, dim: usize) -> DVec {
+    let mut r = *a;
+    for i in 0..dim {
+        r[i] = a[i] - b[i];
+    }
+    r
+}
+
+/// a + s·b.
+pub fn axpy(a: &DVec, s: Dual, b: &DVec, dim: usize) -> DVec {
+    let mut r = *a;
+    for i in 0..dim {
+        r[i] = a[i] + s * b[i];
+    }
+    r
+}
+
+/// s·a.
+pub fn scale(a: &DVec, s: Dual, dim: usize) -> DVec {
+    let mut r = *a;
+    for i in 0..dim {
+        r[i] = a[i] * s;
+    }
+    r
+}
+
+/// a / |a|.
+pub fn normalize(a: &DVec, dim: usize) -> DVec {
+    scale(a, dot(a, a, dim).sqrt().recip(), dim)
+}
+
+/// The plain values of a dual vector.
+pub fn values(a: &DVec) -> [f64; 3] {
+    [a[0].v, a[1].v, a[2].v]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dual_derivatives_match_central_differences() {
+        // f(x, y) = sqrt(x² + y²) / (x y + 1) at (0.7, 1.3)
+        let (x0, y0) = (0.7, 1.3);
+        let x = Dual::variable(x0, 0, 2);
+        let y = Dual::variable(y0, 1, 2);
+        let f = (x * x + y * y).sqrt() / (x * y + 1.0) - x.recip() * 0.5;
+        let fv = |x: f64, y: f64| (x * x + y * y).sqrt() / (x * y + 1.0) - 0.5 / x;
+        assert!((f.v - fv(x0, y0)).abs() < 1e-15);
+        let h = 1e-6;
+        let gx = (fv(x0 + h, y0) - fv(x0 - h, y0)) / (2.0 * h);
+        let gy = (fv(x0, y0 + h) - fv(x0, y0 - h)) / (2.0 * h);
+        assert!((f.d[0] - gx).abs() < 1e-8, "{} {gx}", f.d[0]);
+        assert!((f.d[1] - gy).abs() < 1e-8, "{} {gy}", f.d[1]);
+    }
+}

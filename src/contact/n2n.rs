@@ -1,0 +1,156 @@
+//! Node-to-node contact (spec §2.2, §2.3): fixed (master, slave) pairs with a fixed normal n (the
+//! prescribed `normal`, or the initial master-to-slave direction); g = (x_s − x_m)·n, B = [n; −n].
+//! The tangent is symmetric (B = ∇g) and, for the penalty, constant while closed.
+
+use super::dual::{self, Dual};
+use super::law::{self, PointKinematics};
+use super::{finish, Ctx, Formulation, Local, Partner, Search, SlotState};
+use crate::assembly::Contribution;
+use crate::error::{Error, Result};
+use crate::model::{ContactLaw, Model, Pairing};
+
+struct Pair {
+    master: usize,
+    slave: usize,
+    normal: [f64; 3],
+    area: f64,
+}
+
+pub struct NodeToNode {
+    number: usize,
+    law: ContactLaw,
+    pairs: Vec<Pair>,
+}
+
+impl NodeToNode {
+    pub fn new(model: &Model, ci: usize) -> Result<NodeToNode> {
+        let c = &model.contacts[ci];
+        let Pairing::NodeToNode { pairs } = &c.pairing else {
+            unreachable!("a node-to-node condition")
+        };
+        let err = |msg: String| Error::Input {
+            span: c.span.clone(),
+            msg,
+        };
+        let slaves: Vec<usize> = pairs.iter().map(|p| p.1).collect();
+        let areas = super::tributary::tributaries(model, &slaves);
+        let mut out = Vec::with_capacity(pairs.len());
+        for (&(m, s), trib) in pairs.iter().zip(areas) {
+            let label = |n: usize| model.nodes[n].label;
+            if m == s {
+                return Err(err(format!(
+                    "node {} is paired with itself (it is in both the master and the slave set)",
+                    label(m)
+                )));
+            }
+            let normal = match c.normal {
+                Some(n) => n,
+                None => {
+                    let (xm, xs) = (model.nodes[m].coords, model.nodes[s].coords);
+                    let d = [xs[0] - xm[0], xs[1] - xm[1], xs[2] - xm[2]];
+                    let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                    if len < 1e-8 {
+                        return Err(err(format!(
+                            "nodes {} and {} are too close to define a contact normal; give `normal`",
+                            label(m),
+                            label(s)
+                        )));
+                    }
+                    [d[0] / len, d[1] / len, d[2] / len]
+                }
+            };
+            out.push(Pair {
+                master: m,
+                slave: s,
+                normal,
+                area: trib.measure,
+            });
+        }
+        Ok(NodeToNode {
+            number: c.number,
+            law: c.law,
+            pairs: out,
+        })
+    }
+}
+
+impl Formulation for NodeToNode {
+    fn n_slots(&self) -> usize {
+        self.pairs.len()
+    }
+
+    fn n_multipliers(&self) -> usize {
+        if self.law == ContactLaw::Multiplier {
+            self.pairs.len()
+        } else {
+            0
+        }
+    }
+
+    fn nodes_needing_dofs(&self) -> Vec<usize> {
+        self.pairs
+            .iter()
+            .flat_map(|p| [p.master, p.slave])
+            .collect()
+    }
+
+    fn candidate_nodes(&self) -> Vec<usize> {
+        self.nodes_needing_dofs()
+    }
+
+    fn symmetric(&self) -> bool {
+        true
+    }
+
+    fn evaluate(
+        &self,
+        ctx: &Ctx,
+        first_lambda: usize,
+        _search: Search,
+        contribs: &mut Vec<Contribution>,
+        states: &mut Vec<SlotState>,
+    ) -> Result<()> {
+        let dim = ctx.dim;
+        for (k, p) in self.pairs.iter().enumerate() {
+            let mut local = Local::new(dim);
+            local.add(ctx, p.slave)?;
+            local.add(ctx, p.master)?;
+            let x = local.seed();
+            let n = dual::constant_vec(&p.normal[..dim], local.m());
+            let gap = dual::dot(&dual::sub(&x[0], &x[1], dim), &n, dim);
+            let m = local.m();
+            let kin = PointKinematics {
+                gap,
+                weight: Dual::constant(1.0, m),
+                b: local.distribute(
+                    &[(0, Dual::constant(1.0, m)), (1, Dual::constant(-1.0, m))],
+                    &n,
+                ),
+            };
+            let (lambda_eq, outcome) = match self.law {
+                ContactLaw::Penalty(pen) => (None, law::penalty::evaluate(ctx.laws, pen, &kin)),
+                ContactLaw::Multiplier => {
+                    let eq = first_lambda + k;
+                    (
+                        Some(eq),
+                        law::multiplier::evaluate(ctx.laws, ctx.u[eq], &kin),
+                    )
+                }
+            };
+            let mut state = SlotState {
+                condition: self.number,
+                node: p.slave,
+                partner: Partner::Node(p.master),
+                xi: 0.0,
+                gap: gap.v,
+                force: 0.0,
+                pressure: 0.0,
+                active: false,
+                x: dual::values(&x[0]),
+            };
+            contribs.push(finish(&local, lambda_eq, outcome, p.area, &mut state));
+            states.push(state);
+        }
+        Ok(())
+    }
+}
