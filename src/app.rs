@@ -17,6 +17,8 @@ pub struct RunOptions {
     pub out_dir: Option<PathBuf>,
     /// One log line per step on stderr.
     pub log_steps: bool,
+    /// One log line per Newton iteration on stderr.
+    pub log_iterations: bool,
 }
 
 /// What a run produced.
@@ -95,11 +97,20 @@ pub fn run_file(path: &Path, opts: &RunOptions) -> Result<RunReport> {
     csv.push('\n');
     let params = SolveParams {
         log_steps: opts.log_steps,
+        log_iterations: opts.log_iterations,
         ..Default::default()
     };
     let mut steps_done = 0;
+    let mut solver_warnings: Vec<String> = Vec::new();
     let result = run_analysis(&model, &params, |res| {
         steps_done += 1;
+        // Each solver warning once, with the first step it came up in.
+        for w in &res.info.warnings {
+            if !solver_warnings.contains(w) {
+                solver_warnings.push(w.clone());
+                report.warnings.push(format!("step {}: {w}", res.step));
+            }
+        }
         report
             .outcomes
             .extend(check::evaluate_step(&model, &rules, res));

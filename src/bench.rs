@@ -8,9 +8,9 @@ use crate::assembly::Assembler;
 use crate::error::{Error, Result};
 use crate::fem::shape::HEXA8_CORNERS;
 use crate::input::read_model;
-use crate::solve::analysis::reference_load_vectors;
 use crate::solve::linear::LinearSolver;
 use crate::solve::ordering::OrderingKind;
+use crate::solve::stepping::reference_load_vectors;
 use std::fmt::Write as _;
 use std::path::Path;
 use std::process::ExitCode;
@@ -150,8 +150,14 @@ pub fn write_block_input(path: &Path, dim: usize, n: usize) -> Result<()> {
 
 /// Write the contact benchmark: a plane-strain block of `2n × n` unit quads whose bottom is pushed
 /// up by `delta` against a fixed rigid circle of radius `2n` touching the middle of its top, with
-/// node-to-segment penalty contact on all top nodes (spec issue: n = 200 gives 161k unknowns).
-pub fn write_contact_block_input(path: &Path, n: usize, delta: f64) -> Result<()> {
+/// node-to-segment contact on all top nodes, penalty (p = 1000 E) or `multipliers` (n = 200 gives
+/// 161k unknowns).
+pub fn write_contact_block_input(
+    path: &Path,
+    n: usize,
+    delta: f64,
+    multipliers: bool,
+) -> Result<()> {
     let (nx, ny) = (2 * n, n);
     let id = |i: usize, j: usize| j * (nx + 1) + i + 1;
     let mut s = String::new();
@@ -198,10 +204,17 @@ pub fn write_contact_block_input(path: &Path, n: usize, delta: f64) -> Result<()
         "BoundaryCondition 1 loadTimeFunction 1 dofs 2 1 2 values 2 0.0 {delta} set 2"
     );
     let top: Vec<String> = (0..=nx).map(|i| id(i, ny).to_string()).collect();
+    let law = if multipliers {
+        "n2slagrangianmultipliercontact 2 loadTimeFunction 1".to_string()
+    } else {
+        format!(
+            "n2spenaltycontact 2 loadTimeFunction 1 penalty {}",
+            1e3 * YOUNG
+        )
+    };
     let _ = writeln!(
         s,
-        "n2spenaltycontact 2 loadTimeFunction 1 penalty {} nodeset {} {} segmentset 1 1",
-        1e3 * YOUNG,
+        "{law} nodeset {} {} segmentset 1 1",
         top.len(),
         top.join(" ")
     );
@@ -226,11 +239,11 @@ pub struct ContactBenchFigures {
     pub residual_history: Vec<f64>,
 }
 
-/// Run the contact benchmark of size `n` (block `2n × n`).
-pub fn run_contact(n: usize) -> Result<ContactBenchFigures> {
+/// Run the contact benchmark of size `n` (block `2n × n`), with penalty or `multipliers`.
+pub fn run_contact(n: usize, multipliers: bool) -> Result<ContactBenchFigures> {
     let path = std::env::temp_dir().join(format!("hertz-cbench-{}-{n}.in", std::process::id()));
     // Push by 1/40 of the block height: a contact zone of a few dozen nodes.
-    write_contact_block_input(&path, n, n as f64 / 40.0)?;
+    write_contact_block_input(&path, n, n as f64 / 40.0, multipliers)?;
     let read = read_model(&path);
     let _ = std::fs::remove_file(&path);
     let model = read?.model;
@@ -353,11 +366,15 @@ pub fn peak_rss_mb() -> f64 {
 /// CLI entry: `hertz bench [--dim 2|3] [--n N] [--ordering auto|amd|metis]`.
 pub fn main(args: &[String]) -> ExitCode {
     let (mut dim, mut n, mut ordering) = (2usize, 100usize, OrderingKind::Auto);
-    let mut contact = false;
+    let (mut contact, mut multipliers) = (false, false);
     let mut it = args.iter();
     while let Some(a) = it.next() {
         if a == "--contact" {
             contact = true;
+            continue;
+        }
+        if a == "--multipliers" {
+            multipliers = true;
             continue;
         }
         let v = it.next().map(String::as_str);
@@ -388,16 +405,33 @@ pub fn main(args: &[String]) -> ExitCode {
             _ => false,
         };
         if !ok {
-            eprintln!("error: bench takes --dim 2|3, --n N (N >= 1), --ordering auto|amd|metis, --contact; got `{a}`");
+            eprintln!("error: bench takes --dim 2|3, --n N (N >= 1), --ordering auto|amd|metis, --contact [--multipliers]; got `{a}`");
             return ExitCode::from(2);
         }
     }
+    // Refuse sizes that cannot fit before generating anything.
+    let unknowns = if dim == 3 && !contact {
+        3.0 * (n as f64 + 1.0).powi(3)
+    } else {
+        4.0 * (n as f64 + 1.0).powi(2)
+    };
+    if unknowns > 2e7 {
+        eprintln!(
+            "error: bench --n {n} means about {unknowns:.1e} unknowns; the largest accepted is 2e7"
+        );
+        return ExitCode::from(2);
+    }
     if contact {
-        return match run_contact(n) {
+        return match run_contact(n, multipliers) {
             Ok(f) => {
                 println!(
-                    "contact block {}x{n}, rigid circle, node-to-segment penalty on the top nodes",
-                    2 * n
+                    "contact block {}x{n}, rigid circle, node-to-segment {} on the top nodes",
+                    2 * n,
+                    if multipliers {
+                        "multipliers"
+                    } else {
+                        "penalty"
+                    }
                 );
                 println!("unknowns           {:>12}", f.unknowns);
                 println!("Newton iterations  {:>12}", f.iterations);

@@ -10,9 +10,9 @@ const HELP: &str = "\
 hertz — finite-element solver for contact mechanics that reads OOFEM input files
 
 USAGE:
-    hertz run FILE.in [-o DIR] [-q]   solve; write FILE's .out, .vtu per step and .pvd; evaluate
+    hertz run FILE.in [-o DIR] [-q|-v] solve; write FILE's .out, .vtu per step and .pvd; evaluate
                                       the #%BEGIN_CHECK% rules if the file has an errorcheck module
-    hertz check FILE.in [-q]          solve and evaluate the check rules; write nothing else
+    hertz check FILE.in [-q|-v]       solve and evaluate the check rules; write nothing else
     hertz bench [--dim 2|3] [--n N] [--ordering auto|amd|metis]
                                       solve a generated linear-elastic block with N elements per
                                       side and print sizes and timings
@@ -23,6 +23,7 @@ USAGE:
 OPTIONS:
     -o, --output DIR   directory for the output files (default: next to the input file)
     -q, --quiet        no per-step log lines on stderr
+    -v, --verbose      one log line per Newton iteration (residual, contact state)
 
 EXIT CODES:
     0 success, 1 a check rule failed, 2 bad input or usage, 3 the solver failed, 4 output failed
@@ -58,6 +59,7 @@ fn run_or_check(run: bool, args: &[String]) -> ExitCode {
     let mut opts = RunOptions {
         write_outputs: run,
         log_steps: true,
+        log_iterations: false,
         out_dir: None,
     };
     let mut it = args.iter();
@@ -68,6 +70,7 @@ fn run_or_check(run: bool, args: &[String]) -> ExitCode {
                 None => return usage_error("-o needs a directory"),
             },
             "-q" | "--quiet" => opts.log_steps = false,
+            "-v" | "--verbose" => opts.log_iterations = true,
             "-h" | "--help" => {
                 print!("{HELP}");
                 return ExitCode::SUCCESS;

@@ -1,36 +1,85 @@
-//! The condensed contact solve (Schur complement from the trailing factor block + Woodbury on the
-//! active contact DOFs) equals a direct factorization of the full tangent.
+//! The condensed contact step (Schur complement from the trailing factor block, the contact part
+//! dense on its equations, branches searched on the linearized problem) equals a direct
+//! factorization of the full tangent in the branches it settled on, for penalty and multipliers.
 
-use hertz::assembly::Assembler;
+use hertz::assembly::{Assembler, Contribution};
 use hertz::contact::{ContactSystem, Search};
 use hertz::input::read_model;
 use hertz::solve::condensed::CondensedContact;
 use hertz::solve::linear::LinearSolver;
 
-#[test]
-fn condensed_contact_solve_equals_direct_factorization() {
-    let path = std::env::temp_dir().join(format!("hertz-condensed-{}.in", std::process::id()));
-    hertz::bench::write_contact_block_input(&path, 8, 0.4).unwrap();
+fn compare(multipliers: bool) {
+    let path = std::env::temp_dir().join(format!(
+        "hertz-condensed-{}-{multipliers}.in",
+        std::process::id()
+    ));
+    hertz::bench::write_contact_block_input(&path, 8, 0.4, multipliers).unwrap();
     let model = read_model(&path).unwrap().model;
     std::fs::remove_file(&path).ok();
     let contact = ContactSystem::new(&model).unwrap();
     let dofs = hertz::assembly::DofMap::new(&model, &contact.extra_dofs()).unwrap();
     let mut asm = Assembler::new(&model, &dofs).unwrap();
-    // Lift the whole block into the rigid circle so that several top nodes penetrate.
+    // Lift the whole block into the rigid circle so that several top nodes penetrate; multipliers
+    // of a few of them positive.
     let mut u = vec![0.0; dofs.n_primary()];
     for (n, node) in model.nodes.iter().enumerate() {
         if let Some(c) = dofs.code(n, 2) {
             u[c] = 0.4 + 0.01 * node.coords[0].sin();
         }
     }
-    let (contribs, states) = contact.evaluate(&model, &dofs, &u, Search::Fresh).unwrap();
+    for (k, i) in (dofs.n_free - dofs.n_lambda..dofs.n_free).enumerate() {
+        u[i] = if k % 3 == 0 { 50.0 } else { 0.0 };
+    }
+    let (points, states) = contact.evaluate(&model, &dofs, &u, Search::Fresh).unwrap();
     let n_active = states.iter().filter(|s| s.active).count();
     assert!(n_active >= 3, "{n_active} active contacts");
     let rhs: Vec<f64> = (0..dofs.n_free)
         .map(|i| ((i * 7 % 13) as f64 - 6.0) * 1e3)
         .collect();
 
-    // Direct: the full tangent (elements + contact) factorized.
+    // Condensed: K_s alone with the contact candidates last.
+    let k_s = asm
+        .evaluate(&u, true, false, None, &[])
+        .unwrap()
+        .k_values
+        .unwrap();
+    let cands = contact.candidate_equations(&dofs);
+    let lambdas = dofs.n_free - dofs.n_lambda..dofs.n_free;
+    let mut cc = CondensedContact::new(&asm.pattern, &k_s, &cands, lambdas, None, &|e| {
+        e.to_string()
+    })
+    .unwrap()
+    .expect("supernodal with trailing candidates");
+    let step = cc
+        .step(&rhs, &points, &dofs)
+        .unwrap()
+        .expect("all points on candidates");
+
+    // Direct: the full tangent in the settled branches, the residual change of switched points.
+    let mut rhs_d = rhs.clone();
+    let contribs: Vec<Contribution> = points
+        .iter()
+        .zip(&step.closed)
+        .map(|(p, &c)| {
+            let (fe, ke) = p.branch(c);
+            if c != p.closed {
+                let (fe0, _) = p.branch(p.closed);
+                for (a, &code) in p.codes.iter().enumerate() {
+                    let d = fe.get(a).copied().unwrap_or(0.0) - fe0.get(a).copied().unwrap_or(0.0);
+                    for (e, w) in dofs.entries(code) {
+                        if e < dofs.n_free {
+                            rhs_d[e] -= w * d;
+                        }
+                    }
+                }
+            }
+            Contribution {
+                codes: p.codes.clone(),
+                fe,
+                ke,
+            }
+        })
+        .collect();
     let couplings: Vec<Vec<usize>> = contribs.iter().map(|c| c.codes.clone()).collect();
     asm.set_couplings(&couplings);
     let ev = asm.evaluate(&u, true, false, None, &contribs).unwrap();
@@ -40,28 +89,25 @@ fn condensed_contact_solve_equals_direct_factorization() {
             e.to_string()
         })
         .unwrap();
-    let mut x_direct = rhs.clone();
-    direct.solve_in_place(&mut x_direct).unwrap();
+    direct.solve_in_place(&mut rhs_d).unwrap();
 
-    // Condensed: K_el alone with the contact candidates last.
-    let k_el = asm
-        .evaluate(&u, true, false, None, &[])
-        .unwrap()
-        .k_values
-        .unwrap();
-    let cands = contact.candidate_equations(&dofs);
-    let mut cc = CondensedContact::new(&asm.pattern, &k_el, cands, None)
-        .expect("supernodal with trailing candidates");
-    let mut x_cond = rhs.clone();
-    assert!(cc.solve(&mut x_cond, &contribs, &dofs).unwrap());
-
-    let scale = x_direct.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let err = x_direct
+    let scale = rhs_d.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let err = rhs_d
         .iter()
-        .zip(&x_cond)
+        .zip(&step.du)
         .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
     assert!(
         err <= 1e-9 * scale,
-        "max difference {err:e} (scale {scale:e})"
+        "multipliers {multipliers}: max difference {err:e} (scale {scale:e})"
     );
+}
+
+#[test]
+fn condensed_penalty_step_equals_direct_factorization() {
+    compare(false);
+}
+
+#[test]
+fn condensed_multiplier_step_equals_direct_factorization() {
+    compare(true);
 }

@@ -30,7 +30,16 @@ fn fd_error(
     dofs: &hertz::assembly::DofMap,
     u: &[f64],
 ) -> (f64, Vec<hertz::contact::SlotState>, usize) {
-    let (contribs, states) = contact.evaluate(model, dofs, u, Search::Fresh).unwrap();
+    let (points, states) = contact.evaluate(model, dofs, u, Search::Fresh).unwrap();
+    let contribs: Vec<_> = points.iter().map(|p| p.contribution()).collect();
+    let residual = |u: &[f64], k: usize| {
+        contact
+            .evaluate(model, dofs, u, Search::Frozen(&states))
+            .unwrap()
+            .0[k]
+            .contribution()
+            .fe
+    };
     let h = 1e-6;
     let mut worst = 0.0f64;
     let mut checked = 0;
@@ -46,16 +55,9 @@ fn fd_error(
             let (mut up, mut um) = (u.to_vec(), u.to_vec());
             up[code] += h;
             um[code] -= h;
-            let fp = &contact
-                .evaluate(model, dofs, &up, Search::Frozen(&states))
-                .unwrap()
-                .0[k];
-            let fm = &contact
-                .evaluate(model, dofs, &um, Search::Frozen(&states))
-                .unwrap()
-                .0[k];
+            let (fp, fm) = (residual(&up, k), residual(&um, k));
             for i in 0..m {
-                let fd = (fp.fe[i] - fm.fe[i]) / (2.0 * h);
+                let fd = (fp[i] - fm[i]) / (2.0 * h);
                 worst = worst.max((fd - c.ke[i * m + j]).abs() / scale);
             }
         }
@@ -89,7 +91,7 @@ fn check(case: &Case) {
         common::model_from_text(&case.text).unwrap_or_else(|e| panic!("{}: {e}", case.name));
     let mut contact = ContactSystem::new(&model).unwrap();
     let dofs = hertz::solve::number_dofs(&model).unwrap();
-    contact.set_geometric_limit(f64::INFINITY);
+    contact.set_pressure_limit(f64::INFINITY);
     let u = displaced(&model, &dofs, case);
     let (err, states, checked) = fd_error(&model, &contact, &dofs, &u);
     let n_active = states.iter().filter(|s| s.active).count();
@@ -235,40 +237,48 @@ fn label_of_slave(text: &str) -> usize {
 /// Displacements by node label.
 type Disp = Vec<(usize, [f64; 3])>;
 
-/// Edge cases: (name, number of master elements, slave position, displacement of the contact
-/// node, displacements of master nodes by label).
-fn edge_cases() -> Vec<(&'static str, usize, (f64, f64), [f64; 3], Disp)> {
+/// An edge case: a strip of `nm` master elements, the contact node at `pos` displaced by `ds`,
+/// master nodes displaced by `dm`.
+struct EdgeCase {
+    name: &'static str,
+    nm: usize,
+    pos: (f64, f64),
+    ds: [f64; 3],
+    dm: Disp,
+}
+
+fn edge_cases() -> Vec<EdgeCase> {
     vec![
         // In the middle of an edge, nodes of the edge moved.
-        (
-            "mid-edge",
-            1,
-            (0.3, 1.05),
-            [0.04, -0.11, 0.0],
-            vec![(3, [0.02, -0.01, 0.0]), (4, [-0.01, 0.03, 0.0])],
-        ),
+        EdgeCase {
+            name: "mid-edge",
+            nm: 1,
+            pos: (0.3, 1.05),
+            ds: [0.04, -0.11, 0.0],
+            dm: vec![(3, [0.02, -0.01, 0.0]), (4, [-0.01, 0.03, 0.0])],
+        },
         // Near the vertex shared by two edges (normal averaged over both; neighbours move).
-        (
-            "vertex",
-            3,
-            (1.02, 1.05),
-            [-0.03, -0.09, 0.0],
-            vec![
+        EdgeCase {
+            name: "vertex",
+            nm: 3,
+            pos: (1.02, 1.05),
+            ds: [-0.03, -0.09, 0.0],
+            dm: vec![
                 (5, [0.01, -0.02, 0.0]),
                 (6, [0.0, 0.03, 0.0]),
                 (7, [0.02, 0.01, 0.0]),
                 (8, [-0.01, -0.015, 0.0]),
             ],
-        ),
-        // Just past the open end of the master: the force is weighted down (0 < w < 1).
-        // (an isolated node: the ramp is 1 % of the end edge long, here 0.01).
-        (
-            "open-end",
-            2,
-            (2.0, 1.0),
-            [0.002, -0.01, 0.0],
-            vec![(5, [0.01, -0.02, 0.0]), (6, [0.0, 0.01, 0.0])],
-        ),
+        },
+        // Just past the open end of the master: the force is weighted down (0 < w < 1) (an
+        // isolated node: the ramp is 1 % of the end edge long, here 0.01).
+        EdgeCase {
+            name: "open-end",
+            nm: 2,
+            pos: (2.0, 1.0),
+            ds: [0.002, -0.01, 0.0],
+            dm: vec![(5, [0.01, -0.02, 0.0]), (6, [0.0, 0.01, 0.0])],
+        },
     ]
 }
 
@@ -276,13 +286,13 @@ fn edge_cases() -> Vec<(&'static str, usize, (f64, f64), [f64; 3], Disp)> {
 fn n2s_tangents_are_jacobians_of_residuals_on_straight_and_quadratic_edges() {
     for kind in ["q4", "q8"] {
         for nlgeo in [0u8, 1] {
-            for (name, nm, pos, ds, dm) in edge_cases() {
+            for c in edge_cases() {
                 for (law, lambda, label) in [(PEN, 0.0, "pen"), (LM, 7.0, "lm")] {
-                    let text = strip(kind, nlgeo, nm, pos, None, law);
-                    let mut disp = dm.clone();
-                    disp.push((label_of_slave(&text), ds));
+                    let text = strip(kind, nlgeo, c.nm, c.pos, None, law);
+                    let mut disp = c.dm.clone();
+                    disp.push((label_of_slave(&text), c.ds));
                     check(&Case {
-                        name: format!("{name}-{kind}-nlgeo{nlgeo}-{label}"),
+                        name: format!("{}-{kind}-nlgeo{nlgeo}-{label}", c.name),
                         text,
                         disp,
                         lambda,
@@ -479,11 +489,11 @@ fn n2s_penalty_tangent_matches_the_consistent_closed_form_of_the_spec() {
         ConstantFunction 1 f(t) 1\nSet 1 allelements\nSet 2 elementboundaries 2 1 1\n";
     let model = common::model_from_text(text).unwrap();
     let mut contact = ContactSystem::new(&model).unwrap();
-    contact.set_geometric_limit(f64::INFINITY);
+    contact.set_pressure_limit(f64::INFINITY);
     let dofs = hertz::solve::number_dofs(&model).unwrap();
     let u = vec![0.0; dofs.n_primary()];
-    let (contribs, states) = contact.evaluate(&model, &dofs, &u, Search::Fresh).unwrap();
-    let c = &contribs[0];
+    let (points, states) = contact.evaluate(&model, &dofs, &u, Search::Fresh).unwrap();
+    let c = &points[0].contribution();
     assert_eq!(c.codes.len(), 6, "node 5, then edge nodes 1 and 2");
     let k_hertz = |i: usize, j: usize| c.ke[i * 6 + j];
     let p = 1.0;

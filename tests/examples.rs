@@ -23,7 +23,7 @@ fn cantilever_tip_deflection_matches_timoshenko_within_one_percent() {
         &RunOptions {
             write_outputs: true,
             out_dir: Some(dir.clone()),
-            log_steps: false,
+            ..Default::default()
         },
     )
     .expect("cantilever solves");
@@ -101,14 +101,15 @@ fn hertz_rigid_circle_p0_and_a_within_two_percent() {
         states.iter().filter(|s| s.active).count() >= 10,
         "the contact zone spans several elements"
     );
-    // Newton near the solution: once the active set has settled (the last jump of the residual),
-    // one iteration cuts the residual by more than six orders of magnitude — far beyond linear
-    // convergence — and the next reaches the round-off floor.
+    // Newton: the contact branches are decided on the linearized problem, so after the first
+    // step (from an open contact) the iterations converge superlinearly: one cuts the residual by
+    // more than five orders of magnitude and the next reaches the round-off floor of the penalty
+    // forces (p = 10⁴ E). Four iterations in all.
     println!("residual history {hist:?}");
     let n = hist.len();
-    assert!(n >= 3);
+    assert!((3..=5).contains(&n), "iterations: {hist:?}");
     assert!(
-        hist[n - 2] < 1e-6 * hist[n - 3],
+        hist[n - 2] < 1e-5 * hist[n - 3],
         "superlinear last iterations: {hist:?}"
     );
     assert!(hist[n - 1] < 1e-8, "converged to the floor: {hist:?}");
@@ -164,7 +165,7 @@ fn contact_csv_has_the_documented_header_and_rows() {
         &RunOptions {
             write_outputs: true,
             out_dir: Some(dir.clone()),
-            log_steps: false,
+            ..Default::default()
         },
     )
     .unwrap();

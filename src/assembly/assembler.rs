@@ -350,6 +350,19 @@ impl<'m> Assembler<'m> {
         }
     }
 
+    /// Add the residuals of `extra` contributions (their tangents left out) to `f_int`.
+    pub fn add_residuals(&self, f_int: &mut [f64], extra: &[Contribution]) {
+        for c in extra {
+            for (a, &ca) in c.codes.iter().enumerate() {
+                if let Some(&fa) = c.fe.get(a) {
+                    for (p, wp) in self.dofs.entries(ca) {
+                        f_int[p] += wp * fa;
+                    }
+                }
+            }
+        }
+    }
+
     /// The element loop at primary state `u`, plus the `extra` (contact) contributions.
     pub fn evaluate(
         &self,

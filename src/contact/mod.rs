@@ -20,14 +20,16 @@ pub mod geometry;
 pub mod law;
 pub mod n2n;
 pub mod n2s;
+pub mod point;
 pub mod search;
 pub mod tributary;
 
-use crate::assembly::{Contribution, DofMap, ExtraDofs};
+use crate::assembly::{DofMap, ExtraDofs};
 use crate::error::{Error, Result};
-use crate::model::{Model, Pairing};
+use crate::model::{ContactLaw, Model, Pairing};
 use dual::{DVec, Dual};
 use law::Laws;
+pub use point::{ContactPoint, PointLaw};
 
 /// What a contact node is paired with at the current state (the contact point itself is
 /// recomputed at every evaluation).
@@ -90,6 +92,14 @@ impl<'a> Search<'a> {
             Search::Fresh => None,
             Search::Hint(s) => s.get(k).map(|s| (s.partner, s.xi, false)),
             Search::Frozen(s) => s.get(k).map(|s| (s.partner, s.xi, true)),
+        }
+    }
+
+    /// The penetration (> 0) of slot k in the previous Newton iterate, if it was in contact.
+    pub fn previous_penetration(&self, k: usize) -> Option<f64> {
+        match self {
+            Search::Hint(s) => s.get(k).filter(|s| s.active && s.gap < 0.0).map(|s| -s.gap),
+            _ => None,
         }
     }
 }
@@ -210,7 +220,7 @@ pub trait Formulation {
         ctx: &Ctx,
         first_lambda: usize,
         search: Search,
-        contribs: &mut Vec<Contribution>,
+        points: &mut Vec<ContactPoint>,
         states: &mut Vec<SlotState>,
     ) -> Result<()>;
 }
@@ -247,7 +257,7 @@ impl ContactSystem {
             laws: Laws {
                 c: young,
                 gap_tol: 1e-12 * model_size(model),
-                geometric_limit: 0.1 * young,
+                pressure_limit: young,
             },
             dim: model.domain.nsd(),
         })
@@ -255,6 +265,11 @@ impl ContactSystem {
 
     pub fn is_empty(&self) -> bool {
         self.formulations.is_empty()
+    }
+
+    /// Number of contact points (one per contact node of every condition).
+    pub fn n_slots(&self) -> usize {
+        self.formulations.iter().map(|f| f.n_slots()).sum()
     }
 
     pub fn n_multipliers(&self) -> usize {
@@ -302,20 +317,22 @@ impl ContactSystem {
         &self.laws
     }
 
-    /// Set the bound of the geometric tangent part (see [`Laws::geometric_allowed`]);
-    /// `f64::INFINITY` always assembles the exact tangent.
-    pub fn set_geometric_limit(&mut self, limit: f64) {
-        self.laws.geometric_limit = limit;
+    /// Set the contact pressure above which the geometric tangent part is dropped (see
+    /// [`Laws::geometric_allowed`]); `f64::INFINITY` always assembles the exact tangent.
+    pub fn set_pressure_limit(&mut self, limit: f64) {
+        self.laws.pressure_limit = limit;
     }
 
-    /// Evaluate every contact point at the primary state `u`: local contributions and states.
+    /// Evaluate every contact point at the primary state `u`: the points (whose
+    /// [`contribution`](ContactPoint::contribution) is the current residual and tangent) and
+    /// their states.
     pub fn evaluate(
         &self,
         model: &Model,
         dofs: &DofMap,
         u: &[f64],
         search: Search,
-    ) -> Result<(Vec<Contribution>, Vec<SlotState>)> {
+    ) -> Result<(Vec<ContactPoint>, Vec<SlotState>)> {
         let ctx = Ctx {
             model,
             dofs,
@@ -323,7 +340,7 @@ impl ContactSystem {
             dim: self.dim,
             laws: &self.laws,
         };
-        let mut contribs = Vec::new();
+        let mut points = Vec::new();
         let mut states = Vec::new();
         let mut lambda = dofs.n_free - dofs.n_lambda;
         let mut slot = 0;
@@ -333,13 +350,13 @@ impl ContactSystem {
                 &ctx,
                 lambda,
                 search.slice(slot..slot + n),
-                &mut contribs,
+                &mut points,
                 &mut states,
             )?;
             lambda += f.n_multipliers();
             slot += n;
         }
-        Ok((contribs, states))
+        Ok((points, states))
     }
 }
 
@@ -357,26 +374,44 @@ pub fn model_size(model: &Model) -> f64 {
     d2.sqrt().max(1e-300)
 }
 
-/// Turn a law's outcome into a contribution and complete the slot state.
-pub fn finish(
-    local: &Local,
+/// The area a contact node stands for in the laws: its tributary area, or for a node on no
+/// contact surface (an isolated node) that of a tenth of the model's size.
+pub fn law_area(tributary: f64, model: &Model) -> f64 {
+    if tributary > 0.0 {
+        tributary
+    } else {
+        (0.1 * model_size(model)).powi(model.domain.nsd() as i32 - 1)
+    }
+}
+
+/// Apply a condition's law to the kinematics of one contact point and complete its state.
+pub fn apply_law(
+    ctx: &Ctx,
+    law: ContactLaw,
     lambda_eq: Option<usize>,
-    outcome: law::LawOutcome,
+    local: &Local,
+    kin: &law::PointKinematics,
     area: f64,
     state: &mut SlotState,
-) -> Contribution {
-    state.force = outcome.force;
-    state.active = outcome.active;
+) -> ContactPoint {
+    let mut codes = local.codes.clone();
+    let (point, penalty) = match (law, lambda_eq) {
+        (ContactLaw::Penalty(p), _) => (law::penalty::evaluate(ctx.laws, p, codes, kin), p),
+        (ContactLaw::Multiplier, Some(eq)) => {
+            codes.push(eq);
+            (
+                law::multiplier::evaluate(ctx.laws, ctx.u[eq], codes, kin),
+                0.0,
+            )
+        }
+        (ContactLaw::Multiplier, None) => unreachable!("multiplier points have an equation"),
+    };
+    state.force = law::normal_force(&point, kin, penalty);
+    state.active = point.closed && (lambda_eq.is_some() || kin.gap.v < 0.0);
     state.pressure = if area > 0.0 {
-        outcome.force / area
+        state.force / area
     } else {
         f64::NAN
     };
-    let mut codes = local.codes.clone();
-    codes.extend(lambda_eq);
-    Contribution {
-        codes,
-        fe: outcome.fe,
-        ke: outcome.ke,
-    }
+    point
 }

@@ -3,9 +3,8 @@
 //! The tangent is symmetric (B = ∇g) and, for the penalty, constant while closed.
 
 use super::dual::{self, Dual};
-use super::law::{self, PointKinematics};
-use super::{finish, Ctx, Formulation, Local, Partner, Search, SlotState};
-use crate::assembly::Contribution;
+use super::law::PointKinematics;
+use super::{apply_law, ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState};
 use crate::error::{Error, Result};
 use crate::model::{ContactLaw, Model, Pairing};
 
@@ -107,7 +106,7 @@ impl Formulation for NodeToNode {
         ctx: &Ctx,
         first_lambda: usize,
         _search: Search,
-        contribs: &mut Vec<Contribution>,
+        points: &mut Vec<ContactPoint>,
         states: &mut Vec<SlotState>,
     ) -> Result<()> {
         let dim = ctx.dim;
@@ -126,17 +125,9 @@ impl Formulation for NodeToNode {
                     &[(0, Dual::constant(1.0, m)), (1, Dual::constant(-1.0, m))],
                     &n,
                 ),
+                area: super::law_area(p.area, ctx.model),
             };
-            let (lambda_eq, outcome) = match self.law {
-                ContactLaw::Penalty(pen) => (None, law::penalty::evaluate(ctx.laws, pen, &kin)),
-                ContactLaw::Multiplier => {
-                    let eq = first_lambda + k;
-                    (
-                        Some(eq),
-                        law::multiplier::evaluate(ctx.laws, ctx.u[eq], &kin),
-                    )
-                }
-            };
+            let lambda_eq = (self.law == ContactLaw::Multiplier).then_some(first_lambda + k);
             let mut state = SlotState {
                 condition: self.number,
                 node: p.slave,
@@ -146,9 +137,11 @@ impl Formulation for NodeToNode {
                 force: 0.0,
                 pressure: 0.0,
                 active: false,
-                x: dual::values(&x[0]),
+                x: ctx.position(p.slave)?.0,
             };
-            contribs.push(finish(&local, lambda_eq, outcome, p.area, &mut state));
+            points.push(apply_law(
+                ctx, self.law, lambda_eq, &local, &kin, p.area, &mut state,
+            ));
             states.push(state);
         }
         Ok(())

@@ -21,10 +21,9 @@ use super::dual::{self, DVec, Dual};
 use super::geometry::edges::{edge_normal, EdgeGeometry, EdgeSurface};
 use super::geometry::rigid;
 use super::geometry::scalar::Scalar;
-use super::law::{self, PointKinematics};
+use super::law::PointKinematics;
 use super::search::{self, Candidate};
-use super::{finish, Ctx, Formulation, Local, Partner, Search, SlotState};
-use crate::assembly::Contribution;
+use super::{apply_law, ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState};
 use crate::error::{Error, Result};
 use crate::model::{ContactLaw, Model, Pairing, SegmentKind};
 use std::collections::HashMap;
@@ -414,7 +413,15 @@ impl NodeToSegment {
         }
         let b = local.distribute(&coeffs, &dir);
         let weight = self.weight(ctx.model, slot, k, &geom, xs);
-        Ok((local, PointKinematics { gap, weight, b }))
+        Ok((
+            local,
+            PointKinematics {
+                gap,
+                weight,
+                b,
+                area: super::law_area(slot.area, ctx.model),
+            },
+        ))
     }
 
     /// Kinematics against rigid segment `seg`, with the polynomial's contact abscissa `t0`.
@@ -479,6 +486,7 @@ impl NodeToSegment {
                 gap,
                 weight: Dual::constant(1.0, m),
                 b,
+                area: super::law_area(slot.area, model),
             },
         ))
     }
@@ -523,7 +531,7 @@ impl Formulation for NodeToSegment {
         ctx: &Ctx,
         first_lambda: usize,
         search: Search,
-        contribs: &mut Vec<Contribution>,
+        points: &mut Vec<ContactPoint>,
         states: &mut Vec<SlotState>,
     ) -> Result<()> {
         let cur = self.current(ctx)?;
@@ -592,6 +600,7 @@ impl Formulation for NodeToSegment {
                         gap: Dual::constant(f64::NAN, m),
                         weight: Dual::constant(0.0, m),
                         b: vec![Dual::constant(0.0, m); m],
+                        area: 0.0,
                     };
                     (local, kin)
                 }
@@ -599,14 +608,9 @@ impl Formulation for NodeToSegment {
             if chosen.is_some() {
                 state.gap = kin.gap.v;
             }
-            let outcome = match (self.law, lambda_eq) {
-                (ContactLaw::Penalty(p), _) => law::penalty::evaluate(ctx.laws, p, &kin),
-                (ContactLaw::Multiplier, Some(eq)) => {
-                    law::multiplier::evaluate(ctx.laws, ctx.u[eq], &kin)
-                }
-                (ContactLaw::Multiplier, None) => unreachable!("multiplier slots have an equation"),
-            };
-            contribs.push(finish(&local, lambda_eq, outcome, slot.area, &mut state));
+            points.push(apply_law(
+                ctx, self.law, lambda_eq, &local, &kin, slot.area, &mut state,
+            ));
             states.push(state);
         }
         Ok(())

@@ -1,125 +1,353 @@
-//! Newton systems of linear elastic bodies in penalty contact, condensed on the contact DOFs.
+//! Newton steps of contact problems, condensed on the contact equations, with every contact
+//! point's branch (closed or open) decided on the linearized problem.
 //!
-//! The elastic stiffness K_el is constant: it is factorized once with the contact-candidate DOFs c
-//! eliminated last, so the trailing block L₂₂ of its factor gives the Schur complement
-//! S = L₂₂L₂₂ᵀ and (K_el⁻¹)_cc = S⁻¹ without further solves. The contact tangent C lives on the
-//! active contact DOFs A ⊂ c; by Woodbury's identity
-//!   (K_el + PᵀCP)⁻¹ r = w − K_el⁻¹ Pᵀ y,  w = K_el⁻¹ r,  (I + C (S⁻¹)_AA) y = C w_A,
-//! so a Newton iteration costs two sparse solves and a dense system of the size of the active set,
-//! instead of a factorization.
+//! The structural tangent K_s (elements only) is factorized with the contact candidate equations c
+//! (the DOFs of every node a contact point can involve, and the multipliers) eliminated last; the
+//! trailing block L₂₂ of its factor gives M = (K_s⁻¹)_cc = (L₂₂L₂₂ᵀ)⁻¹ without further solves.
+//! Multiplier rows, empty in K_s, carry a unit diagonal there; a body held by contact alone makes
+//! K_s singular, and then every candidate displacement carries a diagonal shift α as well. Both
+//! shifts are taken back in the contact part, so the step solves the true tangent.
+//!
+//! A Newton step for a choice of branches: the contact tangent C on the equations A it touches
+//! (closed points, shifted equations) and the residual change δ of points whose branch differs from
+//! the current one give, with w = K_s⁻¹(r + Pᵀδ) and S_A = (M_AA)⁻¹ (the Schur complement of K_s
+//! on A),
+//!   (S_A + C) Δu_A = S_A w_A,   f_A = C Δu_A = S_A (w_A − Δu_A),
+//!   Δu = w − K_s⁻¹ Pᵀ f_A,
+//! one dense system of the size of A and, for the whole step, two sparse solves. (Woodbury's
+//! identity in this stiffness form: written with M C it would multiply a large penalty into the
+//! round-off of Δu_A.) From Δu_c every
+//! point's linearized gap (and multiplier) is predicted; the branches are updated from the
+//! prediction and the dense system solved again, until prediction and choice agree (a
+//! primal-dual active-set search on the linear model: see `contact::point`).
 
 use super::linear::LinearSolver;
-use crate::assembly::{Contribution, DofMap, Pattern};
+use crate::assembly::{DofMap, Pattern};
+use crate::contact::ContactPoint;
 use crate::error::{Error, Result};
-use faer::linalg::solvers::Solve;
+use faer::linalg::solvers::{DenseSolveCore, Solve};
 use faer::Mat;
-use std::collections::HashMap;
+use std::collections::HashSet;
 
-/// Largest candidate set handled densely (S⁻¹ is m × m).
+/// Largest candidate set handled densely (M is m × m).
 pub const MAX_CANDIDATES: usize = 3000;
+
+/// Largest number of branch updates in one step.
+const MAX_BRANCH_UPDATES: usize = 30;
 
 pub struct CondensedContact {
     base: LinearSolver,
-    /// Position of each candidate equation in S⁻¹.
-    pos: HashMap<usize, usize>,
-    /// (K_el⁻¹)_cc.
-    s_inv: Mat<f64>,
+    /// Position of every free equation among the candidates (usize::MAX if none).
+    pos: Vec<usize>,
+    /// Candidate equations, in the order of M.
+    cand: Vec<usize>,
+    /// M = (K_s'⁻¹)_cc, K_s' = K_s + diag(shift).
+    m: Mat<f64>,
+    /// Diagonal shift of every candidate (1 for multipliers, α or 0 for displacements).
+    shift: Vec<f64>,
+}
+
+/// The result of one condensed Newton step.
+pub struct CondensedStep {
+    pub du: Vec<f64>,
+    /// Branch of every point the step was solved with.
+    pub closed: Vec<bool>,
+    /// Number of times the branches were updated.
+    pub updates: usize,
+    /// The branch search revisited a choice instead of settling.
+    pub cycled: bool,
 }
 
 impl CondensedContact {
-    /// Factorize K_el (upper triangle `values` on `pattern`) with `candidates` last. None when the
-    /// factor is not supernodal with the candidates trailing, or K_el is singular on its own (a
-    /// body held only by contact): the caller then factorizes the full tangent.
+    /// Factorize K_s (the upper triangle `values` on the symmetric `pattern`) with the candidate
+    /// displacement equations and the multipliers `lambdas` last. Ok(None) when the factor does
+    /// not have them as a trailing supernodal block (the caller then factorizes full tangents).
     pub fn new(
         pattern: &Pattern,
         values: &[f64],
-        candidates: Vec<usize>,
+        candidates: &[usize],
+        lambdas: std::ops::Range<usize>,
         groups: Option<Vec<usize>>,
-    ) -> Option<Self> {
-        if candidates.is_empty() || candidates.len() > MAX_CANDIDATES {
-            return None;
+        describe: &dyn Fn(usize) -> String,
+    ) -> Result<Option<Self>> {
+        let mut cand: Vec<usize> = candidates.to_vec();
+        cand.extend(lambdas.clone());
+        if cand.is_empty() || cand.len() > MAX_CANDIDATES || !pattern.symmetric {
+            return Ok(None);
         }
+        let mut pos = vec![usize::MAX; pattern.n];
         let mut base = LinearSolver::default();
         base.groups = groups;
-        base.last_block = Some(candidates);
-        base.factorize(pattern, values, true, &|_| String::new())
-            .ok()?;
-        let (eqs, l22) = base.trailing_factor_block()?;
-        let m = eqs.len();
-        // S⁻¹ = L₂₂⁻ᵀ L₂₂⁻¹.
-        let mut linv = Mat::<f64>::identity(m, m);
-        l22.as_ref().solve_lower_triangular_in_place(linv.as_mut());
-        let s_inv = linv.transpose() * &linv;
-        let pos = eqs.iter().enumerate().map(|(k, &e)| (e, k)).collect();
-        Some(CondensedContact { base, pos, s_inv })
+        base.last_block = Some(cand.clone());
+        let mut shift: Vec<f64> = cand
+            .iter()
+            .map(|e| if lambdas.contains(e) { 1.0 } else { 0.0 })
+            .collect();
+        let mut cc = CondensedContact {
+            base,
+            pos: Vec::new(),
+            cand,
+            m: Mat::zeros(0, 0),
+            shift: Vec::new(),
+        };
+        cc.shift = shift.clone();
+        match cc.factorize(pattern, values, describe) {
+            Ok(true) => {}
+            Ok(false) => return Ok(None),
+            Err(Error::Singular(_)) => {
+                // A body held by contact alone: shift every candidate displacement by the mean
+                // diagonal of the candidates (a stiffness of the right size).
+                let diag: Vec<f64> = cc
+                    .cand
+                    .iter()
+                    .map(|&e| values[pattern.position(e, e)].abs())
+                    .filter(|v| *v > 0.0)
+                    .collect();
+                let alpha = diag.iter().sum::<f64>() / diag.len().max(1) as f64;
+                for (s, e) in shift.iter_mut().zip(&cc.cand) {
+                    if !lambdas.contains(e) {
+                        *s = alpha.max(f64::MIN_POSITIVE);
+                    }
+                }
+                cc.shift = shift;
+                cc.base.reset();
+                if !cc.factorize(pattern, values, describe)? {
+                    return Ok(None);
+                }
+            }
+            Err(e) => return Err(e),
+        }
+        for (k, &e) in cc.cand.iter().enumerate() {
+            pos[e] = k;
+        }
+        cc.pos = pos;
+        Ok(Some(cc))
     }
 
-    /// Solve (K_el + contact tangent of `contribs`) x = rhs in place. Ok(false) if a contribution
-    /// touches a DOF outside the candidates (the caller then factorizes the full tangent).
-    pub fn solve(
+    /// Factorize K_s' for new K_s values on the same pattern (large deformation) and update M.
+    /// Ok(false) when the factor no longer has the trailing block (e.g. an indefinite K_s).
+    pub fn factorize(
         &mut self,
-        rhs: &mut [f64],
-        contribs: &[Contribution],
-        dofs: &DofMap,
+        pattern: &Pattern,
+        values: &[f64],
+        describe: &dyn Fn(usize) -> String,
     ) -> Result<bool> {
-        let nf = dofs.n_free;
-        // Dense contact tangent on the active equations A.
-        let mut index: HashMap<usize, usize> = HashMap::new();
-        let mut active: Vec<usize> = Vec::new();
-        for c in contribs.iter().filter(|c| !c.ke.is_empty()) {
-            for &code in &c.codes {
-                for (p, _) in dofs.entries(code) {
-                    if p < nf && !index.contains_key(&p) {
-                        if !self.pos.contains_key(&p) {
-                            return Ok(false);
-                        }
-                        index.insert(p, active.len());
-                        active.push(p);
-                    }
-                }
+        let mut shifted = values.to_vec();
+        for (&e, &s) in self.cand.iter().zip(&self.shift) {
+            shifted[pattern.position(e, e)] += s;
+        }
+        self.base.factorize(pattern, &shifted, true, describe)?;
+        let Some((eqs, l22)) = self.base.trailing_factor_block() else {
+            return Ok(false);
+        };
+        // The factor orders the candidates its own way: M follows that order.
+        let old: Vec<usize> = self.cand.clone();
+        let shift_of: std::collections::HashMap<usize, f64> = old
+            .iter()
+            .copied()
+            .zip(self.shift.iter().copied())
+            .collect();
+        self.shift = eqs.iter().map(|e| shift_of[e]).collect();
+        self.cand = eqs;
+        for (k, &e) in self.cand.iter().enumerate() {
+            if e < self.pos.len() {
+                self.pos[e] = k;
             }
         }
-        let m = active.len();
-        let mut cmat = Mat::<f64>::zeros(m, m);
-        for c in contribs.iter().filter(|c| !c.ke.is_empty()) {
-            let nd = c.codes.len();
-            for (a, &ca) in c.codes.iter().enumerate() {
-                for (p, wp) in dofs.entries(ca).filter(|(p, _)| *p < nf) {
-                    for (b, &cb) in c.codes.iter().enumerate() {
-                        for (q, wq) in dofs.entries(cb).filter(|(q, _)| *q < nf) {
-                            cmat[(index[&p], index[&q])] += wp * wq * c.ke[a * nd + b];
-                        }
-                    }
-                }
-            }
-        }
-        self.base.solve_in_place(rhs)?;
-        if m == 0 {
-            return Ok(true);
-        }
-        let sa = Mat::<f64>::from_fn(m, m, |i, j| {
-            self.s_inv[(self.pos[&active[i]], self.pos[&active[j]])]
-        });
-        let wa = Mat::<f64>::from_fn(m, 1, |i, _| rhs[active[i]]);
-        let mut mmat = &cmat * &sa;
-        for i in 0..m {
-            mmat[(i, i)] += 1.0;
-        }
-        let mut y = &cmat * &wa;
-        mmat.as_ref().partial_piv_lu().solve_in_place(y.as_mut());
-        let mut z = vec![0.0; nf];
-        for (i, &e) in active.iter().enumerate() {
-            z[e] = y[(i, 0)];
-        }
-        self.base.solve_in_place(&mut z)?;
-        for (r, zi) in rhs.iter_mut().zip(&z) {
-            *r -= zi;
-        }
-        if rhs.iter().any(|v| !v.is_finite()) {
-            return Err(Error::Solve(
-                "condensed contact update produced a non-finite step".into(),
-            ));
-        }
+        // M = L₂₂⁻ᵀ L₂₂⁻¹.
+        let mdim = self.cand.len();
+        let mut linv = Mat::<f64>::identity(mdim, mdim);
+        l22.as_ref().solve_lower_triangular_in_place(linv.as_mut());
+        self.m = linv.transpose() * &linv;
         Ok(true)
+    }
+
+    /// One Newton step for the residual `r` (free equations) with the contact `points` at the
+    /// current state: the branches are searched on the linearized problem (see the module docs).
+    /// Ok(None) if a point touches an equation outside the candidates.
+    pub fn step(
+        &mut self,
+        r: &[f64],
+        points: &[ContactPoint],
+        dofs: &DofMap,
+    ) -> Result<Option<CondensedStep>> {
+        let nf = dofs.n_free;
+        // Candidate positions and weights of every point's local codes.
+        let mut locs: Vec<Vec<Vec<(usize, f64)>>> = Vec::with_capacity(points.len());
+        for p in points {
+            let mut l = Vec::with_capacity(p.codes.len());
+            for &code in &p.codes {
+                let mut entries = Vec::new();
+                for (e, w) in dofs.entries(code) {
+                    if e >= nf {
+                        continue;
+                    }
+                    let k = self.pos[e];
+                    if k == usize::MAX {
+                        return Ok(None);
+                    }
+                    entries.push((k, w));
+                }
+                l.push(entries);
+            }
+            locs.push(l);
+        }
+        let mut w = r.to_vec();
+        self.base.solve_in_place(&mut w)?;
+        let mdim = self.cand.len();
+        let wc: Vec<f64> = self.cand.iter().map(|&e| w[e]).collect();
+        let branches: Vec<[(Vec<f64>, Vec<f64>); 2]> = points
+            .iter()
+            .map(|p| [p.branch(false), p.branch(true)])
+            .collect();
+        let mut closed: Vec<bool> = points.iter().map(|p| p.closed).collect();
+        let mut seen: HashSet<Vec<bool>> = HashSet::new();
+        let mut updates = 0;
+        loop {
+            // Equations of the dense system: those of closed points and the shifted ones.
+            let mut in_a = vec![usize::MAX; mdim];
+            let mut a: Vec<usize> = Vec::new();
+            let mut add = |k: usize, a: &mut Vec<usize>| {
+                if in_a[k] == usize::MAX {
+                    in_a[k] = a.len();
+                    a.push(k);
+                }
+            };
+            for (k, &s) in self.shift.iter().enumerate() {
+                if s != 0.0 && !self.is_lambda(k, dofs) {
+                    add(k, &mut a);
+                }
+            }
+            for (i, l) in locs.iter().enumerate() {
+                if closed[i] && points[i].can_close() {
+                    for entries in l {
+                        for &(k, _) in entries {
+                            add(k, &mut a);
+                        }
+                    }
+                }
+            }
+            let na = a.len();
+            let mut c = Mat::<f64>::zeros(na, na);
+            for &k in &a {
+                c[(in_a[k], in_a[k])] -= self.shift[k];
+            }
+            // δ: the residual change of points whose branch differs from their current one.
+            let mut delta = vec![0.0; mdim];
+            for (i, l) in locs.iter().enumerate() {
+                let (fe, ke) = &branches[i][usize::from(closed[i])];
+                let nd = l.len();
+                if closed[i] != points[i].closed {
+                    let (fe0, _) = &branches[i][usize::from(points[i].closed)];
+                    for (a_, entries) in l.iter().enumerate() {
+                        let d = fe.get(a_).copied().unwrap_or(0.0)
+                            - fe0.get(a_).copied().unwrap_or(0.0);
+                        for &(k, wk) in entries {
+                            delta[k] -= wk * d;
+                        }
+                    }
+                }
+                if ke.is_empty() {
+                    continue;
+                }
+                for (a_, ea) in l.iter().enumerate() {
+                    for &(ka, wa) in ea {
+                        let Some(ia) = (in_a[ka] != usize::MAX).then(|| in_a[ka]) else {
+                            continue;
+                        };
+                        for (b_, eb) in l.iter().enumerate() {
+                            let kab = ke[a_ * nd + b_];
+                            if kab == 0.0 {
+                                continue;
+                            }
+                            for &(kb, wb) in eb {
+                                if in_a[kb] != usize::MAX {
+                                    c[(ia, in_a[kb])] += wa * wb * kab;
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+            // w_c = (K_s⁻¹(r + Pᵀδ))_c; on A the stiffness form of Woodbury's identity,
+            //   (S_A + C) Δu_A = S_A w_A,  S_A = (M_AA)⁻¹ (the Schur complement of K_s on A),
+            // keeps a large penalty from amplifying round-off; the contact force increment is
+            // f_A = C Δu_A = S_A (w_A − Δu_A).
+            let w_c: Vec<f64> = (0..mdim)
+                .map(|k| wc[k] + (0..mdim).map(|j| self.m[(k, j)] * delta[j]).sum::<f64>())
+                .collect();
+            let mut f_a = vec![0.0; na];
+            if na > 0 {
+                let m_aa = Mat::<f64>::from_fn(na, na, |i, j| self.m[(a[i], a[j])]);
+                let s_a = m_aa.as_ref().partial_piv_lu().inverse();
+                let w_a = Mat::<f64>::from_fn(na, 1, |i, _| w_c[a[i]]);
+                let mut x = &s_a * &w_a;
+                let sys = &s_a + &c;
+                sys.as_ref().partial_piv_lu().solve_in_place(x.as_mut());
+                let diff = Mat::<f64>::from_fn(na, 1, |i, _| w_a[(i, 0)] - x[(i, 0)]);
+                let f = &s_a * &diff;
+                for i in 0..na {
+                    f_a[i] = f[(i, 0)];
+                }
+            }
+            // corr = δ − Pᵀ f_A, and the predicted Δu on the candidates.
+            let mut corr = delta;
+            for i in 0..na {
+                corr[a[i]] -= f_a[i];
+            }
+            let du_c: Vec<f64> = (0..mdim)
+                .map(|k| wc[k] + (0..mdim).map(|j| self.m[(k, j)] * corr[j]).sum::<f64>())
+                .collect();
+            if du_c.iter().any(|v| !v.is_finite()) {
+                return Err(Error::Solve(
+                    "the tangent is singular: a body is held by contact alone and no contact holds it"
+                        .into(),
+                ));
+            }
+            // Predict every point's branch from the linearized step.
+            let predicted: Vec<bool> = points
+                .iter()
+                .zip(&locs)
+                .map(|(p, l)| {
+                    let dq: Vec<f64> = l
+                        .iter()
+                        .map(|entries| entries.iter().map(|&(k, wk)| wk * du_c[k]).sum())
+                        .collect();
+                    p.predicts_closed(&dq)
+                })
+                .collect();
+            let settled = predicted == closed;
+            seen.insert(closed.clone());
+            if !settled && updates < MAX_BRANCH_UPDATES && !seen.contains(&predicted) {
+                closed = predicted;
+                updates += 1;
+                continue;
+            }
+            let cycled = !settled;
+            // The whole step: Δu = w + K_s⁻¹ (δ − Pᵀ C Δu_A).
+            let mut z = vec![0.0; nf];
+            for (k, &e) in self.cand.iter().enumerate() {
+                z[e] = corr[k];
+            }
+            self.base.solve_in_place(&mut z)?;
+            for (wi, zi) in w.iter_mut().zip(&z) {
+                *wi += zi;
+            }
+            if w.iter().any(|v| !v.is_finite()) {
+                return Err(Error::Solve(
+                    "condensed contact step produced a non-finite update".into(),
+                ));
+            }
+            return Ok(Some(CondensedStep {
+                du: w,
+                closed,
+                updates,
+                cycled,
+            }));
+        }
+    }
+
+    fn is_lambda(&self, k: usize, dofs: &DofMap) -> bool {
+        self.cand[k] >= dofs.n_free - dofs.n_lambda
     }
 }

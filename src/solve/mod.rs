@@ -1,11 +1,12 @@
 //! Linear solvers, the condensed contact solve and the Newton/load-stepping driver.
 
-pub mod analysis;
 pub mod condensed;
 pub mod linear;
+pub mod newton;
 pub mod ordering;
+pub mod stepping;
 
-pub use analysis::{run_analysis, SolveParams, StepInfo, StepResult};
+pub use stepping::{run_analysis, SolveParams, StepInfo, StepResult};
 
 use crate::assembly::DofMap;
 use crate::contact::ContactSystem;

@@ -9,30 +9,22 @@
 //!   smoothed normal field or a prescribed normal, so the tangent need not be symmetric.
 //!
 //! Each law splits its tangent into a material part (B ⊗ ∇g) and a geometric part (force × ∂B),
-//! and drops the geometric part while it is large against the bodies' stiffness (see
+//! and drops the geometric part while the iterate is far from any solution (see
 //! [`Laws::geometric_allowed`]).
 
 pub mod multiplier;
 pub mod penalty;
 
 use super::dual::Dual;
+use super::point::{ContactPoint, PointLaw};
 
 /// Kinematics of one contact point.
 pub struct PointKinematics {
     pub gap: Dual,
     pub weight: Dual,
     pub b: Vec<Dual>,
-}
-
-/// A law's output for one contact point: local residual and row-major tangent (over the m
-/// displacement unknowns, plus the multiplier last for multipliers), the normal force (≥ 0 in
-/// compression) and whether the point is in contact.
-#[derive(Debug, Clone, Default)]
-pub struct LawOutcome {
-    pub fe: Vec<f64>,
-    pub ke: Vec<f64>,
-    pub force: f64,
-    pub active: bool,
+    /// The node's tributary area (2D: length × thickness), or a floor for isolated nodes.
+    pub area: f64,
 }
 
 /// Settings shared by the laws of a model.
@@ -42,21 +34,49 @@ pub struct Laws {
     pub c: f64,
     /// Gaps smaller than this (a length, from the model size) count as touching.
     pub gap_tol: f64,
-    /// Bound on the Frobenius norm of the geometric tangent part (a stiffness).
-    pub geometric_limit: f64,
+    /// Contact pressure above which the geometric tangent part is dropped (the stiffest modulus).
+    pub pressure_limit: f64,
 }
 
 impl Laws {
-    /// Whether the geometric tangent part `force · ∂v` (v = w·B, or B) is assembled. It is part of
-    /// the exact tangent, but far from the solution — a node deep inside a curved master — it is
-    /// a large negative stiffness that makes the tangent indefinite and the Newton step useless.
-    /// It is kept while |force|·‖∂v‖ stays below the limit (a tenth of the stiffest modulus),
-    /// which holds near convergence, where quadratic convergence matters.
-    pub fn geometric_allowed(&self, force: f64, v: &[Dual]) -> bool {
-        let norm2: f64 = v
-            .iter()
-            .map(|x| x.grad().iter().map(|d| d * d).sum::<f64>())
-            .sum();
-        force.abs() * norm2.sqrt() <= self.geometric_limit
+    /// Whether the geometric tangent part (force × ∂B) is assembled. It is part of the exact
+    /// tangent, but when an iterate has pushed a node deep into a curved master, the force there
+    /// is far beyond anything the bodies can carry, and its geometric stiffness — a large negative
+    /// one inside a convex master — makes the Newton step useless. A contact pressure above the
+    /// stiffest Young's modulus (a strain of 100 %) marks such an iterate: there the geometric part
+    /// is dropped; at any state the bodies can actually reach, the tangent is exact.
+    pub fn geometric_allowed(&self, force: f64, area: f64) -> bool {
+        force.abs() <= self.pressure_limit * area
+    }
+}
+
+/// The point's gap, its gradient and the closed branch's (fe, ke) into a [`ContactPoint`].
+fn point(
+    codes: Vec<usize>,
+    law: PointLaw,
+    k: &PointKinematics,
+    closed: Option<(Vec<f64>, Vec<f64>)>,
+    closed_now: bool,
+) -> ContactPoint {
+    let (closed_fe, closed_ke) = closed.unwrap_or_default();
+    ContactPoint {
+        codes,
+        law,
+        closed_fe,
+        closed_ke,
+        gap: k.gap.v,
+        gap_grad: k.gap.grad().to_vec(),
+        closed: closed_now,
+    }
+}
+
+/// Normal force (≥ 0 in compression) of a point in its current branch.
+pub fn normal_force(p: &ContactPoint, k: &PointKinematics, penalty: f64) -> f64 {
+    if !p.closed {
+        return 0.0;
+    }
+    match p.law {
+        PointLaw::Penalty => -penalty * k.weight.v * k.gap.v,
+        PointLaw::Multiplier { lambda, .. } => lambda,
     }
 }

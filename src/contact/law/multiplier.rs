@@ -7,37 +7,36 @@
 //! The weight w only switches the constraint: in the limit of an infinite penalty, the penalty law
 //! holds g = 0 wherever w > 0.
 
-use super::{LawOutcome, Laws, PointKinematics};
+use super::{point, Laws, PointKinematics};
+use crate::contact::point::{ContactPoint, PointLaw};
 
-pub fn evaluate(laws: &Laws, lambda: f64, k: &PointKinematics) -> LawOutcome {
+/// `codes`: the displacement codes, then the multiplier's equation.
+pub fn evaluate(laws: &Laws, lambda: f64, codes: Vec<usize>, k: &PointKinematics) -> ContactPoint {
     let m = k.b.len();
     let mm = m + 1;
     let g = k.gap;
-    let mut out = LawOutcome {
-        fe: vec![0.0; mm],
-        ke: vec![0.0; mm * mm],
-        force: 0.0,
-        active: false,
+    let law = PointLaw::Multiplier {
+        lambda,
+        c: laws.c,
+        tol: laws.gap_tol,
     };
-    let active = k.weight.v > 0.0 && lambda - laws.c * g.v > -laws.c * laws.gap_tol;
-    if !active {
-        out.fe[m] = lambda;
-        out.ke[m * mm + m] = 1.0;
-        return out;
+    if !(k.weight.v > 0.0) || g.v.is_nan() {
+        return point(codes, law, k, None, false);
     }
-    let geometric = laws.geometric_allowed(lambda, &k.b);
+    let geometric = laws.geometric_allowed(lambda, k.area);
+    let mut fe = vec![0.0; mm];
+    let mut ke = vec![0.0; mm * mm];
     for i in 0..m {
-        out.fe[i] = -lambda * k.b[i].v;
-        out.ke[i * mm + m] = -k.b[i].v;
-        out.ke[m * mm + i] = -g.d[i];
+        fe[i] = -lambda * k.b[i].v;
+        ke[i * mm + m] = -k.b[i].v;
+        ke[m * mm + i] = -g.d[i];
         if geometric {
             for j in 0..m {
-                out.ke[i * mm + j] = -lambda * k.b[i].d[j];
+                ke[i * mm + j] = -lambda * k.b[i].d[j];
             }
         }
     }
-    out.fe[m] = -g.v;
-    out.force = lambda;
-    out.active = true;
-    out
+    fe[m] = -g.v;
+    let active = lambda - laws.c * g.v > -laws.c * laws.gap_tol;
+    point(codes, law, k, Some((fe, ke)), active)
 }

@@ -1,18 +1,22 @@
 //! Penalty law: the force p·w·⟨−g⟩ along B. Closed at g ≤ 0: at g = 0 the force is zero but the
 //! tangent is on (as OOFEM), so a body that starts touching under a load has stiffness.
 //!
-//! r = p·g·v, v = w·B;  K = p·(v ⊗ ∇g + g·∂v)  (the second term is the geometric part).
+//! Closed branch: r = p·g·v, v = w·B;  K = p·(v ⊗ ∇g + g·∂v) (the second term is the geometric
+//! part). At an open point (g > 0) the closed branch is the linear model of the closing force:
+//! its value p·g·v (a pull) and the material part only; the solver uses it when it predicts that
+//! the point closes within the step.
 
-use super::{LawOutcome, Laws, PointKinematics};
+use super::{point, Laws, PointKinematics};
+use crate::contact::point::{ContactPoint, PointLaw};
 
-pub fn evaluate(laws: &Laws, penalty: f64, k: &PointKinematics) -> LawOutcome {
+pub fn evaluate(laws: &Laws, penalty: f64, codes: Vec<usize>, k: &PointKinematics) -> ContactPoint {
     let m = k.b.len();
     let g = k.gap;
-    if !(g.v <= 0.0) || k.weight.v <= 0.0 {
-        return LawOutcome::default();
+    if !(k.weight.v > 0.0) || g.v.is_nan() {
+        return point(codes, PointLaw::Penalty, k, None, false);
     }
     let v: Vec<_> = k.b.iter().map(|&b| k.weight * b).collect();
-    let geometric = laws.geometric_allowed(penalty * g.v, &v);
+    let geometric = g.v < 0.0 && laws.geometric_allowed(penalty * k.weight.v * g.v, k.area);
     let mut ke = vec![0.0; m * m];
     for i in 0..m {
         for j in 0..m {
@@ -23,10 +27,6 @@ pub fn evaluate(laws: &Laws, penalty: f64, k: &PointKinematics) -> LawOutcome {
             ke[i * m + j] = penalty * kij;
         }
     }
-    LawOutcome {
-        fe: v.iter().map(|vi| penalty * g.v * vi.v).collect(),
-        ke,
-        force: -penalty * k.weight.v * g.v,
-        active: g.v < 0.0,
-    }
+    let fe = v.iter().map(|vi| penalty * g.v * vi.v).collect();
+    point(codes, PointLaw::Penalty, k, Some((fe, ke)), g.v <= 0.0)
 }

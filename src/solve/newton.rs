@@ -1,0 +1,543 @@
+//! Newton–Raphson iterations of one (sub)step, with OOFEM's per-DOF-group convergence test
+//! (spec §1.3).
+//!
+//! Without contact: full or modified Newton as the input says (`manrmsteps`), the factorization of
+//! a linear problem reused. With contact, hertz chooses: every iteration solves the full Newton
+//! system, condensed on the contact equations when it can (see [`super::condensed`]): there the
+//! branch of every contact point (closed or open) is decided on the linearized problem, which
+//! keeps Newton from cycling around the kink of the contact force. Otherwise the full tangent of
+//! the current state is factorized.
+//!
+//! Convergence of penalty contact is measured against the round-off floor of its forces: with
+//! coordinates of size X a penalty force p·g is a staircase of steps ε·p·X, and once Newton
+//! stops gaining on a residual within that floor, the step is as converged as double precision
+//! allows (a warning then says the penalty is larger than double precision resolves).
+
+use super::condensed::CondensedContact;
+use super::linear::LinearSolver;
+use super::stepping::StepInfo;
+use crate::assembly::{Assembler, Contribution, DofMap, Evaluation};
+use crate::contact::{ContactPoint, ContactSystem, PointLaw, Search, SlotState};
+use crate::error::{Error, Result};
+use crate::model::Analysis;
+use crate::output::outfile::sci;
+
+/// How Newton systems with contact are solved.
+pub(super) enum Condensed {
+    /// Not applicable (no contact, too many candidates, an indefinite structural tangent).
+    Off,
+    /// To be set up at the first solve, with the candidate displacement equations.
+    Pending(Vec<usize>),
+    Ready(Box<CondensedContact>),
+}
+
+/// A residual that no longer falls and is within this many times the round-off estimate of the
+/// penalty forces counts as converged.
+const ROUNDOFF_FACTOR: f64 = 16.0;
+
+pub(super) struct NewtonContext<'a> {
+    pub asm: Assembler<'a>,
+    pub contact: ContactSystem,
+    pub dofs: &'a DofMap,
+    pub solver: LinearSolver,
+    /// The current factorization is the (constant) tangent of a linear problem.
+    pub factor_valid: bool,
+    /// Small strain and no contact: the tangent is constant.
+    pub linear: bool,
+    /// No element uses large deformation: the structural tangent is constant.
+    pub small_strain: bool,
+    /// Show the iteration count on a terminal (overwritten by the step's log line).
+    pub progress: bool,
+    /// Log every iteration (residual, contact changes) on stderr.
+    pub verbose: bool,
+    pub condensed: Condensed,
+    /// Contact states of the last converged step (the first hint of the next step's search).
+    pub converged_states: Option<Vec<SlotState>>,
+    /// Per contact node: how often its partner or branch changed in the current attempt.
+    pub flips: Vec<usize>,
+    /// How far the round-off floor of penalty forces exceeded the tolerance in the last failed
+    /// attempt.
+    pub floor_dominated: Option<f64>,
+    /// The node of every contact point (for messages).
+    pub slot_nodes: Vec<usize>,
+}
+
+/// The convergence test's verdict on one iteration.
+struct Check {
+    /// Largest relative (or absolute) force error over the DOF groups.
+    worst: f64,
+    converged: bool,
+    /// Not converged, but every group is within its round-off floor.
+    on_floor: bool,
+    /// The penalty round-off floor relative to the tolerance's reference, if it mattered.
+    floor_ratio: Option<f64>,
+}
+
+/// A free equation by its node and DOF (for messages).
+fn describe_eq(model: &crate::model::Model, dofs: &DofMap, eq: usize) -> String {
+    for (n, list) in dofs.node_dofs.iter().enumerate() {
+        if let Some((d, _)) = list.iter().find(|(_, c)| *c == eq) {
+            return format!("node {} DOF {d}", model.nodes[n].label);
+        }
+    }
+    format!("multiplier equation {eq}")
+}
+
+impl NewtonContext<'_> {
+    /// Elements and contact at state `u` for output: the evaluation and the contact states.
+    pub fn evaluate_states(&mut self, u: &[f64]) -> Result<(Evaluation, Vec<SlotState>)> {
+        let search = match &self.converged_states {
+            Some(s) => Search::Hint(s),
+            None => Search::Fresh,
+        };
+        let (points, states) = self
+            .contact
+            .evaluate(self.asm.model, self.dofs, u, search)?;
+        let contribs: Vec<Contribution> = points.iter().map(|p| p.contribution()).collect();
+        let ev = self.asm.evaluate(u, false, true, None, &contribs)?;
+        Ok((ev, states))
+    }
+
+    /// Factorize the full tangent of an evaluation.
+    fn factorize(&mut self, ev: &Evaluation) -> Result<()> {
+        let kv = ev.k_values.as_ref().expect("tangent requested");
+        let (model, dofs) = (self.asm.model, self.dofs);
+        let describe = |eq: usize| describe_eq(model, dofs, eq);
+        self.solver
+            .factorize(&self.asm.pattern, kv, self.linear, &describe)?;
+        self.factor_valid = self.linear;
+        Ok(())
+    }
+
+    /// Solve K Δu = rhs for the contact points `points` at state `u`: condensed when possible
+    /// (branches decided on the linearized problem), else with the full tangent of the current
+    /// branches. Returns Δu and the number of branch updates.
+    fn solve_step(
+        &mut self,
+        u: &[f64],
+        rhs: Vec<f64>,
+        points: &[ContactPoint],
+        ks_fresh: Option<&Evaluation>,
+    ) -> Result<(Vec<f64>, usize)> {
+        let (model, dofs) = (self.asm.model, self.dofs);
+        let describe = |eq: usize| describe_eq(model, dofs, eq);
+        if let Condensed::Pending(cands) = &self.condensed {
+            let cands = cands.clone();
+            let ev;
+            let ks = match ks_fresh {
+                Some(e) => e,
+                None => {
+                    ev = self.asm.evaluate(u, true, false, None, &[])?;
+                    &ev
+                }
+            };
+            let lambdas = self.dofs.n_free - self.dofs.n_lambda..self.dofs.n_free;
+            self.condensed = match CondensedContact::new(
+                &self.asm.pattern,
+                ks.k_values.as_ref().expect("requested"),
+                &cands,
+                lambdas,
+                self.solver.groups.clone(),
+                &describe,
+            ) {
+                Ok(Some(c)) => Condensed::Ready(Box::new(c)),
+                Ok(None) => Condensed::Off,
+                // An indefinite structural tangent: the full tangent's LU takes over.
+                Err(Error::Singular(_)) if !self.small_strain => Condensed::Off,
+                Err(e) => return Err(e),
+            };
+            if matches!(self.condensed, Condensed::Off) && !self.contact.symmetric() {
+                self.asm.set_symmetric(false);
+                self.solver.reset();
+            }
+        } else if let (Condensed::Ready(c), Some(ks)) = (&mut self.condensed, ks_fresh) {
+            // Large deformation: the structural tangent changed.
+            let kv = ks.k_values.as_ref().expect("requested");
+            let ok = match c.factorize(&self.asm.pattern, kv, &describe) {
+                Ok(ok) => ok,
+                Err(Error::Singular(_)) => false,
+                Err(e) => return Err(e),
+            };
+            if !ok {
+                self.condensed = Condensed::Off;
+                if !self.contact.symmetric() {
+                    self.asm.set_symmetric(false);
+                }
+                self.solver.reset();
+            }
+        }
+        if let Condensed::Ready(c) = &mut self.condensed {
+            if let Some(step) = c.step(&rhs, points, self.dofs)? {
+                return Ok((step.du, step.updates));
+            }
+            self.condensed = Condensed::Off;
+            if !self.contact.symmetric() {
+                self.asm.set_symmetric(false);
+            }
+            self.solver.reset();
+        }
+        // The full tangent with the current branches.
+        let contribs: Vec<Contribution> = points.iter().map(|p| p.contribution()).collect();
+        if !self.contact.is_empty() {
+            let couplings: Vec<Vec<usize>> = contribs.iter().map(|c| c.codes.clone()).collect();
+            if self.asm.set_couplings(&couplings) {
+                self.solver.reset();
+            }
+        }
+        let ev = self.asm.evaluate(u, true, false, None, &contribs)?;
+        self.factorize(&ev)?;
+        let mut du = rhs;
+        self.solver.solve_in_place(&mut du)?;
+        Ok((du, 0))
+    }
+
+    /// Newton iterations towards external forces `f_ext` and prescribed values `up`.
+    /// Ok(false) = no convergence within maxiter.
+    pub fn newton(
+        &mut self,
+        u: &mut [f64],
+        f_ext: &[f64],
+        up: &[f64],
+        a: &Analysis,
+        info: &mut StepInfo,
+    ) -> Result<bool> {
+        let nf = self.dofs.n_free;
+        if nf == 0 {
+            u[nf..].copy_from_slice(up);
+            return Ok(true);
+        }
+        let has_contact = !self.contact.is_empty();
+        self.flips = vec![0; self.flips.len()];
+        self.floor_dominated = None;
+        let dup: Vec<f64> = (0..up.len()).map(|i| up[i] - u[nf + i]).collect();
+        if a.initialguess && dup.iter().any(|&d| d != 0.0) {
+            self.predict(u, &dup)?;
+        }
+        u[nf..].copy_from_slice(up);
+        let mut du = vec![0.0; nf];
+        let mut prev: Option<Vec<SlotState>> = self.converged_states.clone();
+        for it in 0..=a.maxiter {
+            let search = match &prev {
+                Some(p) => Search::Hint(p),
+                None => Search::Fresh,
+            };
+            let (points, states) = self
+                .contact
+                .evaluate(self.asm.model, self.dofs, u, search)?;
+            if let Some(p) = &prev {
+                for (k, (s, q)) in states.iter().zip(p).enumerate() {
+                    if s.partner != q.partner || s.active != q.active {
+                        self.flips[k] += 1;
+                    }
+                }
+            }
+            // Structural tangent (elements only) where the condensed solve needs it fresh; the
+            // full-tangent path evaluates its own.
+            let need_ks = has_contact
+                && match self.condensed {
+                    Condensed::Pending(_) => true,
+                    Condensed::Ready(_) => !self.small_strain,
+                    Condensed::Off => false,
+                };
+            let want_k = need_ks
+                || (!has_contact
+                    && !self.factor_valid
+                    && (it == 0 || a.manrmsteps.is_some_and(|k| it % k == 0)));
+            let contribs: Vec<Contribution> = points.iter().map(|p| p.contribution()).collect();
+            let mut ev = self.asm.evaluate(
+                u,
+                want_k,
+                false,
+                None,
+                if has_contact { &[] } else { &contribs },
+            )?;
+            if has_contact {
+                self.asm.add_residuals(&mut ev.f_int, &contribs);
+            }
+            let rhs: Vec<f64> = (0..nf).map(|i| f_ext[i] - ev.f_int[i]).collect();
+            let last = info.residual_history.last().copied();
+            let mut check = self.check(&rhs, f_ext, &ev.ebe, &du, u, a, it, &points);
+            // On the round-off floor: accepted once Newton stops gaining on it.
+            if !check.converged
+                && check.on_floor
+                && it > 0
+                && last.is_some_and(|l| check.worst > 0.5 * l)
+            {
+                check.converged = true;
+            }
+            info.residual_history.push(check.worst);
+            info.iterations += 1;
+            if self.progress {
+                eprint!("\r  iteration {it:3}  residual {}   ", sci(check.worst, 2));
+            }
+            if self.verbose {
+                let closed = states.iter().filter(|s| s.active).count();
+                eprintln!(
+                    "    iteration {it:3}  residual {}{}",
+                    sci(check.worst, 3),
+                    if has_contact {
+                        format!("  contact nodes closed {closed}/{}", states.len())
+                    } else {
+                        String::new()
+                    }
+                );
+            }
+            if check.converged && (it > 0 || check.worst == 0.0) {
+                if it == 0 && !has_contact && !self.factor_valid && ev.k_values.is_some() {
+                    // An unloaded step needs no solve, but a model must not pass as solved when
+                    // its stiffness is singular (an unloaded mechanism): factorize once.
+                    self.factorize(&ev)?;
+                }
+                if let Some(r) = check.floor_ratio {
+                    info.warnings
+                        .push(penalty_warning(self.asm.model, r, a.rtolf));
+                }
+                if has_contact {
+                    self.converged_states = Some(states);
+                }
+                info.iterations -= 1;
+                return Ok(true);
+            }
+            if !check.worst.is_finite() {
+                return Err(Error::Solve("residual is not finite".into()));
+            }
+            if it == a.maxiter {
+                self.floor_dominated = check.floor_ratio;
+                break;
+            }
+            let (step, updates) = if has_contact {
+                let ks = need_ks.then_some(&ev);
+                self.solve_step(u, rhs, &points, ks)?
+            } else {
+                if want_k {
+                    self.factorize(&ev)?;
+                }
+                let mut x = rhs;
+                self.solver.solve_in_place(&mut x)?;
+                (x, 0)
+            };
+            if self.verbose && updates > 0 {
+                eprintln!(
+                    "      contact branches updated {updates} times on the linearized problem"
+                );
+            }
+            for i in 0..nf {
+                u[i] += step[i];
+            }
+            du = step;
+            prev = Some(states);
+        }
+        Ok(false)
+    }
+
+    /// Tangent predictor for prescribed increments `dup`: K Δu_f = −K_fp Δu_p at the current state.
+    fn predict(&mut self, u: &mut [f64], dup: &[f64]) -> Result<()> {
+        let nf = self.dofs.n_free;
+        let has_contact = !self.contact.is_empty();
+        let search = match &self.converged_states {
+            Some(s) => Search::Hint(s),
+            None => Search::Fresh,
+        };
+        let (points, _) = self
+            .contact
+            .evaluate(self.asm.model, self.dofs, u, search)?;
+        let contribs: Vec<Contribution> = points.iter().map(|p| p.contribution()).collect();
+        let need_k = !self.factor_valid && !has_contact;
+        // K_fp Δu_p of elements and contact (a rigid indenter's prescribed reference node).
+        let ev = self.asm.evaluate(u, need_k, false, Some(dup), &contribs)?;
+        let rhs: Vec<f64> = ev
+            .k_fp_dup
+            .as_ref()
+            .expect("requested")
+            .iter()
+            .map(|v| -v)
+            .collect();
+        let step = if has_contact {
+            // The structural tangent of the condensed solve is the element part only.
+            let need_ks = match self.condensed {
+                Condensed::Pending(_) => true,
+                Condensed::Ready(_) => !self.small_strain,
+                Condensed::Off => false,
+            };
+            let ks = if need_ks {
+                Some(self.asm.evaluate(u, true, false, None, &[])?)
+            } else {
+                None
+            };
+            self.solve_step(u, rhs, &points, ks.as_ref())?.0
+        } else {
+            if need_k {
+                self.factorize(&ev)?;
+            }
+            let mut x = rhs;
+            self.solver.solve_in_place(&mut x)?;
+            x
+        };
+        for i in 0..nf {
+            u[i] += step[i];
+        }
+        Ok(())
+    }
+
+    /// OOFEM's convergence test per DOF-id group (spec §1.3), with the round-off floor of penalty
+    /// forces; multiplier rows (gaps) against rtolf times the largest displacement.
+    #[allow(clippy::too_many_arguments)]
+    fn check(
+        &self,
+        rhs: &[f64],
+        f_ext: &[f64],
+        ebe: &[f64; 4],
+        du: &[f64],
+        u: &[f64],
+        a: &Analysis,
+        it: usize,
+        points: &[ContactPoint],
+    ) -> Check {
+        let nf_u = self.dofs.n_free - self.dofs.n_lambda;
+        let mut num = [0.0; 4];
+        let mut den = [0.0; 4];
+        let mut dd = [0.0; 4];
+        let mut uu = [0.0; 4];
+        let mut floor = [0.0; 4];
+        let mut present = [false; 4];
+        let mut umax = 0.0f64;
+        for i in 0..nf_u {
+            let g = self.dofs.primary_dof_id[i] as usize;
+            present[g] = true;
+            num[g] += rhs[i] * rhs[i];
+            den[g] += f_ext[i] * f_ext[i];
+            dd[g] += du[i] * du[i];
+            uu[g] += u[i] * u[i];
+            umax = umax.max(u[i].abs());
+        }
+        // Round-off of closed penalty points: ε·|force row|·X/|g| per entry, X the size of the
+        // coordinates the gap is a difference of.
+        let scale = crate::contact::model_size(self.asm.model);
+        for p in points
+            .iter()
+            .filter(|p| p.closed && p.law == PointLaw::Penalty)
+        {
+            if p.gap == 0.0 || p.closed_fe.is_empty() {
+                continue;
+            }
+            for (k, &code) in p.codes.iter().enumerate() {
+                let stiff = p.closed_fe[k].abs() / p.gap.abs();
+                for (e, w) in self.dofs.entries(code) {
+                    if e < nf_u {
+                        let g = self.dofs.primary_dof_id[e] as usize;
+                        floor[g] += (w * stiff * f64::EPSILON * scale).powi(2);
+                    }
+                }
+            }
+        }
+        let mut worst: f64 = 0.0;
+        let mut ok = true;
+        let mut within_floor = true;
+        let mut floor_ratio: Option<f64> = None;
+        // Multiplier rows: the gaps, against rtolf times the largest displacement (and their own
+        // round-off).
+        let gap_tol = (a.rtolf * umax).max(ROUNDOFF_FACTOR * f64::EPSILON * scale);
+        for i in nf_u..self.dofs.n_free {
+            let e = rhs[i].abs() / gap_tol * a.rtolf;
+            worst = worst.max(e);
+            if !(rhs[i].abs() <= gap_tol) {
+                ok = false;
+                within_floor = false;
+            }
+        }
+        for g in 1..4 {
+            if !present[g] {
+                continue;
+            }
+            let d = den[g] + ebe[g];
+            let reference = if d < 1e-6 { 1.0 } else { d.sqrt() };
+            let fe = num[g].sqrt() / reference;
+            worst = worst.max(fe);
+            let floor_rel = ROUNDOFF_FACTOR * floor[g].sqrt() / reference;
+            if !(fe <= a.rtolf) {
+                ok = false;
+                if fe <= floor_rel {
+                    floor_ratio = Some(floor_ratio.unwrap_or(0.0).max(fe / a.rtolf));
+                } else {
+                    within_floor = false;
+                }
+            }
+            if a.rtold > 0.0 && it > 0 {
+                let de = if uu[g] < 1e-6 {
+                    dd[g].sqrt()
+                } else {
+                    (dd[g] / uu[g]).sqrt()
+                };
+                if !(de <= a.rtold) {
+                    ok = false;
+                }
+            }
+        }
+        Check {
+            worst,
+            converged: ok,
+            on_floor: !ok && within_floor && floor_ratio.is_some(),
+            floor_ratio,
+        }
+    }
+
+    /// Why the last attempt did not converge, in words, if something specific shows.
+    pub fn diagnosis(&self) -> Option<String> {
+        let mut why = Vec::new();
+        if let Some(r) = self.floor_dominated {
+            why.push(format!(
+                "the penalty forces carry round-off {r:.1e} times the tolerance: the penalty is \
+                 beyond what double precision resolves"
+            ));
+        }
+        {
+            let mut chatter: Vec<(usize, usize)> = self
+                .flips
+                .iter()
+                .enumerate()
+                .filter(|(_, &f)| f >= 3)
+                .map(|(k, &f)| (f, k))
+                .collect();
+            chatter.sort_unstable_by(|a, b| b.cmp(a));
+            if !chatter.is_empty() {
+                let labels: Vec<String> = chatter
+                    .iter()
+                    .take(8)
+                    .map(|&(f, k)| {
+                        format!("{} ({f}×)", self.asm.model.nodes[self.slot_nodes[k]].label)
+                    })
+                    .collect();
+                why.push(format!(
+                    "contact nodes kept changing state (chattering): {}{}",
+                    labels.join(", "),
+                    if chatter.len() > 8 { ", …" } else { "" }
+                ));
+            }
+        }
+        (!why.is_empty()).then(|| why.join("; "))
+    }
+}
+
+/// The warning for penalty forces whose round-off exceeds the tolerance, with the penalty each
+/// penalty condition could have to stay within it.
+fn penalty_warning(model: &crate::model::Model, ratio: f64, rtolf: f64) -> String {
+    let suggestions: Vec<String> = model
+        .contacts
+        .iter()
+        .filter_map(|c| match c.law {
+            crate::model::ContactLaw::Penalty(p) => Some(format!(
+                "condition {}: penalty {p:.0e}, suggested at most {:.0e}",
+                c.number,
+                p / ratio
+            )),
+            _ => None,
+        })
+        .collect();
+    format!(
+        "the residual stalled at {:.1e}, {ratio:.0e} times the tolerance rtolf {rtolf:.0e}, on the \
+         round-off floor of the penalty forces: the penalty is larger than double precision \
+         resolves and the step was accepted there ({})",
+        ratio * rtolf,
+        suggestions.join("; ")
+    )
+}

@@ -1,0 +1,285 @@
+//! Load stepping (spec §1.3, §3.2): targets per step, substeps when a step fails, results.
+//!
+//! Per step the target is: prescribed values `value·f(t)` (total) and external loads
+//! (LinearStatic/StaticStructural: `F·f(t)`; NonLinearStatic: the accumulated reference vectors
+//! Σ_k R_k with R_k = F·f(t_k) for `refloadmode 0` or F·(f(t_k) − f(t_k − Δt)) for 1).
+//! Newton ([`super::newton`]) solves F_int(u) = F_ext on the free DOFs.
+//! A step that does not converge is restarted in 2, 4, … substeps (loads and prescribed values
+//! interpolated linearly); after `max_cutbacks` halvings the run stops with an error.
+
+use super::linear::{LinearSolver, SolverStats};
+use super::newton::{Condensed, NewtonContext};
+use crate::assembly::{Assembler, DofMap};
+use crate::contact::{ContactSystem, Search, SlotState};
+use crate::error::{Error, Result};
+use crate::model::{AnalysisKind, Model};
+use crate::output::outfile::sci;
+use crate::solid::loads::reference_contributions;
+use crate::solid::GpState;
+use std::io::IsTerminal;
+use std::time::Instant;
+
+/// Driver settings beyond what the input file says.
+#[derive(Debug, Clone)]
+pub struct SolveParams {
+    /// How many times a failing step may be halved.
+    pub max_cutbacks: usize,
+    /// Print one line per step on stderr.
+    pub log_steps: bool,
+    /// Print every Newton iteration (residual, contact state) on stderr.
+    pub log_iterations: bool,
+}
+
+impl Default for SolveParams {
+    fn default() -> Self {
+        SolveParams {
+            max_cutbacks: 5,
+            log_steps: true,
+            log_iterations: false,
+        }
+    }
+}
+
+/// Diagnostics of one step.
+#[derive(Debug, Clone, Default)]
+pub struct StepInfo {
+    pub iterations: usize,
+    /// Largest relative (or absolute) force error over the DOF groups, per iteration.
+    pub residual_history: Vec<f64>,
+    pub substeps: usize,
+    pub wall_seconds: f64,
+    pub solver: SolverStats,
+    /// Things the user should know (e.g. a penalty beyond double precision).
+    pub warnings: Vec<String>,
+}
+
+/// The converged state after a step.
+pub struct StepResult<'a> {
+    pub step: usize,
+    pub time: f64,
+    pub dofs: &'a DofMap,
+    /// Primary displacement vector (free, then prescribed).
+    pub u: &'a [f64],
+    /// Reaction per prescribed DOF (same order as `dofs.prescribed`).
+    pub reactions: &'a [f64],
+    pub states: &'a [Vec<GpState>],
+    /// Contact state of every contact node.
+    pub contact: &'a [SlotState],
+    pub info: &'a StepInfo,
+}
+
+impl StepResult<'_> {
+    /// Total displacement of DOF `d` of node `n`, if the node has it.
+    pub fn displacement(&self, n: usize, d: u8) -> Option<f64> {
+        self.dofs.code(n, d).map(|c| self.dofs.value(self.u, c))
+    }
+}
+
+/// Run every step of the analysis, calling `on_step` after each converged step.
+pub fn run_analysis(
+    model: &Model,
+    params: &SolveParams,
+    mut on_step: impl FnMut(&StepResult) -> Result<()>,
+) -> Result<()> {
+    let contact = ContactSystem::new(model)?;
+    let dofs = DofMap::new(model, &contact.extra_dofs())?;
+    let asm = Assembler::new(model, &dofs)?;
+    let nf = dofs.n_free;
+    let np = dofs.n_primary();
+    let ref_loads = reference_load_vectors(model, &dofs)?;
+    let external = |scale: &dyn Fn(usize) -> f64| -> Vec<f64> {
+        let mut f = vec![0.0; np];
+        for (func, v) in &ref_loads {
+            let s = scale(*func);
+            if s != 0.0 {
+                for (a, b) in f.iter_mut().zip(v) {
+                    *a += s * b;
+                }
+            }
+        }
+        f
+    };
+    let prescribed_at = |t: f64| -> Vec<f64> {
+        dofs.prescribed
+            .iter()
+            .map(|&(_, d, bi)| {
+                let bc = &model.dirichlet[bi];
+                bc.value_for(d) * model.functions[bc.function - 1].eval(t)
+            })
+            .collect()
+    };
+    let a = &model.analysis;
+    let small_strain = !model.elements.iter().any(|e| e.nlgeo);
+    let linear = small_strain && contact.is_empty();
+    // Contact: Newton systems condensed on the contact equations (see `condensed`).
+    let condensed = if contact.is_empty() {
+        Condensed::Off
+    } else {
+        Condensed::Pending(contact.candidate_equations(&dofs))
+    };
+    let slot_nodes: Vec<usize> = contact
+        .evaluate(model, &dofs, &vec![0.0; np], Search::Fresh)?
+        .1
+        .iter()
+        .map(|s| s.node)
+        .collect();
+    let mut solver = LinearSolver::default();
+    solver.groups = Some(dofs.free_eq_nodes());
+    let mut ctx = NewtonContext {
+        asm,
+        contact,
+        dofs: &dofs,
+        solver,
+        factor_valid: false,
+        linear,
+        small_strain,
+        progress: params.log_steps && !params.log_iterations && std::io::stderr().is_terminal(),
+        verbose: params.log_iterations,
+        condensed,
+        converged_states: None,
+        flips: vec![0; slot_nodes.len()],
+        floor_dominated: None,
+        slot_nodes,
+    };
+    let mut u = vec![0.0; np];
+    let mut applied = vec![0.0; np];
+    let times = model.step_times();
+    let nsteps = times.len();
+    for (k, &t) in times.iter().enumerate() {
+        let clock = Instant::now();
+        let step = k + 1;
+        let target = match a.kind {
+            AnalysisKind::NonLinearStatic => {
+                let r = external(&|f| {
+                    let func = &model.functions[f];
+                    if a.refloadmode == 1 {
+                        func.eval(t) - func.eval(t - a.deltat)
+                    } else {
+                        func.eval(t)
+                    }
+                });
+                applied.iter().zip(&r).map(|(x, y)| x + y).collect()
+            }
+            _ => external(&|f| model.functions[f].eval(t)),
+        };
+        let up_target = prescribed_at(t);
+        let mut info = StepInfo::default();
+        let start_u = u.clone();
+        let start_states = ctx.converged_states.clone();
+        let mut done = false;
+        let mut diagnosis = None;
+        for level in 0..=params.max_cutbacks {
+            let nsub = 1usize << level;
+            u.copy_from_slice(&start_u);
+            ctx.converged_states.clone_from(&start_states);
+            let mut ok = true;
+            for s in 1..=nsub {
+                let alpha = s as f64 / nsub as f64;
+                let f_sub: Vec<f64> = applied
+                    .iter()
+                    .zip(&target)
+                    .map(|(a0, a1)| a0 + alpha * (a1 - a0))
+                    .collect();
+                let up_sub: Vec<f64> = (0..dofs.n_prescribed)
+                    .map(|i| start_u[nf + i] + alpha * (up_target[i] - start_u[nf + i]))
+                    .collect();
+                match ctx.newton(&mut u, &f_sub, &up_sub, a, &mut info) {
+                    Ok(true) => {}
+                    Ok(false) => {
+                        diagnosis = ctx.diagnosis();
+                        ok = false;
+                        break;
+                    }
+                    Err(Error::Solve(msg)) if level < params.max_cutbacks => {
+                        if params.log_steps {
+                            eprintln!("step {step}: {msg}; cutting the step");
+                        }
+                        ok = false;
+                        break;
+                    }
+                    Err(e) => return Err(e),
+                }
+            }
+            if ok {
+                info.substeps = nsub;
+                done = true;
+                break;
+            }
+            ctx.factor_valid = false;
+            if params.log_steps && level < params.max_cutbacks {
+                eprintln!(
+                    "step {step}: no convergence in {} iterations{}; retrying in {} substeps",
+                    a.maxiter,
+                    diagnosis
+                        .as_ref()
+                        .map(|d| format!(" ({d})"))
+                        .unwrap_or_default(),
+                    2 * nsub
+                );
+            }
+        }
+        if !done {
+            return Err(Error::Solve(format!(
+                "step {step} (t = {t}) did not converge within {} iterations even after {} step halvings; \
+                 last residual {:.3e} (rtolf {:.1e}){}",
+                a.maxiter,
+                params.max_cutbacks,
+                info.residual_history.last().copied().unwrap_or(f64::NAN),
+                a.rtolf,
+                diagnosis.map(|d| format!("; {d}")).unwrap_or_default()
+            )));
+        }
+        applied = target;
+        let (ev, contact_states) = ctx.evaluate_states(&u)?;
+        ctx.converged_states = Some(contact_states.clone());
+        let reactions: Vec<f64> = (0..dofs.n_prescribed)
+            .map(|i| ev.f_int[nf + i] - applied[nf + i])
+            .collect();
+        info.wall_seconds = clock.elapsed().as_secs_f64();
+        info.solver = ctx.solver.stats.clone();
+        if params.log_steps {
+            if ctx.progress {
+                eprint!("\r\x1b[2K");
+            }
+            eprintln!(
+                "step {step}/{nsteps}  t = {}  iterations {}  residual {}  substeps {}  {:.3} s",
+                sci(t, 4),
+                info.iterations,
+                sci(info.residual_history.last().copied().unwrap_or(0.0), 2),
+                info.substeps,
+                info.wall_seconds
+            );
+        }
+        let states = ev.states.unwrap_or_default();
+        on_step(&StepResult {
+            step,
+            time: t,
+            dofs: &dofs,
+            u: &u,
+            reactions: &reactions,
+            states: &states,
+            contact: &contact_states,
+            info: &info,
+        })?;
+    }
+    Ok(())
+}
+
+/// Reference load vector of every load (components at f = 1) in primary numbering, with the
+/// index of its time function.
+pub fn reference_load_vectors(model: &Model, dofs: &DofMap) -> Result<Vec<(usize, Vec<f64>)>> {
+    let np = dofs.n_primary();
+    let mut out = Vec::with_capacity(model.loads.len());
+    for load in &model.loads {
+        let mut v = vec![0.0; np];
+        for (node, d, val) in reference_contributions(model, load)? {
+            if let Some(code) = dofs.code(node, d) {
+                for (p, w) in dofs.entries(code) {
+                    v[p] += w * val;
+                }
+            }
+        }
+        out.push((load.function - 1, v));
+    }
+    Ok(out)
+}
