@@ -314,7 +314,6 @@ impl<'m> Assembler<'m> {
         count_ebe: bool,
     ) {
         let nf = self.dofs.n_free;
-        let nd = loc.len();
         for (a, &ca) in loc.iter().enumerate() {
             for (p, wp) in self.dofs.entries(ca) {
                 sink.f_int[p] += wp * fe[a];
@@ -324,6 +323,25 @@ impl<'m> Assembler<'m> {
             }
         }
         let Some(ke) = ke else { return };
+        self.scatter_tangent(
+            loc,
+            ke,
+            sink.k_values.as_deref_mut(),
+            sink.k_fp_dup.as_deref_mut().zip(sink.dup),
+        );
+    }
+
+    /// Add a local tangent (row-major over `loc`) to the tangent values on the pattern and, with
+    /// prescribed increments, K_fp·Δu_p to `fp_dup`.
+    fn scatter_tangent(
+        &self,
+        loc: &[usize],
+        ke: &[f64],
+        mut kv: Option<&mut [f64]>,
+        mut fp_dup: Option<(&mut [f64], &[f64])>,
+    ) {
+        let nf = self.dofs.n_free;
+        let nd = loc.len();
         for (a, &ca) in loc.iter().enumerate() {
             for (p, wp) in self.dofs.entries(ca) {
                 if p >= nf {
@@ -336,17 +354,25 @@ impl<'m> Assembler<'m> {
                     }
                     for (q, wq) in self.dofs.entries(cb) {
                         if q < nf {
-                            if let Some(kv) = sink.k_values.as_mut() {
+                            if let Some(kv) = kv.as_deref_mut() {
                                 if p <= q || !self.pattern.symmetric {
                                     kv[self.pattern.position(p, q)] += wp * wq * kab;
                                 }
                             }
-                        } else if let (Some(kd), Some(d)) = (sink.k_fp_dup.as_mut(), sink.dup) {
+                        } else if let Some((kd, d)) = fp_dup.as_mut() {
                             kd[p] += wp * wq * kab * d[q - nf];
                         }
                     }
                 }
             }
+        }
+    }
+
+    /// Add the tangents of `extra` contributions to tangent values on the current pattern (whose
+    /// couplings must include them).
+    pub fn add_tangents(&self, values: &mut [f64], extra: &[Contribution]) {
+        for c in extra.iter().filter(|c| !c.ke.is_empty()) {
+            self.scatter_tangent(&c.codes, &c.ke, Some(values), None);
         }
     }
 

@@ -30,8 +30,11 @@ use std::collections::HashMap;
 
 /// A projection within this distance (in s) of an edge's ends counts as inside it.
 const INSIDE_TOL: f64 = 1e-9;
-/// Beyond an interior end of its edge, a previous edge partner is kept within this band (in s).
-const HYSTERESIS_BAND: f64 = 0.02;
+/// Beyond an interior end of its edge, a previous edge partner is kept within this band (in s):
+/// enough that round-off does not make a node on a vertex alternate between the two edges, small
+/// enough that the extrapolated edge never changes an answer (past a vertex, the neighbouring
+/// edge is the surface).
+const HYSTERESIS_BAND: f64 = 1e-6;
 /// Ramp length at an open end for a node without neighbours, as a fraction of the end edge.
 const ISOLATED_RAMP: f64 = 0.01;
 

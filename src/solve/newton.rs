@@ -31,6 +31,9 @@ pub(super) enum Condensed {
     Ready(Box<CondensedContact>),
 }
 
+/// Largest number of branch updates of a step solved with full tangents (each a factorization).
+const MAX_FULL_UPDATES: usize = 8;
+
 /// A residual that no longer falls and is within this many times the round-off estimate of the
 /// penalty forces counts as converged.
 const ROUNDOFF_FACTOR: f64 = 16.0;
@@ -98,9 +101,8 @@ impl NewtonContext<'_> {
         Ok((ev, states))
     }
 
-    /// Factorize the full tangent of an evaluation.
-    fn factorize(&mut self, ev: &Evaluation) -> Result<()> {
-        let kv = ev.k_values.as_ref().expect("tangent requested");
+    /// Factorize a full tangent (values on the assembler's pattern).
+    fn factorize(&mut self, kv: &[f64]) -> Result<()> {
         let (model, dofs) = (self.asm.model, self.dofs);
         let describe = |eq: usize| describe_eq(model, dofs, eq);
         self.solver
@@ -176,19 +178,81 @@ impl NewtonContext<'_> {
             }
             self.solver.reset();
         }
-        // The full tangent with the current branches.
-        let contribs: Vec<Contribution> = points.iter().map(|p| p.contribution()).collect();
-        if !self.contact.is_empty() {
-            let couplings: Vec<Vec<usize>> = contribs.iter().map(|c| c.codes.clone()).collect();
-            if self.asm.set_couplings(&couplings) {
-                self.solver.reset();
-            }
+        self.solve_full(u, rhs, points)
+    }
+
+    /// The Newton step with full tangents: the branches are searched on the linearized problem
+    /// as in the condensed step, each guess costing a factorization (few are needed).
+    fn solve_full(
+        &mut self,
+        u: &[f64],
+        rhs: Vec<f64>,
+        points: &[ContactPoint],
+    ) -> Result<(Vec<f64>, usize)> {
+        let nf = self.dofs.n_free;
+        let couplings: Vec<Vec<usize>> = points.iter().map(|p| p.codes.clone()).collect();
+        if self.asm.set_couplings(&couplings) {
+            self.solver.reset();
         }
-        let ev = self.asm.evaluate(u, true, false, None, &contribs)?;
-        self.factorize(&ev)?;
-        let mut du = rhs;
-        self.solver.solve_in_place(&mut du)?;
-        Ok((du, 0))
+        let ks = self.asm.evaluate(u, true, false, None, &[])?;
+        let mut closed: Vec<bool> = points.iter().map(|p| p.closed).collect();
+        let mut seen = std::collections::HashSet::new();
+        let mut updates = 0;
+        loop {
+            let mut kv = ks.k_values.clone().expect("requested");
+            let mut step = rhs.clone();
+            let contribs: Vec<Contribution> = points
+                .iter()
+                .zip(&closed)
+                .map(|(p, &c)| {
+                    let (fe, ke) = p.branch(c);
+                    if c != p.closed {
+                        // The residual changes by the difference of the branches' forces.
+                        let (fe0, _) = p.branch(p.closed);
+                        for (a, &code) in p.codes.iter().enumerate() {
+                            let d = fe.get(a).copied().unwrap_or(0.0)
+                                - fe0.get(a).copied().unwrap_or(0.0);
+                            for (e, w) in self.dofs.entries(code) {
+                                if e < nf {
+                                    step[e] -= w * d;
+                                }
+                            }
+                        }
+                    }
+                    Contribution {
+                        codes: p.codes.clone(),
+                        fe,
+                        ke,
+                    }
+                })
+                .collect();
+            self.asm.add_tangents(&mut kv, &contribs);
+            self.factorize(&kv)?;
+            self.solver.solve_in_place(&mut step)?;
+            let predicted: Vec<bool> = points
+                .iter()
+                .map(|p| {
+                    let dq: Vec<f64> = p
+                        .codes
+                        .iter()
+                        .map(|&code| {
+                            self.dofs
+                                .entries(code)
+                                .filter(|(e, _)| *e < nf)
+                                .map(|(e, w)| w * step[e])
+                                .sum()
+                        })
+                        .collect();
+                    p.predicts_closed(&dq)
+                })
+                .collect();
+            seen.insert(closed.clone());
+            if predicted == closed || updates >= MAX_FULL_UPDATES || seen.contains(&predicted) {
+                return Ok((step, updates));
+            }
+            closed = predicted;
+            updates += 1;
+        }
     }
 
     /// Newton iterations towards external forces `f_ext` and prescribed values `up`.
@@ -272,21 +336,35 @@ impl NewtonContext<'_> {
             }
             if self.verbose {
                 let closed = states.iter().filter(|s| s.active).count();
-                eprintln!(
-                    "    iteration {it:3}  residual {}{}",
-                    sci(check.worst, 3),
-                    if has_contact {
-                        format!("  contact nodes closed {closed}/{}", states.len())
-                    } else {
-                        String::new()
+                let mut line = format!("    iteration {it:3}  residual {}", sci(check.worst, 3));
+                if has_contact {
+                    line += &format!("  contact nodes closed {closed}/{}", states.len());
+                    let label = |s: &SlotState| self.asm.model.nodes[s.node].label.to_string();
+                    if let Some(p) = &prev {
+                        let (opened, closing): (Vec<_>, Vec<_>) = states
+                            .iter()
+                            .zip(p)
+                            .filter(|(s, q)| s.active != q.active)
+                            .partition(|(s, _)| !s.active);
+                        if !closing.is_empty() {
+                            let l: Vec<String> = closing.iter().map(|(s, _)| label(s)).collect();
+                            line += &format!("; closed {}", l.join(" "));
+                        }
+                        if !opened.is_empty() {
+                            let l: Vec<String> = opened.iter().map(|(s, _)| label(s)).collect();
+                            line += &format!("; opened {}", l.join(" "));
+                        }
                     }
-                );
+                }
+                eprintln!("{line}");
             }
             if check.converged && (it > 0 || check.worst == 0.0) {
-                if it == 0 && !has_contact && !self.factor_valid && ev.k_values.is_some() {
+                if let (0, false, false, Some(kv)) =
+                    (it, has_contact, self.factor_valid, ev.k_values.as_ref())
+                {
                     // An unloaded step needs no solve, but a model must not pass as solved when
                     // its stiffness is singular (an unloaded mechanism): factorize once.
-                    self.factorize(&ev)?;
+                    self.factorize(kv)?;
                 }
                 if let Some(r) = check.floor_ratio {
                     info.warnings
@@ -310,7 +388,7 @@ impl NewtonContext<'_> {
                 self.solve_step(u, rhs, &points, ks)?
             } else {
                 if want_k {
-                    self.factorize(&ev)?;
+                    self.factorize(ev.k_values.as_ref().expect("requested"))?;
                 }
                 let mut x = rhs;
                 self.solver.solve_in_place(&mut x)?;
@@ -367,7 +445,7 @@ impl NewtonContext<'_> {
             self.solve_step(u, rhs, &points, ks.as_ref())?.0
         } else {
             if need_k {
-                self.factorize(&ev)?;
+                self.factorize(ev.k_values.as_ref().expect("requested"))?;
             }
             let mut x = rhs;
             self.solver.solve_in_place(&mut x)?;

@@ -5,6 +5,9 @@
 //! as a self-check.
 
 use crate::assembly::Assembler;
+pub mod mesh;
+pub mod suite;
+
 use crate::error::{Error, Result};
 use crate::fem::shape::HEXA8_CORNERS;
 use crate::input::read_model;
@@ -366,7 +369,8 @@ pub fn peak_rss_mb() -> f64 {
 /// CLI entry: `hertz bench [--dim 2|3] [--n N] [--ordering auto|amd|metis]`.
 pub fn main(args: &[String]) -> ExitCode {
     let (mut dim, mut n, mut ordering) = (2usize, 100usize, OrderingKind::Auto);
-    let (mut contact, mut multipliers) = (false, false);
+    let (mut contact, mut multipliers, mut suite) = (false, false, false);
+    let mut write: Option<String> = None;
     let mut it = args.iter();
     while let Some(a) = it.next() {
         if a == "--contact" {
@@ -375,6 +379,20 @@ pub fn main(args: &[String]) -> ExitCode {
         }
         if a == "--multipliers" {
             multipliers = true;
+            continue;
+        }
+        if a == "--suite" {
+            suite = true;
+            continue;
+        }
+        if a == "--write" {
+            match it.next() {
+                Some(d) => write = Some(d.clone()),
+                None => {
+                    eprintln!("error: --write needs a directory");
+                    return ExitCode::from(2);
+                }
+            }
             continue;
         }
         let v = it.next().map(String::as_str);
@@ -405,9 +423,24 @@ pub fn main(args: &[String]) -> ExitCode {
             _ => false,
         };
         if !ok {
-            eprintln!("error: bench takes --dim 2|3, --n N (N >= 1), --ordering auto|amd|metis, --contact [--multipliers]; got `{a}`");
+            eprintln!("error: bench takes --dim 2|3, --n N (N >= 1), --ordering auto|amd|metis, --contact [--multipliers], --suite [--write DIR]; got `{a}`");
             return ExitCode::from(2);
         }
+    }
+    if suite {
+        let result = match &write {
+            Some(dir) => suite::write_inputs(Path::new(dir)).map(|files| {
+                println!("wrote {} input files to {dir}", files.len());
+            }),
+            None => suite::print_table(),
+        };
+        return match result {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::from(e.exit_code() as u8)
+            }
+        };
     }
     // Refuse sizes that cannot fit before generating anything.
     let unknowns = if dim == 3 && !contact {

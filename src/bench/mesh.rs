@@ -1,0 +1,291 @@
+//! A small builder of OOFEM input text for generated problems: structured blocks of 2D quads
+//! (linear or quadratic) or bricks, graded coordinates, and the records around them.
+
+use std::fmt::Write as _;
+
+/// Element kinds the builder makes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// Quad1PlaneStrain.
+    Q4,
+    /// QPlaneStress2d (the domain must be 2dPlaneStress).
+    Q8,
+    /// LSpace.
+    Hex,
+}
+
+/// A structured block: its node ids by side and the element boundaries on its top and bottom.
+#[derive(Debug, Clone, Default)]
+pub struct Block {
+    /// Node ids along the top (2D: y = max, left to right; 3D: z = max, row-major in x then y).
+    pub top: Vec<usize>,
+    pub bottom: Vec<usize>,
+    /// (element, boundary) on the top and on the bottom.
+    pub top_edges: Vec<(usize, usize)>,
+    pub bottom_edges: Vec<(usize, usize)>,
+    /// First and last element id.
+    pub elements: (usize, usize),
+    /// Node ids of the x = min side.
+    pub left: Vec<usize>,
+}
+
+/// Input text under construction.
+#[derive(Debug, Clone, Default)]
+pub struct Input {
+    pub nodes: Vec<[f64; 3]>,
+    pub elements: Vec<String>,
+    pub segments: Vec<String>,
+    pub sections: Vec<String>,
+    pub materials: Vec<String>,
+    pub bcs: Vec<String>,
+    pub functions: Vec<String>,
+    pub sets: Vec<String>,
+}
+
+/// Coordinates 0..length: spacing h up to `fine`, then growing by `growth` per element.
+pub fn graded(length: f64, h: f64, fine: f64, growth: f64) -> Vec<f64> {
+    let mut xs = vec![0.0];
+    while *xs.last().expect("non-empty") < fine - 1e-12 {
+        let x = (xs.last().expect("non-empty") + h).min(fine);
+        xs.push(x);
+    }
+    let mut step = h;
+    while *xs.last().expect("non-empty") < length - 1e-12 {
+        step *= growth;
+        let last = *xs.last().expect("non-empty");
+        let mut next = last + step;
+        if length - next < step {
+            next = length;
+        }
+        xs.push(next.min(length));
+    }
+    xs
+}
+
+/// `n` equal intervals from a to b.
+pub fn uniform(a: f64, b: f64, n: usize) -> Vec<f64> {
+    (0..=n).map(|i| a + (b - a) * i as f64 / n as f64).collect()
+}
+
+impl Input {
+    pub fn node(&mut self, x: f64, y: f64, z: f64) -> usize {
+        self.nodes.push([x, y, z]);
+        self.nodes.len()
+    }
+
+    /// A 2D block over the column coordinates `xs`, with the y coordinates of column i given by
+    /// `ys(i)` (bottom to top). OOFEM's quad order: (x1,y1), (x0,y1), (x0,y0), (x1,y0); edge 1 is
+    /// the top, edge 3 the bottom.
+    pub fn block2d(
+        &mut self,
+        kind: Kind,
+        xs: &[f64],
+        ys: &dyn Fn(usize) -> Vec<f64>,
+        extra: &str,
+    ) -> Block {
+        let q8 = kind == Kind::Q8;
+        let first = self.elements.len() + 1;
+        let mut b = Block::default();
+        if !q8 {
+            let ids: Vec<Vec<usize>> = xs
+                .iter()
+                .enumerate()
+                .map(|(i, &x)| ys(i).iter().map(|&y| self.node(x, y, 0.0)).collect())
+                .collect();
+            for i in 0..xs.len() - 1 {
+                let ny = ids[i].len() - 1;
+                for j in 0..ny {
+                    let n = [ids[i + 1][j + 1], ids[i][j + 1], ids[i][j], ids[i + 1][j]];
+                    self.elements.push(format!(
+                        "Quad1PlaneStrain {} nodes 4 {} {} {} {} {extra}",
+                        self.elements.len() + 1,
+                        n[0],
+                        n[1],
+                        n[2],
+                        n[3]
+                    ));
+                    let e = self.elements.len();
+                    if j + 1 == ny {
+                        b.top_edges.push((e, 1));
+                    }
+                    if j == 0 {
+                        b.bottom_edges.push((e, 3));
+                    }
+                }
+            }
+            b.top = ids.iter().map(|c| *c.last().expect("column")).collect();
+            b.bottom = ids.iter().map(|c| c[0]).collect();
+            b.left = ids[0].clone();
+        } else {
+            // Corner grid plus mid-side nodes; columns 2i are corners, 2i+1 mid columns.
+            let nx = xs.len() - 1;
+            let ny = ys(0).len() - 1;
+            let mut grid = vec![vec![0usize; 2 * ny + 1]; 2 * nx + 1];
+            for ci in 0..=2 * nx {
+                for cj in 0..=2 * ny {
+                    if ci % 2 == 1 && cj % 2 == 1 {
+                        continue;
+                    }
+                    let (i0, i1) = (ci / 2, ci.div_ceil(2));
+                    let x = 0.5 * (xs[i0] + xs[i1]);
+                    let y_at = |i: usize| {
+                        let c = ys(i);
+                        0.5 * (c[cj / 2] + c[cj.div_ceil(2)])
+                    };
+                    let y = 0.5 * (y_at(i0) + y_at(i1));
+                    grid[ci][cj] = self.node(x, y, 0.0);
+                }
+            }
+            for i in 0..nx {
+                for j in 0..ny {
+                    let (ci, cj) = (2 * i, 2 * j);
+                    let n = [
+                        grid[ci + 2][cj + 2],
+                        grid[ci][cj + 2],
+                        grid[ci][cj],
+                        grid[ci + 2][cj],
+                        grid[ci + 1][cj + 2],
+                        grid[ci][cj + 1],
+                        grid[ci + 1][cj],
+                        grid[ci + 2][cj + 1],
+                    ];
+                    let list: Vec<String> = n.iter().map(|v| v.to_string()).collect();
+                    self.elements.push(format!(
+                        "QPlaneStress2d {} nodes 8 {} {extra}",
+                        self.elements.len() + 1,
+                        list.join(" ")
+                    ));
+                    let e = self.elements.len();
+                    if j + 1 == ny {
+                        b.top_edges.push((e, 1));
+                    }
+                    if j == 0 {
+                        b.bottom_edges.push((e, 3));
+                    }
+                }
+            }
+            b.top = (0..=2 * nx).map(|ci| grid[ci][2 * ny]).collect();
+            b.bottom = (0..=2 * nx).map(|ci| grid[ci][0]).collect();
+            b.left = (0..=2 * ny).map(|cj| grid[0][cj]).collect();
+        }
+        b.elements = (first, self.elements.len());
+        b
+    }
+
+    /// A brick block of LSpace elements over the coordinates `x`, `y`, `z` (z is up: `top` and
+    /// `bottom` are the z = max and z = min layers, row-major in x then y; `left` is x = min).
+    pub fn block3d(&mut self, x: &[f64], y: &[f64], z: &[f64], extra: &str) -> Block {
+        use crate::fem::shape::HEXA8_CORNERS;
+        let first = self.elements.len() + 1;
+        let (nx, ny, nz) = (x.len() - 1, y.len() - 1, z.len() - 1);
+        let mut id = vec![vec![vec![0usize; nz + 1]; ny + 1]; nx + 1];
+        for (k, &zk) in z.iter().enumerate() {
+            for (j, &yj) in y.iter().enumerate() {
+                for (i, &xi) in x.iter().enumerate() {
+                    id[i][j][k] = self.node(xi, yj, zk);
+                }
+            }
+        }
+        for k in 0..nz {
+            for j in 0..ny {
+                for i in 0..nx {
+                    let ids: Vec<String> = HEXA8_CORNERS
+                        .iter()
+                        .map(|c| id[i + c[0]][j + c[1]][k + c[2]].to_string())
+                        .collect();
+                    self.elements.push(format!(
+                        "LSpace {} nodes 8 {} {extra}",
+                        self.elements.len() + 1,
+                        ids.join(" ")
+                    ));
+                }
+            }
+        }
+        let mut b = Block::default();
+        for j in 0..=ny {
+            for i in 0..=nx {
+                b.top.push(id[i][j][nz]);
+                b.bottom.push(id[i][j][0]);
+            }
+        }
+        for k in 0..=nz {
+            for j in 0..=ny {
+                b.left.push(id[0][j][k]);
+            }
+        }
+        b.elements = (first, self.elements.len());
+        b
+    }
+
+    /// Add a set record; returns its number.
+    pub fn set(&mut self, body: String) -> usize {
+        let k = self.sets.len() + 1;
+        self.sets.push(format!("Set {k} {body}"));
+        k
+    }
+
+    pub fn node_set(&mut self, ids: &[usize]) -> usize {
+        let list: Vec<String> = ids.iter().map(|v| v.to_string()).collect();
+        self.set(format!("nodes {} {}", ids.len(), list.join(" ")))
+    }
+
+    pub fn edge_set(&mut self, edges: &[(usize, usize)]) -> usize {
+        let list: Vec<String> = edges.iter().map(|(e, b)| format!("{e} {b}")).collect();
+        self.set(format!(
+            "elementboundaries {} {}",
+            2 * edges.len(),
+            list.join(" ")
+        ))
+    }
+
+    /// The whole input file.
+    pub fn render(&self, title: &str, analysis: &str, domain: &str) -> String {
+        let mut s = String::new();
+        let _ = writeln!(
+            s,
+            "{title}.out\n{title}\n{analysis}\ndomain {domain}\nOutputManager"
+        );
+        let _ = writeln!(
+            s,
+            "ndofman {} nelem {} ncrosssect {} nmat {} nbc {} nic 0 nltf {} nset {} ncontactseg {}",
+            self.nodes.len(),
+            self.elements.len(),
+            self.sections.len(),
+            self.materials.len(),
+            self.bcs.len(),
+            self.functions.len(),
+            self.sets.len(),
+            self.segments.len()
+        );
+        let three = domain == "3d";
+        for (k, x) in self.nodes.iter().enumerate() {
+            if three {
+                let _ = writeln!(
+                    s,
+                    "node {} coords 3 {:.12} {:.12} {:.12}",
+                    k + 1,
+                    x[0],
+                    x[1],
+                    x[2]
+                );
+            } else {
+                let _ = writeln!(s, "node {} coords 2 {:.12} {:.12}", k + 1, x[0], x[1]);
+            }
+        }
+        for part in [
+            &self.elements,
+            &self.segments,
+            &self.sections,
+            &self.materials,
+            &self.bcs,
+            &self.functions,
+            &self.sets,
+        ] {
+            for line in part {
+                s.push_str(line);
+                s.push('\n');
+            }
+        }
+        s
+    }
+}

@@ -1,0 +1,905 @@
+//! The contact robustness suite: the setups people build every day (flush blocks, slave nodes on
+//! master vertices and ends, sliding over many vertices and off the end, quadratic edges,
+//! unloading, large penalties, touching starts under force control, starting penetration of each
+//! rigid shape, large-deformation blocks to 30 % strain, the elastic cylinder at five mesh sizes,
+//! 3D), each generated with a penalty and with Lagrange multipliers.
+//!
+//! `hertz bench --suite` runs them all and prints iterations per step; the tests assert that every
+//! one converges with at most 25 iterations per step and no step cut-back, and that the penalty
+//! answer equals its multiplier twin within the penalty's own error.
+
+use super::mesh::{graded, uniform, Input, Kind};
+use crate::error::{Error, Result};
+use crate::solve::{run_analysis, SolveParams};
+use std::time::Instant;
+
+/// Young's modulus of the suite's bodies (the slave's may differ).
+pub const E: f64 = 1000.0;
+const NU: f64 = 0.3;
+/// Penalty of most setups: 1000 E.
+pub const PENALTY: f64 = 1e6;
+
+/// Contact law of a run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Law {
+    Penalty(f64),
+    Multiplier,
+}
+
+/// One setup: its name, its class, and its input text for a law.
+pub struct Setup {
+    pub name: String,
+    pub class: &'static str,
+    /// The penalty of the penalty twin.
+    pub penalty: f64,
+    make: Box<dyn Fn(Law) -> String + Send + Sync>,
+}
+
+impl Setup {
+    fn new(
+        name: impl Into<String>,
+        class: &'static str,
+        penalty: f64,
+        make: impl Fn(Law) -> String + Send + Sync + 'static,
+    ) -> Setup {
+        Setup {
+            name: name.into(),
+            class,
+            penalty,
+            make: Box::new(make),
+        }
+    }
+
+    /// The input text of the twin with `law`.
+    pub fn input(&self, law: Law) -> String {
+        (self.make)(law)
+    }
+}
+
+/// The contact condition record for a law (node-to-segment).
+fn n2s(number: usize, law: Law, nodes: &[usize], segments: &[usize], extra: &str) -> String {
+    let list: Vec<String> = nodes.iter().map(|v| v.to_string()).collect();
+    let segs: Vec<String> = segments.iter().map(|v| v.to_string()).collect();
+    let head = match law {
+        Law::Penalty(p) => format!("n2spenaltycontact {number} loadTimeFunction 1 penalty {p:e}"),
+        Law::Multiplier => format!("n2slagrangianmultipliercontact {number} loadTimeFunction 1"),
+    };
+    format!(
+        "{head} nodeset {} {} segmentset {} {} {extra}",
+        nodes.len(),
+        list.join(" "),
+        segments.len(),
+        segs.join(" ")
+    )
+}
+
+/// A piecewise-linear load history through the factors `steps` at t = 1, 2, …
+fn history(steps: &[f64]) -> String {
+    let t: Vec<String> = (0..=steps.len()).map(|i| i.to_string()).collect();
+    let f: Vec<String> = std::iter::once(0.0)
+        .chain(steps.iter().copied())
+        .map(|v| format!("{v}"))
+        .collect();
+    format!(
+        "PiecewiseLinFunction 1 npoints {} t {} {} f(t) {} {}",
+        t.len(),
+        t.len(),
+        t.join(" "),
+        f.len(),
+        f.join(" ")
+    )
+}
+
+fn analysis(nsteps: usize) -> String {
+    format!("StaticStructural nsteps {nsteps} deltat 1 rtolf 1e-8 maxiter 25")
+}
+
+/// How the upper block of [`two_blocks`] is driven.
+#[derive(Debug, Clone, Copy)]
+enum Drive {
+    /// Its top moved down by `down` and sideways by `side` (times the history).
+    Displacement { down: f64, side: f64 },
+    /// A total downward force on its top (times the history), its top held sideways.
+    Force(f64),
+}
+
+/// Two blocks of height 1: a master [0, w] × [−1, 0] fixed at its bottom, and a slave
+/// [xs0, xs0 + ws] × [gap, gap + 1] on it, node-to-segment from the slave's bottom nodes to the
+/// master's top edges.
+#[derive(Debug, Clone)]
+struct TwoBlocks {
+    kind: Kind,
+    nx: usize,
+    nxs: usize,
+    w: f64,
+    ws: f64,
+    xs0: f64,
+    gap: f64,
+    e_slave: f64,
+    nlgeo: bool,
+    drive: Drive,
+    steps: Vec<f64>,
+}
+
+impl TwoBlocks {
+    fn flush(nx: usize) -> TwoBlocks {
+        TwoBlocks {
+            kind: Kind::Q4,
+            nx,
+            nxs: nx,
+            w: 2.0,
+            ws: 2.0,
+            xs0: 0.0,
+            gap: 0.0,
+            e_slave: E,
+            nlgeo: false,
+            drive: Drive::Displacement {
+                down: 0.02,
+                side: 0.0,
+            },
+            steps: vec![1.0],
+        }
+    }
+
+    fn input(&self, law: Law) -> String {
+        let mut inp = Input::default();
+        let extra = if self.nlgeo { "nlgeo 1" } else { "" };
+        let master = inp.block2d(
+            self.kind,
+            &uniform(0.0, self.w, self.nx),
+            &|_| uniform(-1.0, 0.0, 2),
+            &format!("mat 1 crossSect 1 {extra}"),
+        );
+        let slave = inp.block2d(
+            self.kind,
+            &uniform(self.xs0, self.xs0 + self.ws, self.nxs),
+            &|_| uniform(self.gap, self.gap + 1.0, 2),
+            &format!("mat 2 crossSect 1 {extra}"),
+        );
+        inp.segments.push(format!(
+            "linear2delementedgecontactsegment 1 edgeset {}",
+            inp.sets.len() + 1
+        ));
+        inp.edge_set(&master.top_edges);
+        inp.sections.push("SimpleCS 1 thick 1.0".into());
+        inp.materials
+            .push(format!("IsoLE 1 d 0 E {E} n {NU} tAlpha 0"));
+        inp.materials
+            .push(format!("IsoLE 2 d 0 E {} n {NU} tAlpha 0", self.e_slave));
+        let fixed = inp.node_set(&master.bottom);
+        let top = inp.node_set(&slave.top);
+        inp.bcs.push(format!(
+            "BoundaryCondition 1 loadTimeFunction 2 dofs 2 1 2 values 2 0 0 set {fixed}"
+        ));
+        match self.drive {
+            Drive::Displacement { down, side } => inp.bcs.push(format!(
+                "BoundaryCondition 2 loadTimeFunction 1 dofs 2 1 2 values 2 {side} {} set {top}",
+                -down
+            )),
+            Drive::Force(f) => {
+                inp.bcs.push(format!(
+                    "BoundaryCondition 2 loadTimeFunction 2 dofs 1 1 values 1 0 set {top}"
+                ));
+                inp.bcs.push(format!(
+                    "NodalLoad 4 loadTimeFunction 1 dofs 2 1 2 components 2 0 {} set {top}",
+                    -f / slave.top.len() as f64
+                ));
+            }
+        }
+        inp.bcs.push(n2s(3, law, &slave.bottom, &[1], ""));
+        inp.functions.push(history(&self.steps));
+        inp.functions.push("ConstantFunction 2 f(t) 1.0".into());
+        let domain = if self.kind == Kind::Q8 {
+            "2dPlaneStress"
+        } else {
+            "PlaneStrain"
+        };
+        inp.render("suite", &analysis(self.steps.len()), domain)
+    }
+}
+
+/// Node-to-node: two flush blocks with matched meshes, pairs from the master's top to the slave's
+/// bottom (2D), or two stacked bricks (3D), the slave's top pushed down.
+fn node_to_node(dim: usize, law: Law) -> String {
+    let mut inp = Input::default();
+    let (master, slave) = if dim == 2 {
+        let m = inp.block2d(
+            Kind::Q4,
+            &uniform(0.0, 2.0, 4),
+            &|_| uniform(-1.0, 0.0, 2),
+            "mat 1 crossSect 1",
+        );
+        let s = inp.block2d(
+            Kind::Q4,
+            &uniform(0.0, 2.0, 4),
+            &|_| uniform(0.0, 1.0, 2),
+            "mat 1 crossSect 1",
+        );
+        (m, s)
+    } else {
+        let g = uniform(0.0, 1.0, 2);
+        let m = inp.block3d(&g, &g, &uniform(-1.0, 0.0, 2), "mat 1 crossSect 1");
+        let s = inp.block3d(&g, &g, &uniform(0.0, 1.0, 2), "mat 1 crossSect 1");
+        (m, s)
+    };
+    inp.sections.push("SimpleCS 1 thick 1.0".into());
+    inp.materials
+        .push(format!("IsoLE 1 d 0 E {E} n {NU} tAlpha 0"));
+    let fixed = inp.node_set(&master.bottom);
+    let top = inp.node_set(&slave.top);
+    let list = |v: &[usize]| {
+        v.iter()
+            .map(|x| x.to_string())
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    let ms = inp.set(format!(
+        "nodes {} {} ordered_nodes",
+        master.top.len(),
+        list(&master.top)
+    ));
+    let ss = inp.set(format!(
+        "nodes {} {} ordered_nodes",
+        slave.bottom.len(),
+        list(&slave.bottom)
+    ));
+    let zeros = vec!["0"; dim].join(" ");
+    let dofs = (1..=dim)
+        .map(|d| d.to_string())
+        .collect::<Vec<_>>()
+        .join(" ");
+    inp.bcs.push(format!(
+        "BoundaryCondition 1 loadTimeFunction 2 dofs {dim} {dofs} values {dim} {zeros} set {fixed}"
+    ));
+    let down = if dim == 2 { "0 -0.02" } else { "0 0 -0.02" };
+    inp.bcs.push(format!(
+        "BoundaryCondition 2 loadTimeFunction 1 dofs {dim} {dofs} values {dim} {down} set {top}"
+    ));
+    let normal = format!(" normal {dim} {}", if dim == 2 { "0 1" } else { "0 0 1" });
+    // Matched meshes start touching, so the pairs' normal is given (a hertz extension for the
+    // multipliers' record).
+    inp.bcs.push(match law {
+        Law::Penalty(p) => format!(
+            "n2npenaltycontact 3 loadTimeFunction 1 penalty {p:e} masterset {ms} slaveset {ss}{normal}"
+        ),
+        Law::Multiplier => format!(
+            "n2nlagrangianmultipliercontact 3 loadTimeFunction 1 masterset {ms} slaveset {ss}{normal}"
+        ),
+    });
+    inp.functions.push(history(&[1.0]));
+    inp.functions.push("ConstantFunction 2 f(t) 1.0".into());
+    inp.render(
+        "suite",
+        &analysis(1),
+        if dim == 2 { "PlaneStrain" } else { "3d" },
+    )
+}
+
+/// A block [0, 2] × [−1, 0] (2D) or [0, 1]² × [−1, 0] (3D) fixed at its bottom, whose top nodes
+/// meet the rigid segment `segment` (a record with number 1); the reference node, if the record
+/// names node `ref`, is driven down by `down` (times the history).
+fn against_rigid(
+    dim: usize,
+    law: Law,
+    segment: &str,
+    down: f64,
+    steps: &[f64],
+    force: Option<f64>,
+) -> String {
+    let mut inp = Input::default();
+    let block = if dim == 2 {
+        inp.block2d(
+            Kind::Q4,
+            &uniform(0.0, 2.0, 8),
+            &|_| uniform(-1.0, 0.0, 4),
+            "mat 1 crossSect 1",
+        )
+    } else {
+        let g = uniform(0.0, 1.0, 4);
+        inp.block3d(&g, &g, &uniform(-1.0, 0.0, 2), "mat 1 crossSect 1")
+    };
+    let r = if dim == 2 {
+        inp.node(1.0, 2.0, 0.0)
+    } else {
+        inp.node(0.5, 0.5, 2.0)
+    };
+    inp.segments.push(segment.replace("REF", &r.to_string()));
+    inp.sections.push("SimpleCS 1 thick 1.0".into());
+    inp.materials
+        .push(format!("IsoLE 1 d 0 E {E} n {NU} tAlpha 0"));
+    let dofs = (1..=dim)
+        .map(|d| d.to_string())
+        .collect::<Vec<_>>()
+        .join(" ");
+    let zeros = vec!["0"; dim].join(" ");
+    let fixed = inp.node_set(&block.bottom);
+    let refset = inp.node_set(&[r]);
+    inp.bcs.push(format!(
+        "BoundaryCondition 1 loadTimeFunction 2 dofs {dim} {dofs} values {dim} {zeros} set {fixed}"
+    ));
+    let down_v = if dim == 2 {
+        format!("0 {}", -down)
+    } else {
+        format!("0 0 {}", -down)
+    };
+    match force {
+        None => inp.bcs.push(format!(
+            "BoundaryCondition 2 loadTimeFunction 1 dofs {dim} {dofs} values {dim} {down_v} set {refset}"
+        )),
+        Some(f) => {
+            // The reference node is held sideways and pushed down by a force.
+            let side = (1..dim).map(|d| d.to_string()).collect::<Vec<_>>().join(" ");
+            let side_zeros = vec!["0"; dim - 1].join(" ");
+            inp.bcs.push(format!(
+                "BoundaryCondition 2 loadTimeFunction 2 dofs {} {side} values {} {side_zeros} set {refset}",
+                dim - 1,
+                dim - 1
+            ));
+            let comp = if dim == 2 {
+                format!("0 {}", -f)
+            } else {
+                format!("0 0 {}", -f)
+            };
+            inp.bcs.push(format!(
+                "NodalLoad 4 loadTimeFunction 1 dofs {dim} {dofs} components {dim} {comp} set {refset}"
+            ));
+        }
+    }
+    inp.bcs.push(n2s(3, law, &block.top, &[1], ""));
+    inp.functions.push(history(steps));
+    inp.functions.push("ConstantFunction 2 f(t) 1.0".into());
+    inp.render(
+        "suite",
+        &analysis(steps.len()),
+        if dim == 2 { "PlaneStrain" } else { "3d" },
+    )
+}
+
+/// An elastic cylinder (the cap of radius `r` within x ≤ 3) on an elastic block, half model,
+/// plane strain, fine spacing h under the contact; the cap's flat top pushed down by `delta`.
+pub fn cylinder_on_block(h: f64, law: Law, nlgeo: bool) -> String {
+    let (r, delta, w, depth, wc, hc) = (20.0, 0.022, 6.0, 6.0, 4.0, 4.0);
+    let extra = if nlgeo { "nlgeo 1" } else { "" };
+    let mut inp = Input::default();
+    let xs = graded(w, h, 1.0, 1.2);
+    let ys: Vec<f64> = graded(depth, h, 0.5, 1.2)
+        .iter()
+        .rev()
+        .map(|d| -d)
+        .collect();
+    let block = inp.block2d(
+        Kind::Q4,
+        &xs,
+        &|_| ys.clone(),
+        &format!("mat 1 crossSect 1 {extra}"),
+    );
+    let xc = graded(wc, h, 1.0, 1.2);
+    let hcs = graded(hc, h, 0.5, 1.2);
+    let cap = inp.block2d(
+        Kind::Q4,
+        &xc,
+        &|i| {
+            let yb = r - (r * r - xc[i] * xc[i]).sqrt();
+            hcs.iter().map(|t| yb + t * (hc - yb) / hc).collect()
+        },
+        &format!("mat 1 crossSect 1 {extra}"),
+    );
+    inp.segments.push(format!(
+        "linear2delementedgecontactsegment 1 edgeset {}",
+        inp.sets.len() + 1
+    ));
+    inp.edge_set(&block.top_edges);
+    inp.sections.push("SimpleCS 1 thick 1.0".into());
+    inp.materials
+        .push(format!("IsoLE 1 d 0 E {E} n {NU} tAlpha 0"));
+    let sym: Vec<usize> = block.left.iter().chain(&cap.left).copied().collect();
+    let sym = inp.node_set(&sym);
+    let bottom = inp.node_set(&block.bottom);
+    let top = inp.node_set(&cap.top);
+    inp.bcs.push(format!(
+        "BoundaryCondition 1 loadTimeFunction 2 dofs 1 1 values 1 0 set {sym}"
+    ));
+    inp.bcs.push(format!(
+        "BoundaryCondition 2 loadTimeFunction 2 dofs 1 2 values 1 0 set {bottom}"
+    ));
+    inp.bcs.push(format!(
+        "BoundaryCondition 3 loadTimeFunction 1 dofs 1 2 values 1 {} set {top}",
+        -delta
+    ));
+    let contact: Vec<usize> = cap
+        .bottom
+        .iter()
+        .zip(&xc)
+        .filter(|(_, &x)| x <= 1.2)
+        .map(|(&n, _)| n)
+        .collect();
+    inp.bcs.push(n2s(4, law, &contact, &[1], ""));
+    inp.functions.push(history(&[1.0]));
+    inp.functions.push("ConstantFunction 2 f(t) 1.0".into());
+    inp.render("suite", &analysis(1), "PlaneStrain")
+}
+
+/// Every setup of the suite.
+pub fn setups() -> Vec<Setup> {
+    let mut out = Vec::new();
+    let mut blocks = |name: &str, class: &'static str, tb: TwoBlocks| {
+        out.push(Setup::new(name, class, PENALTY, move |law| tb.input(law)));
+    };
+    let base = TwoBlocks::flush(4);
+    // Flush blocks: the slave's nodes on every master vertex, its corners on the master's ends.
+    blocks("flush, displacement", "flush", base.clone());
+    blocks(
+        "flush, force (touching start)",
+        "touching start, force control",
+        TwoBlocks {
+            drive: Drive::Force(20.0),
+            ..base.clone()
+        },
+    );
+    blocks(
+        "flush, soft slave, force",
+        "flush",
+        TwoBlocks {
+            e_slave: 300.0,
+            drive: Drive::Force(20.0),
+            ..base.clone()
+        },
+    );
+    blocks(
+        "flush, stiff slave, coarse",
+        "flush",
+        TwoBlocks {
+            e_slave: 3000.0,
+            nx: 8,
+            nxs: 4,
+            ..base.clone()
+        },
+    );
+    blocks(
+        "slave 1 % narrower",
+        "flush",
+        TwoBlocks {
+            ws: 1.98,
+            ..base.clone()
+        },
+    );
+    blocks(
+        "vertex-centred slave",
+        "vertex-centred",
+        TwoBlocks {
+            ws: 1.0,
+            xs0: 0.5,
+            nx: 2,
+            nxs: 2,
+            ..base.clone()
+        },
+    );
+    blocks(
+        "vertex-centred, force",
+        "vertex-centred",
+        TwoBlocks {
+            ws: 1.0,
+            xs0: 0.5,
+            nx: 2,
+            nxs: 2,
+            drive: Drive::Force(10.0),
+            ..base.clone()
+        },
+    );
+    blocks(
+        "non-matching meshes",
+        "flush",
+        TwoBlocks {
+            nxs: 7,
+            ..base.clone()
+        },
+    );
+    // Sliding: a narrow slave pressed, then moved sideways over many master vertices, and off the
+    // master's end.
+    let slide = TwoBlocks {
+        nx: 8,
+        w: 4.0,
+        ws: 0.5,
+        xs0: 0.5,
+        nxs: 2,
+        drive: Drive::Displacement {
+            down: 0.01,
+            side: 3.0,
+        },
+        steps: (1..=12).map(|i| i as f64 / 12.0).collect(),
+        ..base.clone()
+    };
+    blocks("sliding over 6 vertices", "sliding", slide.clone());
+    blocks(
+        "sliding over 6 vertices, nlgeo",
+        "sliding",
+        TwoBlocks {
+            nlgeo: true,
+            ..slide.clone()
+        },
+    );
+    blocks(
+        "sliding off the master's end",
+        "sliding",
+        TwoBlocks {
+            xs0: 3.0,
+            drive: Drive::Displacement {
+                down: 0.01,
+                side: 0.8,
+            },
+            steps: (1..=8).map(|i| i as f64 / 8.0).collect(),
+            ..slide.clone()
+        },
+    );
+    blocks(
+        "sliding, quadratic edges",
+        "quadratic edges",
+        TwoBlocks {
+            kind: Kind::Q8,
+            ..slide.clone()
+        },
+    );
+    // Quadratic edges.
+    blocks(
+        "quadratic, flush",
+        "quadratic edges",
+        TwoBlocks {
+            kind: Kind::Q8,
+            ..base.clone()
+        },
+    );
+    blocks(
+        "quadratic, non-matching",
+        "quadratic edges",
+        TwoBlocks {
+            kind: Kind::Q8,
+            nx: 2,
+            nxs: 3,
+            ..base.clone()
+        },
+    );
+    blocks(
+        "quadratic, force",
+        "quadratic edges",
+        TwoBlocks {
+            kind: Kind::Q8,
+            nx: 3,
+            nxs: 2,
+            drive: Drive::Force(20.0),
+            ..base.clone()
+        },
+    );
+    // Unloading: up, down and lifted off.
+    blocks(
+        "unloading to lift-off",
+        "unloading",
+        TwoBlocks {
+            steps: vec![0.5, 1.0, 0.5, 0.0, -0.5],
+            ..base.clone()
+        },
+    );
+    blocks(
+        "unloading under force",
+        "unloading",
+        TwoBlocks {
+            drive: Drive::Force(20.0),
+            steps: vec![0.5, 1.0, 0.5, 0.1],
+            ..base.clone()
+        },
+    );
+    // Large deformation to 30 % strain in 20 steps.
+    blocks(
+        "nlgeo blocks to 30 % strain",
+        "large deformation",
+        TwoBlocks {
+            nlgeo: true,
+            nxs: 5,
+            drive: Drive::Displacement {
+                down: 0.6,
+                side: 0.0,
+            },
+            steps: (1..=20).map(|i| i as f64 / 20.0).collect(),
+            ..base.clone()
+        },
+    );
+    // Large penalties (1e12 with E = 1000, as OOFEM's inputs use).
+    for (name, drive) in [
+        ("penalty 1e12, displacement", base.drive),
+        ("penalty 1e12, force", Drive::Force(20.0)),
+    ] {
+        let tb = TwoBlocks {
+            drive,
+            ..base.clone()
+        };
+        out.push(Setup::new(name, "large penalty", 1e12, move |l| {
+            tb.input(l)
+        }));
+    }
+    out.push(Setup::new(
+        "node-to-node 2D",
+        "node-to-node",
+        PENALTY,
+        |l| node_to_node(2, l),
+    ));
+    out.push(Setup::new(
+        "node-to-node 3D, penalty 1e12",
+        "large penalty",
+        1e12,
+        |l| node_to_node(3, l),
+    ));
+    // Rigid shapes, starting penetration (the nodes start 0.01 inside), then pushed.
+    let rigid = |name: &str, seg: &'static str, dim: usize, force: Option<f64>| {
+        Setup::new(name, "starting penetration", PENALTY, move |l| {
+            against_rigid(dim, l, seg, 0.02, &[0.0, 1.0], force)
+        })
+    };
+    out.push(rigid(
+        "circle, starting inside",
+        "circlecontactsegment 1 centerpoint 2 1.0 1.99 radius 2.0 node REF",
+        2,
+        None,
+    ));
+    out.push(rigid(
+        "circle, 1e-9 overlap",
+        "circlecontactsegment 1 centerpoint 2 1.0 1.999999999 radius 2.0 node REF",
+        2,
+        None,
+    ));
+    out.push(rigid(
+        "plane, starting inside",
+        "planecontactsegment 1 point 2 1.0 -0.01 normal 2 0 -1 node REF",
+        2,
+        None,
+    ));
+    out.push(rigid(
+        "polynomial, starting inside",
+        "polynomialcontactsegment 1 coeffs 3 -0.1 0.2 -0.11 bodyabove",
+        2,
+        None,
+    ));
+    out.push(rigid(
+        "cavity, starting outside it",
+        "circlecontactsegment 1 centerpoint 2 1.0 -3.0 radius 2.99 cavity node REF",
+        2,
+        None,
+    ));
+    out.push(rigid(
+        "plane, touching, force",
+        "planecontactsegment 1 point 2 1.0 0 normal 2 0 -1 node REF",
+        2,
+        Some(50.0),
+    ));
+    out.push(rigid(
+        "sphere 3D, starting inside",
+        "circlecontactsegment 1 centerpoint 3 0.5 0.5 1.99 radius 2.0 node REF",
+        3,
+        None,
+    ));
+    out.push(rigid(
+        "plane 3D, touching, force",
+        "planecontactsegment 1 point 3 0.5 0.5 0 normal 3 0 0 -1 node REF",
+        3,
+        Some(50.0),
+    ));
+    // The elastic cylinder at five mesh sizes, and in large deformation.
+    for h in [0.1, 0.07, 0.05, 0.035, 0.025] {
+        out.push(Setup::new(
+            format!("elastic cylinder, h = {h}"),
+            "elastic cylinder",
+            PENALTY,
+            move |l| cylinder_on_block(h, l, false),
+        ));
+    }
+    out.push(Setup::new(
+        "elastic cylinder, h = 0.05, nlgeo",
+        "elastic cylinder",
+        PENALTY,
+        |l| cylinder_on_block(0.05, l, true),
+    ));
+    out
+}
+
+/// What a run of one twin gave.
+#[derive(Debug, Clone, Default)]
+pub struct Outcome {
+    pub iterations: Vec<usize>,
+    pub substeps: Vec<usize>,
+    /// Sum of the contact forces, per step.
+    pub force: Vec<f64>,
+    /// Node displacements (3 components) per step.
+    pub displacement: Vec<Vec<[f64; 3]>>,
+    /// Deepest penetration of a closed contact node, per step.
+    pub penetration: Vec<f64>,
+    /// Number of closed contact nodes, per step.
+    pub closed: Vec<usize>,
+    /// Diagonal of the model's bounding box.
+    pub size: f64,
+    pub warnings: Vec<String>,
+    pub seconds: f64,
+}
+
+/// Solve an input text.
+pub fn run(text: &str) -> Result<Outcome> {
+    static COUNTER: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let k = COUNTER.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let path = std::env::temp_dir().join(format!("hertz-suite-{}-{k}.in", std::process::id()));
+    std::fs::write(&path, text)
+        .map_err(|e| Error::Output(format!("cannot write {}: {e}", path.display())))?;
+    let read = crate::input::read_model(&path);
+    let _ = std::fs::remove_file(&path);
+    let model = read?.model;
+    let mut o = Outcome {
+        size: crate::contact::model_size(&model),
+        ..Default::default()
+    };
+    let t = Instant::now();
+    run_analysis(
+        &model,
+        &SolveParams {
+            log_steps: false,
+            max_cutbacks: 3,
+            ..Default::default()
+        },
+        |r| {
+            o.iterations.push(r.info.iterations);
+            o.substeps.push(r.info.substeps);
+            o.force.push(r.contact.iter().map(|c| c.force).sum());
+            o.closed.push(r.contact.iter().filter(|c| c.active).count());
+            o.penetration.push(
+                r.contact
+                    .iter()
+                    .filter(|c| c.active && c.gap < 0.0)
+                    .fold(0.0f64, |m, c| m.max(-c.gap)),
+            );
+            o.displacement.push(
+                (0..model.nodes.len())
+                    .map(|n| {
+                        let mut d = [0.0; 3];
+                        for (i, di) in d.iter_mut().enumerate() {
+                            *di = r.displacement(n, i as u8 + 1).unwrap_or(0.0);
+                        }
+                        d
+                    })
+                    .collect(),
+            );
+            o.warnings.extend(r.info.warnings.iter().cloned());
+            Ok(())
+        },
+    )?;
+    o.seconds = t.elapsed().as_secs_f64();
+    Ok(o)
+}
+
+/// How far a penalty run (penalty p) is from its multiplier twin, against the penalty's own
+/// error. That error is O(1/p): a second run with p/10 estimates it by Richardson's rule,
+/// e ≈ |q(p/10) − q(p)| / 9. For the node displacements (largest difference) and the total
+/// contact force of every step, the ratio |q(p) − q_multipliers| / tolerance is returned
+/// (displacement, force), both ≤ 1 when the twins agree. The tolerance is 2 e, plus 10⁻⁶ of the
+/// largest value over the steps, plus for the force the round-off of the penalty forces (ε·p·L
+/// per closed node, L the model size).
+pub fn twin_mismatch(penalty: f64, pen: &Outcome, tenth: &Outcome, lm: &Outcome) -> (f64, f64) {
+    let (mut ru, mut rf) = (0.0f64, 0.0f64);
+    let max_diff = |a: &[[f64; 3]], b: &[[f64; 3]]| {
+        a.iter()
+            .zip(b)
+            .flat_map(|(x, y)| (0..3).map(move |i| (x[i] - y[i]).abs()))
+            .fold(0.0f64, f64::max)
+    };
+    let umax = lm
+        .displacement
+        .iter()
+        .flatten()
+        .flatten()
+        .fold(0.0f64, |m, v| m.max(v.abs()));
+    let fmax = lm.force.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let steps = pen
+        .displacement
+        .len()
+        .min(tenth.displacement.len())
+        .min(lm.displacement.len());
+    for s in 0..steps {
+        let e = max_diff(&pen.displacement[s], &tenth.displacement[s]) / 9.0;
+        let d = max_diff(&pen.displacement[s], &lm.displacement[s]);
+        ru = ru.max(d / (2.0 * e + 1e-6 * umax + 1e-300));
+        let ef = (pen.force[s] - tenth.force[s]).abs() / 9.0;
+        let floor = f64::EPSILON * penalty * pen.size * pen.closed[s] as f64;
+        let df = (pen.force[s] - lm.force[s]).abs();
+        rf = rf.max(df / (2.0 * ef + 1e-6 * fmax + floor + 1e-300));
+    }
+    (ru, rf)
+}
+
+/// A setup run with penalty p and p/10 and with multipliers.
+pub struct Twins {
+    pub penalty: Outcome,
+    /// With a tenth of the penalty (the estimate of the penalty's error).
+    pub penalty10: Outcome,
+    pub multipliers: Outcome,
+}
+
+impl Setup {
+    /// Run the three variants.
+    pub fn run_twins(&self) -> Result<Twins> {
+        Ok(Twins {
+            penalty: run(&self.input(Law::Penalty(self.penalty)))?,
+            penalty10: run(&self.input(Law::Penalty(0.1 * self.penalty)))?,
+            multipliers: run(&self.input(Law::Multiplier))?,
+        })
+    }
+}
+
+/// `hertz bench --suite`: run every setup with both laws and print a Markdown table.
+pub fn print_table() -> Result<()> {
+    println!("| setup | class | penalty: iterations per step | multipliers: iterations per step | cut-backs | force, penalty vs multipliers | mismatch / penalty error (u, F) |");
+    println!("|---|---|---|---|---|---|---|");
+    for s in setups() {
+        let t = s.run_twins()?;
+        let (ru, rf) = twin_mismatch(s.penalty, &t.penalty, &t.penalty10, &t.multipliers);
+        let its = |o: &Outcome| {
+            o.iterations
+                .iter()
+                .map(|i| i.to_string())
+                .collect::<Vec<_>>()
+                .join(" ")
+        };
+        let cuts = [&t.penalty, &t.multipliers]
+            .iter()
+            .flat_map(|o| o.substeps.iter())
+            .filter(|&&n| n > 1)
+            .count();
+        let (fp, fm) = (
+            t.penalty.force.iter().fold(0.0f64, |m, v| m.max(v.abs())),
+            t.multipliers
+                .force
+                .iter()
+                .fold(0.0f64, |m, v| m.max(v.abs())),
+        );
+        println!(
+            "| {} | {} | {} | {} | {cuts} | {fp:.5} vs {fm:.5} | {ru:.2}, {rf:.2} |",
+            s.name,
+            s.class,
+            its(&t.penalty),
+            its(&t.multipliers)
+        );
+    }
+    Ok(())
+}
+
+/// Write every setup's input files (penalty and multipliers) into `dir`, named after the setup.
+pub fn write_inputs(dir: &std::path::Path) -> Result<Vec<std::path::PathBuf>> {
+    std::fs::create_dir_all(dir)
+        .map_err(|e| Error::Output(format!("cannot create {}: {e}", dir.display())))?;
+    let mut out = Vec::new();
+    for s in setups() {
+        let stem: String = s
+            .name
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() {
+                    c.to_ascii_lowercase()
+                } else {
+                    '_'
+                }
+            })
+            .collect::<String>()
+            .split('_')
+            .filter(|w| !w.is_empty())
+            .collect::<Vec<_>>()
+            .join("_");
+        for (law, tag) in [
+            (Law::Penalty(s.penalty), "penalty"),
+            (Law::Multiplier, "multipliers"),
+        ] {
+            let path = dir.join(format!("{stem}.{tag}.in"));
+            let text = s.input(law).replacen(
+                "suite.out\nsuite\n",
+                &format!("{stem}.{tag}.out\n{} ({tag})\n", s.name),
+                1,
+            );
+            std::fs::write(&path, text)
+                .map_err(|e| Error::Output(format!("cannot write {}: {e}", path.display())))?;
+            out.push(path);
+        }
+    }
+    Ok(out)
+}
