@@ -9,6 +9,8 @@
 
 mod common;
 
+use common::{label_of_slave, strip, LM, PEN};
+
 use hertz::contact::{ContactSystem, Search};
 use hertz::fem::shape::HEXA8_CORNERS;
 
@@ -106,132 +108,6 @@ fn check(case: &Case) {
         "{}: tangent off by {err:e} (relative)",
         case.name
     );
-}
-
-/// A strip of `nm` unit elements (Q4 or Q8) side by side whose top edges form the master segment,
-/// and a slave quad above it whose bottom-left node (label `s`, printed first) is the contact
-/// node at (sx, sy).
-fn strip(
-    kind: &str,
-    nlgeo: u8,
-    nm: usize,
-    (sx, sy): (f64, f64),
-    segment: Option<&str>,
-    condition: &str,
-) -> String {
-    let q8 = kind == "q8";
-    let mut nodes = Vec::new();
-    let mut elems = Vec::new();
-    let id = |i: usize, j: usize| 1 + j * (nm + 1) + i;
-    for j in 0..2 {
-        for i in 0..=nm {
-            // A slightly wavy top so that vertex normals are averages of different edge normals.
-            let y = if j == 1 {
-                1.0 + 0.03 * (i as f64 * 1.7).sin()
-            } else {
-                0.0
-            };
-            nodes.push(format!("node {} coords 2 {i} {y}", id(i, j)));
-        }
-    }
-    let mut next = 2 * (nm + 1) + 1;
-    let mut edges = Vec::new();
-    for i in 0..nm {
-        let c = [id(i + 1, 1), id(i, 1), id(i, 0), id(i + 1, 0)];
-        if q8 {
-            let mids: Vec<usize> = (0..4).map(|k| next + k).collect();
-            let xy = |n: usize| -> (f64, f64) {
-                let (ii, jj) = ((n - 1) % (nm + 1), (n - 1) / (nm + 1));
-                let y = if jj == 1 {
-                    1.0 + 0.03 * (ii as f64 * 1.7).sin()
-                } else {
-                    0.0
-                };
-                (ii as f64, y)
-            };
-            for k in 0..4 {
-                let (a, b) = (xy(c[k]), xy(c[(k + 1) % 4]));
-                let bulge = if k == 0 { 0.02 } else { 0.0 };
-                nodes.push(format!(
-                    "node {} coords 2 {} {}",
-                    mids[k],
-                    0.5 * (a.0 + b.0),
-                    0.5 * (a.1 + b.1) + bulge
-                ));
-            }
-            next += 4;
-            elems.push(format!(
-                "QPlaneStress2d {} nodes 8 {} {} {} {} {} {} {} {} nlgeo {nlgeo}",
-                i + 1,
-                c[0],
-                c[1],
-                c[2],
-                c[3],
-                mids[0],
-                mids[1],
-                mids[2],
-                mids[3]
-            ));
-        } else {
-            elems.push(format!(
-                "Quad1PlaneStrain {} nodes 4 {} {} {} {} nlgeo {nlgeo}",
-                i + 1,
-                c[0],
-                c[1],
-                c[2],
-                c[3]
-            ));
-        }
-        edges.push(format!("{} 1", i + 1));
-    }
-    let s = next;
-    for (k, (dx, dy)) in [(0.0, 0.0), (0.6, 0.0), (0.6, 1.0), (0.0, 1.0)]
-        .iter()
-        .enumerate()
-    {
-        nodes.push(format!("node {} coords 2 {} {}", s + k, sx + dx, sy + dy));
-    }
-    elems.push(format!(
-        "Quad1PlaneStrain {} nodes 4 {} {} {} {}",
-        nm + 1,
-        s + 2,
-        s + 3,
-        s,
-        s + 1
-    ));
-    let extra_node = segment.is_some_and(|g| g.contains(" node 900"));
-    if extra_node {
-        nodes.push("node 900 coords 2 0.3 5.0".into());
-    }
-    let segment = segment
-        .map(str::to_string)
-        .unwrap_or_else(|| "linear2delementedgecontactsegment 1 edgeset 2".to_string());
-    let condition = condition.replace("NODE", &s.to_string());
-    format!(
-        "fd.out\nfd\nNonLinearStatic nsteps 1 controlmode 1\ndomain {}\nOutputManager\n\
-         ndofman {} nelem {} ncrosssect 1 nmat 1 nbc 1 nic 0 nltf 1 nset 2 ncontactseg 1\n{}\n{}\n{segment}\n\
-         SimpleCS 1 thick 1 material 1 set 1\nIsoLE 1 d 0 E 100 n 0.3 tAlpha 0\n{condition}\n\
-         ConstantFunction 1 f(t) 1\nSet 1 allelements\nSet 2 elementboundaries {} {}\n",
-        if q8 { "2dPlaneStress" } else { "PlaneStrain" },
-        nodes.len(),
-        elems.len(),
-        nodes.join("\n"),
-        elems.join("\n"),
-        2 * edges.len(),
-        edges.join(" ")
-    )
-}
-
-const PEN: &str =
-    "n2spenaltycontact 1 loadTimeFunction 1 penalty 1000 nodeset 1 NODE segmentset 1 1";
-const LM: &str =
-    "n2slagrangianmultipliercontact 1 loadTimeFunction 1 nodeset 1 NODE segmentset 1 1";
-
-/// The contact node: the `NODE` substituted into the condition, read back from the nodeset.
-fn label_of_slave(text: &str) -> usize {
-    let line = text.lines().find(|l| l.contains("nodeset 1 ")).unwrap();
-    let after = line.split("nodeset 1 ").nth(1).unwrap();
-    after.split_whitespace().next().unwrap().parse().unwrap()
 }
 
 /// Displacements by node label.
