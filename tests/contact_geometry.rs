@@ -182,7 +182,7 @@ fn force_falls_continuously_to_zero_past_the_open_end_of_the_master() {
         let _ = points;
         forces.push((d, states[0].force, states[0].partner));
     }
-    let full = p * depth * (1.0f64 / (1.0 + ((top(2.0) - top(1.0)) as f64).powi(2))).sqrt();
+    let full = p * depth / (1.0 + (top(2.0) - top(1.0)).powi(2)).sqrt();
     for &(d, f, partner) in &forces {
         if d <= 0.0 {
             assert!(
