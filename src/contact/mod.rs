@@ -26,7 +26,7 @@ pub mod tributary;
 
 use crate::assembly::{DofMap, ExtraDofs};
 use crate::error::{Error, Result};
-use crate::model::{ContactLaw, Model, Pairing};
+use crate::model::{ContactLaw, Model, Pairing, SegmentKind};
 use dual::{DVec, Dual};
 use law::Laws;
 pub use point::{ContactPoint, PointLaw};
@@ -358,6 +358,40 @@ impl ContactSystem {
         }
         Ok((points, states))
     }
+}
+
+/// Warnings about the initial configuration, from the contact states at u = 0: nodes that start
+/// inside a rigid segment's body (they are pushed out: a rigid segment's side is fixed by its
+/// definition, not by where a node starts, as it is in OOFEM).
+pub fn initial_warnings(model: &Model, states: &[SlotState]) -> Vec<String> {
+    use std::collections::BTreeMap;
+    let tol = 1e-9 * model_size(model);
+    let mut inside: BTreeMap<(usize, usize), (usize, f64)> = BTreeMap::new();
+    for s in states {
+        if let Partner::Rigid(g) = s.partner {
+            if s.gap < -tol {
+                let e = inside.entry((s.condition, g)).or_insert((0, 0.0));
+                e.0 += 1;
+                e.1 = e.1.max(-s.gap);
+            }
+        }
+    }
+    inside
+        .into_iter()
+        .map(|((cond, g), (n, depth))| {
+            let seg = &model.segments[g];
+            let hint = match seg.kind {
+                SegmentKind::Circle { cavity: false, .. } => " (if they belong inside the circle, add `cavity`)",
+                SegmentKind::Polynomial { body_above: false, .. } => " (if the body is above the curve, add `bodyabove`)",
+                SegmentKind::Plane { .. } => " (the plane's normal points out of the rigid body)",
+                _ => "",
+            };
+            format!(
+                "{n} node(s) of contact condition {cond} start inside rigid segment {} (by up to {depth:.3e}) and will be pushed out{hint}",
+                seg.number
+            )
+        })
+        .collect()
 }
 
 /// Diagonal of the model's bounding box (a length scale for tolerances).

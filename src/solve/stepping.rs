@@ -117,12 +117,11 @@ pub fn run_analysis(
     } else {
         Condensed::Pending(contact.candidate_equations(&dofs))
     };
-    let slot_nodes: Vec<usize> = contact
+    let initial_states = contact
         .evaluate(model, &dofs, &vec![0.0; np], Search::Fresh)?
-        .1
-        .iter()
-        .map(|s| s.node)
-        .collect();
+        .1;
+    let mut initial_warnings = crate::contact::initial_warnings(model, &initial_states);
+    let slot_nodes: Vec<usize> = initial_states.iter().map(|s| s.node).collect();
     let mut solver = LinearSolver::default();
     solver.groups = Some(dofs.free_eq_nodes());
     let mut ctx = NewtonContext {
@@ -163,7 +162,10 @@ pub fn run_analysis(
             _ => external(&|f| model.functions[f].eval(t)),
         };
         let up_target = prescribed_at(t);
-        let mut info = StepInfo::default();
+        let mut info = StepInfo {
+            warnings: std::mem::take(&mut initial_warnings),
+            ..Default::default()
+        };
         let start_u = u.clone();
         let start_states = ctx.converged_states.clone();
         let mut done = false;
