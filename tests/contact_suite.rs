@@ -84,3 +84,76 @@ fn elastic_cylinder_in_large_deformation_matches_small_strain_within_one_percent
         assert!(large.iterations[0] <= 6, "{law:?}: {:?}", large.iterations);
     }
 }
+
+/// A rigid circle that overlaps a node by 10⁻⁹ at the start changes nothing: the node is pushed
+/// out, and the contact force equals that of the touching circle to 10⁻⁶ (before, the node was
+/// taken to belong inside: it stayed 0.018 inside with no force, the total 7 % low).
+#[test]
+fn round_off_overlap_with_a_rigid_circle_changes_nothing() {
+    let s = setups()
+        .into_iter()
+        .find(|s| s.name == "circle, 1e-9 overlap")
+        .unwrap();
+    for law in [Law::Penalty(s.penalty), Law::Multiplier] {
+        let text = s.input(law);
+        assert!(text.contains("1.999999999"));
+        let overlap = suite::run(&text).unwrap();
+        let touching = suite::run(&text.replace("1.999999999", "2.0")).unwrap();
+        let (a, b) = (overlap.force[1], touching.force[1]);
+        assert!(b > 1.0, "{law:?}: force {b}");
+        assert!((a - b).abs() < 1e-6 * b, "{law:?}: {a} against {b}");
+    }
+}
+
+/// A penalty of 1e12 with E = 1000 converges on the round-off floor of its forces, with a warning
+/// that suggests a penalty double precision resolves.
+#[test]
+fn penalty_beyond_double_precision_is_accepted_on_its_floor_with_a_suggestion() {
+    let s = setups()
+        .into_iter()
+        .find(|s| s.name == "penalty 1e12, force")
+        .unwrap();
+    let o = suite::run(&s.input(Law::Penalty(1e12))).unwrap();
+    assert_eq!(o.substeps, vec![1]);
+    let w = o.warnings.join("\n");
+    assert!(
+        w.contains("round-off floor") && w.contains("penalty 1e12, suggested at most"),
+        "{w}"
+    );
+}
+
+/// A step that cannot converge says why: a penalty beyond double precision, or the contact nodes
+/// that went back and forth between states.
+#[test]
+fn failing_contact_steps_say_why() {
+    let s = setups()
+        .into_iter()
+        .find(|s| s.name == "penalty 1e12, force")
+        .unwrap();
+    let text = s
+        .input(Law::Penalty(1e12))
+        .replace("maxiter 25", "maxiter 3");
+    let msg = suite::run(&text)
+        .err()
+        .expect("3 iterations are too few")
+        .to_string();
+    assert!(
+        msg.contains("the penalty is beyond what double precision resolves"),
+        "{msg}"
+    );
+    // A rigid cylinder pushed 0.8 down and 2 sideways into the block at once, with 3 iterations.
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/hertz_rigid_circle.in");
+    let text = std::fs::read_to_string(path)
+        .unwrap()
+        .replace("values 2 0.0 -0.045 set 4", "values 2 2.0 -1.5 set 4")
+        .replace("maxiter 40", "maxiter 3");
+    let msg = suite::run(&text)
+        .err()
+        .expect("3 iterations are too few")
+        .to_string();
+    assert!(
+        msg.contains("contact nodes went back and forth between states (chattering): "),
+        "{msg}"
+    );
+}

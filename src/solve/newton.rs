@@ -56,10 +56,11 @@ pub(super) struct NewtonContext<'a> {
     pub condensed: Condensed,
     /// Contact states of the last converged step (the first hint of the next step's search).
     pub converged_states: Option<Vec<SlotState>>,
-    /// Per contact node: how often its partner or branch changed in the current attempt.
+    /// Per contact node: how often in the current attempt its partner and branch went back to
+    /// what they were two iterations before (A → B → A: chattering, not sliding on).
     pub flips: Vec<usize>,
-    /// How far the round-off floor of penalty forces exceeded the tolerance in the last failed
-    /// attempt.
+    /// How far the estimated round-off floor of penalty forces exceeded the tolerance in the last
+    /// iteration of a failed attempt, if it did.
     pub floor_dominated: Option<f64>,
     /// The node of every contact point (for messages).
     pub slot_nodes: Vec<usize>,
@@ -72,8 +73,10 @@ struct Check {
     converged: bool,
     /// Not converged, but every group is within its round-off floor.
     on_floor: bool,
-    /// The penalty round-off floor relative to the tolerance's reference, if it mattered.
+    /// On the floor: the residual over the tolerance.
     floor_ratio: Option<f64>,
+    /// The largest round-off floor estimate over the tolerance.
+    floor_excess: f64,
 }
 
 /// A free equation by its node and DOF (for messages).
@@ -280,6 +283,7 @@ impl NewtonContext<'_> {
         u[nf..].copy_from_slice(up);
         let mut du = vec![0.0; nf];
         let mut prev: Option<Vec<SlotState>> = self.converged_states.clone();
+        let mut prev2: Option<Vec<SlotState>> = None;
         for it in 0..=a.maxiter {
             let search = match &prev {
                 Some(p) => Search::Hint(p),
@@ -288,9 +292,10 @@ impl NewtonContext<'_> {
             let (points, states) = self
                 .contact
                 .evaluate(self.asm.model, self.dofs, u, search)?;
-            if let Some(p) = &prev {
-                for (k, (s, q)) in states.iter().zip(p).enumerate() {
-                    if s.partner != q.partner || s.active != q.active {
+            if let (Some(p), Some(pp)) = (&prev, &prev2) {
+                let key = |s: &SlotState| (s.partner, s.active);
+                for (k, s) in states.iter().enumerate() {
+                    if key(s) != key(&p[k]) && key(s) == key(&pp[k]) {
                         self.flips[k] += 1;
                     }
                 }
@@ -380,7 +385,7 @@ impl NewtonContext<'_> {
                 return Err(Error::Solve("residual is not finite".into()));
             }
             if it == a.maxiter {
-                self.floor_dominated = check.floor_ratio;
+                self.floor_dominated = (check.floor_excess > 1.0).then_some(check.floor_excess);
                 break;
             }
             let (step, updates) = if has_contact {
@@ -403,7 +408,7 @@ impl NewtonContext<'_> {
                 u[i] += step[i];
             }
             du = step;
-            prev = Some(states);
+            prev2 = prev.replace(states);
         }
         Ok(false)
     }
@@ -512,6 +517,7 @@ impl NewtonContext<'_> {
         let mut ok = true;
         let mut within_floor = true;
         let mut floor_ratio: Option<f64> = None;
+        let mut floor_excess = 0.0f64;
         // Multiplier rows: the gaps, against rtolf times the largest displacement (and their own
         // round-off).
         let gap_tol = (a.rtolf * umax).max(ROUNDOFF_FACTOR * f64::EPSILON * scale);
@@ -532,6 +538,8 @@ impl NewtonContext<'_> {
             let fe = num[g].sqrt() / reference;
             worst = worst.max(fe);
             let floor_rel = ROUNDOFF_FACTOR * floor[g].sqrt() / reference;
+            // The estimate itself, without the safety factor of the acceptance test.
+            floor_excess = floor_excess.max(floor_rel / ROUNDOFF_FACTOR / a.rtolf);
             if !(fe <= a.rtolf) {
                 ok = false;
                 if fe <= floor_rel {
@@ -556,6 +564,7 @@ impl NewtonContext<'_> {
             converged: ok,
             on_floor: !ok && within_floor && floor_ratio.is_some(),
             floor_ratio,
+            floor_excess,
         }
     }
 
@@ -564,8 +573,8 @@ impl NewtonContext<'_> {
         let mut why = Vec::new();
         if let Some(r) = self.floor_dominated {
             why.push(format!(
-                "the penalty forces carry round-off {r:.1e} times the tolerance: the penalty is \
-                 beyond what double precision resolves"
+                "the round-off of the penalty forces is {r:.1e} times the tolerance: the penalty \
+                 is beyond what double precision resolves"
             ));
         }
         {
@@ -573,7 +582,7 @@ impl NewtonContext<'_> {
                 .flips
                 .iter()
                 .enumerate()
-                .filter(|(_, &f)| f >= 3)
+                .filter(|(_, &f)| f >= 2)
                 .map(|(k, &f)| (f, k))
                 .collect();
             chatter.sort_unstable_by(|a, b| b.cmp(a));
@@ -586,7 +595,7 @@ impl NewtonContext<'_> {
                     })
                     .collect();
                 why.push(format!(
-                    "contact nodes kept changing state (chattering): {}{}",
+                    "contact nodes went back and forth between states (chattering): {}{}",
                     labels.join(", "),
                     if chatter.len() > 8 { ", …" } else { "" }
                 ));
