@@ -134,8 +134,7 @@ fn failing_contact_steps_say_why() {
         .input(Law::Penalty(1e12))
         .replace("maxiter 25", "maxiter 3");
     let msg = suite::run(&text)
-        .err()
-        .expect("3 iterations are too few")
+        .expect_err("3 iterations are too few")
         .to_string();
     assert!(
         msg.contains("the penalty is beyond what double precision resolves"),
@@ -149,8 +148,7 @@ fn failing_contact_steps_say_why() {
         .replace("values 2 0.0 -0.045 set 4", "values 2 2.0 -1.5 set 4")
         .replace("maxiter 40", "maxiter 3");
     let msg = suite::run(&text)
-        .err()
-        .expect("3 iterations are too few")
+        .expect_err("3 iterations are too few")
         .to_string();
     assert!(
         msg.contains("contact nodes went back and forth between states (chattering): "),
