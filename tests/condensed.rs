@@ -61,11 +61,8 @@ fn compare(multipliers: bool) {
         .iter()
         .zip(&step.closed)
         .map(|(p, &c)| {
-            let (fe, ke) = p.branch(c);
-            if c != p.closed {
-                let (fe0, _) = p.branch(p.closed);
-                for (a, &code) in p.codes.iter().enumerate() {
-                    let d = fe.get(a).copied().unwrap_or(0.0) - fe0.get(a).copied().unwrap_or(0.0);
+            if let Some(change) = p.branch_change(c) {
+                for (&code, d) in p.codes.iter().zip(change) {
                     for (e, w) in dofs.entries(code) {
                         if e < dofs.n_free {
                             rhs_d[e] -= w * d;
@@ -73,6 +70,7 @@ fn compare(multipliers: bool) {
                     }
                 }
             }
+            let (fe, ke) = p.branch(c);
             Contribution {
                 codes: p.codes.clone(),
                 fe,

@@ -94,14 +94,6 @@ impl<'a> Search<'a> {
             Search::Frozen(s) => s.get(k).map(|s| (s.partner, s.xi, true)),
         }
     }
-
-    /// The penetration (> 0) of slot k in the previous Newton iterate, if it was in contact.
-    pub fn previous_penetration(&self, k: usize) -> Option<f64> {
-        match self {
-            Search::Hint(s) => s.get(k).filter(|s| s.active && s.gap < 0.0).map(|s| -s.gap),
-            _ => None,
-        }
-    }
 }
 
 /// The state a formulation is evaluated at.
@@ -310,11 +302,6 @@ impl ContactSystem {
         eqs.sort_unstable();
         eqs.dedup();
         eqs
-    }
-
-    /// The laws' settings.
-    pub fn laws(&self) -> &Laws {
-        &self.laws
     }
 
     /// Set the contact pressure above which the geometric tangent part is dropped (see

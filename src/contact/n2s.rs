@@ -43,6 +43,9 @@ struct Slot {
     area: f64,
     /// Reference positions of the node's neighbours on its own surface.
     neighbors: Vec<[f64; 3]>,
+    /// Half the distance to the farthest neighbour: how far past an open end the node can
+    /// still meet the master.
+    reach: f64,
 }
 
 pub struct NodeToSegment {
@@ -83,9 +86,10 @@ impl NodeToSegment {
             msg,
         };
         let surface = EdgeSurface::new(model, segments);
-        for (i, &n) in nodes.iter().enumerate() {
+        let mut seen = std::collections::HashSet::new();
+        for &n in nodes {
             let label = model.nodes[n].label;
-            if nodes[..i].contains(&n) {
+            if !seen.insert(n) {
                 return Err(err(format!("node {label} is listed twice in `nodeset`")));
             }
             if let Some(e) = surface.edges.iter().find(|e| e.nodes.contains(&n)) {
@@ -96,14 +100,40 @@ impl NodeToSegment {
                 )));
             }
         }
+        // The unknowns of a pair: the node and the edge's support (with the edges meeting it at
+        // its ends in large deformation, whose normals are averaged).
+        for (k, e) in surface.edges.iter().enumerate() {
+            let m = 2 * (1 + surface.support(k).len());
+            if m > super::dual::MAXV {
+                return Err(Error::Input {
+                    span: model.segments[e.segment].span.clone(),
+                    msg: format!(
+                        "the edge of element {} meets too many other edges of the contact surface \
+                         at its ends ({m} unknowns for one contact pair, at most {})",
+                        model.elements[e.element].label,
+                        super::dual::MAXV
+                    ),
+                });
+            }
+        }
         let tribs = super::tributary::tributaries(model, nodes);
         let slots = nodes
             .iter()
             .zip(tribs)
-            .map(|(&node, t)| Slot {
-                node,
-                area: t.measure,
-                neighbors: t.neighbors.iter().map(|&m| model.nodes[m].coords).collect(),
+            .map(|(&node, t)| {
+                let x = model.nodes[node].coords;
+                let neighbors: Vec<[f64; 3]> =
+                    t.neighbors.iter().map(|&m| model.nodes[m].coords).collect();
+                let reach = neighbors
+                    .iter()
+                    .map(|y| 0.5 * ((y[0] - x[0]).powi(2) + (y[1] - x[1]).powi(2)).sqrt())
+                    .fold(0.0, f64::max);
+                Slot {
+                    node,
+                    area: t.measure,
+                    neighbors,
+                    reach,
+                }
             })
             .collect();
         let rigid: Vec<usize> = segments
@@ -278,8 +308,8 @@ impl NodeToSegment {
         let mut best = f64::INFINITY;
         for k in 0..self.surface.edges.len() {
             let edge = &self.surface.edges[k];
-            // Cheap rejection: the box of the edge's nodes, grown by the edge's length (curvature,
-            // extension past an open end), farther than the best gap so far.
+            // Cheap rejection: the box of the edge's nodes, grown by the edge's length (curvature)
+            // and the node's reach past an open end, farther than the best gap so far.
             let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
             for n in &edge.nodes {
                 let p = cur[n];
@@ -293,7 +323,7 @@ impl NodeToSegment {
                 .map(|i| (lo[i] - xs2[i]).max(xs2[i] - hi[i]).max(0.0).powi(2))
                 .sum::<f64>()
                 .sqrt();
-            if outside > best + size && previous != Some(Partner::Edge(k)) {
+            if outside > best + size + slot.reach && previous != Some(Partner::Edge(k)) {
                 continue;
             }
             let geom = self.geometry_f64(k, cur);

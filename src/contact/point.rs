@@ -63,6 +63,21 @@ impl ContactPoint {
         }
     }
 
+    /// How the local residual changes when the point takes branch `closed` instead of its
+    /// current one (over `codes`), if it does.
+    pub fn branch_change(&self, closed: bool) -> Option<Vec<f64>> {
+        if closed == self.closed {
+            return None;
+        }
+        let (to, _) = self.branch(closed);
+        let (from, _) = self.branch(self.closed);
+        Some(
+            (0..self.codes.len())
+                .map(|a| to.get(a).copied().unwrap_or(0.0) - from.get(a).copied().unwrap_or(0.0))
+                .collect(),
+        )
+    }
+
     /// The contribution of the current state, for the assembler.
     pub fn contribution(&self) -> Contribution {
         let (fe, ke) = self.branch(self.closed);

@@ -196,9 +196,10 @@ impl CondensedContact {
         self.base.solve_in_place(&mut w)?;
         let mdim = self.cand.len();
         let wc: Vec<f64> = self.cand.iter().map(|&e| w[e]).collect();
-        let branches: Vec<[(Vec<f64>, Vec<f64>); 2]> = points
+        // The local tangent of both branches of every point.
+        let tangents: Vec<[Vec<f64>; 2]> = points
             .iter()
-            .map(|p| [p.branch(false), p.branch(true)])
+            .map(|p| [p.branch(false).1, p.branch(true).1])
             .collect();
         let mut closed: Vec<bool> = points.iter().map(|p| p.closed).collect();
         let mut seen: HashSet<Vec<bool>> = HashSet::new();
@@ -235,13 +236,10 @@ impl CondensedContact {
             // δ: the residual change of points whose branch differs from their current one.
             let mut delta = vec![0.0; mdim];
             for (i, l) in locs.iter().enumerate() {
-                let (fe, ke) = &branches[i][usize::from(closed[i])];
+                let ke = &tangents[i][usize::from(closed[i])];
                 let nd = l.len();
-                if closed[i] != points[i].closed {
-                    let (fe0, _) = &branches[i][usize::from(points[i].closed)];
-                    for (a_, entries) in l.iter().enumerate() {
-                        let d = fe.get(a_).copied().unwrap_or(0.0)
-                            - fe0.get(a_).copied().unwrap_or(0.0);
+                if let Some(change) = points[i].branch_change(closed[i]) {
+                    for (entries, d) in l.iter().zip(change) {
                         for &(k, wk) in entries {
                             delta[k] -= wk * d;
                         }

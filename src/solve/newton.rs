@@ -151,9 +151,8 @@ impl NewtonContext<'_> {
                 Err(Error::Singular(_)) if !self.small_strain => Condensed::Off,
                 Err(e) => return Err(e),
             };
-            if matches!(self.condensed, Condensed::Off) && !self.contact.symmetric() {
-                self.asm.set_symmetric(false);
-                self.solver.reset();
+            if matches!(self.condensed, Condensed::Off) {
+                self.condense_off();
             }
         } else if let (Condensed::Ready(c), Some(ks)) = (&mut self.condensed, ks_fresh) {
             // Large deformation: the structural tangent changed.
@@ -164,24 +163,24 @@ impl NewtonContext<'_> {
                 Err(e) => return Err(e),
             };
             if !ok {
-                self.condensed = Condensed::Off;
-                if !self.contact.symmetric() {
-                    self.asm.set_symmetric(false);
-                }
-                self.solver.reset();
+                self.condense_off();
             }
         }
         if let Condensed::Ready(c) = &mut self.condensed {
             if let Some(step) = c.step(&rhs, points, self.dofs)? {
                 return Ok((step.du, step.updates));
             }
-            self.condensed = Condensed::Off;
-            if !self.contact.symmetric() {
-                self.asm.set_symmetric(false);
-            }
-            self.solver.reset();
+            self.condense_off();
         }
         self.solve_full(u, rhs, points)
+    }
+
+    /// Give up condensing for the rest of the analysis: full tangents, on a pattern with both
+    /// triangles if a contact tangent is not symmetric.
+    fn condense_off(&mut self) {
+        self.condensed = Condensed::Off;
+        self.asm.set_symmetric(self.contact.symmetric());
+        self.solver.reset();
     }
 
     /// The Newton step with full tangents: the branches are searched on the linearized problem
@@ -208,13 +207,8 @@ impl NewtonContext<'_> {
                 .iter()
                 .zip(&closed)
                 .map(|(p, &c)| {
-                    let (fe, ke) = p.branch(c);
-                    if c != p.closed {
-                        // The residual changes by the difference of the branches' forces.
-                        let (fe0, _) = p.branch(p.closed);
-                        for (a, &code) in p.codes.iter().enumerate() {
-                            let d = fe.get(a).copied().unwrap_or(0.0)
-                                - fe0.get(a).copied().unwrap_or(0.0);
+                    if let Some(change) = p.branch_change(c) {
+                        for (&code, d) in p.codes.iter().zip(change) {
                             for (e, w) in self.dofs.entries(code) {
                                 if e < nf {
                                     step[e] -= w * d;
@@ -222,6 +216,7 @@ impl NewtonContext<'_> {
                             }
                         }
                     }
+                    let (fe, ke) = p.branch(c);
                     Contribution {
                         codes: p.codes.clone(),
                         fe,
