@@ -75,25 +75,23 @@ impl CondensedContact {
         if cand.is_empty() || cand.len() > MAX_CANDIDATES || !pattern.symmetric {
             return Ok(None);
         }
-        let mut pos = vec![usize::MAX; pattern.n];
         let mut base = LinearSolver::default();
         base.groups = groups;
         base.last_block = Some(cand.clone());
-        let mut shift: Vec<f64> = cand
+        let shift: Vec<f64> = cand
             .iter()
             .map(|e| if lambdas.contains(e) { 1.0 } else { 0.0 })
             .collect();
         let mut cc = CondensedContact {
             base,
-            pos: Vec::new(),
+            pos: vec![usize::MAX; pattern.n],
             cand,
             m: Mat::zeros(0, 0),
-            shift: Vec::new(),
+            shift,
         };
-        cc.shift = shift.clone();
         match cc.factorize(pattern, values, describe) {
-            Ok(true) => {}
-            Ok(false) => return Ok(None),
+            Ok(true) => Ok(Some(cc)),
+            Ok(false) => Ok(None),
             Err(Error::Singular(_)) => {
                 // A body held by contact alone: shift every candidate displacement by the mean
                 // diagonal of the candidates (a stiffness of the right size).
@@ -103,25 +101,18 @@ impl CondensedContact {
                     .map(|&e| values[pattern.position(e, e)].abs())
                     .filter(|v| *v > 0.0)
                     .collect();
-                let alpha = diag.iter().sum::<f64>() / diag.len().max(1) as f64;
-                for (s, e) in shift.iter_mut().zip(&cc.cand) {
+                let alpha =
+                    (diag.iter().sum::<f64>() / diag.len().max(1) as f64).max(f64::MIN_POSITIVE);
+                for (s, e) in cc.shift.iter_mut().zip(&cc.cand) {
                     if !lambdas.contains(e) {
-                        *s = alpha.max(f64::MIN_POSITIVE);
+                        *s = alpha;
                     }
                 }
-                cc.shift = shift;
                 cc.base.reset();
-                if !cc.factorize(pattern, values, describe)? {
-                    return Ok(None);
-                }
+                Ok(cc.factorize(pattern, values, describe)?.then_some(cc))
             }
-            Err(e) => return Err(e),
+            Err(e) => Err(e),
         }
-        for (k, &e) in cc.cand.iter().enumerate() {
-            pos[e] = k;
-        }
-        cc.pos = pos;
-        Ok(Some(cc))
     }
 
     /// Factorize K_s' for new K_s values on the same pattern (large deformation) and update M.
@@ -150,9 +141,7 @@ impl CondensedContact {
         self.shift = eqs.iter().map(|e| shift_of[e]).collect();
         self.cand = eqs;
         for (k, &e) in self.cand.iter().enumerate() {
-            if e < self.pos.len() {
-                self.pos[e] = k;
-            }
+            self.pos[e] = k;
         }
         // M = L₂₂⁻ᵀ L₂₂⁻¹.
         let mdim = self.cand.len();
