@@ -183,34 +183,6 @@ pub fn sub(a: &DVec, b: &DVec, dim: usize) -> DVec {
     r
 }
 
-/// a + s·b.
-pub fn axpy(a: &DVec, s: Dual, b: &DVec, dim: usize) -> DVec {
-    let mut r = *a;
-    for i in 0..dim {
-        r[i] = a[i] + s * b[i];
-    }
-    r
-}
-
-/// s·a.
-pub fn scale(a: &DVec, s: Dual, dim: usize) -> DVec {
-    let mut r = *a;
-    for i in 0..dim {
-        r[i] = a[i] * s;
-    }
-    r
-}
-
-/// a / |a|.
-pub fn normalize(a: &DVec, dim: usize) -> DVec {
-    scale(a, dot(a, a, dim).sqrt().recip(), dim)
-}
-
-/// The plain values of a dual vector.
-pub fn values(a: &DVec) -> [f64; 3] {
-    [a[0].v, a[1].v, a[2].v]
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -18,7 +18,7 @@
 //! end node's normal, so a node just past the end still has a contact point; the condition weighs
 //! its force down to zero over the node's tributary length (see `n2s`).
 
-use super::super::dual::{DVec, Dual};
+use super::super::dual::Dual;
 use super::scalar::Scalar;
 use crate::model::{Model, SegmentKind};
 use std::collections::HashMap;
@@ -322,9 +322,4 @@ fn outward_side(model: &Model, e: usize, nodes: &[usize]) -> f64 {
     } else {
         1.0
     }
-}
-
-/// 2D position of a dual vector.
-pub fn xy(v: &DVec) -> [Dual; 2] {
-    [v[0], v[1]]
 }
