@@ -64,6 +64,8 @@ pub(super) struct NewtonContext<'a> {
     pub floor_dominated: Option<f64>,
     /// The node of every contact point (for messages).
     pub slot_nodes: Vec<usize>,
+    /// The round-off floor warning was given (once per analysis).
+    pub floor_warned: bool,
 }
 
 /// The convergence test's verdict on one iteration.
@@ -366,9 +368,10 @@ impl NewtonContext<'_> {
                     // its stiffness is singular (an unloaded mechanism): factorize once.
                     self.factorize(kv)?;
                 }
-                if let Some(r) = check.floor_ratio {
+                if let Some(r) = check.floor_ratio.filter(|_| !self.floor_warned) {
                     info.warnings
                         .push(penalty_warning(self.asm.model, r, a.rtolf));
+                    self.floor_warned = true;
                 }
                 if has_contact {
                     self.converged_states = Some(states);

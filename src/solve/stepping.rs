@@ -139,6 +139,7 @@ pub fn run_analysis(
         flips: vec![0; slot_nodes.len()],
         floor_dominated: None,
         slot_nodes,
+        floor_warned: false,
     };
     let mut u = vec![0.0; np];
     let mut applied = vec![0.0; np];
