@@ -9,13 +9,17 @@
 //! # Layers
 //! [`fem`] knows reference elements only (shape functions, quadrature, Jacobians); [`solid`]
 //! evaluates element kernels point-wise (internal force, tangent, integration-point states);
-//! [`solve`] numbers DOFs, assembles on a fixed sparse pattern and drives the load steps; [`input`]
-//! turns the text into a checked [`model::Model`]; [`output`] writes results and evaluates rules.
+//! [`contact`] evaluates contact conditions point-wise (geometry, search, kinematics, laws);
+//! [`assembly`] numbers DOFs and assembles element and contact contributions on a fixed sparse
+//! pattern; [`solve`] factorizes, runs Newton and drives the load steps; [`input`] turns the text
+//! into a checked [`model::Model`]; [`output`] writes results and evaluates rules.
 //!
 //! # The math in brief
 //! Each step solves r(u) = F_int(u) − F_ext(t) = 0 on the free DOFs, with prescribed values
 //! u_p = ū·f(t). The total-Lagrangian kernel uses F = I + ∂u/∂X, E = ½(FᵀF − I), S = D:E and
-//! F_int,a = ∫ F·S·∇N_a dV; its tangent adds the geometric term ∫ ∇N_a·S·∇N_b dV·I.
+//! F_int,a = ∫ F·S·∇N_a dV; its tangent adds the geometric term ∫ ∇N_a·S·∇N_b dV·I. Contact adds
+//! internal forces p·w·g·B (penalty) or λ·B with the constraint g = 0 (multipliers) per contact
+//! point, g the gap and B the force direction over the point's unknowns, with exact tangents.
 //!
 //! # Example
 //! ```
