@@ -148,7 +148,7 @@ impl Mul<f64> for Dual {
 /// A small vector of duals (a position, a normal) of dimension ≤ 3.
 pub type DVec = [Dual; 3];
 
-/// The unknowns `vals` as duals: q_i = vals[i] with ∂q_i/∂q_j = δ_ij, in a space of `n` unknowns.
+/// The unknowns `vals` as duals: q_i = `vals[i]` with ∂q_i/∂q_j = δ_ij, in a space of `n` unknowns.
 pub fn seed(vals: &[f64], n: usize) -> Vec<Dual> {
     vals.iter()
         .enumerate()

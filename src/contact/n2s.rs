@@ -1,6 +1,6 @@
 //! Node-to-segment contact (spec §2.5, §2.6): each node of the condition meets one partner among
-//! its segments — an edge of the master surface they form (see
-//! [`geometry::edges`](super::geometry::edges)) or a rigid shape — chosen by [`search`](super::search).
+//! its segments — an edge of the master surface they form (see [`super::geometry::edges`]) or a
+//! rigid shape — chosen by [`super::search`].
 //!
 //! Kinematics against an edge: the contact point s solves (x_s − x(s)) × ñ(s) = 0 on the current
 //! edge, ñ the smoothed normal (current in large deformation, reference in small deformation);

@@ -43,7 +43,7 @@ const HEXA8_NODES: [[f64; 3]; 8] = [
     [1.0, -1.0, -1.0],
 ];
 
-/// Corners of the unit cube [0,1]³ in OOFEM's LSpace node order (node a at `HEXA8_CORNERS[a]`),
+/// Corners of the unit cube \[0,1\]³ in OOFEM's LSpace node order (node a at `HEXA8_CORNERS[a]`),
 /// for generating brick meshes.
 pub const HEXA8_CORNERS: [[usize; 3]; 8] = {
     let mut c = [[0usize; 3]; 8];
