@@ -676,6 +676,12 @@ pub fn setups() -> Vec<Setup> {
         None,
     ));
     out.push(rigid(
+        "plane 3D, starting inside",
+        "planecontactsegment 1 point 3 0.5 0.5 -0.01 normal 3 0 0 -1 node REF",
+        3,
+        None,
+    ));
+    out.push(rigid(
         "plane 3D, touching, force",
         "planecontactsegment 1 point 3 0.5 0.5 0 normal 3 0 0 -1 node REF",
         3,
