@@ -59,17 +59,17 @@ pub fn compare_hertz(
     states: &[SlotState],
     cylinder_radius: f64,
 ) -> Option<HertzComparison> {
-    let m1 = model.materials[0];
+    let m1 = &model.materials[0];
     let (radius, e_star) = match &model.segments.first()?.kind {
         crate::model::SegmentKind::Circle { radius, .. } => (
             *radius,
-            contact_modulus(m1.young, m1.poisson, f64::INFINITY, 0.0),
+            contact_modulus(m1.young(), m1.poisson(), f64::INFINITY, 0.0),
         ),
         _ => {
             let m2 = model.materials.get(1)?;
             (
                 cylinder_radius,
-                contact_modulus(m1.young, m1.poisson, m2.young, m2.poisson),
+                contact_modulus(m1.young(), m1.poisson(), m2.young(), m2.poisson()),
             )
         }
     };

@@ -42,6 +42,7 @@ pub mod contact;
 pub mod error;
 pub mod fem;
 pub mod input;
+pub mod material;
 pub mod model;
 pub mod output;
 pub mod solid;

@@ -7,17 +7,38 @@ mod common;
 
 use hertz::fem::shape::HEXA8_CORNERS;
 use hertz::fem::{rule, Shape};
-use hertz::model::{Material, StressMode};
-use hertz::solid::{ContinuumKernel, Elasticity, GpState};
+use hertz::material::{Constitutive, Elasticity, Hyperelastic};
+use hertz::model::StressMode;
+use hertz::solid::{ContinuumKernel, GpState};
 use hertz::solve::{run_analysis, SolveParams};
 use std::fmt::Write;
 
-const MAT: Material = Material {
-    density: 0.0,
-    young: 100.0,
-    poisson: 0.3,
-    talpha: 0.0,
-};
+/// Young's modulus and Poisson's ratio of the linear elastic material of these tests.
+const YOUNG: f64 = 100.0;
+const POISSON: f64 = 0.3;
+
+/// The laws an element is checked with: linear elasticity, and in large deformation of plane
+/// strain and 3D elements the hyperelastic laws.
+fn laws(mode: StressMode, nlgeo: bool) -> Vec<Constitutive> {
+    let mut v = vec![Constitutive::Linear(Elasticity::new(YOUNG, POISSON, mode))];
+    if nlgeo && mode != StressMode::PlaneStress {
+        v.push(Constitutive::Hyper(Hyperelastic::MooneyRivlin {
+            c1: 20.0,
+            c2: 5.0,
+            k: 80.0,
+        }));
+        v.push(Constitutive::Hyper(Hyperelastic::Ogden {
+            alpha: vec![1.3, -2.0],
+            mu: vec![30.0, -10.0],
+            k: 80.0,
+        }));
+        v.push(Constitutive::Hyper(Hyperelastic::SimoPister {
+            g: 40.0,
+            k: 80.0,
+        }));
+    }
+    v
+}
 
 /// (shape, stress mode, default nip) of every continuum element type.
 const CONTINUUM: [(&str, Shape, StressMode, usize); 8] = [
@@ -95,63 +116,65 @@ fn kernel<'a>(
     shape: Shape,
     _mode: StressMode,
     q: &'a [hertz::fem::QuadPoint],
-    el: &'a Elasticity,
+    law: &'a Constitutive,
     nlgeo: bool,
 ) -> ContinuumKernel<'a> {
     ContinuumKernel {
         shape,
         nsd: shape.dim(),
         rule: q,
-        elasticity: el,
+        material: law,
         thick: 0.7,
         nlgeo,
     }
 }
 
 /// The tangent of every continuum element is the Jacobian of its internal force (central
-/// differences), in small strain and in total Lagrangian large deformation.
+/// differences), in small strain and in total Lagrangian large deformation, with linear
+/// elasticity (St. Venant–Kirchhoff) and the hyperelastic laws.
 #[test]
 fn continuum_tangent_is_jacobian_of_internal_force() {
     for (name, shape, mode, nip) in CONTINUUM {
         for nlgeo in [false, true] {
-            let q = rule(shape, nip).unwrap();
-            let el = Elasticity::new(&MAT, mode);
-            let k = kernel(shape, mode, &q, &el, nlgeo);
-            let x = distorted_nodes(shape);
-            let nd = shape.n_nodes() * shape.dim();
-            let u: Vec<f64> = (0..nd)
-                .map(|i| 0.15 * ((i as f64 * 0.9 + 0.3).sin()))
-                .collect();
-            let mut f = vec![0.0; nd];
-            let mut kt = vec![0.0; nd * nd];
-            k.evaluate_into(&x, &u, &mut f, Some(&mut kt), None)
-                .unwrap();
-            let h = 1e-6;
-            let scale = kt.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-            let mut worst: f64 = 0.0;
-            for j in 0..nd {
-                let (mut up, mut um) = (u.clone(), u.clone());
-                up[j] += h;
-                um[j] -= h;
-                let (mut fp, mut fm) = (vec![0.0; nd], vec![0.0; nd]);
-                k.evaluate_into(&x, &up, &mut fp, None, None).unwrap();
-                k.evaluate_into(&x, &um, &mut fm, None, None).unwrap();
-                for i in 0..nd {
-                    let fd = (fp[i] - fm[i]) / (2.0 * h);
-                    worst = worst.max((fd - kt[i * nd + j]).abs() / scale);
-                }
-            }
-            assert!(
-                worst < 1e-7,
-                "{name} nlgeo {nlgeo}: relative tangent error {worst:e}"
-            );
-            // The tangent is symmetric (hyperelastic St. Venant–Kirchhoff / linear elasticity).
-            for i in 0..nd {
+            for law in laws(mode, nlgeo) {
+                let q = rule(shape, nip).unwrap();
+                let k = kernel(shape, mode, &q, &law, nlgeo);
+                let x = distorted_nodes(shape);
+                let nd = shape.n_nodes() * shape.dim();
+                let u: Vec<f64> = (0..nd)
+                    .map(|i| 0.15 * ((i as f64 * 0.9 + 0.3).sin()))
+                    .collect();
+                let mut f = vec![0.0; nd];
+                let mut kt = vec![0.0; nd * nd];
+                k.evaluate_into(&x, &u, &mut f, Some(&mut kt), None)
+                    .unwrap();
+                let h = 1e-6;
+                let scale = kt.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                let mut worst: f64 = 0.0;
                 for j in 0..nd {
-                    assert!(
-                        (kt[i * nd + j] - kt[j * nd + i]).abs() < 1e-10 * scale,
-                        "{name} symmetric"
-                    );
+                    let (mut up, mut um) = (u.clone(), u.clone());
+                    up[j] += h;
+                    um[j] -= h;
+                    let (mut fp, mut fm) = (vec![0.0; nd], vec![0.0; nd]);
+                    k.evaluate_into(&x, &up, &mut fp, None, None).unwrap();
+                    k.evaluate_into(&x, &um, &mut fm, None, None).unwrap();
+                    for i in 0..nd {
+                        let fd = (fp[i] - fm[i]) / (2.0 * h);
+                        worst = worst.max((fd - kt[i * nd + j]).abs() / scale);
+                    }
+                }
+                assert!(
+                    worst < 1e-7,
+                    "{name} nlgeo {nlgeo} {law:?}: relative tangent error {worst:e}"
+                );
+                // The tangent is symmetric (the laws are hyperelastic).
+                for i in 0..nd {
+                    for j in 0..nd {
+                        assert!(
+                            (kt[i * nd + j] - kt[j * nd + i]).abs() < 1e-10 * scale,
+                            "{name} {law:?} symmetric"
+                        );
+                    }
                 }
             }
         }
@@ -164,7 +187,7 @@ fn continuum_tangent_is_jacobian_of_internal_force() {
 fn rigid_body_motion_gives_zero_strain_under_nlgeo() {
     for (name, shape, mode, nip) in CONTINUUM {
         let q = rule(shape, nip).unwrap();
-        let el = Elasticity::new(&MAT, mode);
+        let el = Constitutive::Linear(Elasticity::new(YOUNG, POISSON, mode));
         let x = distorted_nodes(shape);
         let (c, s) = (1.1f64.cos(), 1.1f64.sin());
         // 3D: rotation about an inclined axis; 2D: about z.
@@ -477,7 +500,7 @@ fn solve_patch(
         );
     }
     let _ = writeln!(s, "SimpleCS 1 {} material 1 set 1", p.cs);
-    let _ = writeln!(s, "IsoLE 1 d 0 E {} n {} tAlpha 0", MAT.young, MAT.poisson);
+    let _ = writeln!(s, "IsoLE 1 d 0 E {} n {} tAlpha 0", YOUNG, POISSON);
     let mut k = 0;
     let mut sets = String::from("Set 1 allelements\n");
     for (i, x) in p.nodes.iter().enumerate() {

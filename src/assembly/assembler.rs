@@ -7,10 +7,11 @@ use super::dofs::DofMap;
 use super::Contribution;
 use crate::error::{Error, Result};
 use crate::fem::{rule, QuadPoint};
+use crate::material::Constitutive;
 use crate::model::Model;
 use crate::solid::continuum::{ContinuumKernel, MAX_DOFS};
 use crate::solid::loads::{element_thickness, truss_coords};
-use crate::solid::{truss, Elasticity, GpState};
+use crate::solid::{truss, GpState};
 use rayon::prelude::*;
 use std::collections::HashMap;
 
@@ -44,7 +45,7 @@ struct ElementInfo {
     loc_start: usize,
     ndof: usize,
     rule: usize,
-    elasticity: usize,
+    law: usize,
     thick: f64,
 }
 
@@ -78,7 +79,8 @@ pub struct Assembler<'m> {
     elems: Vec<ElementInfo>,
     locs: Vec<usize>,
     rules: Vec<Vec<QuadPoint>>,
-    elasticities: Vec<Elasticity>,
+    /// Constitutive laws per (material, stress mode, nlgeo).
+    laws: Vec<Constitutive>,
     /// Free-equation lists of the contact pairs, included in the pattern.
     couplings: Vec<Vec<usize>>,
     /// No element has `nlgeo`: element stiffnesses are constant.
@@ -103,8 +105,8 @@ impl<'m> Assembler<'m> {
     pub fn new(model: &'m Model, dofs: &'m DofMap) -> Result<Assembler<'m>> {
         let mut rule_ids: HashMap<(crate::fem::Shape, usize), usize> = HashMap::new();
         let mut rules = Vec::new();
-        let mut el_ids: HashMap<(usize, u8), usize> = HashMap::new();
-        let mut elasticities = Vec::new();
+        let mut law_ids: HashMap<(usize, u8, bool), usize> = HashMap::new();
+        let mut laws = Vec::new();
         let mut elems = Vec::with_capacity(model.elements.len());
         let mut locs = Vec::new();
         for (e, el) in model.elements.iter().enumerate() {
@@ -115,10 +117,16 @@ impl<'m> Assembler<'m> {
                 rules.len() - 1
             });
             let mode = el.etype.mode();
-            let k = *el_ids.entry((el.material, mode as u8)).or_insert_with(|| {
-                elasticities.push(Elasticity::new(&model.materials[el.material], mode));
-                elasticities.len() - 1
-            });
+            let k = *law_ids
+                .entry((el.material, mode as u8, el.nlgeo))
+                .or_insert_with(|| {
+                    laws.push(Constitutive::new(
+                        &model.materials[el.material],
+                        mode,
+                        el.nlgeo,
+                    ));
+                    laws.len() - 1
+                });
             let loc_start = locs.len();
             for &n in &el.nodes {
                 for &d in el.dof_ids() {
@@ -136,7 +144,7 @@ impl<'m> Assembler<'m> {
                 loc_start,
                 ndof: locs.len() - loc_start,
                 rule: r,
-                elasticity: k,
+                law: k,
                 thick,
             });
         }
@@ -152,7 +160,7 @@ impl<'m> Assembler<'m> {
             elems,
             locs,
             rules,
-            elasticities,
+            laws,
             couplings: Vec::new(),
             linear_k: std::sync::Mutex::new(None),
             small_strain: !model.elements.iter().any(|e| e.nlgeo),
@@ -272,7 +280,7 @@ impl<'m> Assembler<'m> {
             |gp: usize, msg: String| Error::Solve(format!("element {} (gp {gp}): {msg}", el.label));
         if el.etype.is_truss() {
             let dim = el.dof_ids().len();
-            let young = self.model.materials[el.material].young;
+            let young = self.model.materials[el.material].young();
             truss::evaluate_into(
                 dim,
                 truss_coords(self.model, e),
@@ -294,7 +302,7 @@ impl<'m> Assembler<'m> {
                 shape,
                 nsd: shape.dim(),
                 rule: &self.rules[info.rule],
-                elasticity: &self.elasticities[info.elasticity],
+                material: &self.laws[info.law],
                 thick: info.thick,
                 nlgeo: el.nlgeo,
             };

@@ -241,7 +241,7 @@ impl ContactSystem {
         let young = model
             .materials
             .iter()
-            .map(|m| m.young)
+            .map(|m| m.young())
             .fold(0.0f64, f64::max)
             .max(1e-30);
         Ok(ContactSystem {

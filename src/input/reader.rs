@@ -505,31 +505,7 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
             "material record {} of {nmat} (nmat {nmat})",
             i + 1
         ))?;
-        if r.keyword() != "isole" {
-            return Err(r.error(format!(
-                "unsupported material `{}`; supported: IsoLE (or is a count before nmat wrong?)",
-                r.keyword()
-            )));
-        }
-        let m = Material {
-            density: r.float("d")?,
-            young: r.float("e")?,
-            poisson: r.float("n")?,
-            talpha: r.float("talpha")?,
-        };
-        r.opt_float("referencetemperature")?;
-        if !(m.young > 0.0) {
-            return Err(r.error(format!(
-                "Young's modulus E must be positive, found {}",
-                m.young
-            )));
-        }
-        if !(m.poisson > -1.0 && m.poisson < 0.5) {
-            return Err(r.error(format!(
-                "Poisson's ratio n must lie in (-1, 0.5), found {}",
-                m.poisson
-            )));
-        }
+        let m = read_material(&r)?;
         mats.put(&r, m)?;
         c.finish(&r);
     }
@@ -776,6 +752,16 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
         if e.etype.mode() == StressMode::PlaneStress && csr.thick.is_none() {
             return Err(span_err(format!(
                 "element {} is a plane-stress element but cross section {csn} has no `thick`",
+                e.label
+            )));
+        }
+        if e.nlgeo
+            && e.etype.mode() == StressMode::PlaneStress
+            && matches!(materials[mat - 1].law, MaterialLaw::Hyperelastic(_))
+        {
+            return Err(span_err(format!(
+                "element {} is a plane-stress element with `nlgeo 1` and a hyperelastic material \
+                 {mat}: not supported (use a plane-strain or 3D element; upstream OOFEM aborts too)",
                 e.label
             )));
         }
@@ -1175,4 +1161,83 @@ fn check_geometry(coords: &[[f64; 3]], elements: &[Element]) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// A material record: `IsoLE`, or one of upstream OOFEM's compressible hyperelastic laws.
+fn read_material(r: &Record) -> Result<Material> {
+    use crate::material::Hyperelastic;
+    let density = r.float("d")?;
+    let talpha = r.opt_float("talpha")?.unwrap_or(0.0);
+    r.opt_float("referencetemperature")?;
+    let positive = |key: &str, v: f64| -> Result<f64> {
+        if v > 0.0 {
+            Ok(v)
+        } else {
+            Err(r.error(format!("`{key}` must be positive, found {v}")))
+        }
+    };
+    let law = match r.keyword() {
+        "isole" => {
+            let young = r.float("e")?;
+            let poisson = r.float("n")?;
+            r.float("talpha")?;
+            if !(young > 0.0) {
+                return Err(r.error(format!("Young's modulus E must be positive, found {young}")));
+            }
+            if !(poisson > -1.0 && poisson < 0.5) {
+                return Err(r.error(format!(
+                    "Poisson's ratio n must lie in (-1, 0.5), found {poisson}"
+                )));
+            }
+            MaterialLaw::LinearElastic { young, poisson }
+        }
+        "mooneyrivlincompressiblemat" => {
+            let (c1, c2) = (r.float("c1")?, r.float("c2")?);
+            let k = positive("k", r.float("k")?)?;
+            if !(c1 + c2 > 0.0) {
+                return Err(r.error(format!(
+                    "the shear modulus 2(c1 + c2) must be positive, found {}",
+                    2.0 * (c1 + c2)
+                )));
+            }
+            MaterialLaw::Hyperelastic(Hyperelastic::MooneyRivlin { c1, c2, k })
+        }
+        "ogdencompressiblemat" => {
+            let alpha = r.float_array("alpha")?;
+            let mu = r.float_array("mu")?;
+            let k = positive("k", r.float("k")?)?;
+            if alpha.is_empty() || alpha.len() != mu.len() || alpha.len() > 7 {
+                return Err(r.error(format!(
+                    "`alpha` and `mu` need the same number of terms, 1 to 7 (found {} and {})",
+                    alpha.len(),
+                    mu.len()
+                )));
+            }
+            if alpha.iter().any(|a| !(a.abs() > 0.0)) {
+                return Err(r.error("every `alpha` must be non-zero"));
+            }
+            let g = 0.5 * alpha.iter().zip(&mu).map(|(a, m)| a * m).sum::<f64>();
+            if !(g > 0.0) {
+                return Err(r.error(format!(
+                    "the shear modulus ½ Σ alpha·mu must be positive, found {g}"
+                )));
+            }
+            MaterialLaw::Hyperelastic(Hyperelastic::Ogden { alpha, mu, k })
+        }
+        "simopistermat" => MaterialLaw::Hyperelastic(Hyperelastic::SimoPister {
+            g: positive("g", r.float("g")?)?,
+            k: positive("k", r.float("k")?)?,
+        }),
+        other => {
+            return Err(r.error(format!(
+                "unsupported material `{other}`; supported: IsoLE, MooneyRivlinCompressibleMat, \
+                 OgdenCompressibleMat, SimoPisterMat (or is a count before nmat wrong?)"
+            )))
+        }
+    };
+    Ok(Material {
+        density,
+        talpha,
+        law,
+    })
 }

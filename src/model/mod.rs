@@ -270,13 +270,45 @@ pub struct CrossSection {
     pub set: Option<usize>,
 }
 
-/// `IsoLE` isotropic linear elastic material.
-#[derive(Debug, Clone, Copy)]
+/// A material record.
+#[derive(Debug, Clone)]
 pub struct Material {
     pub density: f64,
-    pub young: f64,
-    pub poisson: f64,
     pub talpha: f64,
+    pub law: MaterialLaw,
+}
+
+/// The constitutive law of a material record.
+#[derive(Debug, Clone)]
+pub enum MaterialLaw {
+    /// `IsoLE`: isotropic linear elasticity (St. Venant–Kirchhoff with `nlgeo 1`).
+    LinearElastic { young: f64, poisson: f64 },
+    /// `mooneyrivlincompressiblemat`, `ogdencompressiblemat`, `simopistermat`.
+    Hyperelastic(crate::material::Hyperelastic),
+}
+
+impl Material {
+    /// Young's modulus (of the small-strain limit for a hyperelastic law).
+    pub fn young(&self) -> f64 {
+        match &self.law {
+            MaterialLaw::LinearElastic { young, .. } => *young,
+            MaterialLaw::Hyperelastic(h) => {
+                let (g, k) = h.moduli();
+                9.0 * k * g / (3.0 * k + g)
+            }
+        }
+    }
+
+    /// Poisson's ratio (of the small-strain limit for a hyperelastic law).
+    pub fn poisson(&self) -> f64 {
+        match &self.law {
+            MaterialLaw::LinearElastic { poisson, .. } => *poisson,
+            MaterialLaw::Hyperelastic(h) => {
+                let (g, k) = h.moduli();
+                (3.0 * k - 2.0 * g) / (2.0 * (3.0 * k + g))
+            }
+        }
+    }
 }
 
 /// Dirichlet condition: values per DOF id on the nodes of a set, scaled by a time function.

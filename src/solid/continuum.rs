@@ -1,14 +1,15 @@
 //! Continuum element kernel for every 2D/3D shape: small strain, or total Lagrangian
-//! (`nlgeo 1`: Green–Lagrange strain E = ½(FᵀF − I), S = D:E, consistent tangent with the
-//! geometric stiffness).
+//! (`nlgeo 1`: Green–Lagrange strain E = ½(FᵀF − I), S = D:E for linear elasticity, consistent
+//! tangent with the geometric stiffness; for a hyperelastic law the first Piola–Kirchhoff stress
+//! P(F) and A = ∂P/∂F: f_ai = ∫ P_iJ ∂N_a/∂X_J, K_aibk = ∫ ∂N_a/∂X_J A_iJkL ∂N_b/∂X_L).
 //!
 //! Glossary: `nsd` space dimensions; `x_ref[a]` reference coordinates of node a; `u[a*nsd+i]`
 //! displacement; `dndx[a][I]` = ∂N_a/∂X_I; `f` = F (deformation gradient, 3×3, F₃₃ = 1 in 2D);
 //! `s` = second Piola–Kirchhoff stress tensor; `jxw` = |det J|·weight·thickness.
 
-use super::material::{Elasticity, VOIGT_PAIRS};
 use crate::fem::geometry::{det3, map_derivatives};
 use crate::fem::{QuadPoint, Shape};
+use crate::material::{voigt_components, Constitutive, Elasticity, Hyperelastic, VOIGT_PAIRS};
 use crate::model::StressMode;
 
 /// Maximum nodes and DOFs per element.
@@ -33,7 +34,7 @@ pub struct ContinuumKernel<'a> {
     pub shape: Shape,
     pub nsd: usize,
     pub rule: &'a [QuadPoint],
-    pub elasticity: &'a Elasticity,
+    pub material: &'a Constitutive,
     /// Thickness for 2D elements (1 in 3D).
     pub thick: f64,
     pub nlgeo: bool,
@@ -64,8 +65,6 @@ impl ContinuumKernel<'_> {
         if let Some(k) = ke.as_deref_mut() {
             k[..ndof * ndof].fill(0.0);
         }
-        let el = self.elasticity;
-        let comps = super::material::voigt_components(el.mode);
         let mut n = [0.0; MAX_NODES];
         let mut dn = [[0.0; 3]; MAX_NODES];
         let mut dndx = [[0.0; 3]; MAX_NODES];
@@ -108,132 +107,249 @@ impl ContinuumKernel<'_> {
                     msg: format!("element inverted (det F = {:.3e})", det3(&f)),
                 });
             }
-            let mut strain = [0.0; 6];
-            for (k, &c) in comps.iter().enumerate() {
-                let (i, j) = VOIGT_PAIRS[c];
-                strain[k] = if i == j { e[i][j] } else { 2.0 * e[i][j] };
-            }
-            if el.mode == StressMode::PlaneStress {
-                // εz is not part of the plane-stress state (OOFEM reports 0).
-            }
-            let mut sv = [0.0; 6];
-            el.stress(&strain[..el.n], &mut sv[..el.n]);
-            let mut s = [[0.0; 3]; 3];
-            for (k, &c) in comps.iter().enumerate() {
-                let (i, j) = VOIGT_PAIRS[c];
-                s[i][j] = sv[k];
-                s[j][i] = sv[k];
-            }
-            let fm = if self.nlgeo {
-                f
-            } else {
-                [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+            let point = Point {
+                dndx: &dndx,
+                f,
+                e,
+                jxw,
+                nn,
             };
-            // Internal force f_ai = ∫ F_iI S_IJ ∂N_a/∂X_J.
-            let mut fs = [[0.0; 3]; 3];
-            for i in 0..nsd {
-                for jj in 0..nsd {
-                    fs[i][jj] = (0..nsd).map(|ii| fm[i][ii] * s[ii][jj]).sum();
-                }
-            }
-            for a in 0..nn {
-                for i in 0..nsd {
-                    fe[a * nsd + i] +=
-                        jxw * (0..nsd).map(|jj| fs[i][jj] * dndx[a][jj]).sum::<f64>();
-                }
-            }
-            if let Some(k) = ke.as_deref_mut() {
-                // B rows: δE_k = B_k · δu.
-                for (row, &c) in comps.iter().enumerate() {
-                    let (ii, jj) = VOIGT_PAIRS[c];
-                    for a in 0..nn {
-                        for i in 0..nsd {
-                            b[row][a * nsd + i] = if ii == jj {
-                                fm[i][ii] * dndx[a][ii]
-                            } else {
-                                fm[i][ii] * dndx[a][jj] + fm[i][jj] * dndx[a][ii]
-                            };
-                        }
-                    }
-                }
-                let nc = el.n;
-                let mut db = [[0.0; MAX_DOFS]; 6];
-                for r in 0..nc {
-                    for q in 0..ndof {
-                        db[r][q] = (0..nc).map(|t| el.d[r][t] * b[t][q]).sum::<f64>() * jxw;
-                    }
-                }
-                for p in 0..ndof {
-                    for q in 0..ndof {
-                        let mut v = 0.0;
-                        for r in 0..nc {
-                            v += b[r][p] * db[r][q];
-                        }
-                        k[p * ndof + q] += v;
-                    }
-                }
-                if self.nlgeo {
-                    for a in 0..nn {
-                        for bb in 0..nn {
-                            let mut gab = 0.0;
-                            for ii in 0..nsd {
-                                for jj in 0..nsd {
-                                    gab += dndx[a][ii] * s[ii][jj] * dndx[bb][jj];
-                                }
-                            }
-                            for i in 0..nsd {
-                                k[(a * nsd + i) * ndof + bb * nsd + i] += jxw * gab;
-                            }
-                        }
-                    }
-                }
-            }
-            if let Some(st) = states.as_deref_mut() {
-                let mut full_e = [0.0; 6];
-                let mut full_s = [0.0; 6];
-                for (k, &c) in comps.iter().enumerate() {
-                    full_e[c] = strain[k];
-                    full_s[c] = sv[k];
-                }
-                if el.mode == StressMode::PlaneStrain {
-                    full_e[2] = 0.0;
-                }
-                let mut p = [[0.0; 3]; 3];
-                for i in 0..3 {
-                    for j in 0..3 {
-                        p[i][j] = (0..3).map(|t| fm[i][t] * s[t][j]).sum();
-                    }
-                }
-                st.push(GpState {
-                    strain: full_e,
-                    stress: full_s,
-                    f,
-                    p,
-                });
+            match self.material {
+                Constitutive::Linear(el) => self.linear_point(
+                    el,
+                    &point,
+                    fe,
+                    ke.as_deref_mut(),
+                    &mut b,
+                    states.as_deref_mut(),
+                ),
+                Constitutive::Hyper(h) => self
+                    .hyperelastic_point(h, &point, fe, ke.as_deref_mut(), states.as_deref_mut())
+                    .map_err(|msg| KernelError { gp: g + 1, msg })?,
             }
         }
         Ok(())
+    }
+}
+
+/// ∫ N_a dV for each node of an element (for body forces), `thick` in 2D.
+pub fn integrate_shape(
+    shape: Shape,
+    rule: &[QuadPoint],
+    thick: f64,
+    x_ref: &[[f64; 3]],
+    out: &mut [f64],
+) -> Result<(), KernelError> {
+    let nn = shape.n_nodes();
+    out[..nn].fill(0.0);
+    let mut n = [0.0; MAX_NODES];
+    let mut dn = [[0.0; 3]; MAX_NODES];
+    let mut dndx = [[0.0; 3]; MAX_NODES];
+    for (g, qp) in rule.iter().enumerate() {
+        shape.eval(qp.xi, &mut n, &mut dn);
+        let det =
+            map_derivatives(shape.dim(), nn, x_ref, &dn, &mut dndx).ok_or_else(|| KernelError {
+                gp: g + 1,
+                msg: "degenerate element geometry (det J = 0)".into(),
+            })?;
+        for a in 0..nn {
+            out[a] += n[a] * det.abs() * qp.weight * thick;
+        }
+    }
+    Ok(())
+}
+
+/// Kinematics at one integration point.
+struct Point<'a> {
+    dndx: &'a [[f64; 3]; MAX_NODES],
+    f: [[f64; 3]; 3],
+    /// Green–Lagrange strain (small strain: the symmetric gradient).
+    e: [[f64; 3]; 3],
+    jxw: f64,
+    nn: usize,
+}
+
+impl ContinuumKernel<'_> {
+    /// Linear elasticity at a point: σ = D:ε, or S = D:E with the geometric stiffness.
+    fn linear_point(
+        &self,
+        el: &Elasticity,
+        pt: &Point,
+        fe: &mut [f64],
+        ke: Option<&mut [f64]>,
+        b: &mut [[f64; MAX_DOFS]; 6],
+        states: Option<&mut Vec<GpState>>,
+    ) {
+        let (nsd, nn, jxw, dndx, f, e) = (self.nsd, pt.nn, pt.jxw, pt.dndx, pt.f, pt.e);
+        let ndof = nn * nsd;
+        let comps = voigt_components(el.mode);
+        let mut strain = [0.0; 6];
+        for (k, &c) in comps.iter().enumerate() {
+            let (i, j) = VOIGT_PAIRS[c];
+            strain[k] = if i == j { e[i][j] } else { 2.0 * e[i][j] };
+        }
+        let mut sv = [0.0; 6];
+        el.stress(&strain[..el.n], &mut sv[..el.n]);
+        let mut s = [[0.0; 3]; 3];
+        for (k, &c) in comps.iter().enumerate() {
+            let (i, j) = VOIGT_PAIRS[c];
+            s[i][j] = sv[k];
+            s[j][i] = sv[k];
+        }
+        let fm = if self.nlgeo {
+            f
+        } else {
+            [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+        };
+        // Internal force f_ai = ∫ F_iI S_IJ ∂N_a/∂X_J.
+        let mut fs = [[0.0; 3]; 3];
+        for i in 0..nsd {
+            for jj in 0..nsd {
+                fs[i][jj] = (0..nsd).map(|ii| fm[i][ii] * s[ii][jj]).sum();
+            }
+        }
+        for a in 0..nn {
+            for i in 0..nsd {
+                fe[a * nsd + i] += jxw * (0..nsd).map(|jj| fs[i][jj] * dndx[a][jj]).sum::<f64>();
+            }
+        }
+        if let Some(k) = ke {
+            // B rows: δE_k = B_k · δu.
+            for (row, &c) in comps.iter().enumerate() {
+                let (ii, jj) = VOIGT_PAIRS[c];
+                for a in 0..nn {
+                    for i in 0..nsd {
+                        b[row][a * nsd + i] = if ii == jj {
+                            fm[i][ii] * dndx[a][ii]
+                        } else {
+                            fm[i][ii] * dndx[a][jj] + fm[i][jj] * dndx[a][ii]
+                        };
+                    }
+                }
+            }
+            let nc = el.n;
+            let mut db = [[0.0; MAX_DOFS]; 6];
+            for r in 0..nc {
+                for q in 0..ndof {
+                    db[r][q] = (0..nc).map(|t| el.d[r][t] * b[t][q]).sum::<f64>() * jxw;
+                }
+            }
+            for p in 0..ndof {
+                for q in 0..ndof {
+                    let mut v = 0.0;
+                    for r in 0..nc {
+                        v += b[r][p] * db[r][q];
+                    }
+                    k[p * ndof + q] += v;
+                }
+            }
+            if self.nlgeo {
+                for a in 0..nn {
+                    for bb in 0..nn {
+                        let mut gab = 0.0;
+                        for ii in 0..nsd {
+                            for jj in 0..nsd {
+                                gab += dndx[a][ii] * s[ii][jj] * dndx[bb][jj];
+                            }
+                        }
+                        for i in 0..nsd {
+                            k[(a * nsd + i) * ndof + bb * nsd + i] += jxw * gab;
+                        }
+                    }
+                }
+            }
+        }
+        if let Some(st) = states {
+            let mut full_e = [0.0; 6];
+            let mut full_s = [0.0; 6];
+            for (k, &c) in comps.iter().enumerate() {
+                full_e[c] = strain[k];
+                full_s[c] = sv[k];
+            }
+            if el.mode == StressMode::PlaneStrain {
+                full_e[2] = 0.0;
+            }
+            let mut p = [[0.0; 3]; 3];
+            for i in 0..3 {
+                for j in 0..3 {
+                    p[i][j] = (0..3).map(|t| fm[i][t] * s[t][j]).sum();
+                }
+            }
+            st.push(GpState {
+                strain: full_e,
+                stress: full_s,
+                f,
+                p,
+            });
+        }
     }
 
-    /// ∫ N_a dV for each node (for body forces).
-    pub fn integrate_shape(&self, x_ref: &[[f64; 3]], out: &mut [f64]) -> Result<(), KernelError> {
-        let nn = self.shape.n_nodes();
-        out[..nn].fill(0.0);
-        let mut n = [0.0; MAX_NODES];
-        let mut dn = [[0.0; 3]; MAX_NODES];
-        let mut dndx = [[0.0; 3]; MAX_NODES];
-        for (g, qp) in self.rule.iter().enumerate() {
-            self.shape.eval(qp.xi, &mut n, &mut dn);
-            let det = map_derivatives(self.nsd, nn, x_ref, &dn, &mut dndx).ok_or_else(|| {
-                KernelError {
-                    gp: g + 1,
-                    msg: "degenerate element geometry (det J = 0)".into(),
-                }
-            })?;
-            for a in 0..nn {
-                out[a] += n[a] * det.abs() * qp.weight * self.thick;
+    /// A hyperelastic law at a point: f_ai = ∫ P_iJ ∂N_a/∂X_J, K = ∫ ∂N_a/∂X_J A_iJkL ∂N_b/∂X_L.
+    fn hyperelastic_point(
+        &self,
+        h: &Hyperelastic,
+        pt: &Point,
+        fe: &mut [f64],
+        ke: Option<&mut [f64]>,
+        states: Option<&mut Vec<GpState>>,
+    ) -> Result<(), String> {
+        let (nsd, nn, jxw, dndx, f) = (self.nsd, pt.nn, pt.jxw, pt.dndx, pt.f);
+        let ndof = nn * nsd;
+        let (p, a) = h
+            .pk1(&f)
+            .map_err(|det| format!("element inverted (det F = {det:.3e})"))?;
+        for n in 0..nn {
+            for i in 0..nsd {
+                fe[n * nsd + i] += jxw * (0..nsd).map(|jj| p[i][jj] * dndx[n][jj]).sum::<f64>();
             }
+        }
+        if let Some(k) = ke {
+            for na in 0..nn {
+                for i in 0..nsd {
+                    for nb in 0..nn {
+                        for kk in 0..nsd {
+                            let mut v = 0.0;
+                            for jj in 0..nsd {
+                                for ll in 0..nsd {
+                                    v += dndx[na][jj] * a[i][jj][kk][ll] * dndx[nb][ll];
+                                }
+                            }
+                            k[(na * nsd + i) * ndof + nb * nsd + kk] += jxw * v;
+                        }
+                    }
+                }
+            }
+        }
+        if let Some(st) = states {
+            // Green–Lagrange strain and S = F⁻¹P in Voigt form (engineering shear strains).
+            let fi = inverse3(&f);
+            let mut strain = [0.0; 6];
+            let mut stress = [0.0; 6];
+            for (c, &(i, j)) in VOIGT_PAIRS.iter().enumerate() {
+                strain[c] = if i == j { pt.e[i][j] } else { 2.0 * pt.e[i][j] };
+                stress[c] = (0..3).map(|m| fi[i][m] * p[m][j]).sum();
+            }
+            st.push(GpState {
+                strain,
+                stress,
+                f,
+                p,
+            });
         }
         Ok(())
     }
+}
+
+/// Inverse of a 3×3 matrix (non-singular).
+fn inverse3(m: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
+    let d = det3(m);
+    let mut r = [[0.0; 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            let (i1, i2) = ((j + 1) % 3, (j + 2) % 3);
+            let (j1, j2) = ((i + 1) % 3, (i + 2) % 3);
+            r[i][j] = (m[i1][j1] * m[i2][j2] - m[i1][j2] * m[i2][j1]) / d;
+        }
+    }
+    r
 }

@@ -1,8 +1,6 @@
 //! Reference load vectors (load value 1·components) as (node, DOF id, value) contributions:
 //! nodal forces, edge and surface tractions, dead weight.
 
-use super::continuum::ContinuumKernel;
-use super::Elasticity;
 use crate::error::{Error, Result};
 use crate::fem::{gauss_line, rule};
 use crate::model::{DofId, Load, LoadKind, Model};
@@ -126,27 +124,19 @@ fn element_shape_integrals(model: &Model, e: usize) -> Result<Vec<f64>> {
     let shape = el.etype.shape();
     let nip = el.nip.unwrap_or(el.etype.default_nip());
     let qr = rule(shape, nip).expect("nip validated by the reader");
-    let elasticity = Elasticity::new(&model.materials[el.material], el.etype.mode());
-    let kernel = ContinuumKernel {
-        shape,
-        nsd: shape.dim(),
-        rule: &qr,
-        elasticity: &elasticity,
-        thick: if shape.dim() == 2 {
-            element_thickness(model, e)
-        } else {
-            1.0
-        },
-        nlgeo: false,
+    let thick = if shape.dim() == 2 {
+        element_thickness(model, e)
+    } else {
+        1.0
     };
     let x: Vec<[f64; 3]> = el.nodes.iter().map(|&n| model.nodes[n].coords).collect();
     let mut w = vec![0.0; el.nodes.len()];
-    kernel
-        .integrate_shape(&x, &mut w)
-        .map_err(|k| Error::Input {
+    crate::solid::continuum::integrate_shape(shape, &qr, thick, &x, &mut w).map_err(|k| {
+        Error::Input {
             span: el.span.clone(),
             msg: format!("element {}: {}", el.label, k.msg),
-        })?;
+        }
+    })?;
     Ok(w)
 }
 

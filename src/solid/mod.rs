@@ -2,8 +2,6 @@
 
 pub mod continuum;
 pub mod loads;
-pub mod material;
 pub mod truss;
 
 pub use continuum::{ContinuumKernel, GpState};
-pub use material::Elasticity;

@@ -1,7 +1,7 @@
 //! Isotropic linear elasticity in reduced Voigt form (spec §1.12).
 //! Full Voigt order [xx, yy, zz, yz, xz, xy], engineering shear strains.
 
-use crate::model::{Material, StressMode};
+use crate::model::StressMode;
 
 /// Positions of the reduced components in the full 6-component Voigt vector.
 pub fn voigt_components(mode: StressMode) -> &'static [usize] {
@@ -25,8 +25,7 @@ pub struct Elasticity {
 }
 
 impl Elasticity {
-    pub fn new(m: &Material, mode: StressMode) -> Elasticity {
-        let (e, nu) = (m.young, m.poisson);
+    pub fn new(e: f64, nu: f64, mode: StressMode) -> Elasticity {
         let mut d = [[0.0; 6]; 6];
         let comps = voigt_components(mode);
         match mode {
@@ -78,13 +77,7 @@ mod tests {
 
     #[test]
     fn plane_strain_gives_sigma_z_from_poisson_effect() {
-        let m = Material {
-            density: 0.0,
-            young: 10.0,
-            poisson: 0.2,
-            talpha: 0.0,
-        };
-        let el = Elasticity::new(&m, StressMode::PlaneStrain);
+        let el = Elasticity::new(10.0, 0.2, StressMode::PlaneStrain);
         let mut s = [0.0; 4];
         el.stress(&[1e-3, 0.0, 0.0, 0.0], &mut s);
         // σz = ν/(1−ν) σx under εy = εz = 0.
