@@ -11,6 +11,7 @@ mod common;
 
 use common::{label_of_slave, strip, LM, PEN};
 
+use hertz::bench::mesh::{uniform, Input, Solid};
 use hertz::contact::{ContactSystem, Search};
 use hertz::fem::shape::HEXA8_CORNERS;
 
@@ -411,4 +412,95 @@ fn n2s_penalty_tangent_matches_the_consistent_closed_form_of_the_spec() {
         (d_oofem - 0.116).abs() < 2e-3,
         "OOFEM's form is off by {d_oofem}"
     );
+}
+
+/// A 3D face case: a 2×2×1 master block of `kind` elements (cube symmetry `sym`) on [0, 2]² ×
+/// [0, 1] with a wavy top whose faces form the master segment, and a 2×2 slave brick block above
+/// whose bottom nodes are the contact nodes; its middle bottom node (the returned label) is at
+/// `pos`, the others 0.25 away in x and y.
+fn face_input(
+    kind: Solid,
+    sym: usize,
+    nlgeo: u8,
+    pos: [f64; 3],
+    condition: &str,
+) -> (String, usize) {
+    let mut inp = Input::default();
+    let extra = format!("mat 1 crossSect 1 nlgeo {nlgeo}");
+    let g = uniform(0.0, 2.0, 2);
+    let master = inp.solid3d(kind, &g, &g, &uniform(0.0, 1.0, 1), &extra, sym);
+    for &n in &master.top {
+        let p = &mut inp.nodes[n - 1];
+        p[2] += 0.05 * (1.3 * p[0] + 0.7 * p[1]).sin();
+    }
+    let faces = inp.faces_where(&master, &|p| p[2] > 0.5);
+    let around = |c: f64| vec![c - 0.25, c, c + 0.25];
+    let slave = inp.block3d(
+        &around(pos[0]),
+        &around(pos[1]),
+        &[pos[2], pos[2] + 0.3],
+        &extra,
+    );
+    inp.sections.push("SimpleCS 1".into());
+    inp.materials
+        .push("IsoLE 1 d 0 E 100 n 0.3 tAlpha 0".into());
+    let segset = inp.boundary_set(&faces);
+    let nodes: Vec<String> = slave.bottom.iter().map(|n| n.to_string()).collect();
+    inp.segments.push(format!(
+        "linear3delementsurfacecontactsegment 1 boundaryset {segset}"
+    ));
+    inp.bcs.push(format!(
+        "{condition} nodeset {} {} segmentset 1 1",
+        nodes.len(),
+        nodes.join(" ")
+    ));
+    inp.functions.push("ConstantFunction 1 f(t) 1".into());
+    let text = inp.render("fd3", "NonLinearStatic nsteps 1 controlmode 1", "3d");
+    (text, slave.bottom[4])
+}
+
+/// Node against the faces of hexahedra, tetrahedra and wedges in several node orders: in the
+/// middle of a face, near the vertex where faces meet (normals averaged, in large deformation
+/// over the faces around it), past an open edge of the master (force weighted down); small and
+/// large deformation; penalty and multipliers; with a prescribed normal.
+#[test]
+fn face_tangents_are_jacobians_of_residuals() {
+    let positions: [(&str, [f64; 3], [f64; 3]); 3] = [
+        ("mid-face", [0.3, 0.4, 1.1], [0.02, -0.03, -0.2]),
+        ("vertex", [1.003, 0.98, 1.1], [0.01, 0.005, -0.15]),
+        ("past-edge", [2.05, 0.7, 1.1], [0.0, 0.01, -0.2]),
+    ];
+    let penalty = "n2spenaltycontact 1 loadTimeFunction 1 penalty 1000";
+    let multiplier = "n2slagrangianmultipliercontact 1 loadTimeFunction 1";
+    for (kind, syms) in [
+        (Solid::Hex, &[0, 13, 22, 45][..]),
+        (Solid::Tet, &[0, 45]),
+        (Solid::Wedge, &[0, 13]),
+    ] {
+        for &sym in syms {
+            for nlgeo in [0u8, 1] {
+                for (name, pos, ds) in positions {
+                    for (law, lambda, extra) in [
+                        (penalty, 0.0, ""),
+                        (multiplier, 3.0, ""),
+                        (penalty, 0.0, " normal 3 0.1 -0.2 1"),
+                    ] {
+                        let (text, node) =
+                            face_input(kind, sym, nlgeo, pos, &format!("{law}{extra}"));
+                        check(&Case {
+                            name: format!("{name}-{kind:?}-sym{sym}-nlgeo{nlgeo}{extra}"),
+                            text,
+                            disp: vec![
+                                (node, ds),
+                                (14, [0.01, -0.02, 0.03]),
+                                (10, [0.0, 0.01, -0.02]),
+                            ],
+                            lambda,
+                            active: 1,
+                        });
+                    }
+                }
+            }
+        }
+    }
 }

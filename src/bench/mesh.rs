@@ -1,6 +1,7 @@
 //! A small builder of OOFEM input text for generated problems: structured blocks of 2D quads
 //! (linear or quadratic) or bricks, graded coordinates, and the records around them.
 
+use crate::fem::shape::Shape;
 use std::fmt::Write as _;
 
 /// Element kinds the builder makes.
@@ -12,6 +13,100 @@ pub enum Kind {
     Q8,
     /// LSpace.
     Hex,
+}
+
+/// 3D element kinds of [`Input::solid3d`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Solid {
+    /// LSpace.
+    Hex,
+    /// LTRSpace.
+    Tet,
+    /// LWedge.
+    Wedge,
+}
+
+impl Solid {
+    /// The record name, the shape, and the elements of the unit cell as corner lists (node
+    /// order of the element).
+    fn reference_cells(self) -> (&'static str, Shape, Vec<Vec<[usize; 3]>>) {
+        use crate::fem::shape::HEXA8_CORNERS;
+        match self {
+            Solid::Hex => ("LSpace", Shape::Hexa8, vec![HEXA8_CORNERS.to_vec()]),
+            Solid::Tet => {
+                let perms = [
+                    [0, 1, 2],
+                    [0, 2, 1],
+                    [1, 0, 2],
+                    [1, 2, 0],
+                    [2, 0, 1],
+                    [2, 1, 0],
+                ];
+                let cells = perms
+                    .iter()
+                    .map(|p| {
+                        let mut c = [0usize; 3];
+                        let mut out = vec![c];
+                        for &axis in p {
+                            c[axis] = 1;
+                            out.push(c);
+                        }
+                        out
+                    })
+                    .collect();
+                ("LTRSpace", Shape::Tet4, cells)
+            }
+            Solid::Wedge => {
+                let tri = [[[0, 0], [1, 0], [1, 1]], [[0, 0], [1, 1], [0, 1]]];
+                let cells = tri
+                    .iter()
+                    .map(|t| {
+                        let bottom = t.iter().map(|p| [p[0], p[1], 0]);
+                        let top = t.iter().map(|p| [p[0], p[1], 1]);
+                        bottom.chain(top).collect()
+                    })
+                    .collect();
+                ("LWedge", Shape::Wedge6, cells)
+            }
+        }
+    }
+}
+
+/// Symmetry `sym` (0..48) of the unit cube applied to corner `c`: the axes permuted by the
+/// permutation `sym / 8` and reflected where bit i of `sym % 8` is set. Odd numbers of
+/// reflections reverse the handedness of the node order.
+pub fn cube_symmetry(sym: usize, c: [usize; 3]) -> [usize; 3] {
+    const PERMS: [[usize; 3]; 6] = [
+        [0, 1, 2],
+        [1, 2, 0],
+        [2, 0, 1],
+        [0, 2, 1],
+        [2, 1, 0],
+        [1, 0, 2],
+    ];
+    let p = PERMS[(sym / 8) % 6];
+    let mut out = [0; 3];
+    for i in 0..3 {
+        let v = c[p[i]];
+        out[i] = if (sym >> i) & 1 == 1 { 1 - v } else { v };
+    }
+    out
+}
+
+/// The boundary number (1-based) of an LSpace numbered by cube symmetry `sym` that lies on the
+/// z = 1 side of its cell (`top`) or the z = 0 side.
+pub fn hex_face_on(sym: usize, top: bool) -> usize {
+    use crate::fem::shape::HEXA8_CORNERS;
+    let z = usize::from(top);
+    Shape::Hexa8
+        .boundaries()
+        .iter()
+        .position(|f| {
+            f.iter()
+                .all(|&a| cube_symmetry(sym, HEXA8_CORNERS[a])[2] == z)
+        })
+        .expect("a cube face lies on each side")
+        + 1
 }
 
 /// A structured block: its node ids by side and the element boundaries on its top and bottom.
@@ -40,6 +135,8 @@ pub struct Input {
     pub bcs: Vec<String>,
     pub functions: Vec<String>,
     pub sets: Vec<String>,
+    /// Shape and node ids of the elements made by the block builders, in element order.
+    pub cells: Vec<(Shape, Vec<usize>)>,
 }
 
 /// Coordinates 0..length: spacing h up to `fine`, then growing by `growth` per element.
@@ -104,6 +201,7 @@ impl Input {
                         n[2],
                         n[3]
                     ));
+                    self.cells.push((Shape::Quad4, n.to_vec()));
                     let e = self.elements.len();
                     if j + 1 == ny {
                         b.top_edges.push((e, 1));
@@ -155,6 +253,7 @@ impl Input {
                         self.elements.len() + 1,
                         list.join(" ")
                     ));
+                    self.cells.push((Shape::Quad8, n.to_vec()));
                     let e = self.elements.len();
                     if j + 1 == ny {
                         b.top_edges.push((e, 1));
@@ -175,7 +274,24 @@ impl Input {
     /// A brick block of LSpace elements over the coordinates `x`, `y`, `z` (z is up: `top` and
     /// `bottom` are the z = max and z = min layers, row-major in x then y; `left` is x = min).
     pub fn block3d(&mut self, x: &[f64], y: &[f64], z: &[f64], extra: &str) -> Block {
-        use crate::fem::shape::HEXA8_CORNERS;
+        self.solid3d(Solid::Hex, x, y, z, extra, 0)
+    }
+
+    /// A block of 3D elements over the grid `x`, `y`, `z` (sides as [`Input::block3d`]): each
+    /// grid cell becomes one LSpace, six LTRSpace (the Kuhn split along a main diagonal) or two
+    /// LWedge (split by a diagonal plane), laid out in a reference cell that the cube symmetry
+    /// `sym` (0..48, see [`cube_symmetry`]) maps onto the grid cell. Varying `sym` changes which
+    /// element face numbers lie on the block's sides, the node order's handedness, and for
+    /// wedges the extrusion axis.
+    pub fn solid3d(
+        &mut self,
+        kind: Solid,
+        x: &[f64],
+        y: &[f64],
+        z: &[f64],
+        extra: &str,
+        sym: usize,
+    ) -> Block {
         let first = self.elements.len() + 1;
         let (nx, ny, nz) = (x.len() - 1, y.len() - 1, z.len() - 1);
         let mut id = vec![vec![vec![0usize; nz + 1]; ny + 1]; nx + 1];
@@ -186,18 +302,27 @@ impl Input {
                 }
             }
         }
+        let (name, shape, cells) = kind.reference_cells();
         for k in 0..nz {
             for j in 0..ny {
                 for i in 0..nx {
-                    let ids: Vec<String> = HEXA8_CORNERS
-                        .iter()
-                        .map(|c| id[i + c[0]][j + c[1]][k + c[2]].to_string())
-                        .collect();
-                    self.elements.push(format!(
-                        "LSpace {} nodes 8 {} {extra}",
-                        self.elements.len() + 1,
-                        ids.join(" ")
-                    ));
+                    for cell in &cells {
+                        let nodes: Vec<usize> = cell
+                            .iter()
+                            .map(|&c| {
+                                let g = cube_symmetry(sym, c);
+                                id[i + g[0]][j + g[1]][k + g[2]]
+                            })
+                            .collect();
+                        let list: Vec<String> = nodes.iter().map(|v| v.to_string()).collect();
+                        self.elements.push(format!(
+                            "{name} {} nodes {} {} {extra}",
+                            self.elements.len() + 1,
+                            nodes.len(),
+                            list.join(" ")
+                        ));
+                        self.cells.push((shape, nodes));
+                    }
                 }
             }
         }
@@ -217,6 +342,31 @@ impl Input {
         b
     }
 
+    /// The boundaries (element, boundary number) of the 3D elements of `block` whose nodes all
+    /// satisfy `on`: the faces of a side picked by position, whatever the elements' node order.
+    pub fn faces_where(&self, block: &Block, on: &dyn Fn([f64; 3]) -> bool) -> Vec<(usize, usize)> {
+        let mut out = Vec::new();
+        for (e, (shape, nodes)) in self.cells.iter().enumerate() {
+            if shape.dim() != 3 || e + 1 < block.elements.0 || e + 1 > block.elements.1 {
+                continue;
+            }
+            for (b, local) in shape.boundaries().iter().enumerate() {
+                if local.iter().all(|&a| on(self.nodes[nodes[a] - 1])) {
+                    out.push((e + 1, b + 1));
+                }
+            }
+        }
+        out
+    }
+
+    /// The nodes (ids) whose coordinates satisfy `on`.
+    pub fn nodes_where(&self, on: &dyn Fn([f64; 3]) -> bool) -> Vec<usize> {
+        (0..self.nodes.len())
+            .filter(|&i| on(self.nodes[i]))
+            .map(|i| i + 1)
+            .collect()
+    }
+
     /// Add a set record; returns its number.
     pub fn set(&mut self, body: String) -> usize {
         let k = self.sets.len() + 1;
@@ -229,7 +379,7 @@ impl Input {
         self.set(format!("nodes {} {}", ids.len(), list.join(" ")))
     }
 
-    pub fn edge_set(&mut self, edges: &[(usize, usize)]) -> usize {
+    pub fn boundary_set(&mut self, edges: &[(usize, usize)]) -> usize {
         let list: Vec<String> = edges.iter().map(|(e, b)| format!("{e} {b}")).collect();
         self.set(format!(
             "elementboundaries {} {}",

@@ -57,7 +57,13 @@ impl Setup {
 }
 
 /// The contact condition record for a law (node-to-segment).
-fn n2s(number: usize, law: Law, nodes: &[usize], segments: &[usize], extra: &str) -> String {
+pub(crate) fn n2s(
+    number: usize,
+    law: Law,
+    nodes: &[usize],
+    segments: &[usize],
+    extra: &str,
+) -> String {
     let list: Vec<String> = nodes.iter().map(|v| v.to_string()).collect();
     let segs: Vec<String> = segments.iter().map(|v| v.to_string()).collect();
     let head = match law {
@@ -74,7 +80,7 @@ fn n2s(number: usize, law: Law, nodes: &[usize], segments: &[usize], extra: &str
 }
 
 /// A piecewise-linear load history through the factors `steps` at t = 1, 2, …
-fn history(steps: &[f64]) -> String {
+pub(crate) fn history(steps: &[f64]) -> String {
     let t: Vec<String> = (0..=steps.len()).map(|i| i.to_string()).collect();
     let f: Vec<String> = std::iter::once(0.0)
         .chain(steps.iter().copied())
@@ -90,7 +96,7 @@ fn history(steps: &[f64]) -> String {
     )
 }
 
-fn analysis(nsteps: usize) -> String {
+pub(crate) fn analysis(nsteps: usize) -> String {
     format!("StaticStructural nsteps {nsteps} deltat 1 rtolf 1e-8 maxiter 25")
 }
 
@@ -160,7 +166,7 @@ impl TwoBlocks {
             "linear2delementedgecontactsegment 1 edgeset {}",
             inp.sets.len() + 1
         ));
-        inp.edge_set(&master.top_edges);
+        inp.boundary_set(&master.top_edges);
         inp.sections.push("SimpleCS 1 thick 1.0".into());
         inp.materials
             .push(format!("IsoLE 1 d 0 E {E} n {NU} tAlpha 0"));
@@ -388,7 +394,7 @@ pub fn cylinder_on_block(h: f64, law: Law, nlgeo: bool) -> String {
         "linear2delementedgecontactsegment 1 edgeset {}",
         inp.sets.len() + 1
     ));
-    inp.edge_set(&block.top_edges);
+    inp.boundary_set(&block.top_edges);
     inp.sections.push("SimpleCS 1 thick 1.0".into());
     inp.materials
         .push(format!("IsoLE 1 d 0 E {E} n {NU} tAlpha 0"));

@@ -145,6 +145,59 @@ impl Mul<f64> for Dual {
     }
 }
 
+/// A value with its gradient over any number of unknowns: the form in which a contact point's
+/// kinematics reach its law. A dual evaluation gives one directly ([`Jet::from`]); kinematics
+/// whose unknowns exceed [`MAXV`] are evaluated in duals over a few intermediate quantities and
+/// chained to the local unknowns (see [`Jet::chain`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Jet {
+    pub v: f64,
+    pub d: Vec<f64>,
+}
+
+impl From<Dual> for Jet {
+    fn from(x: Dual) -> Jet {
+        Jet {
+            v: x.v,
+            d: x.grad().to_vec(),
+        }
+    }
+}
+
+impl Jet {
+    pub fn constant(v: f64, m: usize) -> Jet {
+        Jet { v, d: vec![0.0; m] }
+    }
+
+    /// The jet over `m` unknowns of a dual over intermediate variables z: d/dq = Σ_k ∂x/∂z_k ·
+    /// ∂z_k/∂q, where `dz[k]` lists the nonzero (unknown, ∂z_k/∂q) of z_k.
+    pub fn chain(x: &Dual, dz: &[Vec<(usize, f64)>], m: usize) -> Jet {
+        let mut d = vec![0.0; m];
+        for (k, entries) in dz.iter().enumerate() {
+            let a = x.d[k];
+            if a != 0.0 {
+                for &(j, v) in entries {
+                    d[j] += a * v;
+                }
+            }
+        }
+        Jet { v: x.v, d }
+    }
+
+    /// self · other.
+    pub fn product(&self, other: &Jet) -> Jet {
+        Jet {
+            v: self.v * other.v,
+            d: self
+                .d
+                .iter()
+                .zip(&other.d)
+                .map(|(a, b)| a * other.v + self.v * b)
+                .collect(),
+        }
+    }
+}
+
 /// A small vector of duals (a position, a normal) of dimension ≤ 3.
 pub type DVec = [Dual; 3];
 

@@ -40,6 +40,8 @@ pub enum Partner {
     Node(usize),
     /// An edge of the condition's master surface (index into its edges).
     Edge(usize),
+    /// A face of the condition's master surface (index into its faces).
+    Face(usize),
     /// A rigid segment (model segment index).
     Rigid(usize),
 }
@@ -51,8 +53,9 @@ pub struct SlotState {
     pub condition: usize,
     pub node: usize,
     pub partner: Partner,
-    /// Contact point parameter on the partner (edge s ∈ [0, 1], polynomial abscissa).
-    pub xi: f64,
+    /// Contact point parameters on the partner (edge s ∈ [0, 1], face (ξ, η), polynomial
+    /// abscissa; unused ones 0).
+    pub xi: [f64; 2],
     /// Signed gap (NaN without a partner).
     pub gap: f64,
     /// Normal contact force on the node (≥ 0 in compression).
@@ -87,7 +90,7 @@ impl<'a> Search<'a> {
     }
 
     /// Previous partner and parameter of slot k, and whether it must be kept.
-    pub fn previous(&self, k: usize) -> Option<(Partner, f64, bool)> {
+    pub fn previous(&self, k: usize) -> Option<(Partner, [f64; 2], bool)> {
         match self {
             Search::Fresh => None,
             Search::Hint(s) => s.get(k).map(|s| (s.partner, s.xi, false)),
@@ -160,6 +163,11 @@ impl Local {
             .iter()
             .position(|&m| m == n)
             .expect("node added to the local unknowns")
+    }
+
+    /// Current positions of the local nodes, node after node.
+    pub fn values(&self) -> &[f64] {
+        &self.vals
     }
 
     /// Number of local displacement unknowns.

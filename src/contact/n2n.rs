@@ -118,21 +118,21 @@ impl Formulation for NodeToNode {
             let n = dual::constant_vec(&p.normal[..dim], local.m());
             let gap = dual::dot(&dual::sub(&x[0], &x[1], dim), &n, dim);
             let m = local.m();
-            let kin = PointKinematics {
+            let kin = PointKinematics::from_duals(
                 gap,
-                weight: Dual::constant(1.0, m),
-                b: local.distribute(
+                Dual::constant(1.0, m),
+                &local.distribute(
                     &[(0, Dual::constant(1.0, m)), (1, Dual::constant(-1.0, m))],
                     &n,
                 ),
-                area: super::law_area(p.area, ctx.model),
-            };
+                super::law_area(p.area, ctx.model),
+            );
             let lambda_eq = (self.law == ContactLaw::Multiplier).then_some(first_lambda + k);
             let mut state = SlotState {
                 condition: self.number,
                 node: p.slave,
                 partner: Partner::Node(p.master),
-                xi: 0.0,
+                xi: [0.0; 2],
                 gap: gap.v,
                 force: 0.0,
                 pressure: 0.0,

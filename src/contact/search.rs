@@ -7,8 +7,8 @@ use super::Partner;
 #[derive(Debug, Clone, Copy)]
 pub struct Candidate {
     pub partner: Partner,
-    /// Contact point parameter.
-    pub xi: f64,
+    /// Contact point parameters (edge s, face (ξ, η), polynomial abscissa).
+    pub xi: [f64; 2],
     pub gap: f64,
     /// Inside the partner proper (not in the tolerance band that only keeps a previous partner).
     pub inside: bool,
@@ -39,7 +39,7 @@ mod tests {
     fn cand(k: usize, gap: f64, inside: bool) -> Candidate {
         Candidate {
             partner: Partner::Edge(k),
-            xi: 0.0,
+            xi: [0.0; 2],
             gap,
             inside,
         }

@@ -17,13 +17,15 @@ pub const CONDITION_KEYWORDS: [&str; 4] = [
 ];
 
 const SEGMENT_KEYWORDS: &str = "linear2delementedgecontactsegment, qelementedgecontactsegment, \
-                                circlecontactsegment, polynomialcontactsegment, planecontactsegment";
+                                linear3delementsurfacecontactsegment, circlecontactsegment, \
+                                polynomialcontactsegment, planecontactsegment";
 
 /// A segment whose edge set is not resolved yet.
 pub struct PendingSegment {
     number: usize,
     kind: Option<SegmentKind>,
-    edge_set: Option<usize>,
+    /// The set of element boundaries, and whether they are faces (3D) rather than edges.
+    boundary_set: Option<(usize, bool)>,
     span: Span,
 }
 
@@ -90,13 +92,19 @@ pub fn read_segment(
     let mut seg = PendingSegment {
         number,
         kind: None,
-        edge_set: None,
+        boundary_set: None,
         span: r.span(),
     };
     match kw.as_str() {
-        "linear2delementedgecontactsegment" | "qelementedgecontactsegment" => {
-            if nsd != 2 {
-                return Err(r.error(format!("`{kw}` needs a 2D domain")));
+        "linear2delementedgecontactsegment"
+        | "qelementedgecontactsegment"
+        | "linear3delementsurfacecontactsegment" => {
+            let faces = kw == "linear3delementsurfacecontactsegment";
+            if nsd != if faces { 3 } else { 2 } {
+                return Err(r.error(format!(
+                    "`{kw}` needs a {}D domain",
+                    if faces { 3 } else { 2 }
+                )));
             }
             // `edgeset` in the OOFEM versions the tests were written for, `boundaryset` later.
             let set = match r.opt_usize("boundaryset")? {
@@ -116,7 +124,7 @@ pub fn read_segment(
                     return Err(r.error(format!("`pairupdatemode` must be 0, 1 or 2, found {v}")))
                 }
             }
-            seg.edge_set = Some(set);
+            seg.boundary_set = Some((set, faces));
         }
         "circlecontactsegment" => {
             let center = point(r, "centerpoint", nsd)?;
@@ -260,27 +268,39 @@ pub fn resolve(
 ) -> Result<(Vec<ContactSegment>, Vec<ContactCondition>)> {
     let mut segments = Vec::with_capacity(segs.len());
     for s in segs {
-        let kind = match (s.kind, s.edge_set) {
+        let kind = match (s.kind, s.boundary_set) {
             (Some(k), _) => k,
-            (None, Some(set)) => {
+            (None, Some((set, faces))) => {
                 let st = &sets[set - 1];
-                let edges: Vec<(usize, usize)> =
-                    st.boundaries.iter().chain(&st.edges).copied().collect();
-                if edges.is_empty() {
+                let list: Vec<(usize, usize)> = if faces {
+                    st.boundaries.iter().chain(&st.surfaces).copied().collect()
+                } else {
+                    st.boundaries.iter().chain(&st.edges).copied().collect()
+                };
+                if list.is_empty() {
                     return Err(err(
                         &s.span,
                         format!("set {set} lists no `elementboundaries` for the segment"),
                     ));
                 }
-                for &(e, _) in &edges {
-                    if elements[e].etype.shape().dim() != 2 {
+                let dim = if faces { 3 } else { 2 };
+                for &(e, _) in &list {
+                    if elements[e].etype.shape().dim() != dim {
                         return Err(err(
                             &s.span,
-                            format!("element {} of set {set} has no 2D edges", elements[e].label),
+                            format!(
+                                "element {} of set {set} has no {}",
+                                elements[e].label,
+                                if faces { "3D faces" } else { "2D edges" }
+                            ),
                         ));
                     }
                 }
-                SegmentKind::Edges { edges }
+                if faces {
+                    SegmentKind::Faces { faces: list }
+                } else {
+                    SegmentKind::Edges { edges: list }
+                }
             }
             (None, None) => unreachable!("segments have a kind or an edge set"),
         };

@@ -8,6 +8,9 @@ pub enum SegmentKind {
     /// Edges of 2D elements, (element index, boundary number): straight for linear elements,
     /// quadratic (3 nodes) for QPlaneStress2d.
     Edges { edges: Vec<(usize, usize)> },
+    /// Faces of 3D elements, (element index, boundary number): triangles and bilinear
+    /// quadrilaterals of LSpace, LTRSpace, LWedge.
+    Faces { faces: Vec<(usize, usize)> },
     /// Rigid circle (2D) or sphere (3D); the body is the disk/ball, or everything outside it with
     /// `cavity`. With `node`, the centre moves with that node's displacement (load or prescribe
     /// the node to drive the indenter).

@@ -15,16 +15,28 @@
 pub mod multiplier;
 pub mod penalty;
 
-use super::dual::Dual;
+use super::dual::{Dual, Jet};
 use super::point::{ContactPoint, PointLaw};
 
 /// Kinematics of one contact point.
 pub struct PointKinematics {
-    pub gap: Dual,
-    pub weight: Dual,
-    pub b: Vec<Dual>,
+    pub gap: Jet,
+    pub weight: Jet,
+    pub b: Vec<Jet>,
     /// The node's tributary area (2D: length × thickness), or a floor for isolated nodes.
     pub area: f64,
+}
+
+impl PointKinematics {
+    /// Kinematics evaluated in duals over the local unknowns.
+    pub fn from_duals(gap: Dual, weight: Dual, b: &[Dual], area: f64) -> PointKinematics {
+        PointKinematics {
+            gap: gap.into(),
+            weight: weight.into(),
+            b: b.iter().map(|&v| v.into()).collect(),
+            area,
+        }
+    }
 }
 
 /// Settings shared by the laws of a model.
@@ -65,7 +77,7 @@ fn point(
         closed_fe,
         closed_ke,
         gap: k.gap.v,
-        gap_grad: k.gap.grad().to_vec(),
+        gap_grad: k.gap.d.clone(),
         closed: closed_now,
     }
 }

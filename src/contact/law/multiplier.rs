@@ -14,7 +14,7 @@ use crate::contact::point::{ContactPoint, PointLaw};
 pub fn evaluate(laws: &Laws, lambda: f64, codes: Vec<usize>, k: &PointKinematics) -> ContactPoint {
     let m = k.b.len();
     let mm = m + 1;
-    let g = k.gap;
+    let g = &k.gap;
     let law = PointLaw::Multiplier {
         lambda,
         c: laws.c,

@@ -11,11 +11,11 @@ use crate::contact::point::{ContactPoint, PointLaw};
 
 pub fn evaluate(laws: &Laws, penalty: f64, codes: Vec<usize>, k: &PointKinematics) -> ContactPoint {
     let m = k.b.len();
-    let g = k.gap;
+    let g = &k.gap;
     if !(k.weight.v > 0.0) || g.v.is_nan() {
         return point(codes, PointLaw::Penalty, k, None, false);
     }
-    let v: Vec<_> = k.b.iter().map(|&b| k.weight * b).collect();
+    let v: Vec<_> = k.b.iter().map(|b| k.weight.product(b)).collect();
     let geometric = g.v < 0.0 && laws.geometric_allowed(penalty * k.weight.v * g.v, k.area);
     let mut ke = vec![0.0; m * m];
     for i in 0..m {

@@ -1,0 +1,136 @@
+//! 3D contact verification problems, generated for any element kind (hexahedra, tetrahedra,
+//! wedges) and any node order (a cube symmetry applied to every element, see
+//! [`super::mesh::cube_symmetry`]), so that a test can run each in every orientation.
+
+use super::mesh::{uniform, Input, Solid};
+use super::suite::{analysis, history, n2s, Law};
+
+/// Young's modulus and Poisson's ratio of the verification bodies.
+pub const E: f64 = 1000.0;
+pub const NU: f64 = 0.3;
+
+/// The neo-Hookean record with the small-strain moduli E, ν (μ = 2 c1, K = k).
+pub fn neo_hookean(number: usize) -> String {
+    let mu = E / (2.0 * (1.0 + NU));
+    let k = E / (3.0 * (1.0 - 2.0 * NU));
+    format!(
+        "mooneyrivlincompressiblemat {number} d 0 c1 {} c2 0 k {k}",
+        0.5 * mu
+    )
+}
+
+/// The 3D contact patch test: two blocks [0, 1]² × [−h, 0] (master, n × n × 2 elements) and
+/// [0, 1]² × [0, h] (slave, 2n × 2n × 2: a nested, non-matching mesh) touching at z = 0, rollers
+/// on x = 0, y = 0 and the master's bottom, the slave's top moved down by `delta` (in `steps`
+/// equal steps). The exact solution is homogeneous uniaxial stress in both blocks: each slave
+/// node carries the nominal stress times its tributary area.
+#[derive(Debug, Clone, Copy)]
+pub struct Patch {
+    pub kind: Solid,
+    pub sym: usize,
+    pub n: usize,
+    pub nlgeo: bool,
+    pub delta: f64,
+    pub steps: usize,
+    pub law: Law,
+}
+
+/// Height of each block of the patch test.
+pub const PATCH_H: f64 = 0.5;
+
+impl Patch {
+    pub fn input(&self) -> String {
+        let mut inp = Input::default();
+        let extra = format!("mat 1 crossSect 1 nlgeo {}", u8::from(self.nlgeo));
+        let (g, gs) = (uniform(0.0, 1.0, self.n), uniform(0.0, 1.0, 2 * self.n));
+        let master = inp.solid3d(
+            self.kind,
+            &g,
+            &g,
+            &uniform(-PATCH_H, 0.0, 2),
+            &extra,
+            self.sym,
+        );
+        let slave = inp.solid3d(
+            self.kind,
+            &gs,
+            &gs,
+            &uniform(0.0, PATCH_H, 2),
+            &extra,
+            self.sym,
+        );
+        let faces = inp.faces_where(&master, &|p| p[2].abs() < 1e-12);
+        let seg = inp.boundary_set(&faces);
+        inp.segments.push(format!(
+            "linear3delementsurfacecontactsegment 1 boundaryset {seg}"
+        ));
+        inp.sections.push("SimpleCS 1".into());
+        inp.materials.push(if self.nlgeo {
+            neo_hookean(1)
+        } else {
+            format!("IsoLE 1 d 0 E {E} n {NU} tAlpha 0")
+        });
+        let x0 = inp.nodes_where(&|p| p[0].abs() < 1e-12);
+        let y0 = inp.nodes_where(&|p| p[1].abs() < 1e-12);
+        let x0 = inp.node_set(&x0);
+        let y0 = inp.node_set(&y0);
+        let bottom = inp.node_set(&master.bottom);
+        let top = inp.node_set(&slave.top);
+        for (k, (dof, set)) in [(1, x0), (2, y0), (3, bottom)].iter().enumerate() {
+            inp.bcs.push(format!(
+                "BoundaryCondition {} loadTimeFunction 2 dofs 1 {dof} values 1 0 set {set}",
+                k + 1
+            ));
+        }
+        inp.bcs.push(format!(
+            "BoundaryCondition 4 loadTimeFunction 1 dofs 1 3 values 1 {} set {top}",
+            -self.delta
+        ));
+        inp.bcs.push(n2s(5, self.law, &slave.bottom, &[1], ""));
+        let steps: Vec<f64> = (1..=self.steps)
+            .map(|k| k as f64 / self.steps as f64)
+            .collect();
+        inp.functions.push(history(&steps));
+        inp.functions.push("ConstantFunction 2 f(t) 1.0".into());
+        // Multipliers converged to round-off: their answer is exact.
+        let mut analysis = analysis(self.steps);
+        if self.law == Law::Multiplier {
+            analysis = analysis.replace("rtolf 1e-8", "rtolf 1e-12");
+        }
+        inp.render("patch3d", &analysis, "3d")
+    }
+}
+
+/// The law of [`neo_hookean`].
+pub fn neo_hookean_law() -> crate::material::hyperelastic::Hyperelastic {
+    let mu = E / (2.0 * (1.0 + NU));
+    crate::material::hyperelastic::Hyperelastic::MooneyRivlin {
+        c1: 0.5 * mu,
+        c2: 0.0,
+        k: E / (3.0 * (1.0 - 2.0 * NU)),
+    }
+}
+
+/// Homogeneous uniaxial stress along z at axial stretch `stretch`: the lateral stretch (where
+/// the lateral nominal stress vanishes, by Newton on a secant) and the axial nominal stress P_zz.
+pub fn uniaxial_stress(
+    law: &crate::material::hyperelastic::Hyperelastic,
+    stretch: f64,
+) -> (f64, f64) {
+    let p = |lt: f64| {
+        let f = [[lt, 0.0, 0.0], [0.0, lt, 0.0], [0.0, 0.0, stretch]];
+        law.pk1(&f).expect("a valid stretch").0
+    };
+    let (mut a, mut b) = (1.0, 1.0 + 0.5 * (1.0 - stretch));
+    let (mut fa, mut fb) = (p(a)[0][0], p(b)[0][0]);
+    for _ in 0..100 {
+        if fb == fa || (b - a).abs() < 1e-15 {
+            break;
+        }
+        let c = b - fb * (b - a) / (fb - fa);
+        (a, fa) = (b, fb);
+        b = c;
+        fb = p(b)[0][0];
+    }
+    (b, p(b)[2][2])
+}

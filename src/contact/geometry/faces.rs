@@ -1,0 +1,514 @@
+//! A 3D master surface made of element faces (linear triangles and bilinear quadrilaterals of
+//! LSpace, LTRSpace and LWedge), with a normal field that is continuous across edges and corners:
+//! the 3D counterpart of [`super::edges`].
+//!
+//! Glossary: (ξ, η) the face parameters — barycentric for a triangle, x = (1 − ξ − η)x₀ + ξx₁ +
+//! ηx₂, bilinear on [−1, 1]² for a quadrilateral with its nodes in cyclic order; `x_ξ`, `x_η` the
+//! tangents; `n_a` the nodal normal of node a (normalized sum of the unit outward normals of the
+//! faces meeting there); `ñ = Σ N_a n_a` the smoothed normal. A node's contact point is where the
+//! ray along ñ through it meets the face: the residual r_α = (x_s − x)·x_α − ((x_s − x)·ñ)(ñ·x_α)/
+//! (ñ·ñ), α = ξ, η, vanishes.
+//!
+//! Open boundary of the surface: a face edge that no other face of the surface shares. Past it the
+//! face map extends linearly (bilinearly) with the normal of its edge; the condition weighs the
+//! force down over the node's tributary extent there, as at the end of a 2D master.
+
+use super::scalar::Scalar;
+use crate::model::{Model, SegmentKind};
+use std::collections::HashMap;
+
+/// Triangle or quadrilateral.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FaceKind {
+    Tri,
+    Quad,
+}
+
+/// One face of a master surface.
+#[derive(Debug, Clone)]
+pub struct Face {
+    /// Index of the contact segment (model) the face belongs to.
+    pub segment: usize,
+    pub element: usize,
+    /// Model node indices in cyclic order.
+    pub nodes: Vec<usize>,
+    pub kind: FaceKind,
+    /// +1 when x_ξ × x_η points out of the element, else −1.
+    pub side: f64,
+    pub nlgeo: bool,
+    /// Per face edge (nodes i, i+1): no other face of the surface shares it.
+    pub open: Vec<bool>,
+}
+
+/// The faces of one condition's surface segments, with their adjacency and reference normals.
+#[derive(Debug, Clone, Default)]
+pub struct FaceSurface {
+    pub faces: Vec<Face>,
+    /// Faces having a node as a corner.
+    pub at_node: HashMap<usize, Vec<usize>>,
+    ref_normals: HashMap<usize, [f64; 3]>,
+}
+
+type V3<T> = [T; 3];
+
+fn cross<T: Scalar>(a: &V3<T>, b: &V3<T>) -> V3<T> {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn dot<T: Scalar>(a: &V3<T>, b: &V3<T>) -> T {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn normalize<T: Scalar>(a: &V3<T>) -> V3<T> {
+    let l = dot(a, a).sqrt();
+    [a[0] / l, a[1] / l, a[2] / l]
+}
+
+/// Shape values and their ξ and η derivatives at (ξ, η).
+pub fn shape<T: Scalar>(kind: FaceKind, xi: T, eta: T) -> ([T; 4], [T; 4], [T; 4]) {
+    let z = xi.cst(0.0);
+    let one = xi.cst(1.0);
+    match kind {
+        FaceKind::Tri => (
+            [one - xi - eta, xi, eta, z],
+            [xi.cst(-1.0), one, z, z],
+            [xi.cst(-1.0), z, one, z],
+        ),
+        FaceKind::Quad => {
+            let (xm, xp, em, ep) = (one - xi, one + xi, one - eta, one + eta);
+            (
+                [
+                    xm * em * 0.25,
+                    xp * em * 0.25,
+                    xp * ep * 0.25,
+                    xm * ep * 0.25,
+                ],
+                [em * -0.25, em * 0.25, ep * 0.25, ep * -0.25],
+                [xm * -0.25, xp * -0.25, xp * 0.25, xm * 0.25],
+            )
+        }
+    }
+}
+
+/// Parametric centre of a face.
+pub fn centre(kind: FaceKind) -> (f64, f64) {
+    match kind {
+        FaceKind::Tri => (1.0 / 3.0, 1.0 / 3.0),
+        FaceKind::Quad => (0.0, 0.0),
+    }
+}
+
+/// Parameters of corner `a`.
+fn corner(kind: FaceKind, a: usize) -> (f64, f64) {
+    match kind {
+        FaceKind::Tri => [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)][a],
+        FaceKind::Quad => [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)][a],
+    }
+}
+
+/// How far (ξ, η) lies outside the face, in parameter units (≤ 0 inside).
+pub fn outside(kind: FaceKind, xi: f64, eta: f64) -> f64 {
+    match kind {
+        FaceKind::Tri => (-xi).max(-eta).max(xi + eta - 1.0),
+        FaceKind::Quad => (xi.abs() - 1.0).max(eta.abs() - 1.0),
+    }
+}
+
+/// How far (ξ, η) lies beyond each face edge (a, a + 1), in parameter units (≤ 0 inside).
+pub fn edge_excess(kind: FaceKind, xi: f64, eta: f64) -> [f64; 4] {
+    match kind {
+        FaceKind::Tri => [-eta, xi + eta - 1.0, -xi, f64::NEG_INFINITY],
+        FaceKind::Quad => [-eta - 1.0, xi - 1.0, eta - 1.0, -xi - 1.0],
+    }
+}
+
+/// The nearest point of the face in parameters (the normal field is frozen past the face),
+/// differentiable along the boundary.
+fn clamp<T: Scalar>(kind: FaceKind, xi: T, eta: T) -> (T, T) {
+    let lim = |v: T, lo: f64, hi: f64| {
+        if v.val() < lo {
+            v.cst(lo)
+        } else if v.val() > hi {
+            v.cst(hi)
+        } else {
+            v
+        }
+    };
+    match kind {
+        FaceKind::Quad => (lim(xi, -1.0, 1.0), lim(eta, -1.0, 1.0)),
+        FaceKind::Tri => {
+            let (a, b) = (lim(xi, 0.0, f64::INFINITY), lim(eta, 0.0, f64::INFINITY));
+            let s = a + b;
+            if s.val() > 1.0 {
+                (a / s, b / s)
+            } else {
+                (a, b)
+            }
+        }
+    }
+}
+
+/// Unit outward normal of a face at (ξ, η), from node positions `x` in cyclic order.
+pub fn face_normal<T: Scalar>(kind: FaceKind, x: &[V3<T>], side: f64, xi: T, eta: T) -> V3<T> {
+    let (_, dx, de) = shape(kind, xi, eta);
+    let k = x.len();
+    let mut t1 = [xi.cst(0.0); 3];
+    let mut t2 = [xi.cst(0.0); 3];
+    for a in 0..k {
+        for i in 0..3 {
+            t1[i] = t1[i] + x[a][i] * dx[a];
+            t2[i] = t2[i] + x[a][i] * de[a];
+        }
+    }
+    let n = normalize(&cross(&t1, &t2));
+    [n[0] * side, n[1] * side, n[2] * side]
+}
+
+/// Geometry of one face for the projection: node positions and nodal normals in cyclic order.
+pub struct FaceGeometry<T> {
+    pub kind: FaceKind,
+    pub x: Vec<V3<T>>,
+    pub n: Vec<V3<T>>,
+}
+
+impl<T: Scalar> FaceGeometry<T> {
+    /// Point, tangents x_ξ, x_η, and the smoothed normal ñ (not normalized) at (ξ, η); the normal
+    /// is taken at the nearest point of the face when (ξ, η) lies outside it.
+    pub fn eval(&self, xi: T, eta: T) -> (V3<T>, V3<T>, V3<T>, V3<T>) {
+        let k = self.x.len();
+        let (nn, dx, de) = shape(self.kind, xi, eta);
+        let (cx, ce) = clamp(self.kind, xi, eta);
+        let nc = if outside(self.kind, xi.val(), eta.val()) > 0.0 {
+            shape(self.kind, cx, ce).0
+        } else {
+            nn
+        };
+        let z = xi.cst(0.0);
+        let (mut x, mut t1, mut t2, mut n) = ([z; 3], [z; 3], [z; 3], [z; 3]);
+        for a in 0..k {
+            for i in 0..3 {
+                x[i] = x[i] + self.x[a][i] * nn[a];
+                t1[i] = t1[i] + self.x[a][i] * dx[a];
+                t2[i] = t2[i] + self.x[a][i] * de[a];
+                n[i] = n[i] + self.n[a][i] * nc[a];
+            }
+        }
+        (x, t1, t2, n)
+    }
+
+    /// r_α = (x_s − x)·x_α − ((x_s − x)·ñ)(ñ·x_α)/(ñ·ñ): zero at the contact point.
+    pub fn residual(&self, xs: &V3<T>, xi: T, eta: T) -> [T; 2] {
+        let (x, t1, t2, n) = self.eval(xi, eta);
+        let d = [xs[0] - x[0], xs[1] - x[1], xs[2] - x[2]];
+        let dn = dot(&d, &n) / dot(&n, &n);
+        [
+            dot(&d, &t1) - dn * dot(&n, &t1),
+            dot(&d, &t2) - dn * dot(&n, &t2),
+        ]
+    }
+
+    /// Gap g = (x_s − x)·n̂ and the unit normal at (ξ, η).
+    pub fn gap(&self, xs: &V3<T>, xi: T, eta: T) -> (T, V3<T>) {
+        let (x, _, _, n) = self.eval(xi, eta);
+        let nh = normalize(&n);
+        let d = [xs[0] - x[0], xs[1] - x[1], xs[2] - x[2]];
+        (dot(&d, &nh), nh)
+    }
+
+    /// Shape values at (ξ, η) (extended past the face): x = Σ c_a x_a.
+    pub fn coefficients(&self, xi: T, eta: T) -> [T; 4] {
+        shape(self.kind, xi, eta).0
+    }
+
+    /// Unit outward normal of face edge (a, a + 1) in the face's tangent plane at the edge's
+    /// middle, and the edge's first node.
+    pub fn edge_outward(&self, a: usize) -> (V3<T>, V3<T>) {
+        let k = self.x.len();
+        let (p, q) = (self.x[a], self.x[(a + 1) % k]);
+        let t = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
+        // m = t × (x_ξ × x_η) points away from the face: the corners run counter-clockwise
+        // about x_ξ × x_η in both parametrizations.
+        let ((ca, ea), (cb, eb)) = (corner(self.kind, a), corner(self.kind, (a + 1) % k));
+        let z = p[0].cst(0.0);
+        let (_, t1, t2, _) = self.eval(z + 0.5 * (ca + cb), z + 0.5 * (ea + eb));
+        (normalize(&cross(&t, &cross(&t1, &t2))), p)
+    }
+
+    /// Signed distance of `xs` past face edge (a, a + 1), in the face's tangent plane at the edge
+    /// (> 0 outside the face).
+    pub fn past_edge(&self, xs: &V3<T>, a: usize) -> T {
+        let (m, p) = self.edge_outward(a);
+        let d = [xs[0] - p[0], xs[1] - p[1], xs[2] - p[2]];
+        dot(&d, &m)
+    }
+}
+
+impl FaceGeometry<f64> {
+    /// Contact point of `xs` by Newton on r(ξ, η) = 0 from the face centre, with the Jacobian
+    /// from dual numbers in (ξ, η). None when it does not converge.
+    pub fn project(&self, xs: [f64; 3]) -> Option<(f64, f64)> {
+        use super::super::dual::Dual;
+        let (mut xi, mut eta) = centre(self.kind);
+        let geom = FaceGeometry {
+            kind: self.kind,
+            x: self
+                .x
+                .iter()
+                .map(|p| p.map(|v| Dual::constant(v, 2)))
+                .collect(),
+            n: self
+                .n
+                .iter()
+                .map(|p| p.map(|v| Dual::constant(v, 2)))
+                .collect(),
+        };
+        let xs_d = xs.map(|v| Dual::constant(v, 2));
+        for _ in 0..40 {
+            let r = geom.residual(&xs_d, Dual::variable(xi, 0, 2), Dual::variable(eta, 1, 2));
+            let (j00, j01, j10, j11) = (r[0].d[0], r[0].d[1], r[1].d[0], r[1].d[1]);
+            let det = j00 * j11 - j01 * j10;
+            if !(det.abs() > 1e-300) {
+                return None;
+            }
+            // Limit the step: a far node must not jump across the whole surface.
+            let dxi = ((j11 * r[0].v - j01 * r[1].v) / det).clamp(-0.5, 0.5);
+            let deta = ((-j10 * r[0].v + j00 * r[1].v) / det).clamp(-0.5, 0.5);
+            xi -= dxi;
+            eta -= deta;
+            if dxi.abs().max(deta.abs()) < 1e-14 {
+                return Some((xi, eta));
+            }
+        }
+        None
+    }
+
+    /// ∂r/∂(ξ, η) at (ξ, η), plain numbers.
+    pub fn jacobian(&self, xs: [f64; 3], xi: f64, eta: f64) -> [[f64; 2]; 2] {
+        use super::super::dual::Dual;
+        let geom = FaceGeometry {
+            kind: self.kind,
+            x: self
+                .x
+                .iter()
+                .map(|p| p.map(|v| Dual::constant(v, 2)))
+                .collect(),
+            n: self
+                .n
+                .iter()
+                .map(|p| p.map(|v| Dual::constant(v, 2)))
+                .collect(),
+        };
+        let r = geom.residual(
+            &xs.map(|v| Dual::constant(v, 2)),
+            Dual::variable(xi, 0, 2),
+            Dual::variable(eta, 1, 2),
+        );
+        [[r[0].d[0], r[0].d[1]], [r[1].d[0], r[1].d[1]]]
+    }
+}
+
+impl FaceGeometry<super::super::dual::Dual> {
+    /// The contact parameters as duals: one Newton step from the converged (ξ₀, η₀), with `jac`
+    /// = ∂r/∂(ξ, η) there, makes their derivatives with respect to the unknowns exact.
+    pub fn project_dual(
+        &self,
+        xs: &V3<super::super::dual::Dual>,
+        xi0: [f64; 2],
+        jac: [[f64; 2]; 2],
+    ) -> [super::super::dual::Dual; 2] {
+        let z = xs[0].cst(0.0);
+        let (xi, eta) = (z + xi0[0], z + xi0[1]);
+        let r = self.residual(xs, xi, eta);
+        let [[a, b], [c, d]] = jac;
+        let det = a * d - b * c;
+        [
+            xi - (r[0] * d - r[1] * b) * (1.0 / det),
+            eta - (r[1] * a - r[0] * c) * (1.0 / det),
+        ]
+    }
+}
+
+/// A nodal normal with its derivatives: ∂n_i/∂x_{b,j} for each node b it depends on.
+#[derive(Debug, Clone)]
+pub struct NodalNormal {
+    pub n: [f64; 3],
+    pub jac: Vec<(usize, [[f64; 3]; 3])>,
+}
+
+impl FaceSurface {
+    /// The surface of the face segments `segments` (model segment indices; others skipped).
+    pub fn new(model: &Model, segments: &[usize]) -> FaceSurface {
+        let mut surf = FaceSurface::default();
+        let mut edge_count: HashMap<(usize, usize), usize> = HashMap::new();
+        for &g in segments {
+            let SegmentKind::Faces { faces } = &model.segments[g].kind else {
+                continue;
+            };
+            for &(e, b) in faces {
+                let el = &model.elements[e];
+                let local = el.etype.shape().boundaries()[b - 1];
+                let nodes: Vec<usize> = local.iter().map(|&a| el.nodes[a]).collect();
+                let kind = if nodes.len() == 3 {
+                    FaceKind::Tri
+                } else {
+                    FaceKind::Quad
+                };
+                let k = surf.faces.len();
+                for (i, &a) in nodes.iter().enumerate() {
+                    surf.at_node.entry(a).or_default().push(k);
+                    let b = nodes[(i + 1) % nodes.len()];
+                    *edge_count.entry((a.min(b), a.max(b))).or_default() += 1;
+                }
+                surf.faces.push(Face {
+                    segment: g,
+                    element: e,
+                    side: outward_side(model, e, &nodes, kind),
+                    kind,
+                    nlgeo: el.nlgeo,
+                    open: Vec::new(),
+                    nodes,
+                });
+            }
+        }
+        for f in &mut surf.faces {
+            let k = f.nodes.len();
+            f.open = (0..k)
+                .map(|i| {
+                    let (a, b) = (f.nodes[i], f.nodes[(i + 1) % k]);
+                    edge_count[&(a.min(b), a.max(b))] == 1
+                })
+                .collect();
+        }
+        let reference = |n: usize| model.nodes[n].coords;
+        let mut normals = HashMap::new();
+        for (k, face) in surf.faces.iter().enumerate() {
+            for &a in &face.nodes {
+                normals.entry(a).or_insert_with(|| {
+                    surf.nodal_normal(k, a, &|f, i| reference(surf.faces[f].nodes[i]))
+                });
+            }
+        }
+        surf.ref_normals = normals;
+        surf
+    }
+
+    /// Reference nodal normal of a node of the surface.
+    pub fn reference_normal(&self, a: usize) -> [f64; 3] {
+        self.ref_normals[&a]
+    }
+
+    /// Nodal normal of node `a` (of face `k`): the normalized sum of the unit outward normals, at
+    /// a, of the faces having it as a corner. `pos(f, i)` gives node i of face f.
+    pub fn nodal_normal<T: Scalar>(
+        &self,
+        k: usize,
+        a: usize,
+        pos: &dyn Fn(usize, usize) -> V3<T>,
+    ) -> V3<T> {
+        let empty = Vec::new();
+        let faces = self.at_node.get(&a).unwrap_or(&empty);
+        let mut sum: Option<V3<T>> = None;
+        for &f in faces.iter().chain(faces.is_empty().then_some(&k)) {
+            let face = &self.faces[f];
+            let x: Vec<V3<T>> = (0..face.nodes.len()).map(|i| pos(f, i)).collect();
+            let i = face.nodes.iter().position(|&n| n == a).expect("a corner");
+            let (c, e) = corner(face.kind, i);
+            let z = x[0][0].cst(0.0);
+            let n = face_normal(face.kind, &x, face.side, z + c, z + e);
+            sum = Some(match sum {
+                None => n,
+                Some(m) => [m[0] + n[0], m[1] + n[1], m[2] + n[2]],
+            });
+        }
+        normalize(&sum.expect("a face has its corners"))
+    }
+
+    /// Current nodal normal of node `a` with its derivatives, from positions `pos(node)`: each
+    /// face normal is differentiated in duals over its own corners, the sum is normalized in
+    /// closed form (dn = (I − n nᵀ) ds / |s|), so the cost does not grow with the valence.
+    pub fn nodal_normal_jacobian(&self, a: usize, pos: &dyn Fn(usize) -> [f64; 3]) -> NodalNormal {
+        use super::super::dual::Dual;
+        let mut s = [0.0; 3];
+        let mut ds: Vec<(usize, [[f64; 3]; 3])> = Vec::new();
+        for &f in &self.at_node[&a] {
+            let face = &self.faces[f];
+            let k = face.nodes.len();
+            let x: Vec<V3<Dual>> = face
+                .nodes
+                .iter()
+                .enumerate()
+                .map(|(b, &n)| {
+                    let p = pos(n);
+                    [0, 1, 2].map(|j| Dual::variable(p[j], 3 * b + j, 3 * k))
+                })
+                .collect();
+            let i = face.nodes.iter().position(|&n| n == a).expect("a corner");
+            let (c, e) = corner(face.kind, i);
+            let z = Dual::constant(0.0, 3 * k);
+            let nf = face_normal(face.kind, &x, face.side, z + c, z + e);
+            for (b, &node) in face.nodes.iter().enumerate() {
+                let slot = match ds.iter().position(|(m, _)| *m == node) {
+                    Some(p) => p,
+                    None => {
+                        ds.push((node, [[0.0; 3]; 3]));
+                        ds.len() - 1
+                    }
+                };
+                for (ii, comp) in nf.iter().enumerate() {
+                    for j in 0..3 {
+                        ds[slot].1[ii][j] += comp.d[3 * b + j];
+                    }
+                }
+            }
+            for ii in 0..3 {
+                s[ii] += nf[ii].v;
+            }
+        }
+        let len = dot(&s, &s).sqrt();
+        let n = s.map(|v| v / len);
+        let jac = ds
+            .into_iter()
+            .map(|(node, d)| {
+                let mut j = [[0.0; 3]; 3];
+                for (ii, row) in j.iter_mut().enumerate() {
+                    for (jj, v) in row.iter_mut().enumerate() {
+                        *v = (0..3)
+                            .map(|k| ((ii == k) as u8 as f64 - n[ii] * n[k]) * d[k][jj])
+                            .sum::<f64>()
+                            / len;
+                    }
+                }
+                (node, j)
+            })
+            .collect();
+        NodalNormal { n, jac }
+    }
+}
+
+/// Orientation factor of a face: +1 if x_ξ × x_η at its centre points away from the element's
+/// centroid.
+fn outward_side(model: &Model, e: usize, nodes: &[usize], kind: FaceKind) -> f64 {
+    let el = &model.elements[e];
+    let x: Vec<[f64; 3]> = nodes.iter().map(|&n| model.nodes[n].coords).collect();
+    let (c, eta) = centre(kind);
+    let n = face_normal(kind, &x, 1.0, c, eta);
+    let k = el.nodes.len() as f64;
+    let cen = el.nodes.iter().fold([0.0; 3], |acc, &m| {
+        let p = model.nodes[m].coords;
+        [acc[0] + p[0] / k, acc[1] + p[1] / k, acc[2] + p[2] / k]
+    });
+    let fc = x.iter().fold([0.0; 3], |acc, p| {
+        let k = x.len() as f64;
+        [acc[0] + p[0] / k, acc[1] + p[1] / k, acc[2] + p[2] / k]
+    });
+    let d = [cen[0] - fc[0], cen[1] - fc[1], cen[2] - fc[2]];
+    if dot(&d, &n) > 0.0 {
+        -1.0
+    } else {
+        1.0
+    }
+}

@@ -1,0 +1,259 @@
+//! A node against a face of a 3D master surface (see [`crate::contact::geometry::faces`]).
+//!
+//! Unknowns: the node and the face's corners, and in large deformation the corners of every face
+//! around them (the current nodal normals average those faces' normals). The kinematics are
+//! evaluated in duals over the node, the corners and the corners' nodal normals (at most 27
+//! numbers); each nodal normal carries its own derivatives with respect to the nodes around it
+//! ([`NodalNormal`]), and the chain rule takes the result to the local unknowns ([`Jet::chain`]).
+//! So a pair never differentiates with respect to more than 27 variables, whatever the valence of
+//! the mesh.
+
+use super::ISOLATED_RAMP;
+use super::{extents, ramp, Current, NodeToSegment, Slot, HYSTERESIS_BAND, INSIDE_TOL};
+use crate::contact::dual::{self, Dual, Jet};
+use crate::contact::geometry::faces::{edge_excess, FaceGeometry, NodalNormal};
+use crate::contact::geometry::scalar::Scalar;
+use crate::contact::law::PointKinematics;
+use crate::contact::search::Candidate;
+use crate::contact::{Ctx, Local, Partner};
+use crate::error::Result;
+use crate::model::Model;
+
+impl NodeToSegment {
+    /// Whether the nodal normals of face `k` follow the deformation (large deformation, no
+    /// prescribed normal).
+    fn moving_normals(&self, k: usize) -> bool {
+        self.faces.faces[k].nlgeo && self.normal.is_none()
+    }
+
+    /// Nodal normals of face `k` at the current state: prescribed, reference (small deformation)
+    /// or current (large deformation).
+    fn face_normals(&self, k: usize, cur: &Current) -> Vec<[f64; 3]> {
+        let face = &self.faces.faces[k];
+        face.nodes
+            .iter()
+            .map(|&a| match self.normal {
+                Some(n) => n,
+                None if face.nlgeo => cur.normals[&a].n,
+                None => self.faces.reference_normal(a),
+            })
+            .collect()
+    }
+
+    pub(super) fn face_geometry_f64(&self, k: usize, cur: &Current) -> FaceGeometry<f64> {
+        let face = &self.faces.faces[k];
+        FaceGeometry {
+            kind: face.kind,
+            x: face.nodes.iter().map(|n| cur.x[n]).collect(),
+            n: self.face_normals(k, cur),
+        }
+    }
+
+    /// Tributary extents (behind, ahead) of a slot's node across open edge `e` of face `k`, from
+    /// the reference configuration.
+    fn face_ramp(&self, model: &Model, slot: &Slot, k: usize, e: usize) -> (f64, f64) {
+        let face = &self.faces.faces[k];
+        let x: Vec<[f64; 3]> = face.nodes.iter().map(|&n| model.nodes[n].coords).collect();
+        let (p, q) = (x[e], x[(e + 1) % x.len()]);
+        let len = (0..3).map(|i| (q[i] - p[i]).powi(2)).sum::<f64>().sqrt();
+        let geom = FaceGeometry {
+            kind: face.kind,
+            n: x.clone(),
+            x,
+        };
+        let (out, _) = geom.edge_outward(e);
+        extents(
+            slot,
+            model.nodes[slot.node].coords,
+            out,
+            ISOLATED_RAMP * len,
+        )
+    }
+
+    /// Boundary weight of a node at `xs` against face `k`: 1 unless the face has an open edge it
+    /// nears (a product over its open edges).
+    fn face_weight<T: Scalar>(
+        &self,
+        model: &Model,
+        slot: &Slot,
+        k: usize,
+        geom: &FaceGeometry<T>,
+        xs: &[T; 3],
+    ) -> T {
+        let face = &self.faces.faces[k];
+        let mut w = xs[0].cst(1.0);
+        for e in 0..face.nodes.len() {
+            if face.open[e] {
+                w = w * ramp(geom.past_edge(xs, e), self.face_ramp(model, slot, k, e));
+            }
+        }
+        w
+    }
+
+    /// Face partners of a node at `xs`; `best` is the smallest |gap| inside a partner so far.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn face_candidates(
+        &self,
+        model: &Model,
+        slot: &Slot,
+        xs: [f64; 3],
+        cur: &Current,
+        previous: Option<Partner>,
+        best: &mut f64,
+        out: &mut Vec<Candidate>,
+    ) {
+        for k in 0..self.faces.faces.len() {
+            let face = &self.faces.faces[k];
+            // Cheap rejection: the box of the face's corners, grown by its size (curvature) and
+            // the node's reach past an open edge, farther than the best gap so far.
+            let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+            for n in &face.nodes {
+                let p = cur.x[n];
+                for i in 0..3 {
+                    lo[i] = lo[i].min(p[i]);
+                    hi[i] = hi[i].max(p[i]);
+                }
+            }
+            let size = (0..3).map(|i| (hi[i] - lo[i]).powi(2)).sum::<f64>().sqrt();
+            let outside = (0..3)
+                .map(|i| (lo[i] - xs[i]).max(xs[i] - hi[i]).max(0.0).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            if outside > *best + size + slot.reach && previous != Some(Partner::Face(k)) {
+                continue;
+            }
+            let geom = self.face_geometry_f64(k, cur);
+            let Some((xi, eta)) = geom.project(xs) else {
+                continue;
+            };
+            let excess = edge_excess(face.kind, xi, eta);
+            let (mut past_open, mut past_shared) = (false, f64::NEG_INFINITY);
+            for (e, &d) in excess.iter().take(face.nodes.len()).enumerate() {
+                if face.open[e] {
+                    past_open |= d > INSIDE_TOL;
+                } else {
+                    past_shared = past_shared.max(d);
+                }
+            }
+            // Past a shared edge, the neighbouring face is the surface (but a previous partner
+            // is kept within the band); past an open edge, the node counts while its weight does.
+            if past_shared > HYSTERESIS_BAND {
+                continue;
+            }
+            if past_open && !(self.face_weight(model, slot, k, &geom, &xs) > 0.0) {
+                continue;
+            }
+            let inside = past_shared <= INSIDE_TOL;
+            let (g, _) = geom.gap(&xs, xi, eta);
+            if inside {
+                *best = best.min(g.abs());
+            }
+            out.push(Candidate {
+                partner: Partner::Face(k),
+                xi: [xi, eta],
+                gap: g,
+                inside,
+            });
+        }
+    }
+
+    /// Kinematics against face `k` with the contact point converged at `xi0`.
+    pub(super) fn face_kinematics(
+        &self,
+        ctx: &Ctx,
+        slot: &Slot,
+        k: usize,
+        xi0: [f64; 2],
+        cur: &Current,
+    ) -> Result<(Local, PointKinematics)> {
+        let face = &self.faces.faces[k];
+        let nc = face.nodes.len();
+        let moving = self.moving_normals(k);
+        let mut local = Local::new(3);
+        local.add(ctx, slot.node)?;
+        for &n in &face.nodes {
+            local.add(ctx, n)?;
+        }
+        let normals: Vec<&NodalNormal> = if moving {
+            face.nodes.iter().map(|a| &cur.normals[a]).collect()
+        } else {
+            Vec::new()
+        };
+        for nn in &normals {
+            for &(b, _) in &nn.jac {
+                local.add(ctx, b)?;
+            }
+        }
+        let m = local.m();
+        // Dual variables z: the node and corner positions (the first local unknowns), then the
+        // corners' nodal normals when they move.
+        let npos = 3 * (1 + nc);
+        let nz = npos + if moving { 3 * nc } else { 0 };
+        let mut zvals = local.values()[..npos].to_vec();
+        for nn in &normals {
+            zvals.extend_from_slice(&nn.n);
+        }
+        let z = dual::seed(&zvals, nz);
+        let v3 = |i: usize| [z[3 * i], z[3 * i + 1], z[3 * i + 2]];
+        let xs = v3(0);
+        let x: Vec<[Dual; 3]> = (1..=nc).map(v3).collect();
+        let n: Vec<[Dual; 3]> = if moving {
+            (1..=nc).map(|a| v3(nc + a)).collect()
+        } else {
+            self.face_normals(k, cur)
+                .iter()
+                .map(|v| v.map(|c| Dual::constant(c, nz)))
+                .collect()
+        };
+        let geom = FaceGeometry {
+            kind: face.kind,
+            x,
+            n,
+        };
+        let jac = self
+            .face_geometry_f64(k, cur)
+            .jacobian(cur_point(&local), xi0[0], xi0[1]);
+        let [xi, eta] = geom.project_dual(&xs, xi0, jac);
+        let (gap, nh) = geom.gap(&xs, xi, eta);
+        let dir = match self.normal {
+            Some(v) => v.map(|c| Dual::constant(c, nz)),
+            None => nh,
+        };
+        let c = geom.coefficients(xi, eta);
+        let mut b: Vec<Dual> = dir.to_vec();
+        for ca in c.iter().take(nc) {
+            b.extend(dir.iter().map(|&d| -(*ca * d)));
+        }
+        let weight = self.face_weight(ctx.model, slot, k, &geom, &xs);
+        // ∂z/∂q: identity on the positions, the nodal normals' derivatives after them.
+        let mut dz: Vec<Vec<(usize, f64)>> = (0..npos).map(|i| vec![(i, 1.0)]).collect();
+        for nn in &normals {
+            for i in 0..3 {
+                let mut row = Vec::with_capacity(3 * nn.jac.len());
+                for (node, d) in &nn.jac {
+                    let base = 3 * local.index(*node);
+                    row.extend((0..3).map(|j| (base + j, d[i][j])));
+                }
+                dz.push(row);
+            }
+        }
+        let chain = |x: &Dual| Jet::chain(x, &dz, m);
+        let mut bj: Vec<Jet> = b.iter().map(chain).collect();
+        bj.resize(m, Jet::constant(0.0, m));
+        Ok((
+            local,
+            PointKinematics {
+                gap: chain(&gap),
+                weight: chain(&weight),
+                b: bj,
+                area: crate::contact::law_area(slot.area, ctx.model),
+            },
+        ))
+    }
+}
+
+/// The current position of the first local node (the contact node).
+fn cur_point(local: &Local) -> [f64; 3] {
+    let v = local.values();
+    [v[0], v[1], v[2]]
+}

@@ -1,0 +1,380 @@
+//! Node-to-segment contact (spec §2.5, §2.6): each node of the condition meets one partner among
+//! its segments — an edge (2D) or a face (3D) of the master surface they form, or a rigid shape —
+//! chosen by [`super::search`]. The kinematics against each kind of partner are in [`edges`],
+//! [`faces`] and [`rigid`].
+//!
+//! Kinematics against a surface: the contact point solves "x_s − x(ξ) is parallel to ñ(ξ)" on the
+//! current edge or face, ñ the smoothed normal (current in large deformation, reference in small
+//! deformation); g = (x_s − x(ξ))·n̂(ξ); the force acts along n̂ (or the prescribed `normal`) on the
+//! node and along −c_a(ξ) n̂ on the master nodes, x(ξ) = Σ c_a x_a. All of it is differentiated,
+//! including ξ(q), so Newton converges quadratically while nodes slide. In small deformation the
+//! force direction is the reference normal: the geometrically linear contact of OOFEM (its N2S_LM
+//! test values come out exactly), now with the contact point following the node.
+//!
+//! Open boundaries of a master: past an open end (2D) or edge (3D) the surface continues and the
+//! force is weighted by w ∈ [0, 1], the share of the node's tributary extent that still faces the
+//! master (a smoothstep of (a − d)/(a + b), with d the distance past the boundary and a, b the
+//! node's tributary extents behind and ahead). A node on the boundary with its surface behind it
+//! keeps its full force, a node whose whole tributary extent is past it has none, and nothing jumps
+//! in between. The multiplier law enforces g = 0 wherever w > 0 (the infinite-penalty limit).
+
+mod edges;
+mod faces;
+mod rigid;
+
+use super::dual::Dual;
+use super::geometry::edges::EdgeSurface;
+use super::geometry::faces::{FaceSurface, NodalNormal};
+use super::geometry::scalar::Scalar;
+use super::law::PointKinematics;
+use super::search::{self, Candidate};
+use super::{apply_law, ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState};
+use crate::error::{Error, Result};
+use crate::model::{ContactLaw, Model, Pairing, SegmentKind};
+use std::collections::HashMap;
+
+/// A projection within this distance (in parameter units) of an edge's ends or a face's edges
+/// counts as inside it.
+const INSIDE_TOL: f64 = 1e-9;
+/// Beyond an interior boundary of its edge or face, a previous partner is kept within this band
+/// (in parameter units): enough that round-off does not make a node on a vertex or a face edge
+/// alternate between its neighbours, small enough that the extrapolated partner never changes an
+/// answer (past an interior boundary, the neighbour is the surface).
+const HYSTERESIS_BAND: f64 = 1e-6;
+/// Ramp length at an open boundary for a node without neighbours, as a fraction of the
+/// boundary's edge length.
+const ISOLATED_RAMP: f64 = 0.01;
+
+struct Slot {
+    node: usize,
+    area: f64,
+    /// Reference positions of the node's neighbours on its own surface.
+    neighbors: Vec<[f64; 3]>,
+    /// Half the distance to the farthest neighbour: how far past an open boundary the node can
+    /// still meet the master.
+    reach: f64,
+}
+
+pub struct NodeToSegment {
+    number: usize,
+    law: ContactLaw,
+    /// Prescribed force direction (`normal`), instead of the segment normal.
+    normal: Option<[f64; 3]>,
+    slots: Vec<Slot>,
+    edges: EdgeSurface,
+    faces: FaceSurface,
+    /// Rigid segments of the condition (model segment indices).
+    rigid: Vec<usize>,
+    /// Reference nodes the rigid segments move with.
+    rigid_nodes: Vec<usize>,
+    dim: usize,
+    /// Gap difference (a length) within which a previous partner counts as tied.
+    tie: f64,
+}
+
+/// The master surface at the current state: positions of its nodes and, for faces in large
+/// deformation, their current nodal normals with derivatives.
+struct Current {
+    x: HashMap<usize, [f64; 3]>,
+    normals: HashMap<usize, NodalNormal>,
+}
+
+/// C¹ step from 0 (τ ≤ 0) to 1 (τ ≥ 1).
+fn smoothstep<T: Scalar>(tau: T) -> T {
+    if tau.val() >= 1.0 {
+        tau.cst(1.0)
+    } else if tau.val() <= 0.0 {
+        tau.cst(0.0)
+    } else {
+        tau * tau * (tau * -2.0 + 3.0)
+    }
+}
+
+/// Tributary extents (behind, ahead) of a node at `xs` along the unit direction `out`, from its
+/// neighbours; a node without neighbours gets the ramp `isolated` behind.
+fn extents(slot: &Slot, xs: [f64; 3], out: [f64; 3], isolated: f64) -> (f64, f64) {
+    let (mut a, mut b) = (0.0f64, 0.0f64);
+    for nb in &slot.neighbors {
+        let d: f64 = (0..3).map(|i| (nb[i] - xs[i]) * out[i]).sum();
+        a = a.max(-0.5 * d);
+        b = b.max(0.5 * d);
+    }
+    if a + b > 0.0 {
+        (a, b)
+    } else {
+        (isolated, 0.0)
+    }
+}
+
+/// The weight factor of one open boundary: d past it, tributary extents (a, b).
+fn ramp<T: Scalar>(d: T, (a, b): (f64, f64)) -> T {
+    smoothstep((-d + a) * (1.0 / (a + b)))
+}
+
+impl NodeToSegment {
+    pub fn new(model: &Model, ci: usize) -> Result<NodeToSegment> {
+        let c = &model.contacts[ci];
+        let Pairing::NodeToSegment { nodes, segments } = &c.pairing else {
+            unreachable!("a node-to-segment condition")
+        };
+        let err = |msg: String| Error::Input {
+            span: c.span.clone(),
+            msg,
+        };
+        let edges = EdgeSurface::new(model, segments);
+        let faces = FaceSurface::new(model, segments);
+        let mut seen = std::collections::HashSet::new();
+        for &n in nodes {
+            let label = model.nodes[n].label;
+            if !seen.insert(n) {
+                return Err(err(format!("node {label} is listed twice in `nodeset`")));
+            }
+            let own = edges
+                .edges
+                .iter()
+                .find(|e| e.nodes.contains(&n))
+                .map(|e| ("an edge", e.segment, e.element))
+                .or_else(|| {
+                    faces
+                        .faces
+                        .iter()
+                        .find(|f| f.nodes.contains(&n))
+                        .map(|f| ("a face", f.segment, f.element))
+                });
+            if let Some((what, seg, el)) = own {
+                return Err(err(format!(
+                    "node {label} of `nodeset` belongs to {what} of contact segment {} (element {}): \
+                     a node cannot be in contact with its own surface",
+                    model.segments[seg].number, model.elements[el].label
+                )));
+            }
+        }
+        edges::check_support(model, &edges)?;
+        let tribs = super::tributary::tributaries(model, nodes);
+        let slots = nodes
+            .iter()
+            .zip(tribs)
+            .map(|(&node, t)| {
+                let x = model.nodes[node].coords;
+                let neighbors: Vec<[f64; 3]> =
+                    t.neighbors.iter().map(|&m| model.nodes[m].coords).collect();
+                let reach = neighbors
+                    .iter()
+                    .map(|y| 0.5 * (0..3).map(|i| (y[i] - x[i]).powi(2)).sum::<f64>().sqrt())
+                    .fold(0.0, f64::max);
+                Slot {
+                    node,
+                    area: t.measure,
+                    neighbors,
+                    reach,
+                }
+            })
+            .collect();
+        let rigid: Vec<usize> = segments
+            .iter()
+            .copied()
+            .filter(|&g| {
+                !matches!(
+                    model.segments[g].kind,
+                    SegmentKind::Edges { .. } | SegmentKind::Faces { .. }
+                )
+            })
+            .collect();
+        let rigid_nodes = rigid
+            .iter()
+            .filter_map(|&g| match &model.segments[g].kind {
+                SegmentKind::Circle { node, .. } | SegmentKind::Plane { node, .. } => *node,
+                _ => None,
+            })
+            .collect();
+        Ok(NodeToSegment {
+            number: c.number,
+            law: c.law,
+            normal: c.normal,
+            slots,
+            edges,
+            faces,
+            rigid,
+            rigid_nodes,
+            dim: model.domain.nsd(),
+            tie: 1e-9 * super::model_size(model),
+        })
+    }
+
+    /// Positions of the surface nodes, and the current nodal normals of faces in large
+    /// deformation.
+    fn current(&self, ctx: &Ctx) -> Result<Current> {
+        let mut x = HashMap::new();
+        let nodes = self
+            .edges
+            .edges
+            .iter()
+            .flat_map(|e| &e.nodes)
+            .chain(self.faces.faces.iter().flat_map(|f| &f.nodes));
+        for &n in nodes {
+            if let std::collections::hash_map::Entry::Vacant(v) = x.entry(n) {
+                v.insert(ctx.position(n)?.0);
+            }
+        }
+        let mut normals = HashMap::new();
+        if self.normal.is_none() {
+            for f in self.faces.faces.iter().filter(|f| f.nlgeo) {
+                for &a in &f.nodes {
+                    normals
+                        .entry(a)
+                        .or_insert_with(|| self.faces.nodal_normal_jacobian(a, &|n| x[&n]));
+                }
+            }
+        }
+        Ok(Current { x, normals })
+    }
+
+    /// Every possible partner of a node at `xs`, with the previous partner's band included.
+    fn candidates(
+        &self,
+        ctx: &Ctx,
+        slot: &Slot,
+        xs: [f64; 3],
+        cur: &Current,
+        previous: Option<Partner>,
+    ) -> Result<Vec<Candidate>> {
+        let mut out = Vec::new();
+        let mut best = f64::INFINITY;
+        self.edge_candidates(ctx.model, slot, xs, cur, previous, &mut best, &mut out);
+        self.face_candidates(ctx.model, slot, xs, cur, previous, &mut best, &mut out);
+        self.rigid_candidates(ctx, xs, &mut out)?;
+        Ok(out)
+    }
+
+    /// The contact point of a kept partner, recomputed at the current state.
+    fn reproject(&self, ctx: &Ctx, c: Candidate, xs: [f64; 3], cur: &Current) -> Option<Candidate> {
+        match c.partner {
+            Partner::Edge(e) => self
+                .edge_geometry_f64(e, cur)
+                .project([xs[0], xs[1]])
+                .map(|s| Candidate { xi: [s, 0.0], ..c }),
+            Partner::Face(f) => self
+                .face_geometry_f64(f, cur)
+                .project(xs)
+                .map(|(a, b)| Candidate { xi: [a, b], ..c }),
+            Partner::Rigid(seg) => self
+                .rigid_reproject(ctx, seg, xs)
+                .map(|t| Candidate { xi: [t, 0.0], ..c }),
+            _ => Some(c),
+        }
+    }
+}
+
+impl Formulation for NodeToSegment {
+    fn n_slots(&self) -> usize {
+        self.slots.len()
+    }
+
+    fn n_multipliers(&self) -> usize {
+        if self.law == ContactLaw::Multiplier {
+            self.slots.len()
+        } else {
+            0
+        }
+    }
+
+    fn nodes_needing_dofs(&self) -> Vec<usize> {
+        let mut out: Vec<usize> = self.slots.iter().map(|s| s.node).collect();
+        out.extend(&self.rigid_nodes);
+        out
+    }
+
+    fn candidate_nodes(&self) -> Vec<usize> {
+        let mut out = self.nodes_needing_dofs();
+        for e in &self.edges.edges {
+            out.extend(&e.nodes);
+        }
+        for f in &self.faces.faces {
+            out.extend(&f.nodes);
+        }
+        // Nodal normals in large deformation reach the neighbouring edges' and faces' nodes: all
+        // are on the surface, already listed.
+        out
+    }
+
+    fn symmetric(&self) -> bool {
+        // B = ∇g only for the exact closest point on a rigid shape along its own normal.
+        self.edges.edges.is_empty() && self.faces.faces.is_empty() && self.normal.is_none()
+    }
+
+    fn evaluate(
+        &self,
+        ctx: &Ctx,
+        first_lambda: usize,
+        search: Search,
+        points: &mut Vec<ContactPoint>,
+        states: &mut Vec<SlotState>,
+    ) -> Result<()> {
+        let cur = self.current(ctx)?;
+        for (k, slot) in self.slots.iter().enumerate() {
+            let (xs, _) = ctx.position(slot.node)?;
+            let previous = search.previous(k);
+            let chosen = match previous {
+                // With the partner frozen, the contact point is still recomputed (it moves with q).
+                Some((p, xi, true)) => (p != Partner::None)
+                    .then_some(Candidate {
+                        partner: p,
+                        xi,
+                        gap: 0.0,
+                        inside: true,
+                    })
+                    .and_then(|c| self.reproject(ctx, c, xs, &cur)),
+                _ => {
+                    let prev = previous.map(|p| p.0);
+                    let cands = self.candidates(ctx, slot, xs, &cur, prev)?;
+                    search::choose(&cands, prev, self.tie)
+                }
+            };
+            let lambda_eq = (self.law == ContactLaw::Multiplier).then_some(first_lambda + k);
+            let mut state = SlotState {
+                condition: self.number,
+                node: slot.node,
+                partner: Partner::None,
+                xi: [f64::NAN; 2],
+                gap: f64::NAN,
+                force: 0.0,
+                pressure: 0.0,
+                active: false,
+                x: xs,
+            };
+            let (local, kin) = match chosen {
+                Some(c) => {
+                    state.partner = c.partner;
+                    state.xi = c.xi;
+                    match c.partner {
+                        Partner::Edge(e) => self.edge_kinematics(ctx, slot, e, c.xi[0])?,
+                        Partner::Face(f) => self.face_kinematics(ctx, slot, f, c.xi, &cur)?,
+                        Partner::Rigid(seg) => self.rigid_kinematics(ctx, slot, seg, c.xi[0])?,
+                        _ => unreachable!("node-to-segment partners are edges, faces or rigid"),
+                    }
+                }
+                None => {
+                    // No partner: no force; a multiplier is held at zero.
+                    let mut local = Local::new(self.dim);
+                    local.add(ctx, slot.node)?;
+                    let m = local.m();
+                    let kin = PointKinematics::from_duals(
+                        Dual::constant(f64::NAN, m),
+                        Dual::constant(0.0, m),
+                        &vec![Dual::constant(0.0, m); m],
+                        0.0,
+                    );
+                    (local, kin)
+                }
+            };
+            if chosen.is_some() {
+                state.gap = kin.gap.v;
+            }
+            points.push(apply_law(
+                ctx, self.law, lambda_eq, &local, &kin, slot.area, &mut state,
+            ));
+            states.push(state);
+        }
+        Ok(())
+    }
+}
