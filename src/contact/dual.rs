@@ -12,46 +12,46 @@ use std::ops::{Add, Div, Mul, Neg, Sub};
 /// for 3D pairs.
 pub const MAXV: usize = 32;
 
-/// f with ∂f/∂q_i for i < n.
+/// f with ∂f/∂q_i for i < n ≤ N: the derivative storage is a fixed array, so arithmetic never
+/// allocates; small problems (a projection in two parameters) use a small N.
 #[derive(Clone, Copy, Debug)]
-pub struct Dual {
+pub struct DualN<const N: usize> {
     pub v: f64,
-    pub d: [f64; MAXV],
+    pub d: [f64; N],
     pub n: usize,
 }
 
-impl Dual {
-    pub fn constant(v: f64, n: usize) -> Dual {
-        debug_assert!(n <= MAXV);
-        Dual {
-            v,
-            d: [0.0; MAXV],
-            n,
-        }
+/// The dual of the contact kinematics (up to [`MAXV`] unknowns).
+pub type Dual = DualN<MAXV>;
+
+impl<const N: usize> DualN<N> {
+    pub fn constant(v: f64, n: usize) -> Self {
+        debug_assert!(n <= N);
+        DualN { v, d: [0.0; N], n }
     }
 
     /// The i-th unknown with value v.
-    pub fn variable(v: f64, i: usize, n: usize) -> Dual {
-        let mut x = Dual::constant(v, n);
+    pub fn variable(v: f64, i: usize, n: usize) -> Self {
+        let mut x = Self::constant(v, n);
         x.d[i] = 1.0;
         x
     }
 
     /// f(self) for a scalar function with value f and derivative f1.
-    pub fn chain(self, f: f64, f1: f64) -> Dual {
-        let mut r = Dual::constant(f, self.n);
+    pub fn chain(self, f: f64, f1: f64) -> Self {
+        let mut r = Self::constant(f, self.n);
         for i in 0..self.n {
             r.d[i] = f1 * self.d[i];
         }
         r
     }
 
-    pub fn sqrt(self) -> Dual {
+    pub fn sqrt(self) -> Self {
         let s = self.v.sqrt();
         self.chain(s, 0.5 / s)
     }
 
-    pub fn recip(self) -> Dual {
+    pub fn recip(self) -> Self {
         let r = 1.0 / self.v;
         self.chain(r, -r * r)
     }
@@ -62,9 +62,9 @@ impl Dual {
     }
 }
 
-impl Add for Dual {
-    type Output = Dual;
-    fn add(mut self, b: Dual) -> Dual {
+impl<const N: usize> Add for DualN<N> {
+    type Output = Self;
+    fn add(mut self, b: Self) -> Self {
         self.n = self.n.max(b.n);
         self.v += b.v;
         for i in 0..self.n {
@@ -74,9 +74,9 @@ impl Add for Dual {
     }
 }
 
-impl Sub for Dual {
-    type Output = Dual;
-    fn sub(mut self, b: Dual) -> Dual {
+impl<const N: usize> Sub for DualN<N> {
+    type Output = Self;
+    fn sub(mut self, b: Self) -> Self {
         self.n = self.n.max(b.n);
         self.v -= b.v;
         for i in 0..self.n {
@@ -86,18 +86,18 @@ impl Sub for Dual {
     }
 }
 
-impl Neg for Dual {
-    type Output = Dual;
-    fn neg(self) -> Dual {
+impl<const N: usize> Neg for DualN<N> {
+    type Output = Self;
+    fn neg(self) -> Self {
         self * -1.0
     }
 }
 
-impl Mul for Dual {
-    type Output = Dual;
-    fn mul(self, b: Dual) -> Dual {
+impl<const N: usize> Mul for DualN<N> {
+    type Output = Self;
+    fn mul(self, b: Self) -> Self {
         let n = self.n.max(b.n);
-        let mut r = Dual::constant(self.v * b.v, n);
+        let mut r = Self::constant(self.v * b.v, n);
         for i in 0..n {
             r.d[i] = self.d[i] * b.v + self.v * b.d[i];
         }
@@ -105,12 +105,12 @@ impl Mul for Dual {
     }
 }
 
-impl Div for Dual {
-    type Output = Dual;
-    fn div(self, b: Dual) -> Dual {
+impl<const N: usize> Div for DualN<N> {
+    type Output = Self;
+    fn div(self, b: Self) -> Self {
         let n = self.n.max(b.n);
         let q = self.v / b.v;
-        let mut r = Dual::constant(q, n);
+        let mut r = Self::constant(q, n);
         for i in 0..n {
             r.d[i] = (self.d[i] - q * b.d[i]) / b.v;
         }
@@ -118,25 +118,25 @@ impl Div for Dual {
     }
 }
 
-impl Add<f64> for Dual {
-    type Output = Dual;
-    fn add(mut self, b: f64) -> Dual {
+impl<const N: usize> Add<f64> for DualN<N> {
+    type Output = Self;
+    fn add(mut self, b: f64) -> Self {
         self.v += b;
         self
     }
 }
 
-impl Sub<f64> for Dual {
-    type Output = Dual;
-    fn sub(mut self, b: f64) -> Dual {
+impl<const N: usize> Sub<f64> for DualN<N> {
+    type Output = Self;
+    fn sub(mut self, b: f64) -> Self {
         self.v -= b;
         self
     }
 }
 
-impl Mul<f64> for Dual {
-    type Output = Dual;
-    fn mul(mut self, b: f64) -> Dual {
+impl<const N: usize> Mul<f64> for DualN<N> {
+    type Output = Self;
+    fn mul(mut self, b: f64) -> Self {
         self.v *= b;
         for i in 0..self.n {
             self.d[i] *= b;

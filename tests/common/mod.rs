@@ -140,3 +140,55 @@ pub fn label_of_slave(text: &str) -> usize {
     let after = line.split("nodeset 1 ").nth(1).unwrap();
     after.split_whitespace().next().unwrap().parse().unwrap()
 }
+
+/// A 3D face case: a 2×2×1 master block of `kind` elements (cube symmetry `sym`) on [0, 2]² ×
+/// [0, 1] with a wavy top whose faces form the master segment, and a 2×2 slave brick block above
+/// whose bottom nodes are the contact nodes; its middle bottom node (the returned label) is at
+/// `pos`, the others 0.25 away in x and y.
+pub fn face_input(
+    kind: hertz::bench::mesh::Solid,
+    sym: usize,
+    nlgeo: u8,
+    pos: [f64; 3],
+    condition: &str,
+) -> (String, usize) {
+    let mut inp = hertz::bench::mesh::Input::default();
+    let extra = format!("mat 1 crossSect 1 nlgeo {nlgeo}");
+    let g = hertz::bench::mesh::uniform(0.0, 2.0, 2);
+    let master = inp.solid3d(
+        kind,
+        &g,
+        &g,
+        &hertz::bench::mesh::uniform(0.0, 1.0, 1),
+        &extra,
+        sym,
+    );
+    for &n in &master.top {
+        let p = &mut inp.nodes[n - 1];
+        p[2] += 0.05 * (1.3 * p[0] + 0.7 * p[1]).sin();
+    }
+    let faces = inp.faces_where(&master, &|p| p[2] > 0.5);
+    let around = |c: f64| vec![c - 0.25, c, c + 0.25];
+    let slave = inp.block3d(
+        &around(pos[0]),
+        &around(pos[1]),
+        &[pos[2], pos[2] + 0.3],
+        &extra,
+    );
+    inp.sections.push("SimpleCS 1".into());
+    inp.materials
+        .push("IsoLE 1 d 0 E 100 n 0.3 tAlpha 0".into());
+    let segset = inp.boundary_set(&faces);
+    let nodes: Vec<String> = slave.bottom.iter().map(|n| n.to_string()).collect();
+    inp.segments.push(format!(
+        "linear3delementsurfacecontactsegment 1 boundaryset {segset}"
+    ));
+    inp.bcs.push(format!(
+        "{condition} nodeset {} {} segmentset 1 1",
+        nodes.len(),
+        nodes.join(" ")
+    ));
+    inp.functions.push("ConstantFunction 1 f(t) 1".into());
+    let text = inp.render("fd3", "NonLinearStatic nsteps 1 controlmode 1", "3d");
+    (text, slave.bottom[4])
+}

@@ -251,7 +251,7 @@ impl FaceGeometry<f64> {
     /// Contact point of `xs` by Newton on r(ξ, η) = 0 from the face centre, with the Jacobian
     /// from dual numbers in (ξ, η). None when it does not converge.
     pub fn project(&self, xs: [f64; 3]) -> Option<(f64, f64)> {
-        use super::super::dual::Dual;
+        type Dual = super::super::dual::DualN<2>;
         let (mut xi, mut eta) = centre(self.kind);
         let geom = FaceGeometry {
             kind: self.kind,
@@ -288,7 +288,7 @@ impl FaceGeometry<f64> {
 
     /// ∂r/∂(ξ, η) at (ξ, η), plain numbers.
     pub fn jacobian(&self, xs: [f64; 3], xi: f64, eta: f64) -> [[f64; 2]; 2] {
-        use super::super::dual::Dual;
+        type Dual = super::super::dual::DualN<2>;
         let geom = FaceGeometry {
             kind: self.kind,
             x: self
@@ -311,15 +311,15 @@ impl FaceGeometry<f64> {
     }
 }
 
-impl FaceGeometry<super::super::dual::Dual> {
+impl<const N: usize> FaceGeometry<super::super::dual::DualN<N>> {
     /// The contact parameters as duals: one Newton step from the converged (ξ₀, η₀), with `jac`
     /// = ∂r/∂(ξ, η) there, makes their derivatives with respect to the unknowns exact.
     pub fn project_dual(
         &self,
-        xs: &V3<super::super::dual::Dual>,
+        xs: &V3<super::super::dual::DualN<N>>,
         xi0: [f64; 2],
         jac: [[f64; 2]; 2],
-    ) -> [super::super::dual::Dual; 2] {
+    ) -> [super::super::dual::DualN<N>; 2] {
         let z = xs[0].cst(0.0);
         let (xi, eta) = (z + xi0[0], z + xi0[1]);
         let r = self.residual(xs, xi, eta);
@@ -431,7 +431,8 @@ impl FaceSurface {
     /// face normal is differentiated in duals over its own corners, the sum is normalized in
     /// closed form (dn = (I − n nᵀ) ds / |s|), so the cost does not grow with the valence.
     pub fn nodal_normal_jacobian(&self, a: usize, pos: &dyn Fn(usize) -> [f64; 3]) -> NodalNormal {
-        use super::super::dual::Dual;
+        // A face normal depends on at most 4 corners.
+        type Dual = super::super::dual::DualN<12>;
         let mut s = [0.0; 3];
         let mut ds: Vec<(usize, [[f64; 3]; 3])> = Vec::new();
         for &f in &self.at_node[&a] {

@@ -1,7 +1,7 @@
-//! The number type contact geometry is written in: plain `f64` for the search, [`Dual`] for the
+//! The number type contact geometry is written in: plain `f64` for the search, [`DualN`] for the
 //! kinematics whose derivatives make the tangent.
 
-use super::super::dual::Dual;
+use super::super::dual::DualN;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
 pub trait Scalar:
@@ -33,14 +33,14 @@ impl Scalar for f64 {
     }
 }
 
-impl Scalar for Dual {
-    fn cst(&self, v: f64) -> Dual {
-        Dual::constant(v, self.n)
+impl<const N: usize> Scalar for DualN<N> {
+    fn cst(&self, v: f64) -> Self {
+        DualN::constant(v, self.n)
     }
     fn val(&self) -> f64 {
         self.v
     }
-    fn sqrt(self) -> Dual {
-        Dual::sqrt(self)
+    fn sqrt(self) -> Self {
+        DualN::sqrt(self)
     }
 }
