@@ -24,6 +24,63 @@ pub fn contact_modulus(e1: f64, nu1: f64, e2: f64, nu2: f64) -> f64 {
     1.0 / ((1.0 - nu1 * nu1) / e1 + inv2)
 }
 
+/// Hertz contact of spheres: contact radius a = (3 F R / (4 E*))^(1/3).
+pub fn hertz_sphere_radius(force: f64, radius: f64, e_star: f64) -> f64 {
+    (3.0 * force * radius / (4.0 * e_star)).cbrt()
+}
+
+/// Hertz contact of spheres: maximum pressure p0 = 3 F / (2 π a²).
+pub fn hertz_sphere_pressure(force: f64, a: f64) -> f64 {
+    3.0 * force / (2.0 * std::f64::consts::PI * a * a)
+}
+
+/// Compare the contact state of a quarter model (symmetry planes x = 0 and y = 0, contact
+/// centred on the z axis) of a sphere of radius `radius` with Hertz's solution for the computed
+/// force: p0 is the pressure of the node on the axis, a from the ellipse fitted to the active
+/// nodes off the contact's rim (those within the finest node spacing of the outermost active
+/// node are left out: their tributary area straddles the edge).
+pub fn compare_hertz_sphere(
+    model: &Model,
+    states: &[SlotState],
+    radius: f64,
+    e_star: f64,
+) -> Option<HertzComparison> {
+    let force = 4.0 * states.iter().map(|s| s.force).sum::<f64>();
+    let pos = |s: &SlotState| {
+        let c = model.nodes[s.node].coords;
+        c[0].hypot(c[1])
+    };
+    let active: Vec<&SlotState> = states.iter().filter(|s| s.active).collect();
+    let mut spacing = f64::INFINITY;
+    for (i, a) in active.iter().enumerate() {
+        let p = model.nodes[a.node].coords;
+        for b in &active[i + 1..] {
+            let q = model.nodes[b.node].coords;
+            spacing = spacing.min((p[0] - q[0]).hypot(p[1] - q[1]));
+        }
+    }
+    let rim = active.iter().map(|s| pos(s)).fold(0.0, f64::max);
+    let mut profile: Vec<(f64, f64)> = active
+        .iter()
+        .map(|s| (pos(s), s.pressure))
+        .filter(|&(r, _)| r < rim - 0.99 * spacing)
+        .collect();
+    profile.sort_by(|a, b| a.0.total_cmp(&b.0));
+    if profile.len() < 3 || profile[0].0 > 1e-12 {
+        return None;
+    }
+    let p0 = profile[0].1;
+    let a = fit_ellipse(&profile)?;
+    let a_ref = hertz_sphere_radius(force, radius, e_star);
+    Some(HertzComparison {
+        force,
+        p0,
+        p0_ref: hertz_sphere_pressure(force, a_ref),
+        a,
+        a_ref,
+    })
+}
+
 /// Pressure under a rigid flat punch of half-width a pressed by F: F / (π sqrt(a² − x²)).
 pub fn flat_punch_pressure(force: f64, a: f64, x: f64) -> f64 {
     force / (std::f64::consts::PI * (a * a - x * x).sqrt())
@@ -108,8 +165,12 @@ pub fn fit_hertz(profile: &[(f64, f64)]) -> Option<(f64, f64)> {
     if profile.len() < 4 {
         return None;
     }
-    let p0 = profile[0].1;
-    let pts = &profile[..profile.len() - 1];
+    Some((profile[0].1, fit_ellipse(&profile[..profile.len() - 1])?))
+}
+
+/// The semi-axis a of the ellipse p² = p0²(1 − x²/a²) fitted to the points (x, p) (least squares
+/// in p² against x²).
+pub fn fit_ellipse(pts: &[(f64, f64)]) -> Option<f64> {
     let n = pts.len() as f64;
     let (mut sx, mut sy, mut sxx, mut sxy) = (0.0, 0.0, 0.0, 0.0);
     for &(x, p) in pts {
@@ -124,7 +185,7 @@ pub fn fit_hertz(profile: &[(f64, f64)]) -> Option<(f64, f64)> {
     if !(slope < 0.0 && intercept > 0.0) {
         return None;
     }
-    Some((p0, (-intercept / slope).sqrt()))
+    Some((-intercept / slope).sqrt())
 }
 
 #[cfg(test)]

@@ -43,7 +43,7 @@ fn compare(multipliers: bool) {
         .unwrap()
         .k_values
         .unwrap();
-    let cands = contact.candidate_equations(&dofs);
+    let cands = contact.candidate_equations(&model, &dofs, &u).unwrap();
     let lambdas = dofs.n_free - dofs.n_lambda..dofs.n_free;
     let mut cc = CondensedContact::new(&asm.pattern, &k_s, &cands, lambdas, None, &|e| {
         e.to_string()

@@ -2,9 +2,12 @@
 
 mod common;
 
+use hertz::analytic::{compare_hertz_sphere, contact_modulus};
 use hertz::bench::mesh::{hex_face_on, Solid};
 use hertz::bench::suite::Law;
-use hertz::bench::verify3d::{neo_hookean_law, uniaxial_stress, Patch, E, PATCH_H};
+use hertz::bench::verify3d::{
+    neo_hookean_law, uniaxial_stress, HertzSphere, Patch, E, HERTZ_R, NU, PATCH_H,
+};
 use hertz::contact::SlotState;
 use hertz::solve::{run_analysis, SolveParams};
 
@@ -109,5 +112,68 @@ fn patch_test_transmits_the_exact_uniform_pressure() {
                 errors[2]
             );
         }
+    }
+}
+
+/// The Hertz check of one sphere-on-block run: (F, p0 error, a error).
+fn hertz_sphere(kind: Solid, sym: usize, h: f64, law: Law) -> (f64, f64, f64) {
+    let hs = HertzSphere {
+        kind,
+        sym,
+        h,
+        delta: 0.15,
+        nlgeo: false,
+        law,
+    };
+    let text = hs.input();
+    let model = common::model_from_text(&text).unwrap();
+    let (states, its) = solve(&text);
+    assert!(
+        its[0] <= 3,
+        "{kind:?} sym {sym} {law:?}: {its:?} iterations"
+    );
+    let e_star = contact_modulus(E, NU, E, NU);
+    let c = compare_hertz_sphere(&model, &states, HERTZ_R, e_star).expect("a contact zone");
+    println!(
+        "{kind:?} sym {sym} h {h} {law:?}: F {:.4}, p0 {:.4} ({:+.2} %), a {:.4} ({:+.2} %)",
+        c.force,
+        c.p0,
+        100.0 * c.p0_error(),
+        c.a,
+        100.0 * c.a_error()
+    );
+    (c.force, c.p0_error(), c.a_error())
+}
+
+/// An elastic sphere (R = 10) pressed onto an elastic block (same E, ν), quarter model with a
+/// graded mesh: p0 = 3F/(2πa²) within 3 % and a = (3FR/(4E*))^(1/3) within 5 % of Hertz for the
+/// computed force F. Hexahedra with each of the six face numbers on the contact surfaces give the
+/// same answer (to 1e-9); tetrahedra and wedges (triangular and quadrilateral contact faces) meet
+/// the bounds on a finer mesh. Multipliers and penalty; 2 and 3 Newton iterations.
+#[test]
+fn hertz_sphere_on_a_block_matches_hertz_in_every_orientation() {
+    let syms = orientations();
+    let reference = hertz_sphere(Solid::Hex, syms[0], 0.2, Law::Multiplier);
+    for &sym in &syms[1..] {
+        let r = hertz_sphere(Solid::Hex, sym, 0.2, Law::Multiplier);
+        assert!(
+            (r.0 - reference.0).abs() < 1e-9 * reference.0,
+            "sym {sym}: force {} vs {}",
+            r.0,
+            reference.0
+        );
+    }
+    let mut runs = vec![
+        reference,
+        hertz_sphere(Solid::Hex, 0, 0.2, Law::Penalty(1e5)),
+    ];
+    for (kind, sym) in [(Solid::Tet, 0), (Solid::Wedge, 0), (Solid::Wedge, 13)] {
+        runs.push(hertz_sphere(kind, sym, 0.15, Law::Multiplier));
+    }
+    for (f, ep, ea) in runs {
+        assert!(
+            ep.abs() < 0.03 && ea.abs() < 0.05,
+            "F {f}: p0 {ep:+e}, a {ea:+e}"
+        );
     }
 }

@@ -120,6 +120,8 @@ pub struct Block {
     pub bottom_edges: Vec<(usize, usize)>,
     /// First and last element id.
     pub elements: (usize, usize),
+    /// First and last node id (3D blocks).
+    pub nodes: (usize, usize),
     /// Node ids of the x = min side.
     pub left: Vec<usize>,
 }
@@ -293,6 +295,7 @@ impl Input {
         sym: usize,
     ) -> Block {
         let first = self.elements.len() + 1;
+        let first_node = self.nodes.len() + 1;
         let (nx, ny, nz) = (x.len() - 1, y.len() - 1, z.len() - 1);
         let mut id = vec![vec![vec![0usize; nz + 1]; ny + 1]; nx + 1];
         for (k, &zk) in z.iter().enumerate() {
@@ -339,6 +342,7 @@ impl Input {
             }
         }
         b.elements = (first, self.elements.len());
+        b.nodes = (first_node, self.nodes.len());
         b
     }
 

@@ -134,3 +134,88 @@ pub fn uniaxial_stress(
     }
     (b, p(b)[2][2])
 }
+
+/// Hertz contact of an elastic sphere on an elastic block, quarter model (symmetry planes x = 0
+/// and y = 0): the block [0, W]² × [−W, 0] and the cap of the sphere of radius `HERTZ_R`
+/// touching it at the origin, cut at height `HERTZ_CAP` and W wide, both graded from spacing `h`
+/// within 1.5 of the axis; the cap's flat top moved down by `delta`. Node-to-face from the cap's
+/// bottom nodes within r ≤ 1.6 to the block's top faces. Same material (E, ν) in both bodies.
+#[derive(Debug, Clone, Copy)]
+pub struct HertzSphere {
+    pub kind: Solid,
+    pub sym: usize,
+    pub h: f64,
+    pub delta: f64,
+    pub nlgeo: bool,
+    pub law: Law,
+}
+
+/// Sphere radius, cap height and width, and block size of [`HertzSphere`].
+pub const HERTZ_R: f64 = 10.0;
+pub const HERTZ_CAP: f64 = 4.0;
+pub const HERTZ_BLOCK: f64 = 6.0;
+
+impl HertzSphere {
+    pub fn input(&self) -> String {
+        use super::mesh::graded;
+        let mut inp = Input::default();
+        let extra = format!("mat 1 crossSect 1 nlgeo {}", u8::from(self.nlgeo));
+        let xs = graded(HERTZ_BLOCK, self.h, 1.5, 1.2);
+        let zs: Vec<f64> = graded(HERTZ_BLOCK, self.h, 0.75, 1.2)
+            .iter()
+            .rev()
+            .map(|d| -d)
+            .collect();
+        let block = inp.solid3d(self.kind, &xs, &xs, &zs, &extra, self.sym);
+        let xc = graded(HERTZ_CAP, self.h, 1.5, 1.2);
+        let zc = graded(HERTZ_CAP, self.h, 0.75, 1.2);
+        let cap = inp.solid3d(self.kind, &xc, &xc, &zc, &extra, self.sym);
+        // Bend the cap's bottom onto the sphere: z → z_b + z (H − z_b)/H.
+        for id in cap.nodes.0..=cap.nodes.1 {
+            let p = &mut inp.nodes[id - 1];
+            let r2 = p[0] * p[0] + p[1] * p[1];
+            let zb = HERTZ_R - (HERTZ_R * HERTZ_R - r2).sqrt();
+            p[2] = zb + p[2] * (HERTZ_CAP - zb) / HERTZ_CAP;
+        }
+        let faces = inp.faces_where(&block, &|p| p[2].abs() < 1e-12);
+        let seg = inp.boundary_set(&faces);
+        inp.segments.push(format!(
+            "linear3delementsurfacecontactsegment 1 boundaryset {seg}"
+        ));
+        inp.sections.push("SimpleCS 1".into());
+        inp.materials.push(if self.nlgeo {
+            neo_hookean(1)
+        } else {
+            format!("IsoLE 1 d 0 E {E} n {NU} tAlpha 0")
+        });
+        let x0 = inp.nodes_where(&|p| p[0].abs() < 1e-12);
+        let y0 = inp.nodes_where(&|p| p[1].abs() < 1e-12);
+        let x0 = inp.node_set(&x0);
+        let y0 = inp.node_set(&y0);
+        let bottom = inp.node_set(&block.bottom);
+        let top = inp.node_set(&cap.top);
+        for (k, (dof, set)) in [(1, x0), (2, y0), (3, bottom)].iter().enumerate() {
+            inp.bcs.push(format!(
+                "BoundaryCondition {} loadTimeFunction 2 dofs 1 {dof} values 1 0 set {set}",
+                k + 1
+            ));
+        }
+        inp.bcs.push(format!(
+            "BoundaryCondition 4 loadTimeFunction 1 dofs 1 3 values 1 {} set {top}",
+            -self.delta
+        ));
+        let contact: Vec<usize> = cap
+            .bottom
+            .iter()
+            .copied()
+            .filter(|&n| {
+                let p = inp.nodes[n - 1];
+                p[0].hypot(p[1]) <= 1.6
+            })
+            .collect();
+        inp.bcs.push(n2s(5, self.law, &contact, &[1], ""));
+        inp.functions.push(history(&[1.0]));
+        inp.functions.push("ConstantFunction 2 f(t) 1.0".into());
+        inp.render("hertz3d", &analysis(1), "3d")
+    }
+}

@@ -210,11 +210,13 @@ pub trait Formulation {
     fn n_multipliers(&self) -> usize;
     /// Nodes that must carry displacement DOFs even without elements.
     fn nodes_needing_dofs(&self) -> Vec<usize>;
-    /// Every node whose DOFs its contributions can touch.
-    fn candidate_nodes(&self) -> Vec<usize>;
+    /// The nodes whose DOFs its contributions can touch from the state `ctx` on, as far as
+    /// the geometry tells (the contact nodes, and the master nodes near them).
+    fn candidate_nodes(&self, ctx: &Ctx) -> Result<Vec<usize>>;
     /// Whether its tangent is symmetric (B = ∇g at every contact point).
     fn symmetric(&self) -> bool;
     /// Evaluate every slot at `ctx`; `first_lambda` is the equation of its first multiplier.
+    /// Returns the seconds spent searching partners.
     fn evaluate(
         &self,
         ctx: &Ctx,
@@ -222,7 +224,7 @@ pub trait Formulation {
         search: Search,
         points: &mut Vec<ContactPoint>,
         states: &mut Vec<SlotState>,
-    ) -> Result<()>;
+    ) -> Result<f64>;
 }
 
 /// All contact conditions of a model.
@@ -230,6 +232,9 @@ pub struct ContactSystem {
     formulations: Vec<Box<dyn Formulation + Send + Sync>>,
     laws: Laws,
     dim: usize,
+    /// Seconds spent in evaluations since the last [`ContactSystem::take_times`]: (searching,
+    /// in all).
+    clock: std::sync::Mutex<(f64, f64)>,
 }
 
 impl ContactSystem {
@@ -260,7 +265,13 @@ impl ContactSystem {
                 pressure_limit: young,
             },
             dim: model.domain.nsd(),
+            clock: Default::default(),
         })
+    }
+
+    /// Seconds spent (searching partners, evaluating in all) since the last call.
+    pub fn take_times(&self) -> (f64, f64) {
+        std::mem::take(&mut *self.clock.lock().expect("clock"))
     }
 
     pub fn is_empty(&self) -> bool {
@@ -293,13 +304,27 @@ impl ContactSystem {
         }
     }
 
-    /// Free equations that contact contributions can touch (through slave-node weights), sorted;
-    /// the multipliers are not among them.
-    pub fn candidate_equations(&self, dofs: &DofMap) -> Vec<usize> {
-        let mut eqs: Vec<usize> = self
-            .formulations
-            .iter()
-            .flat_map(|f| f.candidate_nodes())
+    /// Free equations that contact contributions can touch from the state `u` on (through
+    /// slave-node weights), sorted; the multipliers are not among them.
+    pub fn candidate_equations(
+        &self,
+        model: &Model,
+        dofs: &DofMap,
+        u: &[f64],
+    ) -> Result<Vec<usize>> {
+        let ctx = Ctx {
+            model,
+            dofs,
+            u,
+            dim: self.dim,
+            laws: &self.laws,
+        };
+        let mut nodes = Vec::new();
+        for f in &self.formulations {
+            nodes.extend(f.candidate_nodes(&ctx)?);
+        }
+        let mut eqs: Vec<usize> = nodes
+            .into_iter()
             .flat_map(|n| {
                 dofs.node_dofs[n]
                     .iter()
@@ -309,7 +334,7 @@ impl ContactSystem {
             .collect();
         eqs.sort_unstable();
         eqs.dedup();
-        eqs
+        Ok(eqs)
     }
 
     /// Set the contact pressure above which the geometric tangent part is dropped (see
@@ -335,13 +360,15 @@ impl ContactSystem {
             dim: self.dim,
             laws: &self.laws,
         };
+        let start = std::time::Instant::now();
         let mut points = Vec::new();
         let mut states = Vec::new();
         let mut lambda = dofs.n_free - dofs.n_lambda;
         let mut slot = 0;
+        let mut searching = 0.0;
         for f in &self.formulations {
             let n = f.n_slots();
-            f.evaluate(
+            searching += f.evaluate(
                 &ctx,
                 lambda,
                 search.slice(slot..slot + n),
@@ -351,6 +378,9 @@ impl ContactSystem {
             lambda += f.n_multipliers();
             slot += n;
         }
+        let mut clock = self.clock.lock().expect("clock");
+        clock.0 += searching;
+        clock.1 += start.elapsed().as_secs_f64();
         Ok((points, states))
     }
 }

@@ -93,8 +93,8 @@ impl Formulation for NodeToNode {
             .collect()
     }
 
-    fn candidate_nodes(&self) -> Vec<usize> {
-        self.nodes_needing_dofs()
+    fn candidate_nodes(&self, _ctx: &Ctx) -> Result<Vec<usize>> {
+        Ok(self.nodes_needing_dofs())
     }
 
     fn symmetric(&self) -> bool {
@@ -108,7 +108,7 @@ impl Formulation for NodeToNode {
         _search: Search,
         points: &mut Vec<ContactPoint>,
         states: &mut Vec<SlotState>,
-    ) -> Result<()> {
+    ) -> Result<f64> {
         let dim = ctx.dim;
         for (k, p) in self.pairs.iter().enumerate() {
             let mut local = Local::new(dim);
@@ -144,6 +144,7 @@ impl Formulation for NodeToNode {
             ));
             states.push(state);
         }
-        Ok(())
+        // Pairs are fixed: no search.
+        Ok(0.0)
     }
 }

@@ -143,11 +143,25 @@ impl CondensedContact {
         for (k, &e) in self.cand.iter().enumerate() {
             self.pos[e] = k;
         }
-        // M = L₂₂⁻ᵀ L₂₂⁻¹.
+        // M = L₂₂⁻ᵀ L₂₂⁻¹ (the inverse from a Cholesky factor: its lower triangle, mirrored).
         let mdim = self.cand.len();
-        let mut linv = Mat::<f64>::identity(mdim, mdim);
-        l22.as_ref().solve_lower_triangular_in_place(linv.as_mut());
-        self.m = linv.transpose() * &linv;
+        let par = faer::get_global_parallelism();
+        let mut m = Mat::<f64>::zeros(mdim, mdim);
+        let mut mem = faer::dyn_stack::MemBuffer::new(
+            faer::linalg::cholesky::llt::inverse::inverse_scratch::<f64>(mdim, par),
+        );
+        faer::linalg::cholesky::llt::inverse::inverse(
+            m.as_mut(),
+            l22.as_ref(),
+            par,
+            faer::dyn_stack::MemStack::new(&mut mem),
+        );
+        for j in 0..mdim {
+            for i in 0..j {
+                m[(i, j)] = m[(j, i)];
+            }
+        }
+        self.m = m;
         Ok(true)
     }
 
@@ -332,6 +346,11 @@ impl CondensedContact {
                 cycled,
             }));
         }
+    }
+
+    /// The candidate equations (displacements and multipliers), in the order of M.
+    pub fn candidates(&self) -> &[usize] {
+        &self.cand
     }
 
     fn is_lambda(&self, k: usize, dofs: &DofMap) -> bool {

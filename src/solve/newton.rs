@@ -15,12 +15,14 @@
 
 use super::condensed::CondensedContact;
 use super::linear::LinearSolver;
+use super::stepping::PhaseTimes;
 use super::stepping::StepInfo;
 use crate::assembly::{Assembler, Contribution, DofMap, Evaluation};
 use crate::contact::{ContactPoint, ContactSystem, PointLaw, Search, SlotState};
 use crate::error::{Error, Result};
 use crate::model::Analysis;
 use crate::output::outfile::sci;
+use std::time::Instant;
 
 /// How Newton systems with contact are solved.
 pub(super) enum Condensed {
@@ -30,6 +32,10 @@ pub(super) enum Condensed {
     Pending(Vec<usize>),
     Ready(Box<CondensedContact>),
 }
+
+/// How often the condensed solve is set up again when contact reaches beyond its candidates
+/// (each time a symbolic analysis and a factorization), before full tangents take over.
+const MAX_REGROWTHS: usize = 4;
 
 /// Largest number of branch updates of a step solved with full tangents (each a factorization).
 const MAX_FULL_UPDATES: usize = 8;
@@ -66,6 +72,15 @@ pub(super) struct NewtonContext<'a> {
     pub slot_nodes: Vec<usize>,
     /// The round-off floor warning was given (once per analysis).
     pub floor_warned: bool,
+    /// Time spent in assembly, factorizations and solves since the step began.
+    pub times: PhaseTimes,
+    /// How often the condensed solve was set up again with more candidates.
+    pub regrowths: usize,
+}
+
+/// Seconds since `t`.
+fn since(t: Instant) -> f64 {
+    t.elapsed().as_secs_f64()
 }
 
 /// The convergence test's verdict on one iteration.
@@ -102,7 +117,9 @@ impl NewtonContext<'_> {
             .contact
             .evaluate(self.asm.model, self.dofs, u, search)?;
         let contribs: Vec<Contribution> = points.iter().map(|p| p.contribution()).collect();
+        let t = Instant::now();
         let ev = self.asm.evaluate(u, false, true, None, &contribs)?;
+        self.times.assembly += since(t);
         Ok((ev, states))
     }
 
@@ -110,8 +127,10 @@ impl NewtonContext<'_> {
     fn factorize(&mut self, kv: &[f64]) -> Result<()> {
         let (model, dofs) = (self.asm.model, self.dofs);
         let describe = |eq: usize| describe_eq(model, dofs, eq);
+        let t = Instant::now();
         self.solver
             .factorize(&self.asm.pattern, kv, self.linear, &describe)?;
+        self.times.factor += since(t);
         self.factor_valid = self.linear;
         Ok(())
     }
@@ -134,19 +153,24 @@ impl NewtonContext<'_> {
             let ks = match ks_fresh {
                 Some(e) => e,
                 None => {
+                    let t = Instant::now();
                     ev = self.asm.evaluate(u, true, false, None, &[])?;
+                    self.times.assembly += since(t);
                     &ev
                 }
             };
             let lambdas = self.dofs.n_free - self.dofs.n_lambda..self.dofs.n_free;
-            self.condensed = match CondensedContact::new(
+            let t = Instant::now();
+            let made = CondensedContact::new(
                 &self.asm.pattern,
                 ks.k_values.as_ref().expect("requested"),
                 &cands,
                 lambdas,
                 self.solver.groups.clone(),
                 &describe,
-            ) {
+            );
+            self.times.factor += since(t);
+            self.condensed = match made {
                 Ok(Some(c)) => Condensed::Ready(Box::new(c)),
                 Ok(None) => Condensed::Off,
                 // An indefinite structural tangent: the full tangent's LU takes over.
@@ -159,18 +183,55 @@ impl NewtonContext<'_> {
         } else if let (Condensed::Ready(c), Some(ks)) = (&mut self.condensed, ks_fresh) {
             // Large deformation: the structural tangent changed.
             let kv = ks.k_values.as_ref().expect("requested");
+            let t = Instant::now();
             let ok = match c.factorize(&self.asm.pattern, kv, &describe) {
                 Ok(ok) => ok,
                 Err(Error::Singular(_)) => false,
                 Err(e) => return Err(e),
             };
+            self.times.factor += since(t);
             if !ok {
                 self.condense_off();
             }
         }
         if let Condensed::Ready(c) = &mut self.condensed {
-            if let Some(step) = c.step(&rhs, points, self.dofs)? {
+            let t = Instant::now();
+            let step = c.step(&rhs, points, self.dofs)?;
+            self.times.solve += since(t);
+            if let Some(step) = step {
                 return Ok((step.du, step.updates));
+            }
+            // A point reaches beyond the candidates (a node slid on): set up again with the
+            // candidates of the current state added.
+            if self.regrowths < MAX_REGROWTHS {
+                let n_disp = self.dofs.n_free - self.dofs.n_lambda;
+                let mut cands: Vec<usize> = c
+                    .candidates()
+                    .iter()
+                    .copied()
+                    .filter(|&e| e < n_disp)
+                    .collect();
+                cands.extend(
+                    self.contact
+                        .candidate_equations(self.asm.model, self.dofs, u)?,
+                );
+                for p in points {
+                    for &code in &p.codes {
+                        cands.extend(self.dofs.entries(code).map(|(e, _)| e));
+                    }
+                }
+                cands.retain(|&e| e < n_disp);
+                cands.sort_unstable();
+                cands.dedup();
+                self.regrowths += 1;
+                if self.verbose {
+                    eprintln!(
+                        "      contact reaches beyond the condensed equations: {} candidates now",
+                        cands.len()
+                    );
+                }
+                self.condensed = Condensed::Pending(cands);
+                return self.solve_step(u, rhs, points, None);
             }
             self.condense_off();
         }
@@ -198,7 +259,9 @@ impl NewtonContext<'_> {
         if self.asm.set_couplings(&couplings) {
             self.solver.reset();
         }
+        let t = Instant::now();
         let ks = self.asm.evaluate(u, true, false, None, &[])?;
+        self.times.assembly += since(t);
         let mut closed: Vec<bool> = points.iter().map(|p| p.closed).collect();
         let mut seen = std::collections::HashSet::new();
         let mut updates = 0;
@@ -228,7 +291,9 @@ impl NewtonContext<'_> {
                 .collect();
             self.asm.add_tangents(&mut kv, &contribs);
             self.factorize(&kv)?;
+            let t = Instant::now();
             self.solver.solve_in_place(&mut step)?;
+            self.times.solve += since(t);
             let predicted: Vec<bool> = points
                 .iter()
                 .map(|p| {
@@ -310,6 +375,7 @@ impl NewtonContext<'_> {
                     && !self.factor_valid
                     && (it == 0 || a.manrmsteps.is_some_and(|k| it % k == 0)));
             let contribs: Vec<Contribution> = points.iter().map(|p| p.contribution()).collect();
+            let t = Instant::now();
             let mut ev = self.asm.evaluate(
                 u,
                 want_k,
@@ -320,6 +386,7 @@ impl NewtonContext<'_> {
             if has_contact {
                 self.asm.add_residuals(&mut ev.f_int, &contribs);
             }
+            self.times.assembly += since(t);
             let rhs: Vec<f64> = (0..nf).map(|i| f_ext[i] - ev.f_int[i]).collect();
             let last = info.residual_history.last().copied();
             let mut check = self.check(&rhs, f_ext, &ev.ebe, &du, u, a, it, &points);
@@ -394,7 +461,9 @@ impl NewtonContext<'_> {
                     self.factorize(ev.k_values.as_ref().expect("requested"))?;
                 }
                 let mut x = rhs;
+                let t = Instant::now();
                 self.solver.solve_in_place(&mut x)?;
+                self.times.solve += since(t);
                 (x, 0)
             };
             if self.verbose && updates > 0 {
@@ -425,7 +494,9 @@ impl NewtonContext<'_> {
         let contribs: Vec<Contribution> = points.iter().map(|p| p.contribution()).collect();
         let need_k = !self.factor_valid && !has_contact;
         // K_fp Δu_p of elements and contact (a rigid indenter's prescribed reference node).
+        let t = Instant::now();
         let ev = self.asm.evaluate(u, need_k, false, Some(dup), &contribs)?;
+        self.times.assembly += since(t);
         let rhs: Vec<f64> = ev
             .k_fp_dup
             .as_ref()
@@ -441,7 +512,10 @@ impl NewtonContext<'_> {
                 Condensed::Off => false,
             };
             let ks = if need_ks {
-                Some(self.asm.evaluate(u, true, false, None, &[])?)
+                let t = Instant::now();
+                let ks = self.asm.evaluate(u, true, false, None, &[])?;
+                self.times.assembly += since(t);
+                Some(ks)
             } else {
                 None
             };

@@ -40,6 +40,21 @@ impl Default for SolveParams {
     }
 }
 
+/// Wall time of a step's phases, in seconds.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct PhaseTimes {
+    /// Contact search: broad phase, projections, choice of partners.
+    pub search: f64,
+    /// Contact kinematics and laws (the local residuals and tangents).
+    pub contact: f64,
+    /// Element loop: internal forces and tangents.
+    pub assembly: f64,
+    /// Sparse factorizations (with the condensed contact system's setup).
+    pub factor: f64,
+    /// Triangular solves and the condensed contact system.
+    pub solve: f64,
+}
+
 /// Diagnostics of one step.
 #[derive(Debug, Clone, Default)]
 pub struct StepInfo {
@@ -48,6 +63,8 @@ pub struct StepInfo {
     pub residual_history: Vec<f64>,
     pub substeps: usize,
     pub wall_seconds: f64,
+    /// Where the step's time went.
+    pub times: PhaseTimes,
     pub solver: SolverStats,
     /// Things the user should know (e.g. a penalty beyond double precision).
     pub warnings: Vec<String>,
@@ -115,7 +132,7 @@ pub fn run_analysis(
     let condensed = if contact.is_empty() {
         Condensed::Off
     } else {
-        Condensed::Pending(contact.candidate_equations(&dofs))
+        Condensed::Pending(contact.candidate_equations(model, &dofs, &vec![0.0; np])?)
     };
     let initial_states = contact
         .evaluate(model, &dofs, &vec![0.0; np], Search::Fresh)?
@@ -140,6 +157,8 @@ pub fn run_analysis(
         floor_dominated: None,
         slot_nodes,
         floor_warned: false,
+        times: PhaseTimes::default(),
+        regrowths: 0,
     };
     let mut u = vec![0.0; np];
     let mut applied = vec![0.0; np];
@@ -147,6 +166,8 @@ pub fn run_analysis(
     let nsteps = times.len();
     for (k, &t) in times.iter().enumerate() {
         let clock = Instant::now();
+        ctx.times = PhaseTimes::default();
+        ctx.contact.take_times();
         let step = k + 1;
         let target = match a.kind {
             AnalysisKind::NonLinearStatic => {
@@ -240,6 +261,12 @@ pub fn run_analysis(
             .collect();
         info.wall_seconds = clock.elapsed().as_secs_f64();
         info.solver = ctx.solver.stats.clone();
+        let (searching, contact) = ctx.contact.take_times();
+        info.times = PhaseTimes {
+            search: searching,
+            contact: contact - searching,
+            ..ctx.times
+        };
         if params.log_steps {
             if ctx.progress {
                 eprint!("\r\x1b[2K");
@@ -252,6 +279,14 @@ pub fn run_analysis(
                 info.substeps,
                 info.wall_seconds
             );
+            if params.log_iterations {
+                let t = &info.times;
+                eprintln!(
+                    "    time: contact search {:.3} s, contact points {:.3} s, assembly {:.3} s, \
+                     factorization {:.3} s, solves {:.3} s",
+                    t.search, t.contact, t.assembly, t.factor, t.solve
+                );
+            }
         }
         let states = ev.states.unwrap_or_default();
         on_step(&StepResult {

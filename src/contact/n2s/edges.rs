@@ -132,64 +132,35 @@ impl NodeToSegment {
         w
     }
 
-    /// Edge partners of a node at `xs`; `best` is the smallest |gap| inside a partner so far.
-    #[allow(clippy::too_many_arguments)]
-    pub(super) fn edge_candidates(
+    /// Edge `k` as a partner of a node at `xs`, if the node projects on it (or within the band
+    /// that keeps a previous partner, or past an open end within its ramp).
+    pub(super) fn edge_candidate(
         &self,
         model: &Model,
         slot: &Slot,
         xs: [f64; 3],
         cur: &Current,
-        previous: Option<Partner>,
-        best: &mut f64,
-        out: &mut Vec<Candidate>,
-    ) {
+        k: usize,
+    ) -> Option<Candidate> {
         let xs2 = [xs[0], xs[1]];
-        for k in 0..self.edges.edges.len() {
-            let edge = &self.edges.edges[k];
-            // Cheap rejection: the box of the edge's nodes, grown by the edge's length (curvature)
-            // and the node's reach past an open end, farther than the best gap so far.
-            let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-            for n in &edge.nodes {
-                let p = cur.x[n];
-                for i in 0..2 {
-                    lo[i] = lo[i].min(p[i]);
-                    hi[i] = hi[i].max(p[i]);
-                }
-            }
-            let size = ((hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2)).sqrt();
-            let outside = (0..2)
-                .map(|i| (lo[i] - xs2[i]).max(xs2[i] - hi[i]).max(0.0).powi(2))
-                .sum::<f64>()
-                .sqrt();
-            if outside > *best + size + slot.reach && previous != Some(Partner::Edge(k)) {
-                continue;
-            }
-            let geom = self.edge_geometry_f64(k, cur);
-            let Some(s) = geom.project(xs2) else { continue };
-            let past_open = (s < 0.0 && geom.open[0]) || (s > 1.0 && geom.open[1]);
-            let inside = if past_open {
-                self.edge_weight(model, slot, k, &geom, xs2) > 0.0
-            } else {
-                (-INSIDE_TOL..=1.0 + INSIDE_TOL).contains(&s)
-            };
-            if !inside && !(-HYSTERESIS_BAND..=1.0 + HYSTERESIS_BAND).contains(&s) {
-                continue;
-            }
-            if past_open && !inside {
-                continue;
-            }
-            let (g, _) = geom.gap(xs2, s);
-            if inside {
-                *best = best.min(g.abs());
-            }
-            out.push(Candidate {
-                partner: Partner::Edge(k),
-                xi: [s, 0.0],
-                gap: g,
-                inside,
-            });
+        let geom = self.edge_geometry_f64(k, cur);
+        let s = geom.project(xs2)?;
+        let past_open = (s < 0.0 && geom.open[0]) || (s > 1.0 && geom.open[1]);
+        let inside = if past_open {
+            self.edge_weight(model, slot, k, &geom, xs2) > 0.0
+        } else {
+            (-INSIDE_TOL..=1.0 + INSIDE_TOL).contains(&s)
+        };
+        if !inside && (past_open || !(-HYSTERESIS_BAND..=1.0 + HYSTERESIS_BAND).contains(&s)) {
+            return None;
         }
+        let (gap, _) = geom.gap(xs2, s);
+        Some(Candidate {
+            partner: Partner::Edge(k),
+            xi: [s, 0.0],
+            gap,
+            inside,
+        })
     }
 
     /// Kinematics against edge `k` with the contact point converged at `s0`.

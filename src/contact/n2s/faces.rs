@@ -90,71 +90,42 @@ impl NodeToSegment {
         w
     }
 
-    /// Face partners of a node at `xs`; `best` is the smallest |gap| inside a partner so far.
-    #[allow(clippy::too_many_arguments)]
-    pub(super) fn face_candidates(
+    /// Face `k` as a partner of a node at `xs`, if the node projects on it (or within the band
+    /// that keeps a previous partner, or past an open edge within its ramp).
+    pub(super) fn face_candidate(
         &self,
         model: &Model,
         slot: &Slot,
         xs: [f64; 3],
         cur: &Current,
-        previous: Option<Partner>,
-        best: &mut f64,
-        out: &mut Vec<Candidate>,
-    ) {
-        for k in 0..self.faces.faces.len() {
-            let face = &self.faces.faces[k];
-            // Cheap rejection: the box of the face's corners, grown by its size (curvature) and
-            // the node's reach past an open edge, farther than the best gap so far.
-            let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-            for n in &face.nodes {
-                let p = cur.x[n];
-                for i in 0..3 {
-                    lo[i] = lo[i].min(p[i]);
-                    hi[i] = hi[i].max(p[i]);
-                }
+        k: usize,
+    ) -> Option<Candidate> {
+        let face = &self.faces.faces[k];
+        let geom = self.face_geometry_f64(k, cur);
+        let (xi, eta) = geom.project(xs)?;
+        let excess = edge_excess(face.kind, xi, eta);
+        let (mut past_open, mut past_shared) = (false, f64::NEG_INFINITY);
+        for (e, &d) in excess.iter().take(face.nodes.len()).enumerate() {
+            if face.open[e] {
+                past_open |= d > INSIDE_TOL;
+            } else {
+                past_shared = past_shared.max(d);
             }
-            let size = (0..3).map(|i| (hi[i] - lo[i]).powi(2)).sum::<f64>().sqrt();
-            let outside = (0..3)
-                .map(|i| (lo[i] - xs[i]).max(xs[i] - hi[i]).max(0.0).powi(2))
-                .sum::<f64>()
-                .sqrt();
-            if outside > *best + size + slot.reach && previous != Some(Partner::Face(k)) {
-                continue;
-            }
-            let geom = self.face_geometry_f64(k, cur);
-            let Some((xi, eta)) = geom.project(xs) else {
-                continue;
-            };
-            let excess = edge_excess(face.kind, xi, eta);
-            let (mut past_open, mut past_shared) = (false, f64::NEG_INFINITY);
-            for (e, &d) in excess.iter().take(face.nodes.len()).enumerate() {
-                if face.open[e] {
-                    past_open |= d > INSIDE_TOL;
-                } else {
-                    past_shared = past_shared.max(d);
-                }
-            }
-            // Past a shared edge, the neighbouring face is the surface (but a previous partner
-            // is kept within the band); past an open edge, the node counts while its weight does.
-            if past_shared > HYSTERESIS_BAND {
-                continue;
-            }
-            if past_open && !(self.face_weight(model, slot, k, &geom, &xs) > 0.0) {
-                continue;
-            }
-            let inside = past_shared <= INSIDE_TOL;
-            let (g, _) = geom.gap(&xs, xi, eta);
-            if inside {
-                *best = best.min(g.abs());
-            }
-            out.push(Candidate {
-                partner: Partner::Face(k),
-                xi: [xi, eta],
-                gap: g,
-                inside,
-            });
         }
+        // Past a shared edge, the neighbouring face is the surface (but a previous partner is
+        // kept within the band); past an open edge, the node counts while its weight does.
+        if past_shared > HYSTERESIS_BAND
+            || (past_open && !(self.face_weight(model, slot, k, &geom, &xs) > 0.0))
+        {
+            return None;
+        }
+        let (gap, _) = geom.gap(&xs, xi, eta);
+        Some(Candidate {
+            partner: Partner::Face(k),
+            xi: [xi, eta],
+            gap,
+            inside: past_shared <= INSIDE_TOL,
+        })
     }
 
     /// Kinematics against face `k` with the contact point converged at `xi0`.

@@ -27,6 +27,7 @@ use super::geometry::edges::EdgeSurface;
 use super::geometry::faces::{FaceSurface, NodalNormal};
 use super::geometry::scalar::Scalar;
 use super::law::PointKinematics;
+use super::search::broad::BroadPhase;
 use super::search::{self, Candidate};
 use super::{apply_law, ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState};
 use crate::error::{Error, Result};
@@ -72,11 +73,14 @@ pub struct NodeToSegment {
     tie: f64,
 }
 
-/// The master surface at the current state: positions of its nodes and, for faces in large
-/// deformation, their current nodal normals with derivatives.
+/// The master surface at the current state: positions of its nodes, the broad phases of its
+/// edges and faces and, for faces in large deformation, their current nodal normals with
+/// derivatives.
 struct Current {
     x: HashMap<usize, [f64; 3]>,
     normals: HashMap<usize, NodalNormal>,
+    edges: BroadPhase,
+    faces: BroadPhase,
 }
 
 /// C¹ step from 0 (τ ≤ 0) to 1 (τ ≥ 1).
@@ -226,7 +230,17 @@ impl NodeToSegment {
                 }
             }
         }
-        Ok(Current { x, normals })
+        let corners = |nodes: &Vec<usize>| nodes.iter().map(|n| x[n]).collect::<Vec<_>>();
+        let edge_boxes: Vec<Vec<[f64; 3]>> =
+            self.edges.edges.iter().map(|e| corners(&e.nodes)).collect();
+        let face_boxes: Vec<Vec<[f64; 3]>> =
+            self.faces.faces.iter().map(|f| corners(&f.nodes)).collect();
+        Ok(Current {
+            edges: BroadPhase::new(edge_boxes.iter().map(|v| &v[..])),
+            faces: BroadPhase::new(face_boxes.iter().map(|v| &v[..])),
+            x,
+            normals,
+        })
     }
 
     /// Every possible partner of a node at `xs`, with the previous partner's band included.
@@ -238,10 +252,31 @@ impl NodeToSegment {
         cur: &Current,
         previous: Option<Partner>,
     ) -> Result<Vec<Candidate>> {
+        let model = ctx.model;
         let mut out = Vec::new();
-        let mut best = f64::INFINITY;
-        self.edge_candidates(ctx.model, slot, xs, cur, previous, &mut best, &mut out);
-        self.face_candidates(ctx.model, slot, xs, cur, previous, &mut best, &mut out);
+        // The previous partner is a candidate wherever the walk stops.
+        let mut seen = false;
+        let mut keep = |c: Option<Candidate>, out: &mut Vec<Candidate>| {
+            let c = c?;
+            seen |= Some(c.partner) == previous;
+            out.push(c);
+            c.inside.then_some(c.gap.abs())
+        };
+        cur.edges.walk(xs, slot.reach, |k| {
+            keep(self.edge_candidate(model, slot, xs, cur, k), &mut out)
+        });
+        cur.faces.walk(xs, slot.reach, |k| {
+            keep(self.face_candidate(model, slot, xs, cur, k), &mut out)
+        });
+        match previous {
+            Some(Partner::Edge(k)) if !seen => {
+                out.extend(self.edge_candidate(model, slot, xs, cur, k))
+            }
+            Some(Partner::Face(k)) if !seen => {
+                out.extend(self.face_candidate(model, slot, xs, cur, k))
+            }
+            _ => {}
+        }
         self.rigid_candidates(ctx, xs, &mut out)?;
         Ok(out)
     }
@@ -284,17 +319,33 @@ impl Formulation for NodeToSegment {
         out
     }
 
-    fn candidate_nodes(&self) -> Vec<usize> {
+    fn candidate_nodes(&self, ctx: &Ctx) -> Result<Vec<usize>> {
+        // The edges and faces every node could meet now, and the ring around them (sliding,
+        // and the nodal normals of large deformation, which average the faces around a node).
+        let cur = self.current(ctx)?;
+        let mut near = std::collections::BTreeSet::new();
+        for slot in &self.slots {
+            let (xs, _) = ctx.position(slot.node)?;
+            for c in self.candidates(ctx, slot, xs, &cur, None)? {
+                let nodes = match c.partner {
+                    Partner::Edge(k) => &self.edges.edges[k].nodes,
+                    Partner::Face(k) => &self.faces.faces[k].nodes,
+                    _ => continue,
+                };
+                near.extend(nodes.iter().copied());
+            }
+        }
         let mut out = self.nodes_needing_dofs();
-        for e in &self.edges.edges {
-            out.extend(&e.nodes);
+        for &a in &near {
+            for &e in self.edges.at_node.get(&a).into_iter().flatten() {
+                out.extend(&self.edges.edges[e].nodes);
+            }
+            for &f in self.faces.at_node.get(&a).into_iter().flatten() {
+                out.extend(&self.faces.faces[f].nodes);
+            }
         }
-        for f in &self.faces.faces {
-            out.extend(&f.nodes);
-        }
-        // Nodal normals in large deformation reach the neighbouring edges' and faces' nodes: all
-        // are on the surface, already listed.
-        out
+        out.extend(near);
+        Ok(out)
     }
 
     fn symmetric(&self) -> bool {
@@ -309,12 +360,14 @@ impl Formulation for NodeToSegment {
         search: Search,
         points: &mut Vec<ContactPoint>,
         states: &mut Vec<SlotState>,
-    ) -> Result<()> {
+    ) -> Result<f64> {
+        let start = std::time::Instant::now();
         let cur = self.current(ctx)?;
+        let mut chosen = Vec::with_capacity(self.slots.len());
         for (k, slot) in self.slots.iter().enumerate() {
             let (xs, _) = ctx.position(slot.node)?;
             let previous = search.previous(k);
-            let chosen = match previous {
+            chosen.push(match previous {
                 // With the partner frozen, the contact point is still recomputed (it moves with q).
                 Some((p, xi, true)) => (p != Partner::None)
                     .then_some(Candidate {
@@ -329,7 +382,10 @@ impl Formulation for NodeToSegment {
                     let cands = self.candidates(ctx, slot, xs, &cur, prev)?;
                     search::choose(&cands, prev, self.tie)
                 }
-            };
+            });
+        }
+        let searching = start.elapsed().as_secs_f64();
+        for (k, (slot, chosen)) in self.slots.iter().zip(chosen).enumerate() {
             let lambda_eq = (self.law == ContactLaw::Multiplier).then_some(first_lambda + k);
             let mut state = SlotState {
                 condition: self.number,
@@ -340,7 +396,7 @@ impl Formulation for NodeToSegment {
                 force: 0.0,
                 pressure: 0.0,
                 active: false,
-                x: xs,
+                x: ctx.position(slot.node)?.0,
             };
             let (local, kin) = match chosen {
                 Some(c) => {
@@ -375,6 +431,6 @@ impl Formulation for NodeToSegment {
             ));
             states.push(state);
         }
-        Ok(())
+        Ok(searching)
     }
 }

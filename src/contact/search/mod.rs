@@ -1,5 +1,9 @@
-//! Choosing one partner per contact node among the candidates its formulation found (each a
-//! contact point on an edge or a rigid segment), deterministically and with hysteresis.
+//! Finding each contact node's partner: the broad phase ([`broad`]) lists the edges and faces
+//! near a node, the formulation projects the node on them (the narrow phase, in
+//! [`super::geometry`]) into candidates, and [`choose`] picks one deterministically and with
+//! hysteresis.
+
+pub mod broad;
 
 use super::Partner;
 
