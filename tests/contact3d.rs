@@ -5,8 +5,9 @@ mod common;
 use hertz::analytic::{compare_hertz_sphere, contact_modulus};
 use hertz::bench::mesh::{hex_face_on, Solid};
 use hertz::bench::suite::Law;
-use hertz::bench::verify3d::{
-    neo_hookean_law, uniaxial_stress, HertzSphere, Patch, E, HERTZ_R, NU, PATCH_H,
+use hertz::bench::verify::{
+    neo_hookean_law, uniaxial_stress, HertzSphere, Patch, TwoBeams, BEAM_G, BEAM_H, BEAM_L, BEAM_S,
+    E, HERTZ_R, NU, PATCH_H,
 };
 use hertz::contact::SlotState;
 use hertz::solve::{run_analysis, SolveParams};
@@ -176,4 +177,186 @@ fn hertz_sphere_on_a_block_matches_hertz_in_every_orientation() {
             "F {f}: p0 {ep:+e}, a {ea:+e}"
         );
     }
+}
+
+/// The end of a two-beam run: reactions (x, y) of the lower and upper clamps, the displacement
+/// of both beams' free-end corners that face each other, the Newton iterations of every step,
+/// and the total contact force of each condition.
+struct BeamsResult {
+    lower: [f64; 2],
+    upper: [f64; 2],
+    tips: [[f64; 2]; 2],
+    iterations: Vec<usize>,
+    force: [f64; 2],
+}
+
+fn two_beams(tb: &TwoBeams, swap: bool) -> BeamsResult {
+    let mut text = tb.input();
+    if swap {
+        // The same two conditions, listed the other way round.
+        let lines: Vec<&str> = text.lines().collect();
+        let i = lines.iter().position(|l| l.starts_with("n2s")).unwrap();
+        let mut l: Vec<String> = lines.iter().map(|s| s.to_string()).collect();
+        l.swap(i, i + 1);
+        text = l.join("\n") + "\n";
+    }
+    let model = common::model_from_text(&text).unwrap();
+    let corner = |x: f64, y: f64| {
+        model
+            .nodes
+            .iter()
+            .position(|n| (n.coords[0] - x).abs() < 1e-9 && (n.coords[1] - y).abs() < 1e-9)
+            .unwrap()
+    };
+    // The second pass's condition number.
+    let second = model.contacts.iter().map(|c| c.number).max().unwrap();
+    let lower_tip = corner(BEAM_L, BEAM_H);
+    let upper_tip = corner(BEAM_S, BEAM_H + BEAM_G);
+    let mut out = BeamsResult {
+        lower: [0.0; 2],
+        upper: [0.0; 2],
+        tips: [[0.0; 2]; 2],
+        iterations: Vec::new(),
+        force: [0.0; 2],
+    };
+    run_analysis(
+        &model,
+        &SolveParams {
+            log_steps: false,
+            max_cutbacks: 0,
+            ..Default::default()
+        },
+        |r| {
+            out.iterations.push(r.info.iterations);
+            out.lower = [0.0; 2];
+            out.upper = [0.0; 2];
+            for (&(n, d, _), &f) in r.dofs.prescribed.iter().zip(r.reactions) {
+                let side = if model.nodes[n].coords[0] < 1.0 {
+                    &mut out.lower
+                } else {
+                    &mut out.upper
+                };
+                side[d as usize - 1] += f;
+            }
+            for (k, &n) in [lower_tip, upper_tip].iter().enumerate() {
+                out.tips[k] = [r.displacement(n, 1).unwrap(), r.displacement(n, 2).unwrap()];
+            }
+            out.force = [0.0; 2];
+            for c in r.contact {
+                out.force[usize::from(c.condition == second)] += c.force;
+            }
+            Ok(())
+        },
+    )
+    .unwrap();
+    out
+}
+
+/// The seed's two beams bent into each other by forces at their free ends, large deformation,
+/// two-pass contact (each beam's nodes on the other beam's surface: each free end's corner is
+/// caught by the pass in which it is a contact node). For penalty and multipliers, on matching
+/// and non-matching meshes:
+/// * the clamps' reactions balance the end forces to 1e-8 (global equilibrium);
+/// * master/slave symmetry: the model is point-symmetric and so is the answer (to round-off on
+///   the matching mesh: the corners move by opposite amounts), and listing the two conditions
+///   the other way round changes nothing (1e-8);
+/// * no locking: matching and non-matching meshes give the same clamp force within 0.2 %, and
+///   the penalty gives the multipliers' force within 1e-4;
+/// * Newton takes at most 4 iterations per step (the first steps bend the beams freely);
+/// * the clamp force converges with the mesh, about as h² (printed; BENCHMARKS.md has the
+///   table).
+#[test]
+fn two_beams_in_two_pass_contact() {
+    let base = TwoBeams {
+        nx: 40,
+        ny: 4,
+        nx_upper: None,
+        force: 1.0,
+        steps: 10,
+        law: Law::Multiplier,
+        two_pass: true,
+    };
+    let mut forces = Vec::new();
+    for law in [Law::Multiplier, Law::Penalty(1e5)] {
+        for nx_upper in [None, Some(37)] {
+            let tb = TwoBeams {
+                law,
+                nx_upper,
+                ..base
+            };
+            let r = two_beams(&tb, false);
+            let name = format!("{law:?} upper {nx_upper:?}");
+            let f = r.upper[1].abs();
+            for i in 0..2 {
+                assert!(
+                    (r.lower[i] + r.upper[i]).abs() < 1e-8 * f,
+                    "{name}: reactions {:?} {:?}",
+                    r.lower,
+                    r.upper
+                );
+            }
+            assert!(
+                r.iterations.iter().all(|&i| i <= 4),
+                "{name}: {:?}",
+                r.iterations
+            );
+            let asym = |r: &BeamsResult| {
+                (r.tips[0][0] + r.tips[1][0])
+                    .abs()
+                    .max((r.tips[0][1] + r.tips[1][1]).abs())
+            };
+            if nx_upper.is_none() {
+                assert!(asym(&r) < 1e-12, "{name}: tips {:?}", r.tips);
+            }
+            let swapped = two_beams(&tb, true);
+            assert!(
+                (swapped.upper[1] - r.upper[1]).abs() < 1e-8 * f,
+                "{name}: swapped {} vs {}",
+                swapped.upper[1],
+                r.upper[1]
+            );
+            let one = two_beams(
+                &TwoBeams {
+                    two_pass: false,
+                    ..tb
+                },
+                false,
+            );
+            println!(
+                "{name}: clamp force {:.6}; contact forces of the passes {:.4} {:.4}; corners off \
+                 symmetry by {:.1e}; one-pass: clamp force {:.6}, corners off symmetry by {:.1e}; \
+                 iterations {:?}",
+                r.upper[1],
+                r.force[0],
+                r.force[1],
+                asym(&r),
+                one.upper[1],
+                asym(&one),
+                r.iterations
+            );
+            forces.push(r.upper[1]);
+        }
+    }
+    let (matched, other) = (forces[0], forces[1]);
+    assert!((other - matched).abs() < 2e-3 * matched.abs(), "{forces:?}");
+    assert!(
+        (forces[2] - matched).abs() < 1e-4 * matched.abs(),
+        "{forces:?}"
+    );
+    // Mesh convergence of the clamp force (multipliers).
+    let mut forces = Vec::new();
+    for k in [1usize, 2, 4] {
+        let tb = TwoBeams {
+            nx: 20 * k,
+            ny: 2 * k,
+            ..base
+        };
+        let r = two_beams(&tb, false);
+        println!("nx {} ny {}: clamp force {:.6}", tb.nx, tb.ny, r.upper[1]);
+        forces.push(r.upper[1]);
+    }
+    assert!(
+        (forces[2] - forces[1]).abs() < 0.35 * (forces[1] - forces[0]).abs(),
+        "not converging as h²: {forces:?}"
+    );
 }

@@ -7,7 +7,7 @@
 use crate::assembly::Assembler;
 pub mod mesh;
 pub mod suite;
-pub mod verify3d;
+pub mod verify;
 
 use crate::error::{Error, Result};
 use crate::fem::shape::HEXA8_CORNERS;

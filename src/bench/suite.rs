@@ -125,6 +125,8 @@ struct TwoBlocks {
     nlgeo: bool,
     drive: Drive,
     steps: Vec<f64>,
+    /// Also the master's top nodes on the slave's bottom edges (two-pass).
+    two_pass: bool,
 }
 
 impl TwoBlocks {
@@ -144,6 +146,7 @@ impl TwoBlocks {
                 side: 0.0,
             },
             steps: vec![1.0],
+            two_pass: false,
         }
     }
 
@@ -193,6 +196,15 @@ impl TwoBlocks {
             }
         }
         inp.bcs.push(n2s(3, law, &slave.bottom, &[1], ""));
+        if self.two_pass {
+            inp.segments.push(format!(
+                "linear2delementedgecontactsegment 2 edgeset {}",
+                inp.sets.len() + 1
+            ));
+            inp.boundary_set(&slave.bottom_edges);
+            let number = inp.bcs.len() + 1;
+            inp.bcs.push(n2s(number, law, &master.top, &[2], ""));
+        }
         inp.functions.push(history(&self.steps));
         inp.functions.push("ConstantFunction 2 f(t) 1.0".into());
         let domain = if self.kind == Kind::Q8 {
@@ -497,6 +509,26 @@ pub fn setups() -> Vec<Setup> {
         "flush",
         TwoBlocks {
             nxs: 7,
+            ..base.clone()
+        },
+    );
+    // Two-pass: each block's nodes on the other's edges (the constraints of coincident nodes
+    // repeat each other).
+    blocks(
+        "two-pass, flush",
+        "two-pass",
+        TwoBlocks {
+            two_pass: true,
+            ..base.clone()
+        },
+    );
+    blocks(
+        "two-pass, non-matching, force",
+        "two-pass",
+        TwoBlocks {
+            nxs: 7,
+            two_pass: true,
+            drive: Drive::Force(20.0),
             ..base.clone()
         },
     );

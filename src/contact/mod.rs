@@ -64,6 +64,11 @@ pub struct SlotState {
     pub active: bool,
     /// Current node position.
     pub x: [f64; 3],
+    /// Boundary weight of the contact point (1 on its partner, less past an open end or edge).
+    pub weight: f64,
+    /// Its constraint repeats one of another condition (two-pass contact with multipliers) and
+    /// is dropped.
+    pub repeated: bool,
 }
 
 /// How partners are found in an evaluation.
@@ -215,6 +220,10 @@ pub trait Formulation {
     fn candidate_nodes(&self, ctx: &Ctx) -> Result<Vec<usize>>;
     /// Whether its tangent is symmetric (B = ∇g at every contact point).
     fn symmetric(&self) -> bool;
+    /// The master nodes of a partner (an edge's or a face's nodes; none for others).
+    fn partner_nodes(&self, _partner: Partner) -> &[usize] {
+        &[]
+    }
     /// Evaluate every slot at `ctx`; `first_lambda` is the equation of its first multiplier.
     /// Returns the seconds spent searching partners.
     fn evaluate(
@@ -378,10 +387,113 @@ impl ContactSystem {
             lambda += f.n_multipliers();
             slot += n;
         }
+        let previous = match search {
+            Search::Fresh => None,
+            Search::Hint(s) | Search::Frozen(s) => Some(s),
+        };
+        self.drop_repeated_constraints(&mut points, &mut states, previous);
         let mut clock = self.clock.lock().expect("clock");
         clock.0 += searching;
         clock.1 += start.elapsed().as_secs_f64();
         Ok((points, states))
+    }
+}
+
+impl ContactSystem {
+    /// Two-pass contact: where a node a of one condition meets the other surface at (nearly) the
+    /// place of a node b of it, and b meets a's surface near a, both constraints hold the same
+    /// motion. Multipliers cannot share it (the constraints are dependent or nearly so, and
+    /// Newton's active set chatters between them); a penalty would double its stiffness there,
+    /// and in the limit of a large penalty over-constrain the surfaces as the multipliers would.
+    /// So one of the two is dropped, for both laws alike (the penalty answer then tends to the
+    /// multipliers' one): it exerts no force (its multiplier is held at zero), and its node
+    /// penetrates the other surface by at most a second-order amount. "Nearly": a is closer to b than a quarter of the distance
+    /// from b to its nearest neighbour on its surface (a third, if the pair was one at the
+    /// previous state: a band, so that a pair at the limit does not alternate). The one dropped
+    /// is the one past an open end of its partner (a node beside a corner, whose constraint is
+    /// the extension of the surface) when the other lies on its partner (the corner on the
+    /// surface); else the one of the condition listed later, or the one dropped before. Pairs
+    /// are formed closest first, each node in one pair at most.
+    fn drop_repeated_constraints(
+        &self,
+        points: &mut [ContactPoint],
+        states: &mut [SlotState],
+        previous: Option<&[SlotState]>,
+    ) {
+        // The formulation of every slot.
+        let mut owner: Vec<usize> = Vec::with_capacity(states.len());
+        for (f, form) in self.formulations.iter().enumerate() {
+            owner.extend(std::iter::repeat_n(f, form.n_slots()));
+        }
+        let mut by_node: std::collections::HashMap<usize, Vec<usize>> = Default::default();
+        for (k, s) in states.iter().enumerate() {
+            if s.partner != Partner::None && points[k].can_close() {
+                by_node.entry(s.node).or_default().push(k);
+            }
+        }
+        if by_node.len() < 2 {
+            return;
+        }
+        let dist = |a: &[f64; 3], b: &[f64; 3]| {
+            ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+        };
+        let was_repeated = |k: usize| previous.and_then(|p| p.get(k)).is_some_and(|p| p.repeated);
+        // Candidate pairs (distance, i, j), i of the earlier condition.
+        let mut pairs = Vec::new();
+        for (i, &fi) in owner.iter().enumerate() {
+            if states[i].partner == Partner::None || !points[i].can_close() {
+                continue;
+            }
+            let partner = self.formulations[fi].partner_nodes(states[i].partner);
+            for &b in partner {
+                for &j in by_node.get(&b).into_iter().flatten() {
+                    let fj = owner[j];
+                    let back = self.formulations[fj].partner_nodes(states[j].partner);
+                    if fj <= fi || !back.contains(&states[i].node) {
+                        continue;
+                    }
+                    // b's nearest neighbour on its own surface (a's partner nodes other than b).
+                    let xb = states[j].x;
+                    let spacing = partner
+                        .iter()
+                        .filter(|&&n| n != b)
+                        .filter_map(|&n| by_node.get(&n).map(|v| states[v[0]].x))
+                        .map(|x| dist(&x, &xb))
+                        .fold(f64::INFINITY, f64::min);
+                    let before = was_repeated(i) || was_repeated(j);
+                    let limit = if before { 1.0 / 3.0 } else { 0.25 };
+                    let d = dist(&states[i].x, &xb);
+                    if d < limit * spacing {
+                        pairs.push((d, i, j));
+                    }
+                }
+            }
+        }
+        pairs.sort_by(|p, q| p.0.total_cmp(&q.0));
+        let mut used = vec![false; states.len()];
+        for (_, i, j) in pairs {
+            if used[i] || used[j] {
+                continue;
+            }
+            used[i] = true;
+            used[j] = true;
+            let beside = |k: usize| states[k].weight < 1.0;
+            let drop = if was_repeated(i) && !was_repeated(j) {
+                i
+            } else if was_repeated(j) && !was_repeated(i) {
+                j
+            } else if beside(i) && !beside(j) {
+                i
+            } else {
+                j
+            };
+            points[drop].disable();
+            let s = &mut states[drop];
+            s.active = false;
+            s.force = 0.0;
+            s.pressure = 0.0;
+            s.repeated = true;
+        }
     }
 }
 

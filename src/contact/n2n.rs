@@ -138,6 +138,8 @@ impl Formulation for NodeToNode {
                 pressure: 0.0,
                 active: false,
                 x: ctx.position(p.slave)?.0,
+                weight: 1.0,
+                repeated: false,
             };
             points.push(apply_law(
                 ctx, self.law, lambda_eq, &local, &kin, p.area, &mut state,

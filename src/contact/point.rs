@@ -39,6 +39,13 @@ pub struct ContactPoint {
 }
 
 impl ContactPoint {
+    /// Take the closed branch away: the point exerts no force (a multiplier is held at zero).
+    pub fn disable(&mut self) {
+        self.closed_fe.clear();
+        self.closed_ke.clear();
+        self.closed = false;
+    }
+
     /// Whether the point has a closed branch at all.
     pub fn can_close(&self) -> bool {
         !self.closed_fe.is_empty()

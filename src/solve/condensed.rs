@@ -21,19 +21,23 @@
 //! prediction and the dense system solved again, until prediction and choice agree (a
 //! primal-dual active-set search on the linear model: see `contact::point`).
 
+use super::branches::BranchSearch;
 use super::linear::LinearSolver;
 use crate::assembly::{DofMap, Pattern};
 use crate::contact::ContactPoint;
 use crate::error::{Error, Result};
 use faer::linalg::solvers::{DenseSolveCore, Solve};
 use faer::Mat;
-use std::collections::HashSet;
 
 /// Largest candidate set handled densely (M is m × m).
 pub const MAX_CANDIDATES: usize = 3000;
 
+/// Compliance added to the rows of active multipliers in the dense system, relative to the
+/// structure's mean compliance on the contact equations (see [`CondensedContact::step`]).
+pub const REDUNDANCY_COMPLIANCE: f64 = 1e-10;
+
 /// Largest number of branch updates in one step.
-const MAX_BRANCH_UPDATES: usize = 30;
+const MAX_BRANCH_UPDATES: usize = 60;
 
 pub struct CondensedContact {
     base: LinearSolver,
@@ -205,8 +209,7 @@ impl CondensedContact {
             .map(|p| [p.branch(false).1, p.branch(true).1])
             .collect();
         let mut closed: Vec<bool> = points.iter().map(|p| p.closed).collect();
-        let mut seen: HashSet<Vec<bool>> = HashSet::new();
-        let mut updates = 0;
+        let mut search = BranchSearch::new(MAX_BRANCH_UPDATES);
         loop {
             // Equations of the dense system: those of closed points and the shifted ones.
             let mut in_a = vec![usize::MAX; mdim];
@@ -270,6 +273,24 @@ impl CondensedContact {
                     }
                 }
             }
+            // Active multipliers may constrain the same motion twice (a node in two conditions
+            // on the same surface): their rows of the dense system are then dependent. A
+            // compliance 1e-10 times the structure's on their diagonal keeps it regular (the
+            // dependent multipliers share the force); only the step is regularized, not the
+            // residual, so Newton still converges to the exact constraints.
+            let flex: Vec<f64> = a
+                .iter()
+                .filter(|&&k| !self.is_lambda(k, dofs))
+                .map(|&k| self.m[(k, k)])
+                .collect();
+            if !flex.is_empty() {
+                let eps = REDUNDANCY_COMPLIANCE * flex.iter().sum::<f64>() / flex.len() as f64;
+                for &k in &a {
+                    if self.is_lambda(k, dofs) {
+                        c[(in_a[k], in_a[k])] -= eps;
+                    }
+                }
+            }
             // w_c = (K_s⁻¹(r + Pᵀδ))_c; on A the stiffness form of Woodbury's identity,
             //   (S_A + C) Δu_A = S_A w_A,  S_A = (M_AA)⁻¹ (the Schur complement of K_s on A),
             // keeps a large penalty from amplifying round-off; the contact force increment is
@@ -318,13 +339,12 @@ impl CondensedContact {
                 })
                 .collect();
             let settled = predicted == closed;
-            seen.insert(closed.clone());
-            if !settled && updates < MAX_BRANCH_UPDATES && !seen.contains(&predicted) {
-                closed = predicted;
-                updates += 1;
+            if let Some(next) = search.next(&closed, &predicted) {
+                closed = next;
                 continue;
             }
             let cycled = !settled;
+            let updates = search.updates;
             // The whole step: Δu = w + K_s⁻¹ (δ − Pᵀ C Δu_A).
             let mut z = vec![0.0; nf];
             for (k, &e) in self.cand.iter().enumerate() {

@@ -1,5 +1,6 @@
 //! Linear solvers, the condensed contact solve and the Newton/load-stepping driver.
 
+pub mod branches;
 pub mod condensed;
 pub mod linear;
 pub mod newton;

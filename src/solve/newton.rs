@@ -13,6 +13,7 @@
 //! stops gaining on a residual within that floor, the step is as converged as double precision
 //! allows (a warning then says the penalty is larger than double precision resolves).
 
+use super::branches::BranchSearch;
 use super::condensed::CondensedContact;
 use super::linear::LinearSolver;
 use super::stepping::PhaseTimes;
@@ -263,8 +264,7 @@ impl NewtonContext<'_> {
         let ks = self.asm.evaluate(u, true, false, None, &[])?;
         self.times.assembly += since(t);
         let mut closed: Vec<bool> = points.iter().map(|p| p.closed).collect();
-        let mut seen = std::collections::HashSet::new();
-        let mut updates = 0;
+        let mut search = BranchSearch::new(MAX_FULL_UPDATES);
         loop {
             let mut kv = ks.k_values.clone().expect("requested");
             let mut step = rhs.clone();
@@ -311,12 +311,10 @@ impl NewtonContext<'_> {
                     p.predicts_closed(&dq)
                 })
                 .collect();
-            seen.insert(closed.clone());
-            if predicted == closed || updates >= MAX_FULL_UPDATES || seen.contains(&predicted) {
-                return Ok((step, updates));
+            match search.next(&closed, &predicted) {
+                Some(next) => closed = next,
+                None => return Ok((step, search.updates)),
             }
-            closed = predicted;
-            updates += 1;
         }
     }
 

@@ -103,6 +103,9 @@ impl NodeToSegment {
         let (out, _) = geom.end_direction(e);
         let (x0, x1) = (geom.x[0], geom.x[1]);
         let isolated = ISOLATED_RAMP * ((x1[0] - x0[0]).powi(2) + (x1[1] - x0[1]).powi(2)).sqrt();
+        if self.covered.contains(&self.edges.edges[k].nodes[e]) {
+            return (isolated, 0.0);
+        }
         extents(
             slot,
             model.nodes[slot.node].coords,

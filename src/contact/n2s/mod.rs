@@ -71,6 +71,14 @@ pub struct NodeToSegment {
     dim: usize,
     /// Gap difference (a length) within which a previous partner counts as tied.
     tie: f64,
+    /// Contact nodes of the model's other node-to-segment conditions. An open end (edge) of
+    /// this condition's master made of them is held by the other condition (two-pass contact:
+    /// the corner meets this condition's nodes' surface there), so the master does not continue
+    /// past it (the extension would hold the other body's surface on this one's tangent beyond
+    /// the corner, a constraint that is not there): the weight falls from 1 to 0 within
+    /// `ISOLATED_RAMP` of an edge length past it, whatever the node's tributary extents, which
+    /// keeps coincident corners (flush bodies) continuous.
+    covered: std::collections::HashSet<usize>,
 }
 
 /// The master surface at the current state: positions of its nodes, the broad phases of its
@@ -202,6 +210,17 @@ impl NodeToSegment {
             rigid_nodes,
             dim: model.domain.nsd(),
             tie: 1e-9 * super::model_size(model),
+            covered: model
+                .contacts
+                .iter()
+                .enumerate()
+                .filter(|&(k, _)| k != ci)
+                .filter_map(|(_, c)| match &c.pairing {
+                    Pairing::NodeToSegment { nodes, .. } => Some(nodes.iter().copied()),
+                    _ => None,
+                })
+                .flatten()
+                .collect(),
         })
     }
 
@@ -348,6 +367,14 @@ impl Formulation for NodeToSegment {
         Ok(out)
     }
 
+    fn partner_nodes(&self, partner: Partner) -> &[usize] {
+        match partner {
+            Partner::Edge(k) => &self.edges.edges[k].nodes,
+            Partner::Face(k) => &self.faces.faces[k].nodes,
+            _ => &[],
+        }
+    }
+
     fn symmetric(&self) -> bool {
         // B = ∇g only for the exact closest point on a rigid shape along its own normal.
         self.edges.edges.is_empty() && self.faces.faces.is_empty() && self.normal.is_none()
@@ -397,6 +424,8 @@ impl Formulation for NodeToSegment {
                 pressure: 0.0,
                 active: false,
                 x: ctx.position(slot.node)?.0,
+                weight: 1.0,
+                repeated: false,
             };
             let (local, kin) = match chosen {
                 Some(c) => {
@@ -425,6 +454,7 @@ impl Formulation for NodeToSegment {
             };
             if chosen.is_some() {
                 state.gap = kin.gap.v;
+                state.weight = kin.weight.v;
             }
             points.push(apply_law(
                 ctx, self.law, lambda_eq, &local, &kin, slot.area, &mut state,

@@ -1,4 +1,4 @@
-//! 3D contact verification problems, generated for any element kind (hexahedra, tetrahedra,
+//! Contact verification problems: 3D ones generated for any element kind (hexahedra, tetrahedra,
 //! wedges) and any node order (a cube symmetry applied to every element, see
 //! [`super::mesh::cube_symmetry`]), so that a test can run each in every orientation.
 
@@ -217,5 +217,101 @@ impl HertzSphere {
         inp.functions.push(history(&[1.0]));
         inp.functions.push("ConstantFunction 2 f(t) 1.0".into());
         inp.render("hertz3d", &analysis(1), "3d")
+    }
+}
+
+/// The seed's two beams, point-symmetric: a lower beam [0, L] × [0, H] clamped at x = 0 and an
+/// upper beam [S, S + L] × [H + G, 2H + G] clamped at x = S + L, plane strain, neo-Hookean,
+/// large deformation. A force at each free end (spread over its nodes, in `steps` equal steps)
+/// bends the beams towards each other: the lower beam's free end rises and the upper beam's
+/// falls until each end's corner presses on the other beam. Two node-to-segment conditions with
+/// the roles swapped (two-pass): the upper beam's bottom nodes on the lower beam's top edges, and
+/// the lower beam's top nodes on the upper beam's bottom edges; each corner is caught by the
+/// pass in which it is a contact node. Turning the model by 180° about its centre swaps the
+/// beams and the passes: the answer is the same.
+#[derive(Debug, Clone, Copy)]
+pub struct TwoBeams {
+    /// Elements along each beam and through its depth.
+    pub nx: usize,
+    pub ny: usize,
+    /// Elements along the upper beam, if other than `nx` (non-matching meshes).
+    pub nx_upper: Option<usize>,
+    /// The force on each free end.
+    pub force: f64,
+    pub steps: usize,
+    pub law: Law,
+    /// Both passes (else only the first: upper beam's nodes on the lower beam).
+    pub two_pass: bool,
+}
+
+/// Length, depth, overlap offset and gap of [`TwoBeams`].
+pub const BEAM_L: f64 = 10.0;
+pub const BEAM_H: f64 = 1.0;
+pub const BEAM_S: f64 = 2.0;
+pub const BEAM_G: f64 = 0.5;
+
+impl TwoBeams {
+    pub fn input(&self) -> String {
+        use super::mesh::Kind;
+        let mut inp = Input::default();
+        let extra = "mat 1 crossSect 1 nlgeo 1";
+        let lower = inp.block2d(
+            Kind::Q4,
+            &uniform(0.0, BEAM_L, self.nx),
+            &|_| uniform(0.0, BEAM_H, self.ny),
+            extra,
+        );
+        let upper = inp.block2d(
+            Kind::Q4,
+            &uniform(BEAM_S, BEAM_S + BEAM_L, self.nx_upper.unwrap_or(self.nx)),
+            &|_| uniform(BEAM_H + BEAM_G, 2.0 * BEAM_H + BEAM_G, self.ny),
+            extra,
+        );
+        let lower_edges = inp.boundary_set(&lower.top_edges);
+        let upper_edges = inp.boundary_set(&upper.bottom_edges);
+        inp.segments.push(format!(
+            "linear2delementedgecontactsegment 1 edgeset {lower_edges}"
+        ));
+        inp.segments.push(format!(
+            "linear2delementedgecontactsegment 2 edgeset {upper_edges}"
+        ));
+        inp.sections.push("SimpleCS 1 thick 1.0".into());
+        inp.materials.push(neo_hookean(1));
+        let at_x = |x: f64| move |p: [f64; 3]| (p[0] - x).abs() < 1e-12;
+        let upper_clamp = inp.nodes_where(&at_x(BEAM_S + BEAM_L));
+        let (lower_end, upper_end): (Vec<usize>, Vec<usize>) = (
+            inp.nodes_where(&at_x(BEAM_L))
+                .into_iter()
+                .filter(|&n| inp.nodes[n - 1][1] < BEAM_H + 1e-9)
+                .collect(),
+            inp.nodes_where(&at_x(BEAM_S))
+                .into_iter()
+                .filter(|&n| inp.nodes[n - 1][1] > BEAM_H + 1e-9)
+                .collect(),
+        );
+        let clamps = [lower.left.clone(), upper_clamp].concat();
+        let clamps = inp.node_set(&clamps);
+        inp.bcs.push(format!(
+            "BoundaryCondition 1 loadTimeFunction 2 dofs 2 1 2 values 2 0 0 set {clamps}"
+        ));
+        for (k, (nodes, sign)) in [(lower_end, 1.0), (upper_end, -1.0)].iter().enumerate() {
+            let set = inp.node_set(nodes);
+            inp.bcs.push(format!(
+                "NodalLoad {} loadTimeFunction 1 dofs 2 1 2 components 2 0 {} set {set}",
+                k + 2,
+                sign * self.force / nodes.len() as f64
+            ));
+        }
+        let k = inp.bcs.len();
+        inp.bcs.push(n2s(k + 1, self.law, &upper.bottom, &[1], ""));
+        if self.two_pass {
+            inp.bcs.push(n2s(k + 2, self.law, &lower.top, &[2], ""));
+        }
+        let steps: Vec<f64> = (1..=self.steps)
+            .map(|k| k as f64 / self.steps as f64)
+            .collect();
+        inp.functions.push(history(&steps));
+        inp.functions.push("ConstantFunction 2 f(t) 1.0".into());
+        inp.render("two_beams", &analysis(self.steps), "PlaneStrain")
     }
 }
