@@ -50,8 +50,9 @@ fn compare(multipliers: bool) {
     })
     .unwrap()
     .expect("supernodal with trailing candidates");
+    let guess: Vec<bool> = points.iter().map(|p| p.closed).collect();
     let step = cc
-        .step(&rhs, &points, &dofs)
+        .step(&rhs, &points, &guess, &dofs)
         .unwrap()
         .expect("all points on candidates");
 

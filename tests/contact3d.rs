@@ -79,6 +79,7 @@ fn patch_test_transmits_the_exact_uniform_pressure() {
         for nlgeo in [false, true] {
             let patch = |law| Patch {
                 kind,
+                slave_kind: None,
                 sym,
                 n: 2,
                 nlgeo,
@@ -359,4 +360,200 @@ fn two_beams_in_two_pass_contact() {
         (forces[2] - forces[1]).abs() < 0.35 * (forces[1] - forces[0]).abs(),
         "not converging as h²: {forces:?}"
     );
+}
+
+/// The elastic cylinder on a block, extruded in 3D with plane-strain constraints (every node held
+/// in the depth direction): node-to-face gives the 2D node-to-segment force per unit depth, with
+/// hexahedra numbered so that each of their six face numbers is on the contact surfaces. With
+/// multipliers to 1e-9 (the same discrete problem); with a penalty within its error, 1e-4 (a
+/// penalty acts per node, and three node rows share the depth: a different penalty per area).
+#[test]
+fn extruded_cylinder_matches_the_2d_section() {
+    use hertz::bench::suite::cylinder_on_block;
+    use hertz::bench::verify::ExtrudedCylinder;
+    let h = 0.1;
+    for law in [Law::Multiplier, Law::Penalty(1e6)] {
+        let (states2d, _) = solve(&cylinder_on_block(h, law, false));
+        let f2d: f64 = states2d.iter().map(|s| s.force).sum();
+        for sym in orientations() {
+            let text = ExtrudedCylinder { sym, h, ny: 2, law }.input();
+            let (states, its) = solve(&text);
+            let f3d: f64 = states.iter().map(|s| s.force).sum();
+            println!(
+                "{law:?} sym {sym}: force per depth {f3d:.8} (2D {f2d:.8}), iterations {its:?}"
+            );
+            let tol = if law == Law::Multiplier { 1e-9 } else { 1e-4 };
+            assert!(
+                (f3d - f2d).abs() < tol * f2d,
+                "{law:?} sym {sym}: {f3d} vs {f2d}"
+            );
+            assert!(its[0] <= 3, "{its:?}");
+        }
+    }
+}
+
+/// The seed's wedge pressed onto a brick (one LWedge on one LSpace, small and large
+/// deformation): the reactions balance (1e-8), the contact force equals the force on the wedge's
+/// top, the brick's node order (each face number on top) changes nothing (1e-10), and the
+/// penalty gives the multipliers' force within its own error. A block of wedges (triangular faces
+/// down) on a block of bricks, nested meshes, transmits the exact uniform pressure (multipliers
+/// to round-off).
+#[test]
+fn wedge_pressed_onto_a_brick() {
+    use hertz::bench::verify::WedgeOnBrick;
+    for nlgeo in [false, true] {
+        let mut forces = Vec::new();
+        for law in [Law::Multiplier, Law::Penalty(1e6)] {
+            for sym in orientations() {
+                let wb = WedgeOnBrick {
+                    sym,
+                    delta: if nlgeo { 0.1 } else { 0.01 },
+                    nlgeo,
+                    steps: if nlgeo { 2 } else { 1 },
+                    law,
+                };
+                let model = common::model_from_text(&wb.input()).unwrap();
+                let top: Vec<usize> = (0..model.nodes.len())
+                    .filter(|&n| (model.nodes[n].coords[2] - 1.5).abs() < 1e-12)
+                    .collect();
+                let mut out = (0.0, 0.0, 0.0, 0);
+                run_analysis(
+                    &model,
+                    &SolveParams {
+                        log_steps: false,
+                        max_cutbacks: 0,
+                        ..Default::default()
+                    },
+                    |r| {
+                        let mut sum = 0.0;
+                        let mut on_top = 0.0;
+                        for (&(n, d, _), &f) in r.dofs.prescribed.iter().zip(r.reactions) {
+                            if d == 3 {
+                                sum += f;
+                                if top.contains(&n) {
+                                    on_top += f;
+                                }
+                            }
+                        }
+                        let contact: f64 = r.contact.iter().map(|c| c.force).sum();
+                        out = (sum, on_top, contact, out.3.max(r.info.iterations));
+                        Ok(())
+                    },
+                )
+                .unwrap();
+                let (sum, on_top, contact, its) = out;
+                let name = format!("nlgeo {nlgeo} {law:?} sym {sym}");
+                assert!(
+                    sum.abs() < 1e-8 * on_top.abs(),
+                    "{name}: reactions sum to {sum}"
+                );
+                // Small strain: the force acts along the brick's reference normal (z).
+                if !nlgeo {
+                    assert!(
+                        (contact + on_top).abs() < 1e-8 * contact,
+                        "{name}: contact {contact} vs top {on_top}"
+                    );
+                }
+                assert!(its <= 4, "{name}: {its} iterations");
+                forces.push((law, -on_top));
+            }
+        }
+        let lm = forces[0].1;
+        for &(law, f) in &forces {
+            let tol = if law == Law::Multiplier { 1e-10 } else { 1e-3 };
+            assert!(
+                (f - lm).abs() < tol * lm,
+                "nlgeo {nlgeo} {law:?}: {f} vs {lm}"
+            );
+        }
+        println!(
+            "wedge on brick, nlgeo {nlgeo}: force {lm:.6} (penalty {:.6})",
+            forces[6].1
+        );
+        // Wedges (triangles down) on bricks, nested meshes: the exact uniform pressure.
+        let p = Patch {
+            kind: Solid::Hex,
+            slave_kind: Some(Solid::Wedge),
+            sym: 0,
+            n: 2,
+            nlgeo,
+            delta: if nlgeo { 0.2 } else { 0.01 },
+            steps: if nlgeo { 4 } else { 1 },
+            law: Law::Multiplier,
+        };
+        let exact = if nlgeo {
+            -uniaxial_stress(&neo_hookean_law(), 0.8).1
+        } else {
+            E * 0.01 / (2.0 * PATCH_H)
+        };
+        let (states, _) = solve(&p.input());
+        let err = pressure_error(&states, exact);
+        assert!(
+            err < 1e-12,
+            "wedges on bricks, nlgeo {nlgeo}: pressure off by {err:e}"
+        );
+    }
+}
+
+/// Large sliding in 2D: a block pressed onto a circular bump (R = 10) and dragged from its
+/// summit down the side, 2.5 in 25 steps (ten master vertices, a tilt of 15°), large deformation,
+/// penalty and multipliers. Every step converges, quadratically at the end (the last residual
+/// below the square of the one before it, as far as round-off allows), in at most 3 (multipliers)
+/// or 5 (penalty) iterations; the contact is frictionless, so the drag force is the press force
+/// times the slope of the bump under the contact's centre, within 0.1 %.
+#[test]
+fn large_sliding_over_a_curved_master() {
+    use hertz::bench::verify::{LargeSliding, SLIDE_R};
+    let force = 20.0;
+    for (law, most) in [(Law::Multiplier, 3), (Law::Penalty(1e5), 5)] {
+        let ls = LargeSliding {
+            nx: 32,
+            travel: 2.5,
+            force,
+            steps: 25,
+            law,
+        };
+        let model = common::model_from_text(&ls.input()).unwrap();
+        let mut steps = 0;
+        run_analysis(
+            &model,
+            &SolveParams {
+                log_steps: false,
+                max_cutbacks: 0,
+                ..Default::default()
+            },
+            |r| {
+                steps += 1;
+                let name = format!("{law:?} step {}", r.step);
+                let h = &r.info.residual_history;
+                assert!(r.info.iterations <= most, "{name}: {h:?}");
+                let (a, b) = (h[h.len() - 2], h[h.len() - 1]);
+                assert!(
+                    b < 1e-11 || b.log10() <= 1.6 * a.log10(),
+                    "{name}: not quadratic: {h:?}"
+                );
+                // The drag: the x reactions of the block's top.
+                let drag: f64 = r
+                    .dofs
+                    .prescribed
+                    .iter()
+                    .zip(r.reactions)
+                    .filter(|((n, d, _), _)| *d == 1 && model.nodes[*n].coords[1] > 0.4)
+                    .map(|(_, f)| f)
+                    .sum();
+                let active: Vec<_> = r.contact.iter().filter(|c| c.active).collect();
+                let total: f64 = active.iter().map(|c| c.force).sum();
+                let xc = active.iter().map(|c| c.force * c.x[0]).sum::<f64>() / total;
+                let slope = -(xc - 4.0) / (SLIDE_R * SLIDE_R - (xc - 4.0).powi(2)).sqrt();
+                assert!(
+                    (drag - force * slope).abs() < 1e-3 * force * slope.abs().max(0.01),
+                    "{name}: drag {drag} vs {}",
+                    force * slope
+                );
+                Ok(())
+            },
+        )
+        .unwrap();
+        assert_eq!(steps, 25);
+    }
 }

@@ -373,10 +373,17 @@ fn against_rigid(
     )
 }
 
+/// Radius, indentation, block width and depth, and cap size of [`cylinder_on_block`].
+pub const CYL_R: f64 = 20.0;
+pub const CYL_DELTA: f64 = 0.022;
+pub const CYL_W: f64 = 6.0;
+pub const CYL_DEPTH: f64 = 6.0;
+pub const CYL_CAP: f64 = 4.0;
+
 /// An elastic cylinder (the cap of radius `r` within x ≤ 3) on an elastic block, half model,
 /// plane strain, fine spacing h under the contact; the cap's flat top pushed down by `delta`.
 pub fn cylinder_on_block(h: f64, law: Law, nlgeo: bool) -> String {
-    let (r, delta, w, depth, wc, hc) = (20.0, 0.022, 6.0, 6.0, 4.0, 4.0);
+    let (r, delta, w, depth, wc, hc) = (CYL_R, CYL_DELTA, CYL_W, CYL_DEPTH, CYL_CAP, CYL_CAP);
     let extra = if nlgeo { "nlgeo 1" } else { "" };
     let mut inp = Input::default();
     let xs = graded(w, h, 1.0, 1.2);

@@ -26,7 +26,9 @@ pub fn neo_hookean(number: usize) -> String {
 /// node carries the nominal stress times its tributary area.
 #[derive(Debug, Clone, Copy)]
 pub struct Patch {
+    /// Element kind of the master block, and of the slave block if `slave_kind` is None.
     pub kind: Solid,
+    pub slave_kind: Option<Solid>,
     pub sym: usize,
     pub n: usize,
     pub nlgeo: bool,
@@ -313,5 +315,225 @@ impl TwoBeams {
         inp.functions.push(history(&steps));
         inp.functions.push("ConstantFunction 2 f(t) 1.0".into());
         inp.render("two_beams", &analysis(self.steps), "PlaneStrain")
+    }
+}
+
+/// The elastic cylinder on a block of [`super::suite::cylinder_on_block`] (plane strain, half
+/// model, spacing h under the contact) extruded to a unit depth along y in 3D, with every node
+/// held in y (plane strain): node-to-face from the cap's bottom nodes to the block's top faces.
+/// The force per unit depth is the 2D node-to-segment force.
+#[derive(Debug, Clone, Copy)]
+pub struct ExtrudedCylinder {
+    pub sym: usize,
+    pub h: f64,
+    /// Elements through the depth.
+    pub ny: usize,
+    pub law: Law,
+}
+
+impl ExtrudedCylinder {
+    pub fn input(&self) -> String {
+        use super::mesh::graded;
+        use super::suite::{CYL_CAP, CYL_DELTA, CYL_DEPTH, CYL_R, CYL_W};
+        let (h, r) = (self.h, CYL_R);
+        let mut inp = Input::default();
+        let extra = "mat 1 crossSect 1";
+        let xs = graded(CYL_W, h, 1.0, 1.2);
+        let zs: Vec<f64> = graded(CYL_DEPTH, h, 0.5, 1.2)
+            .iter()
+            .rev()
+            .map(|d| -d)
+            .collect();
+        let depth = uniform(0.0, 1.0, self.ny);
+        let block = inp.solid3d(Solid::Hex, &xs, &depth, &zs, extra, self.sym);
+        let xc = graded(CYL_CAP, h, 1.0, 1.2);
+        let hcs = graded(CYL_CAP, h, 0.5, 1.2);
+        let cap = inp.solid3d(Solid::Hex, &xc, &depth, &hcs, extra, self.sym);
+        for id in cap.nodes.0..=cap.nodes.1 {
+            let p = &mut inp.nodes[id - 1];
+            let zb = r - (r * r - p[0] * p[0]).sqrt();
+            p[2] = zb + p[2] * (CYL_CAP - zb) / CYL_CAP;
+        }
+        let faces = inp.faces_where(&block, &|p| p[2].abs() < 1e-12);
+        let seg = inp.boundary_set(&faces);
+        inp.segments.push(format!(
+            "linear3delementsurfacecontactsegment 1 boundaryset {seg}"
+        ));
+        inp.sections.push("SimpleCS 1".into());
+        inp.materials
+            .push(format!("IsoLE 1 d 0 E {E} n {NU} tAlpha 0"));
+        let all: Vec<usize> = (1..=inp.nodes.len()).collect();
+        let x0 = inp.nodes_where(&|p| p[0].abs() < 1e-12);
+        let (all, x0) = (inp.node_set(&all), inp.node_set(&x0));
+        let bottom = inp.node_set(&block.bottom);
+        let top = inp.node_set(&cap.top);
+        for (k, (dof, set, value)) in [
+            (2, all, 0.0),
+            (1, x0, 0.0),
+            (3, bottom, 0.0),
+            (3, top, -CYL_DELTA),
+        ]
+        .iter()
+        .enumerate()
+        {
+            let f = if *value == 0.0 { 2 } else { 1 };
+            inp.bcs.push(format!(
+                "BoundaryCondition {} loadTimeFunction {f} dofs 1 {dof} values 1 {value} set {set}",
+                k + 1
+            ));
+        }
+        let contact: Vec<usize> = cap
+            .bottom
+            .iter()
+            .copied()
+            .filter(|&n| inp.nodes[n - 1][0] <= 1.2)
+            .collect();
+        inp.bcs.push(n2s(5, self.law, &contact, &[1], ""));
+        inp.functions.push(history(&[1.0]));
+        inp.functions.push("ConstantFunction 2 f(t) 1.0".into());
+        inp.render("cylinder3d", &analysis(1), "3d")
+    }
+}
+
+/// The seed's wedge pressed onto a brick: one LSpace [0, 1]³ held at its bottom (rollers, one
+/// corner pinned) and one LWedge above it, its triangle (0.2, 0.2), (0.8, 0.3), (0.4, 0.8) resting
+/// on the brick's top at z = 1 and its top triangle at z = 1.5 moved down by `delta` (and held
+/// sideways). Node-to-face from the wedge's three bottom nodes to the brick's top face.
+#[derive(Debug, Clone, Copy)]
+pub struct WedgeOnBrick {
+    /// Cube symmetry of the brick's node order.
+    pub sym: usize,
+    pub delta: f64,
+    pub nlgeo: bool,
+    pub steps: usize,
+    pub law: Law,
+}
+
+impl WedgeOnBrick {
+    pub fn input(&self) -> String {
+        let mut inp = Input::default();
+        let extra = format!("mat 1 crossSect 1 nlgeo {}", u8::from(self.nlgeo));
+        let brick = inp.solid3d(
+            Solid::Hex,
+            &[0.0, 1.0],
+            &[0.0, 1.0],
+            &[0.0, 1.0],
+            &extra,
+            self.sym,
+        );
+        let tri = [[0.2, 0.2], [0.8, 0.3], [0.4, 0.8]];
+        let bottom: Vec<usize> = tri.iter().map(|p| inp.node(p[0], p[1], 1.0)).collect();
+        let top: Vec<usize> = tri.iter().map(|p| inp.node(p[0], p[1], 1.5)).collect();
+        let ids: Vec<String> = bottom.iter().chain(&top).map(|n| n.to_string()).collect();
+        inp.elements.push(format!(
+            "LWedge {} nodes 6 {} {extra}",
+            inp.elements.len() + 1,
+            ids.join(" ")
+        ));
+        let mut cells = bottom.clone();
+        cells.extend(&top);
+        inp.cells.push((crate::fem::shape::Shape::Wedge6, cells));
+        let faces = inp.faces_where(&brick, &|p| (p[2] - 1.0).abs() < 1e-12);
+        let seg = inp.boundary_set(&faces);
+        inp.segments.push(format!(
+            "linear3delementsurfacecontactsegment 1 boundaryset {seg}"
+        ));
+        inp.sections.push("SimpleCS 1".into());
+        inp.materials.push(if self.nlgeo {
+            neo_hookean(1)
+        } else {
+            format!("IsoLE 1 d 0 E {E} n {NU} tAlpha 0")
+        });
+        let base = inp.node_set(&brick.bottom);
+        let pin = inp.nodes_where(&|p| p[0] == 0.0 && p[1] == 0.0 && p[2] == 0.0);
+        let pin = inp.node_set(&pin);
+        let corner_y = inp.nodes_where(&|p| p[0] == 1.0 && p[1] == 0.0 && p[2] == 0.0);
+        let corner_y = inp.node_set(&corner_y);
+        let top = inp.node_set(&top);
+        inp.bcs.push(format!(
+            "BoundaryCondition 1 loadTimeFunction 2 dofs 1 3 values 1 0 set {base}"
+        ));
+        inp.bcs.push(format!(
+            "BoundaryCondition 2 loadTimeFunction 2 dofs 2 1 2 values 2 0 0 set {pin}"
+        ));
+        inp.bcs.push(format!(
+            "BoundaryCondition 3 loadTimeFunction 2 dofs 1 2 values 1 0 set {corner_y}"
+        ));
+        inp.bcs.push(format!(
+            "BoundaryCondition 4 loadTimeFunction 1 dofs 3 1 2 3 values 3 0 0 {} set {top}",
+            -self.delta
+        ));
+        inp.bcs.push(n2s(5, self.law, &bottom, &[1], ""));
+        let steps: Vec<f64> = (1..=self.steps)
+            .map(|k| k as f64 / self.steps as f64)
+            .collect();
+        inp.functions.push(history(&steps));
+        inp.functions.push("ConstantFunction 2 f(t) 1.0".into());
+        inp.render("wedge_on_brick", &analysis(self.steps), "3d")
+    }
+}
+
+/// Large sliding in 2D: a block 1 wide and 0.5 high pressed by a force F onto a circular bump
+/// (the top of a block of width 8, radius `SLIDE_R`, highest at x = 4) and dragged by its top from
+/// the summit to x = 4 + `travel` in `steps` steps, over many master vertices, tilting with the
+/// surface; plane strain, neo-Hookean, large deformation; the block's bottom nodes on the bump's
+/// edges. Frictionless: the drag force is F times the slope of the surface under the contact.
+#[derive(Debug, Clone, Copy)]
+pub struct LargeSliding {
+    /// Elements along the bump.
+    pub nx: usize,
+    pub travel: f64,
+    pub force: f64,
+    pub steps: usize,
+    pub law: Law,
+}
+
+/// Radius of the bump of [`LargeSliding`].
+pub const SLIDE_R: f64 = 10.0;
+
+/// Height of the bump of [`LargeSliding`] at x (its summit at x = 4 is at 0).
+pub fn bump(x: f64) -> f64 {
+    (SLIDE_R * SLIDE_R - (x - 4.0).powi(2)).sqrt() - SLIDE_R
+}
+
+impl LargeSliding {
+    pub fn input(&self) -> String {
+        use super::mesh::Kind;
+        let mut inp = Input::default();
+        let extra = "mat 1 crossSect 1 nlgeo 1";
+        let xs = uniform(0.0, 8.0, self.nx);
+        let master = inp.block2d(Kind::Q4, &xs, &|i| uniform(-2.0, bump(xs[i]), 4), extra);
+        let slave = inp.block2d(
+            Kind::Q4,
+            &uniform(3.5, 4.5, 8),
+            &|_| uniform(1e-3, 0.501, 2),
+            extra,
+        );
+        let edges = inp.boundary_set(&master.top_edges);
+        inp.segments.push(format!(
+            "linear2delementedgecontactsegment 1 edgeset {edges}"
+        ));
+        inp.sections.push("SimpleCS 1 thick 1.0".into());
+        inp.materials.push(neo_hookean(1));
+        let bottom = inp.node_set(&master.bottom);
+        let top = inp.node_set(&slave.top);
+        inp.bcs.push(format!(
+            "BoundaryCondition 1 loadTimeFunction 2 dofs 2 1 2 values 2 0 0 set {bottom}"
+        ));
+        inp.bcs.push(format!(
+            "BoundaryCondition 2 loadTimeFunction 1 dofs 1 1 values 1 {} set {top}",
+            self.travel
+        ));
+        inp.bcs.push(format!(
+            "NodalLoad 3 loadTimeFunction 2 dofs 2 1 2 components 2 0 {} set {top}",
+            -self.force / slave.top.len() as f64
+        ));
+        inp.bcs.push(n2s(4, self.law, &slave.bottom, &[1], ""));
+        let steps: Vec<f64> = (1..=self.steps)
+            .map(|k| k as f64 / self.steps as f64)
+            .collect();
+        inp.functions.push(history(&steps));
+        inp.functions.push("ConstantFunction 2 f(t) 1.0".into());
+        inp.render("large_sliding", &analysis(self.steps), "PlaneStrain")
     }
 }

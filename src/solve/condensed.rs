@@ -170,12 +170,14 @@ impl CondensedContact {
     }
 
     /// One Newton step for the residual `r` (free equations) with the contact `points` at the
-    /// current state: the branches are searched on the linearized problem (see the module docs).
-    /// Ok(None) if a point touches an equation outside the candidates.
+    /// current state: the branches are searched on the linearized problem (see the module docs),
+    /// from the first guess `guess`. Ok(None) if a point touches an equation outside the
+    /// candidates.
     pub fn step(
         &mut self,
         r: &[f64],
         points: &[ContactPoint],
+        guess: &[bool],
         dofs: &DofMap,
     ) -> Result<Option<CondensedStep>> {
         let nf = dofs.n_free;
@@ -208,7 +210,7 @@ impl CondensedContact {
             .iter()
             .map(|p| [p.branch(false).1, p.branch(true).1])
             .collect();
-        let mut closed: Vec<bool> = points.iter().map(|p| p.closed).collect();
+        let mut closed: Vec<bool> = guess.to_vec();
         let mut search = BranchSearch::new(MAX_BRANCH_UPDATES);
         loop {
             // Equations of the dense system: those of closed points and the shifted ones.

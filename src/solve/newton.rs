@@ -144,6 +144,7 @@ impl NewtonContext<'_> {
         u: &[f64],
         rhs: Vec<f64>,
         points: &[ContactPoint],
+        guess: &[bool],
         ks_fresh: Option<&Evaluation>,
     ) -> Result<(Vec<f64>, usize)> {
         let (model, dofs) = (self.asm.model, self.dofs);
@@ -197,7 +198,7 @@ impl NewtonContext<'_> {
         }
         if let Condensed::Ready(c) = &mut self.condensed {
             let t = Instant::now();
-            let step = c.step(&rhs, points, self.dofs)?;
+            let step = c.step(&rhs, points, guess, self.dofs)?;
             self.times.solve += since(t);
             if let Some(step) = step {
                 return Ok((step.du, step.updates));
@@ -232,11 +233,26 @@ impl NewtonContext<'_> {
                     );
                 }
                 self.condensed = Condensed::Pending(cands);
-                return self.solve_step(u, rhs, points, None);
+                return self.solve_step(u, rhs, points, guess, None);
             }
             self.condense_off();
         }
-        self.solve_full(u, rhs, points)
+        self.solve_full(u, rhs, points, guess)
+    }
+
+    /// The first guess of the branch search: closed where a point is closed now or was active at
+    /// the last converged state. A penalty point's penetration is only the force over the
+    /// penalty, so the predictor's straight step along a curved master, or any iterate, can open
+    /// it by a hair; starting from the contact the step began with finds the physical solution of
+    /// the linearized problem where starting from the open iterate can settle on another one
+    /// (a block balanced on one node).
+    fn branch_guess(&self, points: &[ContactPoint]) -> Vec<bool> {
+        let before = self.converged_states.as_deref().unwrap_or(&[]);
+        points
+            .iter()
+            .enumerate()
+            .map(|(k, p)| p.closed || (p.can_close() && before.get(k).is_some_and(|s| s.active)))
+            .collect()
     }
 
     /// Give up condensing for the rest of the analysis: full tangents, on a pattern with both
@@ -254,6 +270,7 @@ impl NewtonContext<'_> {
         u: &[f64],
         rhs: Vec<f64>,
         points: &[ContactPoint],
+        guess: &[bool],
     ) -> Result<(Vec<f64>, usize)> {
         let nf = self.dofs.n_free;
         let couplings: Vec<Vec<usize>> = points.iter().map(|p| p.codes.clone()).collect();
@@ -263,7 +280,7 @@ impl NewtonContext<'_> {
         let t = Instant::now();
         let ks = self.asm.evaluate(u, true, false, None, &[])?;
         self.times.assembly += since(t);
-        let mut closed: Vec<bool> = points.iter().map(|p| p.closed).collect();
+        let mut closed: Vec<bool> = guess.to_vec();
         let mut search = BranchSearch::new(MAX_FULL_UPDATES);
         loop {
             let mut kv = ks.k_values.clone().expect("requested");
@@ -453,7 +470,8 @@ impl NewtonContext<'_> {
             }
             let (step, updates) = if has_contact {
                 let ks = need_ks.then_some(&ev);
-                self.solve_step(u, rhs, &points, ks)?
+                let guess = self.branch_guess(&points);
+                self.solve_step(u, rhs, &points, &guess, ks)?
             } else {
                 if want_k {
                     self.factorize(ev.k_values.as_ref().expect("requested"))?;
@@ -517,7 +535,8 @@ impl NewtonContext<'_> {
             } else {
                 None
             };
-            self.solve_step(u, rhs, &points, ks.as_ref())?.0
+            let guess = self.branch_guess(&points);
+            self.solve_step(u, rhs, &points, &guess, ks.as_ref())?.0
         } else {
             if need_k {
                 self.factorize(ev.k_values.as_ref().expect("requested"))?;
