@@ -430,13 +430,20 @@ impl NewtonContext<'_> {
                             .zip(p)
                             .filter(|(s, q)| s.active != q.active)
                             .partition(|(s, _)| !s.active);
+                        // Node labels, the first few of them on a large model.
+                        let list = |v: &[(&SlotState, &SlotState)]| {
+                            let mut l: Vec<String> =
+                                v.iter().take(12).map(|(s, _)| label(s)).collect();
+                            if v.len() > 12 {
+                                l.push(format!("… ({} more)", v.len() - 12));
+                            }
+                            l.join(" ")
+                        };
                         if !closing.is_empty() {
-                            let l: Vec<String> = closing.iter().map(|(s, _)| label(s)).collect();
-                            line += &format!("; closed {}", l.join(" "));
+                            line += &format!("; closed {}", list(&closing));
                         }
                         if !opened.is_empty() {
-                            let l: Vec<String> = opened.iter().map(|(s, _)| label(s)).collect();
-                            line += &format!("; opened {}", l.join(" "));
+                            line += &format!("; opened {}", list(&opened));
                         }
                     }
                 }

@@ -28,6 +28,9 @@ pub struct SolveParams {
     pub log_steps: bool,
     /// Print every Newton iteration (residual, contact state) on stderr.
     pub log_iterations: bool,
+    /// Unknowns from which a non-symmetric tangent is solved by GMRES preconditioned with its
+    /// symmetric part instead of a sparse LU (see [`super::krylov`]).
+    pub krylov_min_unknowns: usize,
 }
 
 impl Default for SolveParams {
@@ -36,6 +39,7 @@ impl Default for SolveParams {
             max_cutbacks: 5,
             log_steps: true,
             log_iterations: false,
+            krylov_min_unknowns: super::linear::KRYLOV_MIN_UNKNOWNS,
         }
     }
 }
@@ -141,6 +145,7 @@ pub fn run_analysis(
     let slot_nodes: Vec<usize> = initial_states.iter().map(|s| s.node).collect();
     let mut solver = LinearSolver::default();
     solver.groups = Some(dofs.free_eq_nodes());
+    solver.krylov_min = params.krylov_min_unknowns;
     let mut ctx = NewtonContext {
         asm,
         contact,
@@ -283,8 +288,16 @@ pub fn run_analysis(
                 let t = &info.times;
                 eprintln!(
                     "    time: contact search {:.3} s, contact points {:.3} s, assembly {:.3} s, \
-                     factorization {:.3} s, solves {:.3} s",
-                    t.search, t.contact, t.assembly, t.factor, t.solve
+                     factorization {:.3} s, solves {:.3} s{}",
+                    t.search,
+                    t.contact,
+                    t.assembly,
+                    t.factor,
+                    t.solve,
+                    match info.solver.krylov_iterations {
+                        0 => String::new(),
+                        k => format!(" (last solve: {k} GMRES iterations)"),
+                    }
                 );
             }
         }

@@ -267,6 +267,7 @@ impl FaceGeometry<f64> {
                 .collect(),
         };
         let xs_d = xs.map(|v| Dual::constant(v, 2));
+        let mut last = f64::INFINITY;
         for _ in 0..40 {
             let r = geom.residual(&xs_d, Dual::variable(xi, 0, 2), Dual::variable(eta, 1, 2));
             let (j00, j01, j10, j11) = (r[0].d[0], r[0].d[1], r[1].d[0], r[1].d[1]);
@@ -279,11 +280,14 @@ impl FaceGeometry<f64> {
             let deta = ((-j10 * r[0].v + j00 * r[1].v) / det).clamp(-0.5, 0.5);
             xi -= dxi;
             eta -= deta;
-            if dxi.abs().max(deta.abs()) < 1e-14 {
+            last = dxi.abs().max(deta.abs());
+            if last < 4e-14 * (1.0 + xi.abs() + eta.abs()) {
                 return Some((xi, eta));
             }
         }
-        None
+        // On a face edge the normal field has a kink (it is frozen past the face): Newton can
+        // bounce across the edge by steps near round-off instead of settling.
+        (last < 1e-10).then_some((xi, eta))
     }
 
     /// ∂r/∂(ξ, η) at (ξ, η), plain numbers.
