@@ -183,3 +183,173 @@ fn contact_csv_has_the_documented_header_and_rows() {
     assert_eq!(last[9], "1");
     std::fs::remove_dir_all(dir).ok();
 }
+
+/// The committed verification examples are exactly what `hertz bench --examples DIR` writes.
+#[test]
+fn verification_examples_are_the_generated_ones() {
+    for ex in hertz::bench::examples::all() {
+        let committed = std::fs::read_to_string(example(ex.file)).expect("example committed");
+        assert!(
+            committed == ex.text(),
+            "examples/{} differs from `hertz bench --examples`: regenerate it",
+            ex.file
+        );
+    }
+}
+
+/// Solve an example file, calling `each` with the model and every converged step.
+fn run_example(
+    name: &str,
+    mut each: impl FnMut(&hertz::model::Model, &hertz::solve::StepResult) -> usize,
+) -> Vec<usize> {
+    let model = hertz::input::read_model(&example(name)).unwrap().model;
+    let mut its = Vec::new();
+    hertz::solve::run_analysis(
+        &model,
+        &hertz::solve::SolveParams {
+            log_steps: false,
+            max_cutbacks: 0,
+            ..Default::default()
+        },
+        |r| {
+            its.push(each(&model, r));
+            Ok(())
+        },
+    )
+    .unwrap();
+    its
+}
+
+/// The sum of the reactions in direction `dof` of the prescribed DOFs whose node passes `pick`.
+fn reaction(
+    model: &hertz::model::Model,
+    r: &hertz::solve::StepResult,
+    dof: u8,
+    pick: impl Fn([f64; 3]) -> bool,
+) -> f64 {
+    r.dofs
+        .prescribed
+        .iter()
+        .zip(r.reactions)
+        .filter(|((n, d, _), _)| *d == dof && pick(model.nodes[*n].coords))
+        .map(|(_, f)| f)
+        .sum()
+}
+
+/// examples/patch3d.in: every contact node carries the closed-form uniaxial nominal stress of the
+/// neo-Hookean law at 20 % compression times its tributary area, to round-off, in ≤ 3 iterations.
+#[test]
+fn patch3d_example_transmits_the_exact_pressure() {
+    use hertz::bench::verify::{neo_hookean_law, uniaxial_stress, PATCH_H};
+    let stretch = 1.0 - hertz::bench::examples::PATCH_DELTA / (2.0 * PATCH_H);
+    let exact = -uniaxial_stress(&neo_hookean_law(), stretch).1;
+    let mut worst = 0.0f64;
+    let its = run_example("patch3d.in", |_, r| {
+        if r.step == 4 {
+            for s in r.contact {
+                worst = worst.max((s.pressure - exact).abs() / exact);
+            }
+        }
+        r.info.iterations
+    });
+    println!("patch3d: P {exact:.10}, worst node off by {worst:.1e}, iterations {its:?}");
+    assert_eq!(its.len(), 4);
+    assert!(worst < 1e-12, "pressure off by {worst:e}");
+    assert!(its.iter().all(|&i| i <= 3), "{its:?}");
+}
+
+/// examples/hertz_sphere.in: p0 within 3 % and a within 5 % of Hertz for the computed force.
+#[test]
+fn hertz_sphere_example_matches_hertz() {
+    use hertz::analytic::{compare_hertz_sphere, contact_modulus};
+    use hertz::bench::verify::{E, HERTZ_R, NU};
+    let mut c = None;
+    run_example("hertz_sphere.in", |model, r| {
+        c = compare_hertz_sphere(model, r.contact, HERTZ_R, contact_modulus(E, NU, E, NU));
+        r.info.iterations
+    });
+    let c = c.expect("a contact zone");
+    println!(
+        "hertz sphere: F {:.4}, p0 {:+.2} %, a {:+.2} %",
+        c.force,
+        100.0 * c.p0_error(),
+        100.0 * c.a_error()
+    );
+    assert!(c.p0_error().abs() < 0.03 && c.a_error().abs() < 0.05);
+}
+
+/// examples/two_beams.in: the clamps balance the end forces to 1e-8 and the upper clamp's force
+/// is the header's −0.626077.
+#[test]
+fn two_beams_example_balances_and_gives_the_tabulated_force() {
+    use hertz::bench::verify::{BEAM_L, BEAM_S};
+    let mut out = (0.0, 0.0);
+    run_example("two_beams.in", |model, r| {
+        let lower = reaction(model, r, 2, |p| p[0] < 1.0);
+        let upper = reaction(model, r, 2, |p| p[0] > BEAM_S + BEAM_L - 1e-9);
+        out = (lower, upper);
+        r.info.iterations
+    });
+    let f = hertz::bench::examples::BEAMS_FORCE;
+    println!("two beams: clamp forces {:.8} {:.8}", out.0, out.1);
+    // Each end force f; the lower clamp holds −f minus the contact, the upper +f plus it.
+    assert!((out.0 + out.1).abs() < 1e-8 * f, "{out:?}");
+    assert!((out.1 + 0.626077).abs() < 1e-6, "{out:?}");
+}
+
+/// examples/wedge_on_brick.in: the reactions balance and the contact force is the force on the
+/// wedge's top.
+#[test]
+fn wedge_on_brick_example_balances() {
+    let mut out = (0.0, 0.0, 0.0);
+    run_example("wedge_on_brick.in", |model, r| {
+        let all = reaction(model, r, 3, |_| true);
+        let top = reaction(model, r, 3, |p| (p[2] - 1.5).abs() < 1e-12);
+        out = (all, top, r.contact.iter().map(|c| c.force).sum());
+        r.info.iterations
+    });
+    println!("wedge on brick: reactions {out:?}");
+    assert!(out.0.abs() < 1e-8 * out.1.abs() && out.1 < 0.0);
+    assert!((out.2 + out.1).abs() < 1e-8 * out.2);
+}
+
+/// examples/cylinder3d.in gives cylinder2d.in's force per unit depth to 1e-9.
+#[test]
+fn extruded_cylinder_example_matches_its_section() {
+    let force = |name| {
+        let mut f = 0.0;
+        run_example(name, |_, r| {
+            f = r.contact.iter().map(|c| c.force).sum();
+            r.info.iterations
+        });
+        f
+    };
+    let (f2, f3) = (force("cylinder2d.in"), force("cylinder3d.in"));
+    println!("cylinder: 2D {f2:.10}, 3D per depth {f3:.10}");
+    assert!((f3 - f2).abs() < 1e-9 * f2, "{f3} vs {f2}");
+}
+
+/// examples/large_sliding.in: 25 steps of at most 3 iterations; the last drag force is the press
+/// force times the slope under the contact's centre within 0.1 %.
+#[test]
+fn large_sliding_example_drags_by_the_slope() {
+    use hertz::bench::verify::SLIDE_R;
+    let force = hertz::bench::examples::SLIDING_FORCE;
+    let mut last = (0.0, 0.0);
+    let its = run_example("large_sliding.in", |model, r| {
+        let drag = reaction(model, r, 1, |p| p[1] > 0.4);
+        let active: Vec<_> = r.contact.iter().filter(|c| c.active).collect();
+        let total: f64 = active.iter().map(|c| c.force).sum();
+        let xc = active.iter().map(|c| c.force * c.x[0]).sum::<f64>() / total;
+        let slope = -(xc - 4.0) / (SLIDE_R * SLIDE_R - (xc - 4.0).powi(2)).sqrt();
+        last = (drag, force * slope);
+        r.info.iterations
+    });
+    println!(
+        "large sliding: drag {:.6} vs {:.6}, iterations {its:?}",
+        last.0, last.1
+    );
+    assert_eq!(its.len(), 25);
+    assert!(its.iter().all(|&i| i <= 3), "{its:?}");
+    assert!((last.0 - last.1).abs() < 1e-3 * last.1.abs(), "{last:?}");
+}

@@ -5,6 +5,7 @@
 //! as a self-check.
 
 use crate::assembly::Assembler;
+pub mod examples;
 pub mod mesh;
 pub mod suite;
 pub mod verify;
@@ -271,6 +272,101 @@ pub fn run_contact(n: usize, multipliers: bool) -> Result<ContactBenchFigures> {
     Ok(f)
 }
 
+/// Figures of the 3D contact benchmark: the Hertz sphere of [`verify::HertzSphere`].
+#[derive(Debug, Clone, Default)]
+pub struct SphereBenchFigures {
+    pub unknowns: usize,
+    pub contact_nodes: usize,
+    pub active: usize,
+    pub iterations: usize,
+    pub times: crate::solve::stepping::PhaseTimes,
+    pub solve_s: f64,
+    pub peak_rss_mb: f64,
+    /// Relative errors of p0 and a against Hertz for the computed force.
+    pub p0_error: f64,
+    pub a_error: f64,
+}
+
+/// The Hertz sphere (hexahedra, spacing `h` under the contact) solved in one step with `law`.
+pub fn run_sphere(h: f64, law: suite::Law) -> Result<SphereBenchFigures> {
+    let text = sphere_input(h, law);
+    let path = std::env::temp_dir().join(format!("hertz-sbench-{}.in", std::process::id()));
+    std::fs::write(&path, text)
+        .map_err(|e| Error::Output(format!("cannot write {}: {e}", path.display())))?;
+    let read = read_model(&path);
+    let _ = std::fs::remove_file(&path);
+    let model = read?.model;
+    let mut f = SphereBenchFigures::default();
+    let mut states = Vec::new();
+    let t = Instant::now();
+    crate::solve::run_analysis(
+        &model,
+        &crate::solve::SolveParams {
+            log_steps: false,
+            ..Default::default()
+        },
+        |r| {
+            f.unknowns = r.dofs.n_free;
+            f.iterations = r.info.iterations;
+            f.times = r.info.times;
+            states = r.contact.to_vec();
+            Ok(())
+        },
+    )?;
+    f.solve_s = t.elapsed().as_secs_f64();
+    f.peak_rss_mb = peak_rss_mb();
+    f.contact_nodes = states.len();
+    f.active = states.iter().filter(|s| s.active).count();
+    let e_star = crate::analytic::contact_modulus(verify::E, verify::NU, verify::E, verify::NU);
+    let c = crate::analytic::compare_hertz_sphere(&model, &states, verify::HERTZ_R, e_star)
+        .ok_or_else(|| Error::Solve("the sphere made no contact".into()))?;
+    (f.p0_error, f.a_error) = (c.p0_error(), c.a_error());
+    Ok(f)
+}
+
+/// Penalty of the sphere benchmark: 100 E per node, as in the Hertz sphere test.
+pub const SPHERE_PENALTY: f64 = 1e5;
+
+fn print_sphere(h: f64, law: suite::Law, f: &SphereBenchFigures) {
+    println!(
+        "Hertz sphere on a block, hexahedra, spacing {h} under the contact, {} (threads {})",
+        match law {
+            suite::Law::Multiplier => "multipliers".to_string(),
+            suite::Law::Penalty(p) => format!("penalty {p:e}"),
+        },
+        rayon::current_num_threads()
+    );
+    let t = &f.times;
+    println!("unknowns           {:>12}", f.unknowns);
+    println!(
+        "contact nodes      {:>12}   ({} active)",
+        f.contact_nodes, f.active
+    );
+    println!("Newton iterations  {:>12}", f.iterations);
+    println!("contact search     {:>12.3} s", t.search);
+    println!("contact points     {:>12.3} s", t.contact);
+    println!("assembly           {:>12.3} s", t.assembly);
+    println!("factorization      {:>12.3} s", t.factor);
+    println!("solves             {:>12.3} s", t.solve);
+    println!("step (wall)        {:>12.3} s", f.solve_s);
+    println!("peak memory        {:>12.1} MiB", f.peak_rss_mb);
+    println!("p0 vs Hertz        {:>+12.2} %", 100.0 * f.p0_error);
+    println!("a vs Hertz         {:>+12.2} %", 100.0 * f.a_error);
+}
+
+/// The input of the sphere benchmark.
+pub fn sphere_input(h: f64, law: suite::Law) -> String {
+    verify::HertzSphere {
+        kind: mesh::Solid::Hex,
+        sym: 0,
+        h,
+        delta: 0.15,
+        nlgeo: false,
+        law,
+    }
+    .input()
+}
+
 /// Figures of one bench run.
 #[derive(Debug, Clone, Default)]
 pub struct BenchFigures {
@@ -367,11 +463,13 @@ pub fn peak_rss_mb() -> f64 {
         .unwrap_or(0.0)
 }
 
-/// CLI entry: `hertz bench [--dim 2|3] [--n N] [--ordering auto|amd|metis]`.
+/// CLI entry: `hertz bench [--dim 2|3] [--n N] [--ordering auto|amd|metis]`, `--contact`,
+/// `--sphere H`, `--suite`, `--examples DIR` (see `hertz --help`).
 pub fn main(args: &[String]) -> ExitCode {
     let (mut dim, mut n, mut ordering) = (2usize, 100usize, OrderingKind::Auto);
     let (mut contact, mut multipliers, mut suite) = (false, false, false);
     let mut write: Option<String> = None;
+    let (mut sphere, mut examples): (Option<f64>, Option<String>) = (None, None);
     let mut it = args.iter();
     while let Some(a) = it.next() {
         if a == "--contact" {
@@ -398,6 +496,18 @@ pub fn main(args: &[String]) -> ExitCode {
         }
         let v = it.next().map(String::as_str);
         let ok = match (a.as_str(), v) {
+            ("--sphere", Some(v)) => match v.parse::<f64>() {
+                // Spacing 0.02 is about 10⁷ unknowns.
+                Ok(x) if (0.02..=1.0).contains(&x) => {
+                    sphere = Some(x);
+                    true
+                }
+                _ => false,
+            },
+            ("--examples", Some(dir)) => {
+                examples = Some(dir.to_string());
+                true
+            }
             ("--dim", Some("2")) => {
                 dim = 2;
                 true
@@ -424,9 +534,53 @@ pub fn main(args: &[String]) -> ExitCode {
             _ => false,
         };
         if !ok {
-            eprintln!("error: bench takes --dim 2|3, --n N (N >= 1), --ordering auto|amd|metis, --contact [--multipliers], --suite [--write DIR]; got `{a}`");
+            eprintln!("error: bench takes --dim 2|3, --n N (N >= 1), --ordering auto|amd|metis, --contact [--multipliers], --sphere H (0.02 <= H <= 1) [--multipliers] [--write DIR], --suite [--write DIR], --examples DIR; got `{a}`");
             return ExitCode::from(2);
         }
+    }
+    if let Some(dir) = examples {
+        return match examples::write_all(Path::new(&dir)) {
+            Ok(files) => {
+                println!("wrote {} example files to {dir}", files.len());
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::from(e.exit_code() as u8)
+            }
+        };
+    }
+    if let Some(h) = sphere {
+        let law = if multipliers {
+            suite::Law::Multiplier
+        } else {
+            suite::Law::Penalty(SPHERE_PENALTY)
+        };
+        if let Some(dir) = &write {
+            let path = Path::new(dir).join("hertz3d.in");
+            return match std::fs::create_dir_all(dir)
+                .and_then(|()| std::fs::write(&path, sphere_input(h, law)))
+            {
+                Ok(()) => {
+                    println!("wrote {}", path.display());
+                    ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("error: cannot write {}: {e}", path.display());
+                    ExitCode::from(4)
+                }
+            };
+        }
+        return match run_sphere(h, law) {
+            Ok(f) => {
+                print_sphere(h, law, &f);
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::from(e.exit_code() as u8)
+            }
+        };
     }
     if suite {
         let result = match &write {

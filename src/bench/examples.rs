@@ -1,0 +1,233 @@
+//! The verification examples of `examples/`: each input generated from [`super::verify`] with a
+//! header stating the problem, its reference solution and what hertz gets. `hertz bench
+//! --examples DIR` writes them; a test checks that the committed files are these, and another
+//! runs them against their references.
+
+use super::mesh::Solid;
+use super::suite::{cylinder_on_block, Law};
+use super::verify::{
+    neo_hookean_law, uniaxial_stress, ExtrudedCylinder, HertzSphere, LargeSliding, Patch, TwoBeams,
+    WedgeOnBrick, E, NU, PATCH_H,
+};
+use crate::error::{Error, Result};
+use std::path::{Path, PathBuf};
+
+/// One example file: its name, title, header comment and generated input.
+pub struct Example {
+    pub file: &'static str,
+    pub title: &'static str,
+    pub header: String,
+    input: String,
+}
+
+impl Example {
+    /// The input with its output file named after it, the title as its second line and the
+    /// header as `#` comments under it.
+    pub fn text(&self) -> String {
+        let lines = self.input.lines().skip(2);
+        let stem = self.file.trim_end_matches(".in");
+        let mut s = format!("{stem}.out\n{}\n", self.title);
+        for l in self.header.lines() {
+            s.push_str(if l.is_empty() { "#" } else { "# " });
+            s.push_str(l);
+            s.push('\n');
+        }
+        for l in lines {
+            s.push_str(l);
+            s.push('\n');
+        }
+        s
+    }
+}
+
+/// Compression of the large-deformation patch test.
+pub const PATCH_DELTA: f64 = 0.2;
+/// Spacing under the contact of the sphere and extruded-cylinder examples.
+pub const SPHERE_H: f64 = 0.2;
+pub const CYLINDER_H: f64 = 0.2;
+/// Force on each beam end of the two-beam example, and the press force of large sliding.
+pub const BEAMS_FORCE: f64 = 1.0;
+pub const SLIDING_FORCE: f64 = 20.0;
+
+/// Every example, in the order of the README's table.
+pub fn all() -> Vec<Example> {
+    let stretch = 1.0 - PATCH_DELTA / (2.0 * PATCH_H);
+    let p = -uniaxial_stress(&neo_hookean_law(), stretch).1;
+    let law = neo_hookean_law();
+    let (c1, k) = match law {
+        crate::material::hyperelastic::Hyperelastic::MooneyRivlin { c1, k, .. } => (c1, k),
+        _ => unreachable!("neo-Hookean is Mooney-Rivlin with c2 = 0"),
+    };
+    vec![
+        Example {
+            file: "patch3d.in",
+            title: "3D contact patch test, non-matching meshes, large deformation",
+            header: format!(
+                "Two neo-Hookean blocks [0,1]^2 x [-{h},0] (master, 2x2x2 bricks) and [0,1]^2 x [0,{h}]
+(slave, 4x4x2 bricks: a nested, non-matching mesh) touching at z = 0; rollers on x = 0, y = 0
+and the master's bottom; the slave's top moved down by {PATCH_DELTA} (20 % compression) in 4 steps.
+Node-to-face contact with multipliers, the slave's bottom nodes on the master's top faces.
+Exact solution: homogeneous uniaxial stress, axial stretch {stretch}; for mooneyrivlincompressiblemat
+c1 = {c1:.6}, c2 = 0, k = {k:.6} the nominal pressure is P = {p:.10}
+(at the lateral stretch where the lateral nominal stress vanishes), and each contact node carries P times its
+reference tributary area.
+hertz: every node's pressure equals P to 1e-12, 2-3 Newton iterations per step
+(tests/examples.rs; all six face numbers, tets and wedges in tests/contact3d.rs).
+Run:  cargo run --release -- run examples/patch3d.in",
+                h = PATCH_H
+            ),
+            input: Patch {
+                kind: Solid::Hex,
+                slave_kind: None,
+                sym: 0,
+                n: 2,
+                nlgeo: true,
+                delta: PATCH_DELTA,
+                steps: 4,
+                law: Law::Multiplier,
+            }
+            .input(),
+        },
+        Example {
+            file: "hertz_sphere.in",
+            title: "Hertz: elastic sphere on an elastic block (3D, quarter model)",
+            header: format!(
+                "The cap (height 4, width 4) of an elastic sphere of radius R = 10 on an elastic block 6 x 6 x 6,
+quarter model (symmetry planes x = 0 and y = 0), both E = {E}, nu = {NU}; bricks graded from
+spacing {SPHERE_H} within r < 1.5 of the axis; the cap's flat top moved down by 0.15.
+Node-to-face contact with multipliers: the cap's bottom nodes within r <= 1.6 on the block's top.
+Analytical solution (Hertz, force F of the full sphere = 4 x the quarter's contact force):
+  1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2,  a = (3 F R/(4 E*))^(1/3),  p0 = 3 F/(2 pi a^2)
+p0 is the pressure of the node on the axis, a the radius of the ellipse fitted to the active nodes.
+hertz: p0 +0.05 %, a -0.87 % of Hertz for the computed F (bounds 3 % and 5 %, in every
+orientation of the bricks: tests/contact3d.rs).
+Run:  cargo run --release -- run examples/hertz_sphere.in"
+            ),
+            input: HertzSphere {
+                kind: Solid::Hex,
+                sym: 0,
+                h: SPHERE_H,
+                delta: 0.15,
+                nlgeo: false,
+                law: Law::Multiplier,
+            }
+            .input(),
+        },
+        Example {
+            file: "two_beams.in",
+            title: "The seed's two beams in large-deformation two-pass contact",
+            header: format!(
+                "A lower beam [0,10] x [0,1] clamped at x = 0 and an upper beam [2,12] x [1.5,2.5] clamped at
+x = 12, plane strain, neo-Hookean (E = {E}, nu = {NU}), large deformation, 40 x 4 elements each.
+A force {BEAMS_FORCE} on each free end (spread over its nodes, 10 steps) bends them towards each other
+until each end's corner presses on the other beam. Two node-to-segment conditions with the
+roles swapped (two-pass), multipliers.
+References: global equilibrium (the clamp reactions balance the applied forces to 1e-8),
+point symmetry about the model's centre (the two beams' answers agree to 1e-8), and the
+clamp force converging as h^2 with the mesh:
+  elements 20 x 2: -0.599854,  40 x 4: -0.626077,  80 x 8: -0.632189
+hertz: 2-4 Newton iterations per step (tests/contact3d.rs).
+Run:  cargo run --release -- run examples/two_beams.in"
+            ),
+            input: TwoBeams {
+                nx: 40,
+                ny: 4,
+                nx_upper: None,
+                force: BEAMS_FORCE,
+                steps: 10,
+                law: Law::Multiplier,
+                two_pass: true,
+            }
+            .input(),
+        },
+        Example {
+            file: "wedge_on_brick.in",
+            title: "The seed's wedge pressed onto a brick (3D)",
+            header: "One LSpace brick [0,1]^3 on rollers at its bottom (one corner pinned) and one LWedge
+above it, its triangle (0.2,0.2), (0.8,0.3), (0.4,0.8) resting on the brick's top (z = 1) and
+its top triangle at z = 1.5 moved down by 0.01 (held sideways). Node-to-face contact with
+multipliers, the wedge's three bottom nodes on the brick's top face.
+References: the reactions balance to 1e-8; the contact force equals the force on the wedge's
+top (small strain: both along z); the brick's node order (each of its face numbers on top)
+changes nothing to 1e-10; the penalty gives the same force within its error (1e-3).
+Run:  cargo run --release -- run examples/wedge_on_brick.in"
+                .to_string(),
+            input: WedgeOnBrick {
+                sym: 0,
+                delta: 0.01,
+                nlgeo: false,
+                steps: 1,
+                law: Law::Multiplier,
+            }
+            .input(),
+        },
+        Example {
+            file: "cylinder2d.in",
+            title: "Elastic cylinder on an elastic block, plane strain (the section of cylinder3d.in)",
+            header: format!(
+                "The cap (height 4, half-width 4) of an elastic cylinder of radius 20 on an elastic block
+6 wide and 6 deep, half model (x >= 0), plane strain, both E = {E}, nu = {NU}, spacing
+{CYLINDER_H} under the contact; the cap's top moved down by 0.022. Node-to-segment contact
+with multipliers. The reference for cylinder3d.in (and Hertz: see hertz_cylinder.in).
+Run:  cargo run --release -- run examples/cylinder2d.in"
+            ),
+            input: cylinder_on_block(CYLINDER_H, Law::Multiplier, false),
+        },
+        Example {
+            file: "cylinder3d.in",
+            title: "Elastic cylinder on an elastic block extruded in 3D, plane-strain constraints",
+            header: format!(
+                "cylinder2d.in's section extruded to a unit depth along y (2 bricks through the depth), every
+node held in y: plane strain in 3D. Node-to-face contact with multipliers, the cap's bottom
+nodes within x <= 1.2 on the block's top faces.
+Reference: the force per unit depth equals the 2D node-to-segment force of cylinder2d.in.
+hertz: equal to 1e-9 with multipliers, 1e-4 with a penalty, with the bricks numbered so
+that each of their six face numbers is on the contact surfaces (tests/contact3d.rs, at
+spacing 0.1; this file uses {CYLINDER_H}).
+Run:  cargo run --release -- run examples/cylinder3d.in"
+            ),
+            input: ExtrudedCylinder {
+                sym: 0,
+                h: CYLINDER_H,
+                ny: 2,
+                law: Law::Multiplier,
+            }
+            .input(),
+        },
+        Example {
+            file: "large_sliding.in",
+            title: "Large sliding in 2D: a block dragged over a curved master",
+            header: format!(
+                "A block 1 wide and 0.5 high (8 x 2 elements) pressed by a force {SLIDING_FORCE} onto a circular bump
+of radius 10 (the top of a block 8 wide, 32 elements, highest at x = 4) and dragged by its
+top from the summit by 2.5 in 25 steps, over ten master vertices, tilting by 15 degrees;
+plane strain, neo-Hookean, large deformation, node-to-segment with multipliers.
+Reference: frictionless contact, so the drag force is the press force times the slope of the
+bump under the contact's centre; hertz: within 0.1 % at every step, Newton quadratic,
+at most 3 iterations per step (tests/contact3d.rs).
+Run:  cargo run --release -- run examples/large_sliding.in"
+            ),
+            input: LargeSliding {
+                nx: 32,
+                travel: 2.5,
+                force: SLIDING_FORCE,
+                steps: 25,
+                law: Law::Multiplier,
+            }
+            .input(),
+        },
+    ]
+}
+
+/// Write every example into `dir`; the paths written.
+pub fn write_all(dir: &Path) -> Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir)
+        .map_err(|e| Error::Output(format!("cannot create {}: {e}", dir.display())))?;
+    let mut out = Vec::new();
+    for ex in all() {
+        let path = dir.join(ex.file);
+        crate::output::write_atomic(&path, ex.text().as_bytes())?;
+        out.push(path);
+    }
+    Ok(out)
+}
