@@ -16,8 +16,17 @@ USAGE:
     hertz bench [--dim 2|3] [--n N] [--ordering auto|amd|metis]
                                       solve a generated linear-elastic block with N elements per
                                       side and print sizes and timings
-    hertz bench --contact [--n N]     the contact benchmark: a 2N x N block pushed against a rigid
-                                      circle with node-to-segment penalty contact
+    hertz bench --contact [--n N] [--multipliers]
+                                      the contact benchmark: a 2N x N block pushed against a rigid
+                                      circle with node-to-segment penalty (or multiplier) contact
+    hertz bench --sphere H | --patch N [--multipliers] [--write DIR]
+                                      3D contact benchmarks: the Hertz sphere on a block in bricks
+                                      of spacing H under the contact (0.085: 10^5 unknowns), or the
+                                      contact patch test with N x N master bricks ((2N+1)^2 contact
+                                      nodes); prints phase times, peak memory and the errors against
+                                      the exact solution, or writes the input to DIR
+    hertz bench --suite [--write DIR] the robustness suite's table of setups (or their inputs)
+    hertz bench --examples DIR        write the verification examples of examples/ to DIR
     hertz --help | --version
 
 OPTIONS:

@@ -272,31 +272,124 @@ pub fn run_contact(n: usize, multipliers: bool) -> Result<ContactBenchFigures> {
     Ok(f)
 }
 
-/// Figures of the 3D contact benchmark: the Hertz sphere of [`verify::HertzSphere`].
+/// A 3D contact benchmark model (`hertz bench --sphere H` or `--patch N`).
+#[derive(Debug, Clone, Copy)]
+pub enum Model3d {
+    /// The Hertz sphere of [`verify::HertzSphere`] in hexahedra of spacing h under the contact.
+    Sphere(f64),
+    /// The patch test of [`verify::Patch`] (small strain, compressed by 0.01) with n × n × 2
+    /// master bricks: a contact zone of (2n + 1)² nodes.
+    Patch(usize),
+}
+
+/// Compression of the patch benchmark.
+const PATCH_DELTA: f64 = 0.01;
+
+impl Model3d {
+    /// The penalty of the model's tests: 100 E per node on the sphere, 1000 E on the patch.
+    pub fn penalty(self) -> f64 {
+        match self {
+            Model3d::Sphere(_) => 1e5,
+            Model3d::Patch(_) => 1e6,
+        }
+    }
+
+    pub fn input(self, law: suite::Law) -> String {
+        match self {
+            Model3d::Sphere(h) => verify::HertzSphere {
+                kind: mesh::Solid::Hex,
+                sym: 0,
+                h,
+                delta: 0.15,
+                nlgeo: false,
+                law,
+            }
+            .input(),
+            Model3d::Patch(n) => verify::Patch {
+                kind: mesh::Solid::Hex,
+                slave_kind: None,
+                sym: 0,
+                n,
+                nlgeo: false,
+                delta: PATCH_DELTA,
+                steps: 1,
+                law,
+            }
+            .input(),
+        }
+    }
+
+    fn describe(self) -> String {
+        match self {
+            Model3d::Sphere(h) => {
+                format!("Hertz sphere on a block, hexahedra, spacing {h} under the contact")
+            }
+            Model3d::Patch(n) => format!(
+                "contact patch test, {n} x {n} x 2 master bricks, {m} x {m} x 2 slave bricks",
+                m = 2 * n
+            ),
+        }
+    }
+
+    /// The file name of the model's input.
+    pub fn file(self) -> &'static str {
+        match self {
+            Model3d::Sphere(_) => "hertz3d.in",
+            Model3d::Patch(_) => "patch3d.in",
+        }
+    }
+
+    /// Relative errors against the exact solution, named.
+    fn errors(
+        self,
+        model: &crate::model::Model,
+        states: &[crate::contact::SlotState],
+    ) -> Result<Vec<(&'static str, f64)>> {
+        Ok(match self {
+            Model3d::Sphere(_) => {
+                let (e, nu) = (verify::E, verify::NU);
+                let e_star = crate::analytic::contact_modulus(e, nu, e, nu);
+                let c =
+                    crate::analytic::compare_hertz_sphere(model, states, verify::HERTZ_R, e_star)
+                        .ok_or_else(|| Error::Solve("the sphere made no contact".into()))?;
+                vec![("p0 vs Hertz", c.p0_error()), ("a vs Hertz", c.a_error())]
+            }
+            Model3d::Patch(_) => {
+                let exact = verify::E * PATCH_DELTA / (2.0 * verify::PATCH_H);
+                let worst = states
+                    .iter()
+                    .map(|s| (s.pressure - exact).abs() / exact)
+                    .fold(0.0, f64::max);
+                vec![("worst nodal pressure vs exact", worst)]
+            }
+        })
+    }
+}
+
+/// Figures of a 3D contact benchmark run.
 #[derive(Debug, Clone, Default)]
-pub struct SphereBenchFigures {
+pub struct Contact3dFigures {
     pub unknowns: usize,
     pub contact_nodes: usize,
     pub active: usize,
     pub iterations: usize,
     pub times: crate::solve::stepping::PhaseTimes,
+    /// GMRES iterations of the last linear solve (0: direct).
+    pub krylov_iterations: usize,
     pub solve_s: f64,
     pub peak_rss_mb: f64,
-    /// Relative errors of p0 and a against Hertz for the computed force.
-    pub p0_error: f64,
-    pub a_error: f64,
+    pub errors: Vec<(&'static str, f64)>,
 }
 
-/// The Hertz sphere (hexahedra, spacing `h` under the contact) solved in one step with `law`.
-pub fn run_sphere(h: f64, law: suite::Law) -> Result<SphereBenchFigures> {
-    let text = sphere_input(h, law);
-    let path = std::env::temp_dir().join(format!("hertz-sbench-{}.in", std::process::id()));
-    std::fs::write(&path, text)
+/// Solve a 3D contact benchmark in one step with `law`.
+pub fn run_contact3d(m: Model3d, law: suite::Law) -> Result<Contact3dFigures> {
+    let path = std::env::temp_dir().join(format!("hertz-3dbench-{}.in", std::process::id()));
+    std::fs::write(&path, m.input(law))
         .map_err(|e| Error::Output(format!("cannot write {}: {e}", path.display())))?;
     let read = read_model(&path);
     let _ = std::fs::remove_file(&path);
     let model = read?.model;
-    let mut f = SphereBenchFigures::default();
+    let mut f = Contact3dFigures::default();
     let mut states = Vec::new();
     let t = Instant::now();
     crate::solve::run_analysis(
@@ -309,6 +402,7 @@ pub fn run_sphere(h: f64, law: suite::Law) -> Result<SphereBenchFigures> {
             f.unknowns = r.dofs.n_free;
             f.iterations = r.info.iterations;
             f.times = r.info.times;
+            f.krylov_iterations = r.info.solver.krylov_iterations;
             states = r.contact.to_vec();
             Ok(())
         },
@@ -317,19 +411,14 @@ pub fn run_sphere(h: f64, law: suite::Law) -> Result<SphereBenchFigures> {
     f.peak_rss_mb = peak_rss_mb();
     f.contact_nodes = states.len();
     f.active = states.iter().filter(|s| s.active).count();
-    let e_star = crate::analytic::contact_modulus(verify::E, verify::NU, verify::E, verify::NU);
-    let c = crate::analytic::compare_hertz_sphere(&model, &states, verify::HERTZ_R, e_star)
-        .ok_or_else(|| Error::Solve("the sphere made no contact".into()))?;
-    (f.p0_error, f.a_error) = (c.p0_error(), c.a_error());
+    f.errors = m.errors(&model, &states)?;
     Ok(f)
 }
 
-/// Penalty of the sphere benchmark: 100 E per node, as in the Hertz sphere test.
-pub const SPHERE_PENALTY: f64 = 1e5;
-
-fn print_sphere(h: f64, law: suite::Law, f: &SphereBenchFigures) {
+fn print_contact3d(m: Model3d, law: suite::Law, f: &Contact3dFigures) {
     println!(
-        "Hertz sphere on a block, hexahedra, spacing {h} under the contact, {} (threads {})",
+        "{}, {} (threads {})",
+        m.describe(),
         match law {
             suite::Law::Multiplier => "multipliers".to_string(),
             suite::Law::Penalty(p) => format!("penalty {p:e}"),
@@ -348,23 +437,17 @@ fn print_sphere(h: f64, law: suite::Law, f: &SphereBenchFigures) {
     println!("assembly           {:>12.3} s", t.assembly);
     println!("factorization      {:>12.3} s", t.factor);
     println!("solves             {:>12.3} s", t.solve);
+    if f.krylov_iterations > 0 {
+        println!(
+            "GMRES iterations   {:>12}   (last solve)",
+            f.krylov_iterations
+        );
+    }
     println!("step (wall)        {:>12.3} s", f.solve_s);
     println!("peak memory        {:>12.1} MiB", f.peak_rss_mb);
-    println!("p0 vs Hertz        {:>+12.2} %", 100.0 * f.p0_error);
-    println!("a vs Hertz         {:>+12.2} %", 100.0 * f.a_error);
-}
-
-/// The input of the sphere benchmark.
-pub fn sphere_input(h: f64, law: suite::Law) -> String {
-    verify::HertzSphere {
-        kind: mesh::Solid::Hex,
-        sym: 0,
-        h,
-        delta: 0.15,
-        nlgeo: false,
-        law,
+    for (what, e) in &f.errors {
+        println!("{what:<30} {:>+10.2e}", e);
     }
-    .input()
 }
 
 /// Figures of one bench run.
@@ -464,12 +547,12 @@ pub fn peak_rss_mb() -> f64 {
 }
 
 /// CLI entry: `hertz bench [--dim 2|3] [--n N] [--ordering auto|amd|metis]`, `--contact`,
-/// `--sphere H`, `--suite`, `--examples DIR` (see `hertz --help`).
+/// `--sphere H`, `--patch N`, `--suite`, `--examples DIR` (see `hertz --help`).
 pub fn main(args: &[String]) -> ExitCode {
     let (mut dim, mut n, mut ordering) = (2usize, 100usize, OrderingKind::Auto);
     let (mut contact, mut multipliers, mut suite) = (false, false, false);
     let mut write: Option<String> = None;
-    let (mut sphere, mut examples): (Option<f64>, Option<String>) = (None, None);
+    let (mut model3d, mut examples): (Option<Model3d>, Option<String>) = (None, None);
     let mut it = args.iter();
     while let Some(a) = it.next() {
         if a == "--contact" {
@@ -497,9 +580,17 @@ pub fn main(args: &[String]) -> ExitCode {
         let v = it.next().map(String::as_str);
         let ok = match (a.as_str(), v) {
             ("--sphere", Some(v)) => match v.parse::<f64>() {
-                // Spacing 0.02 is about 10⁷ unknowns.
-                Ok(x) if (0.02..=1.0).contains(&x) => {
-                    sphere = Some(x);
+                // Spacing 0.03: about 10⁶ unknowns.
+                Ok(x) if (0.03..=1.0).contains(&x) => {
+                    model3d = Some(Model3d::Sphere(x));
+                    true
+                }
+                _ => false,
+            },
+            ("--patch", Some(v)) => match v.parse::<usize>() {
+                // 100: about 4·10⁵ unknowns.
+                Ok(x) if (1..=100).contains(&x) => {
+                    model3d = Some(Model3d::Patch(x));
                     true
                 }
                 _ => false,
@@ -534,7 +625,7 @@ pub fn main(args: &[String]) -> ExitCode {
             _ => false,
         };
         if !ok {
-            eprintln!("error: bench takes --dim 2|3, --n N (N >= 1), --ordering auto|amd|metis, --contact [--multipliers], --sphere H (0.02 <= H <= 1) [--multipliers] [--write DIR], --suite [--write DIR], --examples DIR; got `{a}`");
+            eprintln!("error: bench takes --dim 2|3, --n N (N >= 1), --ordering auto|amd|metis, --contact [--multipliers], --sphere H (0.03 <= H <= 1) or --patch N (1 <= N <= 100) [--multipliers] [--write DIR], --suite [--write DIR], --examples DIR; got `{a}`");
             return ExitCode::from(2);
         }
     }
@@ -550,16 +641,16 @@ pub fn main(args: &[String]) -> ExitCode {
             }
         };
     }
-    if let Some(h) = sphere {
+    if let Some(m) = model3d {
         let law = if multipliers {
             suite::Law::Multiplier
         } else {
-            suite::Law::Penalty(SPHERE_PENALTY)
+            suite::Law::Penalty(m.penalty())
         };
         if let Some(dir) = &write {
-            let path = Path::new(dir).join("hertz3d.in");
+            let path = Path::new(dir).join(m.file());
             return match std::fs::create_dir_all(dir)
-                .and_then(|()| std::fs::write(&path, sphere_input(h, law)))
+                .and_then(|()| std::fs::write(&path, m.input(law)))
             {
                 Ok(()) => {
                     println!("wrote {}", path.display());
@@ -571,9 +662,9 @@ pub fn main(args: &[String]) -> ExitCode {
                 }
             };
         }
-        return match run_sphere(h, law) {
+        return match run_contact3d(m, law) {
             Ok(f) => {
-                print_sphere(h, law, &f);
+                print_contact3d(m, law, &f);
                 ExitCode::SUCCESS
             }
             Err(e) => {

@@ -7,7 +7,9 @@
 //! over the mesh size. A sparse LU of a 3D model of 10⁴–10⁵ unknowns costs ten to fifty times a
 //! Cholesky factorization of the same pattern; the symmetric part of a penalty tangent
 //! factorizes like the structure does (LLᵀ), and GMRES then needs a handful of iterations.
-//! Multipliers' saddle-point systems are not positive definite and stay with LU.
+//! A multipliers' saddle point has a symmetric part that is not positive definite: it gets an
+//! LDLᵀ whose zero multiplier pivots are replaced by small negative ones (a nearby, stiffly
+//! penalized matrix), which GMRES corrects in as few iterations.
 
 use crate::assembly::Pattern;
 

@@ -15,7 +15,7 @@ use crate::assembly::Pattern;
 use crate::error::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky,
+    factorize_symbolic_cholesky, CholeskySymbolicParams, LdltRef, LltRef, SymbolicCholesky,
     SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
@@ -144,6 +144,8 @@ impl GeneralLu {
 enum Factor {
     None,
     Llt(Vec<f64>),
+    /// LDLᵀ of a symmetric quasi-definite matrix with regularized pivots (a preconditioner).
+    Ldlt(Vec<f64>),
     Lu,
     /// A general matrix above [`KRYLOV_MIN_UNKNOWNS`]: GMRES with its symmetric part.
     Krylov,
@@ -160,6 +162,8 @@ struct Krylov {
 /// Unknowns from which a general (non-symmetric) matrix is solved by GMRES preconditioned with its
 /// symmetric part instead of a sparse LU (see [`super::krylov`]).
 pub const KRYLOV_MIN_UNKNOWNS: usize = 20_000;
+/// Smallest pivot of the regularized LDLᵀ preconditioner, relative to the largest diagonal.
+const LDLT_REGULARIZATION: f64 = 1e-8;
 /// GMRES stops at this relative residual.
 const KRYLOV_TOL: f64 = 1e-12;
 
@@ -176,8 +180,9 @@ pub struct LinearSolver {
     /// Parallelism chosen with the symbolic analysis.
     par: Par,
     factor: Factor,
-    /// A symmetric matrix that is not positive definite is an error instead of going to LU.
-    pub require_spd: bool,
+    /// A symmetric matrix that is not positive definite gets an LDLᵀ with regularized pivots
+    /// instead of an LU: accurate enough to precondition, not to solve (see [`Self::factorize_ldlt`]).
+    pub preconditioner: bool,
     /// Size from which general matrices go to GMRES.
     pub krylov_min: usize,
     krylov: Option<Box<Krylov>>,
@@ -196,7 +201,7 @@ impl Default for LinearSolver {
             lu: None,
             par: Par::Seq,
             factor: Factor::None,
-            require_spd: false,
+            preconditioner: false,
             krylov_min: KRYLOV_MIN_UNKNOWNS,
             krylov: None,
             krylov_failed: false,
@@ -221,20 +226,10 @@ fn par_for(pattern: &Pattern) -> Par {
     }
 }
 
-/// The smallest L_jj² / A_jj of a Cholesky factor and its position in elimination order.
-fn smallest_pivot_ratio(
-    symbolic: &SymbolicCholesky<usize>,
-    l_values: &[f64],
-    diag_of: &dyn Fn(usize) -> f64,
-) -> (f64, usize) {
-    let mut worst = (f64::INFINITY, 0);
-    let mut visit = |j: usize, l: f64| {
-        let a = diag_of(j);
-        let ratio = if a > 0.0 { l * l / a } else { f64::INFINITY };
-        if ratio < worst.0 {
-            worst = (ratio, j);
-        }
-    };
+/// The diagonal of a supernodal or simplicial factor's L storage, in elimination order: L_jj for
+/// an LLᵀ, the pivot D_j for an LDLᵀ.
+fn factor_diagonal(symbolic: &SymbolicCholesky<usize>, l_values: &[f64]) -> Vec<f64> {
+    let mut out = vec![0.0; symbolic.nrows()];
     match symbolic.raw() {
         SymbolicCholeskyRaw::Supernodal(sn) => {
             use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
@@ -243,17 +238,34 @@ fn smallest_pivot_ratio(
                 let node = llt.supernode(s);
                 let val = node.val();
                 for jl in 0..val.ncols() {
-                    visit(node.start() + jl, val[(jl, jl)]);
+                    out[node.start() + jl] = val[(jl, jl)];
                 }
             }
         }
         SymbolicCholeskyRaw::Simplicial(sp) => {
             let (cp, ri) = (sp.col_ptr(), sp.row_idx());
-            for j in 0..sp.nrows() {
+            for (j, d) in out.iter_mut().enumerate() {
                 if let Some(k) = (cp[j]..cp[j + 1]).find(|&k| ri[k] == j) {
-                    visit(j, l_values[k]);
+                    *d = l_values[k];
                 }
             }
+        }
+    }
+    out
+}
+
+/// The smallest L_jj² / A_jj of a Cholesky factor and its position in elimination order.
+fn smallest_pivot_ratio(
+    symbolic: &SymbolicCholesky<usize>,
+    l_values: &[f64],
+    diag_of: &dyn Fn(usize) -> f64,
+) -> (f64, usize) {
+    let mut worst = (f64::INFINITY, 0);
+    for (j, l) in factor_diagonal(symbolic, l_values).into_iter().enumerate() {
+        let a = diag_of(j);
+        let ratio = if a > 0.0 { l * l / a } else { f64::INFINITY };
+        if ratio < worst.0 {
+            worst = (ratio, j);
         }
     }
     worst
@@ -374,9 +386,7 @@ impl LinearSolver {
                     .unwrap_or_default();
                 return Err(Error::Singular(singular_message(&at)));
             }
-            Some(_) if self.require_spd => {
-                return Err(Error::Solve("the matrix is not positive definite".into()))
-            }
+            Some(_) if self.preconditioner => self.factorize_ldlt(pattern, values, describe_eq)?,
             Some(_) => {
                 // Not positive definite: LU on both triangles.
                 self.factorize_lu(pattern, values)?;
@@ -386,9 +396,75 @@ impl LinearSolver {
         Ok(())
     }
 
+    /// LDLᵀ of a symmetric matrix with the sign of every pivot prescribed: negative for the
+    /// equations with no positive diagonal (multipliers of a saddle point), positive for the
+    /// others; a pivot of the wrong sign (a multiplier eliminated before its displacements: zero)
+    /// is replaced by [`LDLT_REGULARIZATION`] times the largest diagonal, which then acts as a
+    /// stiff penalty: the factors are those of a nearby matrix, for GMRES to correct.
+    fn factorize_ldlt(
+        &mut self,
+        pattern: &Pattern,
+        values: &[f64],
+        describe_eq: &dyn Fn(usize) -> String,
+    ) -> Result<()> {
+        let symbolic = self.symbolic.as_ref().expect("analysed");
+        let n = pattern.n;
+        let diag: Vec<f64> = (0..n).map(|e| values[pattern.position(e, e)]).collect();
+        let signs: Vec<i8> = diag.iter().map(|&d| if d > 0.0 { 1 } else { -1 }).collect();
+        let delta = LDLT_REGULARIZATION * diag.iter().fold(0.0f64, |m, d| m.max(d.abs()));
+        let mut l_values = vec![0.0; symbolic.len_val()];
+        let mut mem = MemBuffer::try_new(
+            symbolic.factorize_numeric_ldlt_scratch::<f64>(self.par, Default::default()),
+        )
+        .map_err(|_| Error::Solve("out of memory for the factorization workspace".into()))?;
+        symbolic
+            .factorize_numeric_ldlt::<f64>(
+                &mut l_values,
+                SparseColMatRef::new(
+                    faer::sparse::SymbolicSparseColMatRef::new_checked(
+                        n,
+                        n,
+                        &pattern.col_ptr,
+                        None,
+                        &pattern.row_idx,
+                    ),
+                    values,
+                ),
+                Side::Upper,
+                faer::linalg::cholesky::ldlt::factor::LdltRegularization {
+                    dynamic_regularization_signs: Some(&signs),
+                    dynamic_regularization_delta: delta,
+                    // Pivots of the wrong sign or zero are replaced.
+                    dynamic_regularization_epsilon: f64::MIN_POSITIVE,
+                },
+                self.par,
+                MemStack::new(&mut mem),
+                Default::default(),
+            )
+            .map_err(|e| Error::Solve(format!("LDLT factorization failed: {e:?}")))?;
+        // An equation with a positive diagonal whose pivot vanished or was replaced is a
+        // mechanism of the bodies, not a multiplier: singular (the caller's LU says where).
+        let original = |k: usize| symbolic.perm().map_or(k, |p| p.arrays().0[k]);
+        let mechanism = factor_diagonal(symbolic, &l_values)
+            .iter()
+            .enumerate()
+            .find(|&(k, &d)| {
+                let a = diag[original(k)];
+                a > 0.0 && (d <= delta || d < PIVOT_RATIO * a)
+            })
+            .map(|(k, _)| original(k));
+        if let Some(e) = mechanism {
+            let at = format!(" at {}", describe_eq(e));
+            return Err(Error::Singular(singular_message(&at)));
+        }
+        self.factor = Factor::Ldlt(l_values);
+        self.stats.used_lu = false;
+        Ok(())
+    }
+
     /// A general matrix by GMRES: the symmetric part is factorized now by Cholesky, the
-    /// iterations run at the solve. A symmetric part that is not positive definite (the saddle
-    /// point of multipliers, or a singular one) sends this pattern to LU.
+    /// iterations run at the solve; a symmetric part that is not positive definite (the saddle
+    /// point of multipliers) gets a regularized LDLᵀ, a singular one is reported.
     fn factorize_krylov(
         &mut self,
         pattern: &Pattern,
@@ -399,7 +475,7 @@ impl LinearSolver {
             let mut sym = LinearSolver {
                 ordering: self.ordering,
                 groups: self.groups.clone(),
-                require_spd: true,
+                preconditioner: true,
                 ..Default::default()
             };
             sym.stats = SolverStats::default();
@@ -424,7 +500,10 @@ impl LinearSolver {
                 self.stats.used_lu = false;
                 Ok(())
             }
-            // The symmetric part says nothing about the matrix's own regularity: LU decides.
+            // A mechanism of the bodies shows in the symmetric part (the skew part of a contact
+            // tangent is small and restrains nothing).
+            Err(e @ Error::Singular(_)) => Err(e),
+            // Otherwise LU decides.
             Err(_) => {
                 self.krylov_failed = true;
                 self.factorize_lu(pattern, values)
@@ -459,6 +538,16 @@ impl LinearSolver {
                 let symbolic = self.symbolic.as_ref().expect("factorized");
                 let mut mem = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, self.par));
                 LltRef::new(symbolic, values).solve_in_place_with_conj(
+                    Conj::No,
+                    m,
+                    self.par,
+                    MemStack::new(&mut mem),
+                );
+            }
+            Factor::Ldlt(values) => {
+                let symbolic = self.symbolic.as_ref().expect("factorized");
+                let mut mem = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, self.par));
+                LdltRef::new(symbolic, values).solve_in_place_with_conj(
                     Conj::No,
                     m,
                     self.par,
@@ -640,5 +729,81 @@ mod tests {
         assert_eq!(none, 0);
         assert!(diff < 1e-10 * scale, "difference {diff:e}");
         assert!((1..=15).contains(&its), "{its} GMRES iterations");
+    }
+
+    /// The general pattern (diagonal always present) and values of a dense matrix.
+    fn from_dense(a: &[Vec<f64>]) -> (Pattern, Vec<f64>) {
+        let n = a.len();
+        let (mut col_ptr, mut row_idx, mut values) = (vec![0], Vec::new(), Vec::new());
+        for j in 0..n {
+            for (i, row) in a.iter().enumerate() {
+                if row[j] != 0.0 || i == j {
+                    row_idx.push(i);
+                    values.push(row[j]);
+                }
+            }
+            col_ptr.push(row_idx.len());
+        }
+        let pattern = Pattern {
+            n,
+            col_ptr,
+            row_idx,
+            symmetric: false,
+        };
+        (pattern, values)
+    }
+
+    /// A chain of 30 springs and three tie constraints as multipliers whose rows and columns
+    /// differ by 5 % (as a contact tangent's do): the saddle point [K Cᵀ; G 0]. Without the
+    /// support, the chain's translation is free (K 1 = 0, G 1 = C 1 = 0): singular.
+    fn saddle(supported: bool) -> Vec<Vec<f64>> {
+        let (n, m) = (30, 3);
+        let mut a = vec![vec![0.0; n + m]; n + m];
+        for i in 0..n - 1 {
+            a[i][i] += 1.0;
+            a[i + 1][i + 1] += 1.0;
+            a[i][i + 1] -= 1.0;
+            a[i + 1][i] -= 1.0;
+        }
+        if supported {
+            a[0][0] += 1.0;
+        }
+        for (k, (p, q)) in [(5, 17), (9, 25), (12, 29)].into_iter().enumerate() {
+            let r = n + k;
+            (a[r][p], a[r][q]) = (1.0, -1.0);
+            (a[p][r], a[q][r]) = (1.05, -1.05);
+        }
+        a
+    }
+
+    /// GMRES preconditioned by the regularized LDLᵀ of the symmetric part of a saddle point
+    /// (multipliers) gives the LU's solution to 1e-10; with the bodies' stiffness singular (no
+    /// support: the ties do not hold the chain) the system is reported singular.
+    #[test]
+    fn saddle_points_by_krylov_match_lu_and_mechanisms_are_singular() {
+        let (pattern, values) = from_dense(&saddle(true));
+        let b: Vec<f64> = (0..pattern.n).map(|i| (0.7 * i as f64).sin()).collect();
+        let solve = |krylov_min, pattern: &Pattern, values: &[f64]| -> Result<(Vec<f64>, usize)> {
+            let mut s = LinearSolver {
+                krylov_min,
+                ..Default::default()
+            };
+            s.factorize(pattern, values, false, &|e| format!("equation {e}"))?;
+            let mut x = b.clone();
+            s.solve_in_place(&mut x)?;
+            Ok((x, s.stats.krylov_iterations))
+        };
+        let (lu, _) = solve(usize::MAX, &pattern, &values).unwrap();
+        let (gm, its) = solve(0, &pattern, &values).unwrap();
+        let scale = lu.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let diff = lu
+            .iter()
+            .zip(&gm)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        assert!(diff < 1e-10 * scale, "difference {diff:e}");
+        assert!((1..=15).contains(&its), "{its} GMRES iterations");
+        let (pattern, values) = from_dense(&saddle(false));
+        let r = solve(0, &pattern, &values);
+        assert!(matches!(r, Err(Error::Singular(_))), "{:?}", r.map(|x| x.1));
     }
 }
