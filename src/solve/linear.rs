@@ -442,15 +442,19 @@ impl LinearSolver {
                 Default::default(),
             )
             .map_err(|e| Error::Solve(format!("LDLT factorization failed: {e:?}")))?;
-        // An equation with a positive diagonal whose pivot vanished or was replaced is a
-        // mechanism of the bodies, not a multiplier: singular (the caller's LU says where).
+        // An equation with a positive diagonal whose pivot was replaced (it was not positive:
+        // the replacement is exactly δ) or vanishes against its diagonal or against the largest
+        // pivot (the round-off of the stiff penalties that replaced multiplier pivots leave) is a
+        // mechanism of the bodies, not a multiplier: singular there.
         let original = |k: usize| symbolic.perm().map_or(k, |p| p.arrays().0[k]);
-        let mechanism = factor_diagonal(symbolic, &l_values)
+        let pivots = factor_diagonal(symbolic, &l_values);
+        let largest = pivots.iter().fold(0.0f64, |m, d| m.max(*d));
+        let mechanism = pivots
             .iter()
             .enumerate()
             .find(|&(k, &d)| {
                 let a = diag[original(k)];
-                a > 0.0 && (d <= delta || d < PIVOT_RATIO * a)
+                a > 0.0 && (d == delta || d < PIVOT_RATIO * a.max(largest))
             })
             .map(|(k, _)| original(k));
         if let Some(e) = mechanism {
