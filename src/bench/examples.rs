@@ -52,8 +52,8 @@ pub const SLIDING_FORCE: f64 = 20.0;
 /// Every example, in the order of the README's table.
 pub fn all() -> Vec<Example> {
     let stretch = 1.0 - PATCH_DELTA / (2.0 * PATCH_H);
-    let p = -uniaxial_stress(&neo_hookean_law(), stretch).1;
     let law = neo_hookean_law();
+    let p = -uniaxial_stress(&law, stretch).1;
     let (c1, k) = match law {
         crate::material::hyperelastic::Hyperelastic::MooneyRivlin { c1, k, .. } => (c1, k),
         _ => unreachable!("neo-Hookean is Mooney-Rivlin with c2 = 0"),

@@ -234,6 +234,13 @@ pub fn write_contact_block_input(
         .map_err(|e| Error::Output(format!("cannot write {}: {e}", path.display())))
 }
 
+/// Read a generated input file and remove it, whether it reads or not.
+fn read_generated(path: &Path) -> Result<crate::model::Model> {
+    let read = read_model(path);
+    let _ = std::fs::remove_file(path);
+    Ok(read?.model)
+}
+
 /// Figures of the contact benchmark.
 #[derive(Debug, Clone, Default)]
 pub struct ContactBenchFigures {
@@ -249,9 +256,7 @@ pub fn run_contact(n: usize, multipliers: bool) -> Result<ContactBenchFigures> {
     let path = std::env::temp_dir().join(format!("hertz-cbench-{}-{n}.in", std::process::id()));
     // Push by 1/40 of the block height: a contact zone of a few dozen nodes.
     write_contact_block_input(&path, n, n as f64 / 40.0, multipliers)?;
-    let read = read_model(&path);
-    let _ = std::fs::remove_file(&path);
-    let model = read?.model;
+    let model = read_generated(&path)?;
     let mut f = ContactBenchFigures::default();
     let t = Instant::now();
     crate::solve::run_analysis(
@@ -386,9 +391,7 @@ pub fn run_contact3d(m: Model3d, law: suite::Law) -> Result<Contact3dFigures> {
     let path = std::env::temp_dir().join(format!("hertz-3dbench-{}.in", std::process::id()));
     std::fs::write(&path, m.input(law))
         .map_err(|e| Error::Output(format!("cannot write {}: {e}", path.display())))?;
-    let read = read_model(&path);
-    let _ = std::fs::remove_file(&path);
-    let model = read?.model;
+    let model = read_generated(&path)?;
     let mut f = Contact3dFigures::default();
     let mut states = Vec::new();
     let t = Instant::now();
@@ -476,9 +479,7 @@ pub fn run(dim: usize, n: usize, ordering: OrderingKind) -> Result<BenchFigures>
     write_block_input(&path, dim, n)?;
     let mut f = BenchFigures::default();
     let t = Instant::now();
-    let read = read_model(&path);
-    let _ = std::fs::remove_file(&path);
-    let model = read?.model;
+    let model = read_generated(&path)?;
     f.read_s = t.elapsed().as_secs_f64();
     let t = Instant::now();
     let dofs = crate::solve::number_dofs(&model)?;

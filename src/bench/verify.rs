@@ -2,7 +2,7 @@
 //! wedges) and any node order (a cube symmetry applied to every element, see
 //! [`super::mesh::cube_symmetry`]), so that a test can run each in every orientation.
 
-use super::mesh::{uniform, Input, Solid};
+use super::mesh::{uniform, Block, Input, Solid};
 use super::suite::{analysis, history, n2s, Law};
 
 /// Young's modulus and Poisson's ratio of the verification bodies.
@@ -17,6 +17,43 @@ pub fn neo_hookean(number: usize) -> String {
         "mooneyrivlincompressiblemat {number} d 0 c1 {} c2 0 k {k}",
         0.5 * mu
     )
+}
+
+/// Contact segment 1 on the faces of `master` at height `z`, section 1, and material 1:
+/// neo-Hookean for `nlgeo`, else linear elastic with E, ν.
+fn contact_faces_and_material(inp: &mut Input, master: &Block, z: f64, nlgeo: bool) {
+    let faces = inp.faces_where(master, &|p| (p[2] - z).abs() < 1e-12);
+    let seg = inp.boundary_set(&faces);
+    inp.segments.push(format!(
+        "linear3delementsurfacecontactsegment 1 boundaryset {seg}"
+    ));
+    inp.sections.push("SimpleCS 1".into());
+    inp.materials.push(if nlgeo {
+        neo_hookean(1)
+    } else {
+        format!("IsoLE 1 d 0 E {E} n {NU} tAlpha 0")
+    });
+}
+
+/// Conditions 1–3: rollers on the planes x = 0 and y = 0 and on the nodes `bottom` (held in z);
+/// condition 4: the nodes `top` moved down by `delta` times function 1.
+fn rollers_and_push(inp: &mut Input, bottom: &[usize], top: &[usize], delta: f64) {
+    let x0 = inp.nodes_where(&|p| p[0].abs() < 1e-12);
+    let y0 = inp.nodes_where(&|p| p[1].abs() < 1e-12);
+    let x0 = inp.node_set(&x0);
+    let y0 = inp.node_set(&y0);
+    let bottom = inp.node_set(bottom);
+    let top = inp.node_set(top);
+    for (k, (dof, set)) in [(1, x0), (2, y0), (3, bottom)].iter().enumerate() {
+        inp.bcs.push(format!(
+            "BoundaryCondition {} loadTimeFunction 2 dofs 1 {dof} values 1 0 set {set}",
+            k + 1
+        ));
+    }
+    inp.bcs.push(format!(
+        "BoundaryCondition 4 loadTimeFunction 1 dofs 1 3 values 1 {} set {top}",
+        -delta
+    ));
 }
 
 /// The 3D contact patch test: two blocks [0, 1]² × [−h, 0] (master, n × n × 2 elements) and
@@ -61,33 +98,8 @@ impl Patch {
             &extra,
             self.sym,
         );
-        let faces = inp.faces_where(&master, &|p| p[2].abs() < 1e-12);
-        let seg = inp.boundary_set(&faces);
-        inp.segments.push(format!(
-            "linear3delementsurfacecontactsegment 1 boundaryset {seg}"
-        ));
-        inp.sections.push("SimpleCS 1".into());
-        inp.materials.push(if self.nlgeo {
-            neo_hookean(1)
-        } else {
-            format!("IsoLE 1 d 0 E {E} n {NU} tAlpha 0")
-        });
-        let x0 = inp.nodes_where(&|p| p[0].abs() < 1e-12);
-        let y0 = inp.nodes_where(&|p| p[1].abs() < 1e-12);
-        let x0 = inp.node_set(&x0);
-        let y0 = inp.node_set(&y0);
-        let bottom = inp.node_set(&master.bottom);
-        let top = inp.node_set(&slave.top);
-        for (k, (dof, set)) in [(1, x0), (2, y0), (3, bottom)].iter().enumerate() {
-            inp.bcs.push(format!(
-                "BoundaryCondition {} loadTimeFunction 2 dofs 1 {dof} values 1 0 set {set}",
-                k + 1
-            ));
-        }
-        inp.bcs.push(format!(
-            "BoundaryCondition 4 loadTimeFunction 1 dofs 1 3 values 1 {} set {top}",
-            -self.delta
-        ));
+        contact_faces_and_material(&mut inp, &master, 0.0, self.nlgeo);
+        rollers_and_push(&mut inp, &master.bottom, &slave.top, self.delta);
         inp.bcs.push(n2s(5, self.law, &slave.bottom, &[1], ""));
         let steps: Vec<f64> = (1..=self.steps)
             .map(|k| k as f64 / self.steps as f64)
@@ -179,33 +191,8 @@ impl HertzSphere {
             let zb = HERTZ_R - (HERTZ_R * HERTZ_R - r2).sqrt();
             p[2] = zb + p[2] * (HERTZ_CAP - zb) / HERTZ_CAP;
         }
-        let faces = inp.faces_where(&block, &|p| p[2].abs() < 1e-12);
-        let seg = inp.boundary_set(&faces);
-        inp.segments.push(format!(
-            "linear3delementsurfacecontactsegment 1 boundaryset {seg}"
-        ));
-        inp.sections.push("SimpleCS 1".into());
-        inp.materials.push(if self.nlgeo {
-            neo_hookean(1)
-        } else {
-            format!("IsoLE 1 d 0 E {E} n {NU} tAlpha 0")
-        });
-        let x0 = inp.nodes_where(&|p| p[0].abs() < 1e-12);
-        let y0 = inp.nodes_where(&|p| p[1].abs() < 1e-12);
-        let x0 = inp.node_set(&x0);
-        let y0 = inp.node_set(&y0);
-        let bottom = inp.node_set(&block.bottom);
-        let top = inp.node_set(&cap.top);
-        for (k, (dof, set)) in [(1, x0), (2, y0), (3, bottom)].iter().enumerate() {
-            inp.bcs.push(format!(
-                "BoundaryCondition {} loadTimeFunction 2 dofs 1 {dof} values 1 0 set {set}",
-                k + 1
-            ));
-        }
-        inp.bcs.push(format!(
-            "BoundaryCondition 4 loadTimeFunction 1 dofs 1 3 values 1 {} set {top}",
-            -self.delta
-        ));
+        contact_faces_and_material(&mut inp, &block, 0.0, self.nlgeo);
+        rollers_and_push(&mut inp, &block.bottom, &cap.top, self.delta);
         let contact: Vec<usize> = cap
             .bottom
             .iter()
@@ -433,17 +420,7 @@ impl WedgeOnBrick {
         let mut cells = bottom.clone();
         cells.extend(&top);
         inp.cells.push((crate::fem::shape::Shape::Wedge6, cells));
-        let faces = inp.faces_where(&brick, &|p| (p[2] - 1.0).abs() < 1e-12);
-        let seg = inp.boundary_set(&faces);
-        inp.segments.push(format!(
-            "linear3delementsurfacecontactsegment 1 boundaryset {seg}"
-        ));
-        inp.sections.push("SimpleCS 1".into());
-        inp.materials.push(if self.nlgeo {
-            neo_hookean(1)
-        } else {
-            format!("IsoLE 1 d 0 E {E} n {NU} tAlpha 0")
-        });
+        contact_faces_and_material(&mut inp, &brick, 1.0, self.nlgeo);
         let base = inp.node_set(&brick.bottom);
         let pin = inp.nodes_where(&|p| p[0] == 0.0 && p[1] == 0.0 && p[2] == 0.0);
         let pin = inp.node_set(&pin);

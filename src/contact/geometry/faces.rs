@@ -248,24 +248,23 @@ impl<T: Scalar> FaceGeometry<T> {
 }
 
 impl FaceGeometry<f64> {
+    /// The face with its corners and normals as constants of duals in (ξ, η).
+    fn constant_in_xi_eta(&self) -> FaceGeometry<super::super::dual::DualN<2>> {
+        type Dual = super::super::dual::DualN<2>;
+        let constant = |p: &[f64; 3]| p.map(|v| Dual::constant(v, 2));
+        FaceGeometry {
+            kind: self.kind,
+            x: self.x.iter().map(constant).collect(),
+            n: self.n.iter().map(constant).collect(),
+        }
+    }
+
     /// Contact point of `xs` by Newton on r(ξ, η) = 0 from the face centre, with the Jacobian
     /// from dual numbers in (ξ, η). None when it does not converge.
     pub fn project(&self, xs: [f64; 3]) -> Option<(f64, f64)> {
         type Dual = super::super::dual::DualN<2>;
         let (mut xi, mut eta) = centre(self.kind);
-        let geom = FaceGeometry {
-            kind: self.kind,
-            x: self
-                .x
-                .iter()
-                .map(|p| p.map(|v| Dual::constant(v, 2)))
-                .collect(),
-            n: self
-                .n
-                .iter()
-                .map(|p| p.map(|v| Dual::constant(v, 2)))
-                .collect(),
-        };
+        let geom = self.constant_in_xi_eta();
         let xs_d = xs.map(|v| Dual::constant(v, 2));
         let mut last = f64::INFINITY;
         for _ in 0..40 {
@@ -293,19 +292,7 @@ impl FaceGeometry<f64> {
     /// ∂r/∂(ξ, η) at (ξ, η), plain numbers.
     pub fn jacobian(&self, xs: [f64; 3], xi: f64, eta: f64) -> [[f64; 2]; 2] {
         type Dual = super::super::dual::DualN<2>;
-        let geom = FaceGeometry {
-            kind: self.kind,
-            x: self
-                .x
-                .iter()
-                .map(|p| p.map(|v| Dual::constant(v, 2)))
-                .collect(),
-            n: self
-                .n
-                .iter()
-                .map(|p| p.map(|v| Dual::constant(v, 2)))
-                .collect(),
-        };
+        let geom = self.constant_in_xi_eta();
         let r = geom.residual(
             &xs.map(|v| Dual::constant(v, 2)),
             Dual::variable(xi, 0, 2),
