@@ -95,6 +95,8 @@ pub fn run_file(path: &Path, opts: &RunOptions) -> Result<RunReport> {
     let mut vtus: Vec<(f64, String)> = Vec::new();
     let mut csv = String::from(outfile::CONTACT_CSV_HEADER);
     csv.push('\n');
+    let mut history = String::new();
+    let mut newton = format!("{}\n", outfile::NEWTON_CSV_HEADER);
     let params = SolveParams {
         log_steps: opts.log_steps,
         log_iterations: opts.log_iterations,
@@ -119,6 +121,11 @@ pub fn run_file(path: &Path, opts: &RunOptions) -> Result<RunReport> {
                 out_text.push_str(&outfile::step_block(&model, res));
             }
             csv.push_str(&outfile::contact_csv_rows(&model, res));
+            if history.is_empty() {
+                history = outfile::history_csv_header(&model, res.dofs);
+            }
+            history.push_str(&outfile::history_csv_row(res));
+            newton.push_str(&outfile::newton_csv_rows(res));
             let name = vtu::write_step(&model, res, &dir, &stem)?;
             report.written.push(dir.join(&name));
             vtus.push((res.time, name));
@@ -140,6 +147,11 @@ pub fn run_file(path: &Path, opts: &RunOptions) -> Result<RunReport> {
             let csv_path = dir.join(format!("{stem}.contact.csv"));
             write_atomic(&csv_path, csv.as_bytes())?;
             report.written.push(csv_path);
+        }
+        for (ext, text) in [("steps.csv", &history), ("newton.csv", &newton)] {
+            let p = dir.join(format!("{stem}.{ext}"));
+            write_atomic(&p, text.as_bytes())?;
+            report.written.push(p);
         }
         if !vtus.is_empty() {
             vtu::write_collection(&dir, &stem, &vtus)?;

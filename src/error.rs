@@ -10,11 +10,26 @@ pub struct Span {
     pub record: String,
 }
 
+impl Span {
+    /// The record text, cut to its first 160 characters for messages.
+    pub fn short_record(&self) -> String {
+        const SHOWN: usize = 160;
+        match self.record.char_indices().nth(SHOWN) {
+            None => self.record.clone(),
+            Some((at, _)) => format!(
+                "{} ... ({} more characters)",
+                &self.record[..at],
+                self.record[at..].chars().count()
+            ),
+        }
+    }
+}
+
 /// Everything that can go wrong in hertz.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
     /// Malformed or unsupported input; exit code 2.
-    #[error("{}:{}: {msg}\n  record: {}", span.file.display(), span.line, span.record)]
+    #[error("{}:{}: {msg}\n  record: {}", span.file.display(), span.line, span.short_record())]
     Input { span: Span, msg: String },
     /// Input error not tied to one line (e.g. unreadable file, truncated file).
     #[error("{file}: {msg}")]

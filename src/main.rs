@@ -1,134 +1,167 @@
 //! The `hertz` command: thin CLI over the library. Exit codes: 0 success, 1 failed check rules,
 //! 2 bad input or usage, 3 solver failure, 4 output failure.
 
+use clap::{CommandFactory, Parser, Subcommand};
 use hertz::app::{run_file, RunOptions};
 use hertz::output::check::describe_failure;
+use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-const HELP: &str = "\
-hertz — finite-element solver for contact mechanics that reads OOFEM input files
+const AFTER_HELP: &str = "\
+Examples:
+    hertz run examples/hertz_cylinder.in          solve; write .out, .vtu per step, .pvd
+    hertz check tests.in                         solve and evaluate the #%BEGIN_CHECK% rules
+    hertz import mesh.msh -o mesh.in             Gmsh mesh -> OOFEM records to @include
+    hertz plot run.contact.csv --hertz           contact pressure with the Hertz curve (SVG)
 
-USAGE:
-    hertz run FILE.in [-o DIR] [-q|-v] solve; write FILE's .out, .vtu per step and .pvd; evaluate
-                                      the #%BEGIN_CHECK% rules if the file has an errorcheck module
-    hertz check FILE.in [-q|-v]       solve and evaluate the check rules; write nothing else
-    hertz bench [--dim 2|3] [--n N] [--ordering auto|amd|metis]
-                                      solve a generated linear-elastic block with N elements per
-                                      side and print sizes and timings
-    hertz bench --contact [--n N] [--multipliers]
-                                      the contact benchmark: a 2N x N block pushed against a rigid
-                                      circle with node-to-segment penalty (or multiplier) contact
-    hertz bench --sphere H | --patch N [--multipliers] [--write DIR]
-                                      3D contact benchmarks: the Hertz sphere on a block in bricks
-                                      of spacing H under the contact (0.085: 10^5 unknowns), or the
-                                      contact patch test with N x N master bricks ((2N+1)^2 contact
-                                      nodes); prints phase times, peak memory and the errors against
-                                      the exact solution, or writes the input to DIR
-    hertz bench --suite [--write DIR] the robustness suite's table of setups (or their inputs)
-    hertz bench --examples DIR        write the verification examples of examples/ to DIR
-    hertz --help | --version
+Exit codes: 0 success, 1 a check rule failed, 2 bad input or usage, 3 the solver failed,
+4 output failed. User guide: docs/guide.md";
 
-OPTIONS:
-    -o, --output DIR   directory for the output files (default: next to the input file)
-    -q, --quiet        no per-step log lines on stderr
-    -v, --verbose      one log line per Newton iteration (residual, contact state)
+#[derive(Parser)]
+#[command(
+    name = "hertz",
+    version,
+    about = "Finite-element solver for contact mechanics that reads OOFEM input files",
+    after_help = AFTER_HELP,
+    arg_required_else_help = false
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
 
-EXIT CODES:
-    0 success, 1 a check rule failed, 2 bad input or usage, 3 the solver failed, 4 output failed
-";
+/// Verbosity shared by `run` and `check`.
+#[derive(clap::Args)]
+struct Verbosity {
+    /// Nothing on stderr but errors (no progress, step lines, warnings); results stay on stdout
+    #[arg(short, long, conflicts_with = "verbose")]
+    quiet: bool,
+    /// One line per Newton iteration: residual, contact nodes closed and opened, phase times
+    #[arg(short, long)]
+    verbose: bool,
+}
 
-fn usage_error(msg: &str) -> ExitCode {
-    eprintln!("error: {msg}\n\n{HELP}");
-    ExitCode::from(2)
+#[derive(Subcommand)]
+enum Command {
+    /// Solve FILE; write its .out, a .vtu per step, a .pvd and, with contact, a .contact.csv;
+    /// evaluate the #%BEGIN_CHECK% rules if the file has an errorcheck module
+    Run {
+        /// OOFEM input file
+        file: PathBuf,
+        /// Directory for the output files (default: next to the input file)
+        #[arg(short, long, value_name = "DIR")]
+        output: Option<PathBuf>,
+        #[command(flatten)]
+        verbosity: Verbosity,
+    },
+    /// Solve FILE and evaluate its check rules; write nothing else
+    Check {
+        /// OOFEM input file
+        file: PathBuf,
+        #[command(flatten)]
+        verbosity: Verbosity,
+    },
+    /// Convert a Gmsh mesh (.msh 2.2 or 4.1) to OOFEM node, element and set records
+    Import(hertz::mesh::gmsh::ImportArgs),
+    /// Plot a run's results: contact pressure, load-displacement, Newton residuals (SVG or PNG)
+    Plot(hertz::plot::PlotArgs),
+    /// Generated benchmark problems: sizes, phase times, errors against exact solutions
+    Bench(hertz::bench::BenchArgs),
+    /// Print a shell completion script (bash, zsh, fish, elvish, powershell)
+    Completions {
+        #[arg(value_enum)]
+        shell: clap_complete::Shell,
+    },
 }
 
 fn main() -> ExitCode {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let Some(cmd) = args.first() else {
-        return usage_error("no command given");
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => {
+            // Help and version go to stdout with exit 0; usage errors exit 2.
+            let _ = e.print();
+            return ExitCode::from(if e.use_stderr() { 2 } else { 0 });
+        }
     };
-    match cmd.as_str() {
-        "-h" | "--help" | "help" => {
-            print!("{HELP}");
+    match cli.command {
+        Command::Run {
+            file,
+            output,
+            verbosity,
+        } => run_or_check(file, Some(output), &verbosity),
+        Command::Check { file, verbosity } => run_or_check(file, None, &verbosity),
+        Command::Import(args) => report(hertz::mesh::gmsh::import_command(&args)),
+        Command::Plot(args) => report(hertz::plot::plot_command(&args)),
+        Command::Bench(args) => hertz::bench::main(args),
+        Command::Completions { shell } => {
+            clap_complete::generate(shell, &mut Cli::command(), "hertz", &mut std::io::stdout());
             ExitCode::SUCCESS
         }
-        "-V" | "--version" => {
-            println!("hertz {}", env!("CARGO_PKG_VERSION"));
-            ExitCode::SUCCESS
-        }
-        "run" | "check" => run_or_check(cmd == "run", &args[1..]),
-        "bench" => hertz::bench::main(&args[1..]),
-        other => usage_error(&format!("unknown command `{other}`")),
     }
 }
 
-fn run_or_check(run: bool, args: &[String]) -> ExitCode {
-    let mut file: Option<PathBuf> = None;
-    let mut opts = RunOptions {
-        write_outputs: run,
-        log_steps: true,
-        log_iterations: false,
-        out_dir: None,
-    };
-    let mut it = args.iter();
-    while let Some(a) = it.next() {
-        match a.as_str() {
-            "-o" | "--output" if run => match it.next() {
-                Some(d) => opts.out_dir = Some(PathBuf::from(d)),
-                None => return usage_error("-o needs a directory"),
-            },
-            "-q" | "--quiet" => opts.log_steps = false,
-            "-v" | "--verbose" => opts.log_iterations = true,
-            "-h" | "--help" => {
-                print!("{HELP}");
-                return ExitCode::SUCCESS;
-            }
-            s if s.starts_with('-') => return usage_error(&format!("unknown option `{s}`")),
-            s if file.is_none() => file = Some(PathBuf::from(s)),
-            s => return usage_error(&format!("unexpected argument `{s}`")),
-        }
-    }
-    let Some(file) = file else {
-        return usage_error("no input file given");
-    };
-    match run_file(&file, &opts) {
-        Ok(report) => {
-            for w in &report.warnings {
-                eprintln!("warning: {w}");
-            }
-            let failed = report.n_failed();
-            if report.has_errorcheck {
-                for o in report.outcomes.iter().filter(|o| !o.passed) {
-                    println!("{}", describe_failure(o));
-                }
-                println!(
-                    "{} passed, {} failed",
-                    report.outcomes.len() - failed,
-                    failed
-                );
-            } else if !run {
-                println!(
-                    "no errorcheck module in {}: nothing to check",
-                    file.display()
-                );
-            }
-            if run {
-                for p in &report.written {
-                    if p.extension().is_some_and(|e| e == "out" || e == "pvd") {
-                        eprintln!("wrote {}", p.display());
-                    }
-                }
-            }
-            if failed > 0 {
-                ExitCode::from(1)
-            } else {
-                ExitCode::SUCCESS
-            }
-        }
+/// Print an error as `error: ...` (with the record drawn for input errors) and map it to its
+/// exit code.
+fn report(result: hertz::error::Result<()>) -> ExitCode {
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e}");
+            eprintln!(
+                "{}",
+                hertz::diagnostic::render(&e, std::io::stderr().is_terminal())
+            );
             ExitCode::from(e.exit_code() as u8)
         }
+    }
+}
+
+/// `run` (with `output` = Some: write the results) or `check`.
+fn run_or_check(file: PathBuf, output: Option<Option<PathBuf>>, v: &Verbosity) -> ExitCode {
+    let run = output.is_some();
+    let opts = RunOptions {
+        write_outputs: run,
+        log_steps: !v.quiet,
+        log_iterations: v.verbose,
+        out_dir: output.flatten(),
+    };
+    let report_ = match run_file(&file, &opts) {
+        Ok(r) => r,
+        Err(e) => return report(Err(e)),
+    };
+    if !v.quiet {
+        for w in &report_.warnings {
+            eprintln!("warning: {w}");
+        }
+    }
+    let failed = report_.n_failed();
+    if report_.has_errorcheck {
+        for o in report_.outcomes.iter().filter(|o| !o.passed) {
+            println!("{}", describe_failure(o));
+        }
+        println!(
+            "{} passed, {} failed",
+            report_.outcomes.len() - failed,
+            failed
+        );
+    } else if !run && !v.quiet {
+        println!(
+            "no errorcheck module in {}: nothing to check",
+            file.display()
+        );
+    }
+    if run && !v.quiet {
+        for p in &report_.written {
+            if p.extension()
+                .is_some_and(|e| e == "out" || e == "pvd" || e == "csv")
+            {
+                eprintln!("wrote {}", p.display());
+            }
+        }
+    }
+    if failed > 0 {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
     }
 }

@@ -547,89 +547,79 @@ pub fn peak_rss_mb() -> f64 {
         .unwrap_or(0.0)
 }
 
-/// CLI entry: `hertz bench [--dim 2|3] [--n N] [--ordering auto|amd|metis]`, `--contact`,
-/// `--sphere H`, `--patch N`, `--suite`, `--examples DIR` (see `hertz --help`).
-pub fn main(args: &[String]) -> ExitCode {
-    let (mut dim, mut n, mut ordering) = (2usize, 100usize, OrderingKind::Auto);
-    let (mut contact, mut multipliers, mut suite) = (false, false, false);
-    let mut write: Option<String> = None;
-    let (mut model3d, mut examples): (Option<Model3d>, Option<String>) = (None, None);
-    let mut it = args.iter();
-    while let Some(a) = it.next() {
-        if a == "--contact" {
-            contact = true;
-            continue;
-        }
-        if a == "--multipliers" {
-            multipliers = true;
-            continue;
-        }
-        if a == "--suite" {
-            suite = true;
-            continue;
-        }
-        if a == "--write" {
-            match it.next() {
-                Some(d) => write = Some(d.clone()),
-                None => {
-                    eprintln!("error: --write needs a directory");
-                    return ExitCode::from(2);
-                }
-            }
-            continue;
-        }
-        let v = it.next().map(String::as_str);
-        let ok = match (a.as_str(), v) {
-            ("--sphere", Some(v)) => match v.parse::<f64>() {
-                // Spacing 0.03: about 10⁶ unknowns.
-                Ok(x) if (0.03..=1.0).contains(&x) => {
-                    model3d = Some(Model3d::Sphere(x));
-                    true
-                }
-                _ => false,
-            },
-            ("--patch", Some(v)) => match v.parse::<usize>() {
-                // 100: about 4·10⁵ unknowns.
-                Ok(x) if (1..=100).contains(&x) => {
-                    model3d = Some(Model3d::Patch(x));
-                    true
-                }
-                _ => false,
-            },
-            ("--examples", Some(dir)) => {
-                examples = Some(dir.to_string());
-                true
-            }
-            ("--dim", Some("2")) => {
-                dim = 2;
-                true
-            }
-            ("--dim", Some("3")) => {
-                dim = 3;
-                true
-            }
-            ("--n", Some(v)) => match v.parse::<usize>() {
-                Ok(x) if x >= 1 => {
-                    n = x;
-                    true
-                }
-                _ => false,
-            },
-            ("--ordering", Some(v)) => match v {
-                "auto" => Some(OrderingKind::Auto),
-                "amd" => Some(OrderingKind::Amd),
-                "metis" => Some(OrderingKind::Metis),
-                _ => None,
-            }
-            .map(|o| ordering = o)
-            .is_some(),
-            _ => false,
-        };
-        if !ok {
-            eprintln!("error: bench takes --dim 2|3, --n N (N >= 1), --ordering auto|amd|metis, --contact [--multipliers], --sphere H (0.03 <= H <= 1) or --patch N (1 <= N <= 100) [--multipliers] [--write DIR], --suite [--write DIR], --examples DIR; got `{a}`");
+/// Orderings `hertz bench --ordering` accepts.
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+pub enum OrderingArg {
+    Auto,
+    Amd,
+    Metis,
+}
+
+/// `hertz bench`: generated problems with sizes, phase times and errors against exact solutions.
+#[derive(Debug, clap::Args)]
+#[command(group(clap::ArgGroup::new("problem").args(["contact", "sphere", "patch", "suite", "examples"])))]
+pub struct BenchArgs {
+    /// Dimension of the linear-elastic block
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(2..=3))]
+    pub dim: u8,
+    /// Elements per side of the block (2D: 2N x N for --contact)
+    #[arg(long = "n", default_value_t = 100, value_parser = clap::value_parser!(u64).range(1..=100_000))]
+    pub n: u64,
+    /// Fill-reducing ordering of the sparse factorization
+    #[arg(long, value_enum, default_value = "auto")]
+    pub ordering: OrderingArg,
+    /// The 2D contact benchmark: a 2N x N block pushed against a rigid circle (node-to-segment)
+    #[arg(long)]
+    pub contact: bool,
+    /// Lagrange multipliers instead of a penalty (--contact, --sphere, --patch)
+    #[arg(long)]
+    pub multipliers: bool,
+    /// 3D Hertz sphere on a block in bricks of spacing H under the contact (0.085: 10^5 unknowns)
+    #[arg(long, value_name = "H")]
+    pub sphere: Option<f64>,
+    /// 3D contact patch test with N x N master bricks ((2N+1)^2 contact nodes)
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=100))]
+    pub patch: Option<u64>,
+    /// The robustness suite's table of setups
+    #[arg(long)]
+    pub suite: bool,
+    /// Write the verification examples of examples/ to DIR
+    #[arg(long, value_name = "DIR")]
+    pub examples: Option<String>,
+    /// Write the generated input(s) to DIR instead of solving (--sphere, --patch, --suite)
+    #[arg(long, value_name = "DIR")]
+    pub write: Option<String>,
+}
+
+/// Largest generated problem `hertz bench` accepts, in unknowns (2D, 3D): the direct solver's
+/// memory grows faster in 3D.
+const MAX_BENCH_UNKNOWNS: [f64; 2] = [2e7, 1e6];
+
+/// CLI entry of `hertz bench` (see `hertz bench --help`).
+pub fn main(args: BenchArgs) -> ExitCode {
+    let (dim, n) = (args.dim as usize, args.n as usize);
+    let ordering = match args.ordering {
+        OrderingArg::Auto => OrderingKind::Auto,
+        OrderingArg::Amd => OrderingKind::Amd,
+        OrderingArg::Metis => OrderingKind::Metis,
+    };
+    let (contact, multipliers, suite, write, examples) = (
+        args.contact,
+        args.multipliers,
+        args.suite,
+        args.write,
+        args.examples,
+    );
+    let model3d = match (args.sphere, args.patch) {
+        // Spacing 0.03: about 10^6 unknowns.
+        (Some(h), _) if !(0.03..=1.0).contains(&h) => {
+            eprintln!("error: --sphere H takes 0.03 <= H <= 1, got {h}");
             return ExitCode::from(2);
         }
-    }
+        (Some(h), _) => Some(Model3d::Sphere(h)),
+        (_, Some(p)) => Some(Model3d::Patch(p as usize)),
+        _ => None,
+    };
     if let Some(dir) = examples {
         return match examples::write_all(Path::new(&dir)) {
             Ok(files) => {
@@ -690,14 +680,16 @@ pub fn main(args: &[String]) -> ExitCode {
         };
     }
     // Refuse sizes that cannot fit before generating anything.
-    let unknowns = if dim == 3 && !contact {
-        3.0 * (n as f64 + 1.0).powi(3)
+    let (unknowns, limit) = if dim == 3 && !contact {
+        (3.0 * (n as f64 + 1.0).powi(3), MAX_BENCH_UNKNOWNS[1])
     } else {
-        4.0 * (n as f64 + 1.0).powi(2)
+        (4.0 * (n as f64 + 1.0).powi(2), MAX_BENCH_UNKNOWNS[0])
     };
-    if unknowns > 2e7 {
+    if unknowns > limit {
         eprintln!(
-            "error: bench --n {n} means about {unknowns:.1e} unknowns; the largest accepted is 2e7"
+            "error: bench --n {n} means about {unknowns:.1e} unknowns in {}D; the largest accepted \
+             is {limit:.0e}",
+            if contact { 2 } else { dim }
         );
         return ExitCode::from(2);
     }

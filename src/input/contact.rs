@@ -16,9 +16,15 @@ pub const CONDITION_KEYWORDS: [&str; 4] = [
     "n2slagrangianmultipliercontact",
 ];
 
-const SEGMENT_KEYWORDS: &str = "linear2delementedgecontactsegment, qelementedgecontactsegment, \
-                                linear3delementsurfacecontactsegment, circlecontactsegment, \
-                                polynomialcontactsegment, planecontactsegment";
+/// Contact segment record keywords.
+pub const SEGMENTS: [&str; 6] = [
+    "linear2delementedgecontactsegment",
+    "qelementedgecontactsegment",
+    "linear3delementsurfacecontactsegment",
+    "circlecontactsegment",
+    "polynomialcontactsegment",
+    "planecontactsegment",
+];
 
 /// A segment whose edge set is not resolved yet.
 pub struct PendingSegment {
@@ -35,6 +41,8 @@ pub struct PendingCondition {
     law: ContactLaw,
     sets: Option<(usize, usize)>,
     nodes: Vec<usize>,
+    /// hertz's `slaveset k` on a node-to-segment condition: the contact nodes are set k's.
+    node_set: Option<usize>,
     segments: Vec<usize>,
     normal: Option<[f64; 3]>,
     span: Span,
@@ -163,7 +171,8 @@ pub fn read_segment(
         }
         _ => {
             return Err(r.error(format!(
-                "unsupported contact segment `{kw}`; supported: {SEGMENT_KEYWORDS}"
+                "unsupported contact segment `{kw}`; supported: {}",
+                SEGMENTS.join(", ")
             )));
         }
     }
@@ -210,6 +219,7 @@ pub fn read_condition(
         law,
         sets: None,
         nodes: vec![],
+        node_set: None,
         segments: vec![],
         normal,
         span: r.span(),
@@ -227,11 +237,28 @@ pub fn read_condition(
         c.sets = Some((m, s));
     } else {
         // OOFEM uses these numbers as raw node indices (spec §2.10 item 11); hertz maps labels.
-        c.nodes = r
-            .int_array("nodeset")?
-            .into_iter()
-            .map(|l| node_ref(r, nodes, l, "`nodeset`"))
-            .collect::<Result<_>>()?;
+        // hertz also takes `slaveset k` (the nodes of set k: meshes imported from Gmsh).
+        c.node_set = r.opt_usize("slaveset")?;
+        match (c.node_set, r.opt_int_array("nodeset")?) {
+            (Some(_), Some(_)) => {
+                return Err(
+                    r.error("give the contact nodes by `nodeset` or by `slaveset`, not both")
+                )
+            }
+            (Some(v), None) if v == 0 || v > nset => {
+                return Err(r.error(format!(
+                    "set {v} does not exist (the counts record declares {nset})"
+                )))
+            }
+            (Some(_), None) => {}
+            (None, list) => {
+                c.nodes = list
+                    .ok_or_else(|| r.error("missing required keyword `nodeset` (or `slaveset`)"))?
+                    .into_iter()
+                    .map(|l| node_ref(r, nodes, l, "`nodeset`"))
+                    .collect::<Result<_>>()?;
+            }
+        }
         c.segments = r
             .int_array("segmentset")?
             .into_iter()
@@ -245,7 +272,7 @@ pub fn read_condition(
                 }
             })
             .collect::<Result<_>>()?;
-        if c.nodes.is_empty() || c.segments.is_empty() {
+        if (c.nodes.is_empty() && c.node_set.is_none()) || c.segments.is_empty() {
             return Err(r.error("`nodeset` and `segmentset` must not be empty"));
         }
     }
@@ -325,10 +352,19 @@ pub fn resolve(
                     pairs: mn.iter().copied().zip(sn.iter().copied()).collect(),
                 }
             }
-            None => Pairing::NodeToSegment {
-                nodes: c.nodes,
-                segments: c.segments,
-            },
+            None => {
+                let nodes = match c.node_set {
+                    Some(k) if sets[k - 1].nodes.is_empty() => {
+                        return Err(err(&c.span, format!("set {k} (`slaveset`) has no nodes")))
+                    }
+                    Some(k) => sets[k - 1].nodes.clone(),
+                    None => c.nodes,
+                };
+                Pairing::NodeToSegment {
+                    nodes,
+                    segments: c.segments,
+                }
+            }
         };
         contacts.push(ContactCondition {
             number: c.number,

@@ -32,7 +32,7 @@ fn read_into(path: &Path, out: &mut Vec<Line>, depth: usize) -> Result<()> {
         file: path.display().to_string(),
         msg: format!("cannot read file: {e}"),
     })?;
-    let content = String::from_utf8_lossy(&bytes);
+    let content = decode_text(path, &bytes)?;
     let file = Arc::new(path.to_path_buf());
     let mut pending: Option<(usize, String)> = None;
     for (i, raw) in content.lines().enumerate() {
@@ -55,9 +55,23 @@ fn read_into(path: &Path, out: &mut Vec<Line>, depth: usize) -> Result<()> {
             pending = Some((start, text));
             continue;
         }
+        if let Some(rest) = text.trim_start().strip_prefix("@gmsh") {
+            splice_gmsh(path, start, &text, rest, out)?;
+            continue;
+        }
         if let Some(rest) = text.trim_start().strip_prefix("@include") {
             let name = rest.trim().trim_matches('"');
             let inc = path.parent().unwrap_or(Path::new(".")).join(name);
+            if !inc.is_file() {
+                return Err(Error::Input {
+                    span: crate::error::Span {
+                        file: path.to_path_buf(),
+                        line: start,
+                        record: text.trim().to_string(),
+                    },
+                    msg: format!("included file {} does not exist", inc.display()),
+                });
+            }
             read_into(&inc, out, depth + 1)?;
             continue;
         }
@@ -75,6 +89,87 @@ fn read_into(path: &Path, out: &mut Vec<Line>, depth: usize) -> Result<()> {
         });
     }
     Ok(())
+}
+
+/// `@gmsh "mesh.msh" [plane stress|strain]`: the mesh's node, element and set records, as
+/// `hertz import` writes them, in place of the line. They are located in messages as
+/// `mesh.msh [converted]:k`, record k of the conversion.
+fn splice_gmsh(
+    path: &Path,
+    line: usize,
+    text: &str,
+    rest: &str,
+    out: &mut Vec<Line>,
+) -> Result<()> {
+    use crate::mesh::gmsh::{convert, Plane};
+    let here = |msg: String| Error::Input {
+        span: crate::error::Span {
+            file: path.to_path_buf(),
+            line,
+            record: text.trim().to_string(),
+        },
+        msg,
+    };
+    let words = tokenize(rest);
+    let Some(name) = words.first() else {
+        return Err(here("`@gmsh` needs a mesh file name".into()));
+    };
+    let plane = match words[1..].iter().map(String::as_str).collect::<Vec<_>>()[..] {
+        [] | ["plane", "stress"] => Plane::Stress,
+        ["plane", "strain"] => Plane::Strain,
+        ref other => {
+            return Err(here(format!(
+                "`@gmsh` takes `plane stress` or `plane strain` after the file name, found `{}`",
+                other.join(" ")
+            )))
+        }
+    };
+    let mesh = path
+        .parent()
+        .unwrap_or(Path::new("."))
+        .join(name.trim_matches('"'));
+    if !mesh.is_file() {
+        return Err(here(format!("mesh file {} does not exist", mesh.display())));
+    }
+    let converted = convert(&mesh, plane)?;
+    let file = Arc::new(PathBuf::from(format!("{} [converted]", mesh.display())));
+    out.extend(
+        converted
+            .records()
+            .into_iter()
+            .enumerate()
+            .map(|(k, text)| Line {
+                file: file.clone(),
+                line: k + 1,
+                text,
+            }),
+    );
+    Ok(())
+}
+
+/// The file's bytes as text: a UTF-8 byte-order mark is skipped; a NUL byte or bytes that are not
+/// UTF-8 are an error naming the line (a binary or UTF-16 file, or a Latin-1 character).
+fn decode_text<'a>(path: &Path, bytes: &'a [u8]) -> Result<&'a str> {
+    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
+    let line_of = |at: usize| 1 + bytes[..at].iter().filter(|&&b| b == b'\n').count();
+    let fail = |msg: String| Error::InputFile {
+        file: path.display().to_string(),
+        msg,
+    };
+    if let Some(at) = bytes.iter().position(|&b| b == 0) {
+        return Err(fail(format!(
+            "line {}: NUL byte: this is not a text file (binary, or UTF-16?)",
+            line_of(at)
+        )));
+    }
+    std::str::from_utf8(bytes).map_err(|e| {
+        let at = e.valid_up_to();
+        fail(format!(
+            "line {}: byte 0x{:02X} is not UTF-8 text (save the file as UTF-8)",
+            line_of(at),
+            bytes[at]
+        ))
+    })
 }
 
 /// Split a record line into tokens. Text outside double quotes is lower-cased; quoted strings

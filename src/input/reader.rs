@@ -53,15 +53,127 @@ impl Cursor {
 
     /// Warn about tokens no lookup consumed (misspelled optional keywords).
     fn finish(&mut self, r: &Record) {
+        const SHOWN: usize = 6;
         let unread = r.unread();
         if !unread.is_empty() {
+            let more = match unread.len().saturating_sub(SHOWN) {
+                0 => String::new(),
+                n => format!(" and {n} more"),
+            };
             self.warnings.push(format!(
-                "{}:{}: unread token(s) `{}` in record `{}` (misspelled keyword?)",
+                "{}:{}: unread token(s) `{}`{more} in record `{}` (misspelled keyword, or an \
+                 array longer than its count?)",
                 r.line.file.display(),
                 r.line.line,
-                unread.join(" "),
+                unread[..unread.len().min(SHOWN)].join(" "),
                 r.keyword()
             ));
+        }
+    }
+}
+
+/// The record blocks of an input file, in file order (sets may also follow the elements).
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Debug)]
+enum Block {
+    Node,
+    Element,
+    Segment,
+    CrossSection,
+    Material,
+    Condition,
+    TimeFunction,
+    Set,
+}
+
+const MATERIAL_KEYWORDS: [&str; 4] = [
+    "isole",
+    "mooneyrivlincompressiblemat",
+    "ogdencompressiblemat",
+    "simopistermat",
+];
+const LOAD_KEYWORDS: [&str; 6] = [
+    "boundarycondition",
+    "nodalload",
+    "constantedgeload",
+    "constantsurfaceload",
+    "constantpressureload",
+    "deadweight",
+];
+const FUNCTION_KEYWORDS: [&str; 3] = ["constantfunction", "piecewiselinfunction", "peakfunction"];
+
+impl Block {
+    /// The block a record keyword belongs to, if hertz knows the keyword.
+    fn of(kw: &str) -> Option<Block> {
+        Some(match kw {
+            "node" | "slavenode" => Block::Node,
+            "simplecs" => Block::CrossSection,
+            "set" => Block::Set,
+            _ if ElementType::from_keyword(kw).is_some() => Block::Element,
+            _ if super::contact::SEGMENTS.contains(&kw) => Block::Segment,
+            _ if MATERIAL_KEYWORDS.contains(&kw) => Block::Material,
+            _ if LOAD_KEYWORDS.contains(&kw)
+                || super::contact::CONDITION_KEYWORDS.contains(&kw) =>
+            {
+                Block::Condition
+            }
+            _ if FUNCTION_KEYWORDS.contains(&kw) => Block::TimeFunction,
+            _ => return None,
+        })
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            Block::Node => "node",
+            Block::Element => "element",
+            Block::Segment => "contact segment",
+            Block::CrossSection => "cross-section",
+            Block::Material => "material",
+            Block::Condition => "boundary-condition",
+            Block::TimeFunction => "time-function",
+            Block::Set => "set",
+        }
+    }
+
+    fn count_key(self) -> &'static str {
+        match self {
+            Block::Node => "ndofman",
+            Block::Element => "nelem",
+            Block::Segment => "ncontactseg",
+            Block::CrossSection => "ncrosssect",
+            Block::Material => "nmat",
+            Block::Condition => "nbc",
+            Block::TimeFunction => "nltf",
+            Block::Set => "nset",
+        }
+    }
+}
+
+impl Cursor {
+    /// Record `i` (0-based) of the `n` records of `block`. A record that belongs to another block
+    /// means a count is wrong: the error names the count and the record found.
+    fn next_of(&mut self, block: Block, i: usize, n: usize) -> Result<Record> {
+        let (name, key) = (block.name(), block.count_key());
+        let r = self.next(&format!("{name} record {} of {n} (`{key} {n}`)", i + 1))?;
+        let kw = r.keyword().to_string();
+        match Block::of(&kw) {
+            Some(found) if found != block => {
+                let why = if found > block {
+                    format!("`{key} {n}` is larger than the {i} {name} record(s) present")
+                } else {
+                    format!("is `{}` too small?", found.count_key())
+                };
+                let other = found.name();
+                let article = if other.starts_with(['a', 'e', 'i', 'o', 'u']) {
+                    "an"
+                } else {
+                    "a"
+                };
+                Err(r.error(format!(
+                    "expected {name} record {} of {n}, found `{kw}`, {article} {other} record: {why}",
+                    i + 1
+                )))
+            }
+            _ => Ok(r),
         }
     }
 }
@@ -246,14 +358,11 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
     type SlaveSpec = (usize, Vec<i64>, Option<Vec<f64>>, Record);
     let mut slave_masters: Vec<SlaveSpec> = Vec::new();
     for i in 0..ndofman {
-        let r = c.next(&format!(
-            "node record {} of {ndofman} (ndofman {ndofman})",
-            i + 1
-        ))?;
+        let r = c.next_of(Block::Node, i, ndofman)?;
         let kw = r.keyword().to_string();
         if kw != "node" && kw != "slavenode" {
             return Err(r.error(format!(
-                "expected node record {} of {ndofman} (Node or SlaveNode), found `{kw}`: is ndofman too large?",
+                "expected node record {} of {ndofman} (Node or SlaveNode), found `{kw}`",
                 i + 1
             )));
         }
@@ -338,20 +447,12 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
     let mut elem_cs: Vec<Option<usize>> = Vec::with_capacity(nelem);
     let mut elem_mat: Vec<Option<usize>> = Vec::with_capacity(nelem);
     for i in 0..nelem {
-        let r = c.next(&format!(
-            "element record {} of {nelem} (nelem {nelem})",
-            i + 1
-        ))?;
+        let r = c.next_of(Block::Element, i, nelem)?;
         let kw = r.keyword().to_string();
         let Some(etype) = ElementType::from_keyword(&kw) else {
             let names: Vec<&str> = ElementType::ALL.iter().map(|(_, t)| t.name()).collect();
-            let hint = if kw == "node" || kw == "slavenode" {
-                " (is ndofman too small?)"
-            } else {
-                ""
-            };
             return Err(r.error(format!(
-                "unknown element type `{kw}`{hint}; supported: {}",
+                "unknown element type `{kw}`; supported: {}",
                 names.join(", ")
             )));
         };
@@ -439,10 +540,7 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
 
     let mut pending_segments = Numbered::new("contact segment", ncontactseg);
     for i in 0..ncontactseg {
-        let r = c.next(&format!(
-            "contact segment record {} of {ncontactseg} (ncontactseg {ncontactseg})",
-            i + 1
-        ))?;
+        let r = c.next_of(Block::Segment, i, ncontactseg)?;
         let seg = super::contact::read_segment(&r, &node_index, domain.nsd(), nset)?;
         pending_segments.put(&r, seg)?;
         c.finish(&r);
@@ -453,10 +551,7 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
     // Cross sections.
     let mut cs = Numbered::new("cross section", ncs);
     for i in 0..ncs {
-        let r = c.next(&format!(
-            "cross-section record {} of {ncs} (ncrosssect {ncs})",
-            i + 1
-        ))?;
+        let r = c.next_of(Block::CrossSection, i, ncs)?;
         if r.keyword() != "simplecs" {
             return Err(r.error(format!(
                 "expected cross-section record {} of {ncs} (SimpleCS), found `{}`",
@@ -501,10 +596,7 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
     // Materials.
     let mut mats = Numbered::new("material", nmat);
     for i in 0..nmat {
-        let r = c.next(&format!(
-            "material record {} of {nmat} (nmat {nmat})",
-            i + 1
-        ))?;
+        let r = c.next_of(Block::Material, i, nmat)?;
         let m = read_material(&r)?;
         mats.put(&r, m)?;
         c.finish(&r);
@@ -515,10 +607,7 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
     let mut bcs: Numbered<Option<Dirichlet>> = Numbered::new("boundary condition", nbc);
     let mut loads = Vec::new();
     for i in 0..nbc {
-        let r = c.next(&format!(
-            "boundary-condition record {} of {nbc} (nbc {nbc})",
-            i + 1
-        ))?;
+        let r = c.next_of(Block::Condition, i, nbc)?;
         let kw = r.keyword().to_string();
         let number = r.number()?;
         let function = r.usize("loadtimefunction")?;
@@ -664,10 +753,7 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
     // Time functions.
     let mut funcs = Numbered::new("time function", nltf);
     for i in 0..nltf {
-        let r = c.next(&format!(
-            "time-function record {} of {nltf} (nltf {nltf})",
-            i + 1
-        ))?;
+        let r = c.next_of(Block::TimeFunction, i, nltf)?;
         let f = match r.keyword() {
             "constantfunction" => TimeFunction::Constant(r.float("f(t)")?),
             "peakfunction" => TimeFunction::Peak { t: r.float("t")?, value: r.float("f(t)")? },
@@ -989,7 +1075,7 @@ struct Refs<'a> {
 fn read_sets(c: &mut Cursor, nset: usize, refs: &Refs) -> Result<Vec<Set>> {
     let mut sets = Numbered::new("set", nset);
     for i in 0..nset {
-        let r = c.next(&format!("set record {} of {nset} (nset {nset})", i + 1))?;
+        let r = c.next_of(Block::Set, i, nset)?;
         if r.keyword() != "set" {
             return Err(r.error(format!(
                 "expected set record {} of {nset}, found `{}`",
@@ -1066,6 +1152,17 @@ fn read_sets(c: &mut Cursor, nset: usize, refs: &Refs) -> Result<Vec<Set>> {
         let edges = pairs("elementedges", true)?;
         let surfaces = pairs("elementsurfaces", false)?;
         let ordered = r.flag("ordered_nodes");
+        if let Some(i) = r.tokens.iter().position(|t| t == "ordered_nodes") {
+            if r.tokens
+                .get(i + 1)
+                .is_some_and(|t| t.parse::<i64>().is_ok())
+            {
+                return Err(r.error(
+                    "`ordered_nodes` is a flag, not a kind of set: write \
+                     `Set k ordered_nodes nodes n l1 .. ln` (the nodes in the order given)",
+                ));
+            }
+        }
         let nodes = if r.flag("allnodes") {
             (0..refs.nodes.len()).collect()
         } else if ordered {

@@ -152,14 +152,32 @@ impl Record {
         Ok(Some((i + 2, n)))
     }
 
+    /// The `n` values of array `key` from token `start`. A keyword where a value should be means
+    /// the announced count is too large: say so rather than "expects a number, found `nodes`".
+    fn array_values<T>(
+        &self,
+        key: &str,
+        start: usize,
+        n: usize,
+        parse: impl Fn(&str) -> Result<T>,
+    ) -> Result<Vec<T>> {
+        let values = &self.tokens[start..start + n];
+        if let Some(k) = values.iter().position(|t| {
+            t.starts_with(|c: char| c.is_ascii_alphabetic()) && parse_f64(t).is_none()
+        }) {
+            return Err(self.error(format!(
+                "`{key}` announces {n} values but only {k} follow before `{}`",
+                values[k]
+            )));
+        }
+        values.iter().map(|t| parse(t)).collect()
+    }
+
     pub fn opt_int_array(&self, key: &str) -> Result<Option<Vec<i64>>> {
         let Some((start, n)) = self.array_len(key)? else {
             return Ok(None);
         };
-        self.tokens[start..start + n]
-            .iter()
-            .map(|t| self.parse_int(key, t))
-            .collect::<Result<_>>()
+        self.array_values(key, start, n, |t| self.parse_int(key, t))
             .map(Some)
     }
 
@@ -172,10 +190,7 @@ impl Record {
         let Some((start, n)) = self.array_len(key)? else {
             return Ok(None);
         };
-        self.tokens[start..start + n]
-            .iter()
-            .map(|t| self.parse_float(key, t))
-            .collect::<Result<_>>()
+        self.array_values(key, start, n, |t| self.parse_float(key, t))
             .map(Some)
     }
 
@@ -302,5 +317,11 @@ mod tests {
         let e = r.float_array("coords").unwrap_err().to_string();
         assert!(e.starts_with("t.in:3:"), "{e}");
         assert!(e.contains("announces 3 values but only 2 follow"), "{e}");
+        let r = rec("n2spenaltycontact 5 nodeset 3 5 6 segmentset 1 1");
+        let e = r.int_array("nodeset").unwrap_err().to_string();
+        assert!(
+            e.contains("`nodeset` announces 3 values but only 2 follow before `segmentset`"),
+            "{e}"
+        );
     }
 }

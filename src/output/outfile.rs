@@ -1,7 +1,8 @@
 //! The OOFEM-style `.out` text file (spec §4): per step the DOF values of the selected nodes, the
 //! integration-point strains and stresses (or F and P for `nlgeo 1`), and the reaction table.
 
-use crate::model::{AnalysisKind, Model};
+use crate::assembly::DofMap;
+use crate::model::{AnalysisKind, DofId, Model};
 use crate::solve::StepResult;
 use std::fmt::Write;
 
@@ -188,6 +189,68 @@ pub fn contact_csv_rows(model: &Model, res: &StepResult) -> String {
             c.pressure,
             u8::from(c.active)
         );
+    }
+    s
+}
+
+/// Columns of the per-step history CSV: the step, its Newton effort, and for every DOF a
+/// `BoundaryCondition` prescribes, the mean prescribed value and the summed reaction.
+pub fn history_csv_header(model: &Model, dofs: &DofMap) -> String {
+    let mut s = String::from("step,time,iterations,substeps,residual");
+    for (bc, d) in prescribed_groups(dofs) {
+        let n = model.dirichlet[bc].number;
+        let _ = write!(s, ",bc{n}.u{d},bc{n}.r{d}");
+    }
+    s.push('\n');
+    s
+}
+
+/// The (Dirichlet index, DOF id) pairs of the prescribed DOFs, in first-seen order.
+fn prescribed_groups(dofs: &DofMap) -> Vec<(usize, DofId)> {
+    let mut groups = Vec::new();
+    for &(_, d, bc) in &dofs.prescribed {
+        if !groups.contains(&(bc, d)) {
+            groups.push((bc, d));
+        }
+    }
+    groups
+}
+
+/// One row of the history CSV (see [`history_csv_header`]).
+pub fn history_csv_row(res: &StepResult) -> String {
+    let info = res.info;
+    let mut s = format!(
+        "{},{:e},{},{},{:e}",
+        res.step,
+        res.time,
+        info.iterations,
+        info.substeps,
+        info.residual_history.last().copied().unwrap_or(0.0)
+    );
+    let nf = res.dofs.n_free;
+    for (bc, d) in prescribed_groups(res.dofs) {
+        let (mut u, mut r, mut n) = (0.0, 0.0, 0usize);
+        for (i, &(_, di, bi)) in res.dofs.prescribed.iter().enumerate() {
+            if (bi, di) == (bc, d) {
+                u += res.u[nf + i];
+                r += res.reactions[i];
+                n += 1;
+            }
+        }
+        let _ = write!(s, ",{:e},{:e}", u / n as f64, r);
+    }
+    s.push('\n');
+    s
+}
+
+/// Header of the Newton residual CSV.
+pub const NEWTON_CSV_HEADER: &str = "step,iteration,residual";
+
+/// Rows of the Newton residual CSV: the step's residual history, iteration 0 first.
+pub fn newton_csv_rows(res: &StepResult) -> String {
+    let mut s = String::new();
+    for (k, r) in res.info.residual_history.iter().enumerate() {
+        let _ = writeln!(s, "{},{k},{r:e}", res.step);
     }
     s
 }

@@ -56,8 +56,8 @@ pub(super) struct NewtonContext<'a> {
     pub linear: bool,
     /// No element uses large deformation: the structural tangent is constant.
     pub small_strain: bool,
-    /// Show the iteration count on a terminal (overwritten by the step's log line).
-    pub progress: bool,
+    /// Progress bar on a terminal: steps done, the running iteration and residual.
+    pub progress: Option<indicatif::ProgressBar>,
     /// Log every iteration (residual, contact changes) on stderr.
     pub verbose: bool,
     pub condensed: Condensed,
@@ -415,8 +415,11 @@ impl NewtonContext<'_> {
             }
             info.residual_history.push(check.worst);
             info.iterations += 1;
-            if self.progress {
-                eprint!("\r  iteration {it:3}  residual {}   ", sci(check.worst, 2));
+            if let Some(bar) = &self.progress {
+                bar.set_message(format!(
+                    "iteration {it:3}  residual {}",
+                    sci(check.worst, 2)
+                ));
             }
             if self.verbose {
                 let closed = states.iter().filter(|s| s.active).count();

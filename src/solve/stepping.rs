@@ -96,6 +96,26 @@ impl StepResult<'_> {
     }
 }
 
+/// A progress bar over the steps (drawn on stderr, only when it is a terminal).
+fn progress_bar(nsteps: usize) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::new(nsteps as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(
+            "[{elapsed_precise}] {bar:30} step {pos}/{len}  {msg}",
+        )
+        .expect("valid progress template"),
+    );
+    bar
+}
+
+/// One log line on stderr, above the progress bar if there is one.
+fn log_line(ctx: &NewtonContext, line: String) {
+    match &ctx.progress {
+        Some(bar) => bar.println(line),
+        None => eprintln!("{line}"),
+    }
+}
+
 /// Run every step of the analysis, calling `on_step` after each converged step.
 pub fn run_analysis(
     model: &Model,
@@ -154,7 +174,8 @@ pub fn run_analysis(
         factor_valid: false,
         linear,
         small_strain,
-        progress: params.log_steps && !params.log_iterations && std::io::stderr().is_terminal(),
+        progress: (params.log_steps && !params.log_iterations && std::io::stderr().is_terminal())
+            .then(|| progress_bar(model.step_times().len())),
         verbose: params.log_iterations,
         condensed,
         converged_states: None,
@@ -221,7 +242,7 @@ pub fn run_analysis(
                     }
                     Err(Error::Solve(msg)) if level < params.max_cutbacks => {
                         if params.log_steps {
-                            eprintln!("step {step}: {msg}; cutting the step");
+                            log_line(&ctx, format!("step {step}: {msg}; cutting the step"));
                         }
                         ok = false;
                         break;
@@ -236,14 +257,17 @@ pub fn run_analysis(
             }
             ctx.factor_valid = false;
             if params.log_steps && level < params.max_cutbacks {
-                eprintln!(
-                    "step {step}: no convergence in {} iterations{}; retrying in {} substeps",
-                    a.maxiter,
-                    diagnosis
-                        .as_ref()
-                        .map(|d| format!(" ({d})"))
-                        .unwrap_or_default(),
-                    2 * nsub
+                log_line(
+                    &ctx,
+                    format!(
+                        "step {step}: no convergence in {} iterations{}; retrying in {} substeps",
+                        a.maxiter,
+                        diagnosis
+                            .as_ref()
+                            .map(|d| format!(" ({d})"))
+                            .unwrap_or_default(),
+                        2 * nsub
+                    ),
                 );
             }
         }
@@ -273,17 +297,20 @@ pub fn run_analysis(
             ..ctx.times
         };
         if params.log_steps {
-            if ctx.progress {
-                eprint!("\r\x1b[2K");
-            }
-            eprintln!(
-                "step {step}/{nsteps}  t = {}  iterations {}  residual {}  substeps {}  {:.3} s",
-                sci(t, 4),
-                info.iterations,
-                sci(info.residual_history.last().copied().unwrap_or(0.0), 2),
-                info.substeps,
-                info.wall_seconds
+            log_line(
+                &ctx,
+                format!(
+                    "step {step}/{nsteps}  t = {}  iterations {}  residual {}  substeps {}  {:.3} s",
+                    sci(t, 4),
+                    info.iterations,
+                    sci(info.residual_history.last().copied().unwrap_or(0.0), 2),
+                    info.substeps,
+                    info.wall_seconds
+                ),
             );
+            if let Some(bar) = &ctx.progress {
+                bar.inc(1);
+            }
             if params.log_iterations {
                 let t = &info.times;
                 eprintln!(
@@ -312,6 +339,9 @@ pub fn run_analysis(
             contact: &contact_states,
             info: &info,
         })?;
+    }
+    if let Some(bar) = &ctx.progress {
+        bar.finish_and_clear();
     }
     Ok(())
 }

@@ -1,0 +1,761 @@
+//! Gmsh meshes (`.msh` 2.2 and 4.1, ASCII) to OOFEM records: nodes, elements in hertz's types and
+//! node orders with a positive Jacobian, and one set per physical group (elements for the
+//! mesh's own dimension, element boundaries with their local numbers for the dimension below,
+//! nodes for points).
+//!
+//! Glossary: `dim` the mesh dimension (highest element dimension present), `tag` Gmsh's node,
+//! element, entity or physical number, `corner` the first nodes of an element or boundary that
+//! identify it.
+
+use crate::error::{Error, Result};
+use crate::fem::shape::Shape;
+use crate::model::ElementType;
+use std::collections::{BTreeMap, HashMap};
+use std::path::{Path, PathBuf};
+
+/// One Gmsh element: its type number, physical tags and node tags (Gmsh order).
+#[derive(Debug, Clone)]
+struct RawElement {
+    gmsh_type: usize,
+    physical: Vec<usize>,
+    nodes: Vec<usize>,
+}
+
+/// A mesh as read from the file.
+#[derive(Debug, Default)]
+struct RawMesh {
+    /// Node tag -> coordinates, in file order.
+    nodes: Vec<(usize, [f64; 3])>,
+    elements: Vec<RawElement>,
+    /// (dim, physical tag) -> name.
+    names: BTreeMap<(usize, usize), String>,
+}
+
+/// A physical group turned into an OOFEM set.
+#[derive(Debug, Clone)]
+pub struct GroupSet {
+    pub number: usize,
+    pub name: String,
+    pub dim: usize,
+    pub physical: usize,
+    /// Element records (0-based indices into `Converted::elements`).
+    pub elements: Vec<usize>,
+    /// (element index, 1-based boundary number).
+    pub boundaries: Vec<(usize, usize)>,
+    /// Node records (0-based) of point groups.
+    pub nodes: Vec<usize>,
+}
+
+/// The mesh in hertz's terms.
+#[derive(Debug)]
+pub struct Converted {
+    pub dim: usize,
+    pub coords: Vec<[f64; 3]>,
+    pub elements: Vec<(ElementType, Vec<usize>)>,
+    pub sets: Vec<GroupSet>,
+    /// Elements whose Gmsh order had a negative Jacobian and were mirrored.
+    pub n_flipped: usize,
+}
+
+/// How 2D elements are named.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum Plane {
+    /// PlaneStress2d, TrPlaneStress2d, QPlaneStress2d
+    #[default]
+    Stress,
+    /// Quad1PlaneStrain, TrPlaneStrain
+    Strain,
+}
+
+/// `hertz import`: arguments.
+#[derive(Debug, clap::Args)]
+pub struct ImportArgs {
+    /// Gmsh mesh (.msh 2.2 or 4.1, ASCII)
+    pub mesh: PathBuf,
+    /// Output file (default: MESH with the extension .in, e.g. disk.msh -> disk.in)
+    #[arg(short, long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
+    /// 2D element types: plane stress or plane strain
+    #[arg(long, value_enum, default_value = "stress")]
+    pub plane: Plane,
+}
+
+fn err(path: &Path, line: usize, msg: impl Into<String>) -> Error {
+    Error::InputFile {
+        file: if line > 0 {
+            format!("{}:{line}", path.display())
+        } else {
+            path.display().to_string()
+        },
+        msg: msg.into(),
+    }
+}
+
+/// Whitespace tokens with their 1-based line numbers.
+struct Tokens<'a> {
+    path: &'a Path,
+    lines: std::iter::Peekable<std::iter::Enumerate<std::str::Lines<'a>>>,
+    pending: std::collections::VecDeque<(usize, &'a str)>,
+    line: usize,
+}
+
+impl<'a> Tokens<'a> {
+    fn new(path: &'a Path, text: &'a str) -> Self {
+        Tokens {
+            path,
+            lines: text.lines().enumerate().peekable(),
+            pending: Default::default(),
+            line: 0,
+        }
+    }
+
+    fn next(&mut self) -> Option<&'a str> {
+        while self.pending.is_empty() {
+            let (i, l) = self.lines.next()?;
+            self.pending
+                .extend(l.split_whitespace().map(|t| (i + 1, t)));
+        }
+        let (line, t) = self.pending.pop_front()?;
+        self.line = line;
+        Some(t)
+    }
+
+    /// The rest of the current line (for names with spaces).
+    fn rest_of_line(&mut self) -> Vec<&'a str> {
+        let line = self.line;
+        let mut out = Vec::new();
+        while self.pending.front().is_some_and(|(l, _)| *l == line) {
+            out.push(self.pending.pop_front().unwrap().1);
+        }
+        out
+    }
+
+    fn word(&mut self, what: &str) -> Result<&'a str> {
+        self.next().ok_or_else(|| {
+            err(
+                self.path,
+                self.line,
+                format!("file ends where {what} should be"),
+            )
+        })
+    }
+
+    fn num<T: std::str::FromStr>(&mut self, what: &str) -> Result<T> {
+        let w = self.word(what)?;
+        w.parse().map_err(|_| {
+            err(
+                self.path,
+                self.line,
+                format!("{what}: expected a number, found `{w}`"),
+            )
+        })
+    }
+
+    fn expect(&mut self, end: &str) -> Result<()> {
+        match self.next() {
+            Some(w) if w == end => Ok(()),
+            Some(w) => Err(err(
+                self.path,
+                self.line,
+                format!("expected `{end}`, found `{w}`"),
+            )),
+            None => Err(err(
+                self.path,
+                self.line,
+                format!("file ends before `{end}`"),
+            )),
+        }
+    }
+}
+
+/// Nodes per Gmsh element type hertz reads (dimension, nodes); None for other types.
+fn gmsh_type(t: usize) -> Option<(usize, usize, &'static str)> {
+    Some(match t {
+        1 => (1, 2, "2-node line"),
+        2 => (2, 3, "3-node triangle"),
+        3 => (2, 4, "4-node quadrangle"),
+        4 => (3, 4, "4-node tetrahedron"),
+        5 => (3, 8, "8-node hexahedron"),
+        6 => (3, 6, "6-node prism"),
+        8 => (1, 3, "3-node line"),
+        9 => (2, 6, "6-node triangle"),
+        10 => (2, 9, "9-node quadrangle"),
+        11 => (3, 10, "10-node tetrahedron"),
+        15 => (0, 1, "point"),
+        16 => (2, 8, "8-node quadrangle"),
+        17 => (3, 20, "20-node hexahedron"),
+        18 => (3, 15, "15-node prism"),
+        _ => return None,
+    })
+}
+
+fn read_raw(path: &Path) -> Result<RawMesh> {
+    let bytes = std::fs::read(path).map_err(|e| err(path, 0, format!("cannot read file: {e}")))?;
+    let text = std::str::from_utf8(&bytes).map_err(|_| {
+        err(
+            path,
+            0,
+            "not ASCII text: binary .msh files are not read; save as ASCII (Gmsh: Mesh.Binary = 0)",
+        )
+    })?;
+    let mut t = Tokens::new(path, text);
+    let mut mesh = RawMesh::default();
+    let mut version = None;
+    // Gmsh 4.1: entity (dim, tag) -> physical tags.
+    let mut entity_physical: HashMap<(usize, usize), Vec<usize>> = HashMap::new();
+    while let Some(section) = t.next() {
+        match section {
+            "$MeshFormat" => {
+                let v: String = t.word("the format version")?.to_string();
+                let file_type: usize = t.num("the file type")?;
+                t.num::<usize>("the data size")?;
+                if file_type != 0 {
+                    return Err(err(
+                        path,
+                        t.line,
+                        "binary .msh files are not read; save as ASCII (Gmsh: Mesh.Binary = 0)",
+                    ));
+                }
+                version = Some(match v.as_str() {
+                    "2.2" | "2.1" | "2" => 2,
+                    "4.1" => 4,
+                    other => {
+                        return Err(err(path, t.line, format!("Gmsh format {other} is not read; save as 4.1 or 2.2 (Mesh.MshFileVersion)")))
+                    }
+                });
+                t.expect("$EndMeshFormat")?;
+            }
+            "$PhysicalNames" => {
+                let n: usize = t.num("the number of physical names")?;
+                for _ in 0..n {
+                    let dim: usize = t.num("a physical dimension")?;
+                    let tag: usize = t.num("a physical tag")?;
+                    let name = t.rest_of_line().join(" ").trim_matches('"').to_string();
+                    mesh.names.insert((dim, tag), name);
+                }
+                t.expect("$EndPhysicalNames")?;
+            }
+            "$Entities" if version == Some(4) => {
+                let counts: Vec<usize> = (0..4)
+                    .map(|_| t.num("an entity count"))
+                    .collect::<Result<_>>()?;
+                for (dim, &count) in counts.iter().enumerate() {
+                    for _ in 0..count {
+                        let tag: usize = t.num("an entity tag")?;
+                        let n_box = if dim == 0 { 3 } else { 6 };
+                        for _ in 0..n_box {
+                            t.num::<f64>("an entity bounding box")?;
+                        }
+                        let n_phys: usize = t.num("the number of physical tags")?;
+                        let phys = (0..n_phys)
+                            .map(|_| {
+                                t.num::<i64>("a physical tag")
+                                    .map(|p| p.unsigned_abs() as usize)
+                            })
+                            .collect::<Result<Vec<_>>>()?;
+                        entity_physical.insert((dim, tag), phys);
+                        if dim > 0 {
+                            let n_b: usize = t.num("the number of bounding entities")?;
+                            for _ in 0..n_b {
+                                t.num::<i64>("a bounding entity")?;
+                            }
+                        }
+                    }
+                }
+                t.expect("$EndEntities")?;
+            }
+            "$Nodes" => match version {
+                Some(2) => {
+                    let n: usize = t.num("the number of nodes")?;
+                    for _ in 0..n {
+                        let tag = t.num("a node tag")?;
+                        let x = [t.num("x")?, t.num("y")?, t.num("z")?];
+                        mesh.nodes.push((tag, x));
+                    }
+                    t.expect("$EndNodes")?;
+                }
+                Some(4) => {
+                    let blocks: usize = t.num("the number of node blocks")?;
+                    let _n: usize = t.num("the number of nodes")?;
+                    t.num::<usize>("the minimum node tag")?;
+                    t.num::<usize>("the maximum node tag")?;
+                    for _ in 0..blocks {
+                        let _dim: usize = t.num("an entity dimension")?;
+                        let _tag: usize = t.num("an entity tag")?;
+                        let parametric: usize = t.num("the parametric flag")?;
+                        let n: usize = t.num("the nodes in a block")?;
+                        let tags = (0..n)
+                            .map(|_| t.num("a node tag"))
+                            .collect::<Result<Vec<usize>>>()?;
+                        for tag in tags {
+                            let x = [t.num("x")?, t.num("y")?, t.num("z")?];
+                            if parametric == 1 {
+                                return Err(err(path, t.line, "parametric node coordinates are not read; save without them (Mesh.SaveParametric = 0)"));
+                            }
+                            mesh.nodes.push((tag, x));
+                        }
+                    }
+                    t.expect("$EndNodes")?;
+                }
+                _ => return Err(err(path, t.line, "$Nodes before $MeshFormat")),
+            },
+            "$Elements" => match version {
+                Some(2) => {
+                    let n: usize = t.num("the number of elements")?;
+                    for _ in 0..n {
+                        t.num::<usize>("an element tag")?;
+                        let ty: usize = t.num("an element type")?;
+                        let (_, nn, _) = gmsh_type(ty).ok_or_else(|| {
+                            err(
+                                path,
+                                t.line,
+                                format!("Gmsh element type {ty} is not read by hertz"),
+                            )
+                        })?;
+                        let ntags: usize = t.num("the number of element tags")?;
+                        let tags = (0..ntags)
+                            .map(|_| t.num::<i64>("an element tag"))
+                            .collect::<Result<Vec<_>>>()?;
+                        let physical = tags
+                            .first()
+                            .filter(|&&p| p > 0)
+                            .map(|&p| vec![p as usize])
+                            .unwrap_or_default();
+                        let nodes = (0..nn)
+                            .map(|_| t.num("a node tag"))
+                            .collect::<Result<Vec<usize>>>()?;
+                        mesh.elements.push(RawElement {
+                            gmsh_type: ty,
+                            physical,
+                            nodes,
+                        });
+                    }
+                    t.expect("$EndElements")?;
+                }
+                Some(4) => {
+                    let blocks: usize = t.num("the number of element blocks")?;
+                    t.num::<usize>("the number of elements")?;
+                    t.num::<usize>("the minimum element tag")?;
+                    t.num::<usize>("the maximum element tag")?;
+                    for _ in 0..blocks {
+                        let dim: usize = t.num("an entity dimension")?;
+                        let tag: usize = t.num("an entity tag")?;
+                        let ty: usize = t.num("an element type")?;
+                        let n: usize = t.num("the elements in a block")?;
+                        let (_, nn, _) = gmsh_type(ty).ok_or_else(|| {
+                            err(
+                                path,
+                                t.line,
+                                format!("Gmsh element type {ty} is not read by hertz"),
+                            )
+                        })?;
+                        let physical = entity_physical
+                            .get(&(dim, tag))
+                            .cloned()
+                            .unwrap_or_default();
+                        for _ in 0..n {
+                            t.num::<usize>("an element tag")?;
+                            let nodes = (0..nn)
+                                .map(|_| t.num("a node tag"))
+                                .collect::<Result<Vec<usize>>>()?;
+                            mesh.elements.push(RawElement {
+                                gmsh_type: ty,
+                                physical: physical.clone(),
+                                nodes,
+                            });
+                        }
+                    }
+                    t.expect("$EndElements")?;
+                }
+                _ => return Err(err(path, t.line, "$Elements before $MeshFormat")),
+            },
+            s if s.starts_with('$') && !s.starts_with("$End") => {
+                // Sections hertz does not need ($Periodic, $NodeData, ...): skip to their end.
+                let end = format!("$End{}", &s[1..]);
+                while t.next().is_some_and(|w| w != end) {}
+            }
+            other => {
+                return Err(err(
+                    path,
+                    t.line,
+                    format!("expected a section such as $Nodes, found `{other}`"),
+                ))
+            }
+        }
+    }
+    if version.is_none() {
+        return Err(err(
+            path,
+            0,
+            "no $MeshFormat section: is this a Gmsh .msh file?",
+        ));
+    }
+    Ok(mesh)
+}
+
+/// hertz element type and node order (hertz node a = Gmsh node `order[a]`) of a Gmsh element,
+/// and the permutation that mirrors it (to turn a negative Jacobian positive).
+fn hertz_element(
+    type_number: usize,
+    plane: Plane,
+) -> std::result::Result<(ElementType, &'static [usize], &'static [usize]), String> {
+    use ElementType as E;
+    Ok(match (type_number, plane) {
+        (2, Plane::Stress) => (E::TrPlaneStress2d, &[0, 1, 2], &[0, 2, 1]),
+        (2, Plane::Strain) => (E::TrPlaneStrain, &[0, 1, 2], &[0, 2, 1]),
+        (3, Plane::Stress) => (E::PlaneStress2d, &[0, 1, 2, 3], &[0, 3, 2, 1]),
+        (3, Plane::Strain) => (E::Quad1PlaneStrain, &[0, 1, 2, 3], &[0, 3, 2, 1]),
+        (16, Plane::Stress) => (
+            E::QPlaneStress2d,
+            &[0, 1, 2, 3, 4, 5, 6, 7],
+            &[0, 3, 2, 1, 7, 6, 5, 4],
+        ),
+        (4, _) => (E::LTRSpace, &[1, 2, 3, 0], &[0, 2, 1, 3]),
+        // Gmsh's hexahedron starts on its bottom face, OOFEM's LSpace on its top face.
+        (5, _) => (
+            E::LSpace,
+            &[4, 7, 6, 5, 0, 3, 2, 1],
+            &[4, 5, 6, 7, 0, 1, 2, 3],
+        ),
+        (6, _) => (E::LWedge, &[0, 1, 2, 3, 4, 5], &[3, 4, 5, 0, 1, 2]),
+        (16, Plane::Strain) => {
+            return Err(
+                "8-node quadrangles exist in hertz only as plane stress (QPlaneStress2d)".into(),
+            )
+        }
+        (t, _) => {
+            let name = gmsh_type(t).map_or("this element", |x| x.2);
+            return Err(format!(
+                "hertz has no {name} element (Gmsh type {t}); mesh with first-order elements \
+                 (Mesh.ElementOrder = 1), or with 8-node quadrangles (Mesh.SecondOrderIncomplete = 1)"
+            ));
+        }
+    })
+}
+
+/// Jacobian determinant at the element centre.
+fn det_j_at_centre(shape: Shape, x: &[[f64; 3]]) -> f64 {
+    let n_nodes = x.len();
+    let mut n = vec![0.0; n_nodes];
+    let mut dn = vec![[0.0; 3]; n_nodes];
+    let centre = match shape {
+        Shape::Tri3 => [1.0 / 3.0, 1.0 / 3.0, 0.0],
+        Shape::Tet4 => [0.25, 0.25, 0.25],
+        Shape::Wedge6 => [1.0 / 3.0, 1.0 / 3.0, 0.0],
+        _ => [0.0; 3],
+    };
+    shape.eval(centre, &mut n, &mut dn);
+    let dim = shape.dim();
+    let mut j = [[0.0; 3]; 3];
+    for (a, xa) in x.iter().enumerate() {
+        for r in 0..dim {
+            for c in 0..dim {
+                j[r][c] += xa[r] * dn[a][c];
+            }
+        }
+    }
+    if dim == 2 {
+        j[0][0] * j[1][1] - j[0][1] * j[1][0]
+    } else {
+        j[0][0] * (j[1][1] * j[2][2] - j[1][2] * j[2][1])
+            - j[0][1] * (j[1][0] * j[2][2] - j[1][2] * j[2][0])
+            + j[0][2] * (j[1][0] * j[2][1] - j[1][1] * j[2][0])
+    }
+}
+
+/// The set of physical group (`dim`, `physical`), created empty on first use.
+fn group<'g>(
+    groups: &'g mut BTreeMap<(usize, usize), GroupSet>,
+    names: &BTreeMap<(usize, usize), String>,
+    dim: usize,
+    physical: usize,
+) -> &'g mut GroupSet {
+    groups.entry((dim, physical)).or_insert_with(|| GroupSet {
+        number: 0,
+        name: names.get(&(dim, physical)).cloned().unwrap_or_default(),
+        dim,
+        physical,
+        elements: vec![],
+        boundaries: vec![],
+        nodes: vec![],
+    })
+}
+
+/// Read `path` and convert it (see the module doc).
+pub fn convert(path: &Path, plane: Plane) -> Result<Converted> {
+    let raw = read_raw(path)?;
+    let dim = raw
+        .elements
+        .iter()
+        .filter_map(|e| gmsh_type(e.gmsh_type).map(|t| t.0))
+        .max()
+        .unwrap_or(0);
+    if dim < 2 {
+        return Err(err(path, 0, "the mesh has no 2D or 3D elements"));
+    }
+    let mut node_index = HashMap::with_capacity(raw.nodes.len());
+    let mut coords = Vec::with_capacity(raw.nodes.len());
+    for (tag, x) in &raw.nodes {
+        if dim == 2 && x[2] != 0.0 {
+            return Err(err(
+                path,
+                0,
+                format!(
+                    "node {tag} has z = {}: a 2D mesh must lie in the plane z = 0",
+                    x[2]
+                ),
+            ));
+        }
+        if node_index.insert(*tag, coords.len()).is_some() {
+            return Err(err(path, 0, format!("node {tag} is defined twice")));
+        }
+        coords.push(*x);
+    }
+    let index = |tag: usize| {
+        node_index.get(&tag).copied().ok_or_else(|| {
+            err(
+                path,
+                0,
+                format!("an element refers to node {tag}, which is not in $Nodes"),
+            )
+        })
+    };
+    // Elements of the mesh's dimension.
+    let mut elements = Vec::new();
+    let mut n_flipped = 0;
+    let mut groups: BTreeMap<(usize, usize), GroupSet> = BTreeMap::new();
+    for e in raw
+        .elements
+        .iter()
+        .filter(|e| gmsh_type(e.gmsh_type).unwrap().0 == dim)
+    {
+        let (etype, order, mirror) =
+            hertz_element(e.gmsh_type, plane).map_err(|m| err(path, 0, m))?;
+        let mut nodes: Vec<usize> = order
+            .iter()
+            .map(|&g| index(e.nodes[g]))
+            .collect::<Result<_>>()?;
+        let x: Vec<[f64; 3]> = nodes.iter().map(|&n| coords[n]).collect();
+        let det = det_j_at_centre(etype.shape(), &x);
+        if det < 0.0 {
+            nodes = mirror.iter().map(|&a| nodes[a]).collect();
+            n_flipped += 1;
+        } else if det == 0.0 {
+            return Err(err(
+                path,
+                0,
+                format!(
+                    "a {} element is degenerate (zero area or volume)",
+                    etype.name()
+                ),
+            ));
+        }
+        for &p in &e.physical {
+            group(&mut groups, &raw.names, dim, p)
+                .elements
+                .push(elements.len());
+        }
+        elements.push((etype, nodes));
+    }
+    // Boundaries of those elements, keyed by their sorted corner nodes.
+    let corners = |nodes: &[usize], shape_nodes: usize| -> Vec<usize> {
+        let mut c: Vec<usize> = nodes[..shape_nodes].to_vec();
+        c.sort_unstable();
+        c
+    };
+    let mut boundary_of: HashMap<Vec<usize>, (usize, usize)> = HashMap::new();
+    for (ei, (etype, nodes)) in elements.iter().enumerate() {
+        for (b, local) in etype.shape().boundaries().iter().enumerate() {
+            let n_corner = if etype.shape() == Shape::Quad8 {
+                2
+            } else {
+                local.len()
+            };
+            let global: Vec<usize> = local.iter().map(|&a| nodes[a]).collect();
+            boundary_of.insert(corners(&global, n_corner), (ei, b + 1));
+        }
+    }
+    for e in raw.elements.iter().filter(|e| !e.physical.is_empty()) {
+        let edim = gmsh_type(e.gmsh_type).unwrap().0;
+        if edim == dim {
+            continue;
+        }
+        let nodes: Vec<usize> = e.nodes.iter().map(|&t| index(t)).collect::<Result<_>>()?;
+        for &p in &e.physical {
+            let g = group(&mut groups, &raw.names, edim, p);
+            if edim + 1 == dim {
+                let n_corner = match e.gmsh_type {
+                    8 => 2,
+                    9 | 16 | 10 => return Err(err(path, 0, "second-order boundary elements in a physical group: hertz reads them only on 8-node quadrangles' edges (Gmsh type 8)")),
+                    _ => nodes.len(),
+                };
+                let key = corners(&nodes, n_corner);
+                let found = boundary_of.get(&key).copied().ok_or_else(|| {
+                    err(path, 0, format!(
+                        "physical group {p} has a boundary element on nodes {:?} that is no boundary of a {dim}D element",
+                        e.nodes
+                    ))
+                })?;
+                g.boundaries.push(found);
+            } else {
+                g.nodes.extend(nodes.iter().copied());
+            }
+        }
+    }
+    let mut sets: Vec<GroupSet> = groups.into_values().collect();
+    // Mesh-dimension groups first, then boundaries, then lower groups: stable numbering.
+    sets.sort_by_key(|g| (std::cmp::Reverse(g.dim), g.physical));
+    for (i, s) in sets.iter_mut().enumerate() {
+        s.number = i + 1;
+        s.nodes.sort_unstable();
+        s.nodes.dedup();
+        s.boundaries.sort_unstable();
+        s.boundaries.dedup();
+    }
+    Ok(Converted {
+        dim,
+        coords,
+        elements,
+        sets,
+        n_flipped,
+    })
+}
+
+impl Converted {
+    /// The counts to put in the counts record.
+    pub fn counts(&self) -> String {
+        format!(
+            "ndofman {} nelem {} nset {}",
+            self.coords.len(),
+            self.elements.len(),
+            self.sets.len()
+        )
+    }
+
+    /// The OOFEM records: nodes, elements, sets (each a line, numbered from 1).
+    pub fn records(&self) -> Vec<String> {
+        let mut out = Vec::with_capacity(self.coords.len() + self.elements.len() + self.sets.len());
+        for (i, x) in self.coords.iter().enumerate() {
+            out.push(if self.dim == 2 {
+                format!("Node {} coords 2 {} {}", i + 1, x[0], x[1])
+            } else {
+                format!("Node {} coords 3 {} {} {}", i + 1, x[0], x[1], x[2])
+            });
+        }
+        for (i, (etype, nodes)) in self.elements.iter().enumerate() {
+            let list: Vec<String> = nodes.iter().map(|n| (n + 1).to_string()).collect();
+            out.push(format!(
+                "{} {} nodes {} {}",
+                etype.name(),
+                i + 1,
+                nodes.len(),
+                list.join(" ")
+            ));
+        }
+        for s in &self.sets {
+            let mut r = format!("Set {}", s.number);
+            if !s.elements.is_empty() {
+                let l: Vec<String> = s.elements.iter().map(|e| (e + 1).to_string()).collect();
+                r += &format!(" elements {} {}", l.len(), l.join(" "));
+            }
+            if !s.boundaries.is_empty() {
+                let l: Vec<String> = s
+                    .boundaries
+                    .iter()
+                    .map(|(e, b)| format!("{} {b}", e + 1))
+                    .collect();
+                r += &format!(" elementboundaries {} {}", 2 * l.len(), l.join(" "));
+            }
+            if !s.nodes.is_empty() {
+                let l: Vec<String> = s.nodes.iter().map(|n| (n + 1).to_string()).collect();
+                r += &format!(" nodes {} {}", l.len(), l.join(" "));
+            }
+            out.push(r);
+        }
+        out
+    }
+
+    /// One line per set: number, name, what it holds.
+    pub fn set_summary(&self) -> Vec<String> {
+        self.sets
+            .iter()
+            .map(|s| {
+                let what = if !s.elements.is_empty() {
+                    format!("{} elements", s.elements.len())
+                } else if !s.boundaries.is_empty() {
+                    format!(
+                        "{} element {}",
+                        s.boundaries.len(),
+                        if self.dim == 2 { "edges" } else { "faces" }
+                    )
+                } else {
+                    format!("{} nodes", s.nodes.len())
+                };
+                let name = if s.name.is_empty() {
+                    "(no name)".to_string()
+                } else {
+                    format!("\"{}\"", s.name)
+                };
+                format!(
+                    "set {} = physical group {} {name} ({}D): {what}",
+                    s.number, s.physical, s.dim
+                )
+            })
+            .collect()
+    }
+
+    /// The `@include`-able fragment: a comment header (the counts, the sets) and the records.
+    pub fn fragment(&self, source: &Path) -> String {
+        let mut out = format!(
+            "# Converted by hertz {} from {}: {} nodes, {} elements{}.\n\
+             # Counts record: {}\n\
+             # Nodes, elements and sets follow in this order: @include this file after the counts\n\
+             # record; further sets of your own come right after the @include, numbered on.\n",
+            env!("CARGO_PKG_VERSION"),
+            source.display(),
+            self.coords.len(),
+            self.elements.len(),
+            match self.n_flipped {
+                0 => String::new(),
+                n => format!(" ({n} mirrored to a positive Jacobian)"),
+            },
+            self.counts()
+        );
+        for l in self.set_summary() {
+            out += &format!("# {l}\n");
+        }
+        for r in self.records() {
+            out += &r;
+            out.push('\n');
+        }
+        out
+    }
+}
+
+/// `hertz import MESH [-o FILE] [--plane stress|strain]`.
+pub fn import_command(args: &ImportArgs) -> Result<()> {
+    let c = convert(&args.mesh, args.plane)?;
+    let out = args
+        .output
+        .clone()
+        .unwrap_or_else(|| args.mesh.with_extension("in"));
+    if out == args.mesh {
+        return Err(Error::Output(format!(
+            "{} would overwrite the mesh",
+            out.display()
+        )));
+    }
+    crate::output::write_atomic(&out, c.fragment(&args.mesh).as_bytes())?;
+    eprintln!(
+        "wrote {}: {} nodes, {} elements ({}D); counts record: {}",
+        out.display(),
+        c.coords.len(),
+        c.elements.len(),
+        c.dim,
+        c.counts()
+    );
+    for l in c.set_summary() {
+        eprintln!("  {l}");
+    }
+    Ok(())
+}

@@ -1,0 +1,3 @@
+//! Meshes from other programs.
+
+pub mod gmsh;

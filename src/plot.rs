@@ -1,0 +1,501 @@
+//! `hertz plot`: SVG or PNG charts of a run's CSV results (plotters, with an embedded DejaVu Sans
+//! font: no system font libraries). Three charts:
+//! - contact pressure along the contact surface at one step (`STEM.contact.csv`), with the Hertz
+//!   curve p0·√(1 − (s − c)²/a²) when asked;
+//! - load–displacement: the summed reaction of each driven boundary condition against its
+//!   prescribed value over the steps (`STEM.steps.csv`);
+//! - the Newton residual per iteration, one line per step (`STEM.newton.csv`).
+
+use crate::error::{Error, Result};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::path::{Path, PathBuf};
+use std::sync::Once;
+
+/// The font every chart is drawn with, compiled into the binary.
+const FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
+const FAMILY: &str = "sans-serif";
+
+/// Which chart.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Chart {
+    /// Contact pressure along the contact surface
+    Pressure,
+    /// Reaction against prescribed value over the steps
+    Load,
+    /// Newton residual per iteration, one line per step
+    Residuals,
+}
+
+/// Coordinate along the contact surface for the pressure chart.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Along {
+    X,
+    Y,
+    Z,
+    /// Distance from the centre (x, z) = (c, 0) in 3D, for axisymmetric contact
+    R,
+}
+
+/// `hertz plot`: arguments.
+#[derive(Debug, clap::Args)]
+pub struct PlotArgs {
+    /// A run's output: any of its files (STEM.out, STEM.contact.csv, ...) or STEM itself
+    pub run: PathBuf,
+    /// Charts to draw (default: every chart the run has data for)
+    #[arg(short, long, value_enum, value_delimiter = ',')]
+    pub chart: Vec<Chart>,
+    /// Write PNG instead of SVG
+    #[arg(long)]
+    pub png: bool,
+    /// Output directory (default: next to the run's files)
+    #[arg(short, long, value_name = "DIR")]
+    pub output: Option<PathBuf>,
+    /// Step of the pressure chart (default: the last)
+    #[arg(long)]
+    pub step: Option<usize>,
+    /// Coordinate along the contact surface
+    #[arg(long, value_enum, default_value = "x")]
+    pub along: Along,
+    /// Draw the Hertz pressure p0·sqrt(1 − (s − c)²/a²) too: P0,A or P0,A,C
+    #[arg(long, value_name = "P0,A[,C]", value_parser = parse_hertz)]
+    pub hertz: Option<Vec<f64>>,
+}
+
+/// `P0,A` or `P0,A,C`: two or three numbers, p0 and a positive.
+fn parse_hertz(s: &str) -> std::result::Result<Vec<f64>, String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|w| w.trim().parse::<f64>().map_err(|_| format!("`{w}` is not a number")))
+        .collect::<std::result::Result<_, _>>()?;
+    match v[..] {
+        [p0, a, ..] if v.len() <= 3 && p0 > 0.0 && a > 0.0 => Ok(v),
+        _ => Err("expected P0,A or P0,A,C with P0 > 0 and A > 0".into()),
+    }
+}
+
+/// A CSV file: its header and numeric rows (`nan` and empty cells become NaN).
+#[derive(Debug)]
+pub struct Table {
+    pub columns: Vec<String>,
+    pub rows: Vec<Vec<f64>>,
+}
+
+impl Table {
+    pub fn read(path: &Path) -> Result<Table> {
+        let text = std::fs::read_to_string(path).map_err(|e| Error::InputFile {
+            file: path.display().to_string(),
+            msg: format!("cannot read: {e}"),
+        })?;
+        let mut lines = text.lines();
+        let columns: Vec<String> = lines
+            .next()
+            .unwrap_or_default()
+            .split(',')
+            .map(str::to_string)
+            .collect();
+        let mut rows = Vec::new();
+        for (i, l) in lines.enumerate().filter(|(_, l)| !l.trim().is_empty()) {
+            let row: Vec<f64> = l
+                .split(',')
+                .map(|c| c.trim().parse().unwrap_or(f64::NAN))
+                .collect();
+            if row.len() != columns.len() {
+                return Err(Error::InputFile {
+                    file: format!("{}:{}", path.display(), i + 2),
+                    msg: format!("{} cells for {} columns", row.len(), columns.len()),
+                });
+            }
+            rows.push(row);
+        }
+        Ok(Table { columns, rows })
+    }
+
+    pub fn column(&self, name: &str) -> Option<usize> {
+        self.columns.iter().position(|c| c == name)
+    }
+}
+
+/// One polyline or point series of a chart.
+#[derive(Debug, Clone)]
+pub struct Series {
+    pub label: String,
+    pub points: Vec<(f64, f64)>,
+    /// Draw markers (data) rather than a line (a closed form).
+    pub markers: bool,
+}
+
+/// A chart's axes and series.
+#[derive(Debug, Clone)]
+pub struct Figure {
+    pub title: String,
+    pub x_label: String,
+    pub y_label: String,
+    pub log_y: bool,
+    pub series: Vec<Series>,
+}
+
+fn register_font() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        plotters::style::register_font(FAMILY, FontStyle::Normal, FONT)
+            .unwrap_or_else(|_| panic!("the embedded font parses"));
+    });
+}
+
+const COLORS: [RGBColor; 6] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(255, 127, 14),
+    RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+];
+
+fn range(values: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
+    let (lo, hi) = values
+        .filter(|v| v.is_finite() && (!log || *v > 0.0))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(v), b.max(v))
+        });
+    if !lo.is_finite() {
+        return if log { (1e-16, 1.0) } else { (0.0, 1.0) };
+    }
+    if log {
+        return (lo / 2.0, hi * 2.0);
+    }
+    let pad = if hi > lo {
+        0.05 * (hi - lo)
+    } else {
+        lo.abs().max(1.0) * 0.1
+    };
+    (lo - pad, hi + pad)
+}
+
+fn draw_on<DB: DrawingBackend>(area: DrawingArea<DB, Shift>, fig: &Figure) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let fail = |e: &dyn std::fmt::Display| Error::Output(format!("plot `{}`: {e}", fig.title));
+    area.fill(&WHITE).map_err(|e| fail(&e))?;
+    let all = || fig.series.iter().flat_map(|s| s.points.iter());
+    let (x0, x1) = range(all().map(|p| p.0), false);
+    let (y0, y1) = range(all().map(|p| p.1), fig.log_y);
+    let mut builder = ChartBuilder::on(&area);
+    builder
+        .caption(&fig.title, (FAMILY, 22))
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(75);
+    macro_rules! body {
+        ($chart:expr) => {{
+            let mut chart = $chart;
+            chart
+                .configure_mesh()
+                .x_desc(fig.x_label.as_str())
+                .y_desc(fig.y_label.as_str())
+                .label_style((FAMILY, 14))
+                .draw()
+                .map_err(|e| fail(&e))?;
+            for (i, s) in fig.series.iter().enumerate() {
+                let color = COLORS[i % COLORS.len()];
+                let pts: Vec<(f64, f64)> = s
+                    .points
+                    .iter()
+                    .copied()
+                    .filter(|p| p.0.is_finite() && p.1.is_finite() && (!fig.log_y || p.1 > 0.0))
+                    .collect();
+                let anno = if s.markers {
+                    chart
+                        .draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))
+                        .map_err(|e| fail(&e))?
+                } else {
+                    chart
+                        .draw_series(LineSeries::new(pts, color.stroke_width(2)))
+                        .map_err(|e| fail(&e))?
+                };
+                anno.label(s.label.as_str()).legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2))
+                });
+            }
+            chart
+                .configure_series_labels()
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK)
+                .label_font((FAMILY, 14))
+                .draw()
+                .map_err(|e| fail(&e))?;
+        }};
+    }
+    if fig.log_y {
+        body!(builder
+            .build_cartesian_2d(x0..x1, (y0..y1).log_scale())
+            .map_err(|e| fail(&e))?);
+    } else {
+        body!(builder
+            .build_cartesian_2d(x0..x1, y0..y1)
+            .map_err(|e| fail(&e))?);
+    }
+    area.present().map_err(|e| fail(&e))?;
+    Ok(())
+}
+
+/// Draw `fig` to `path` (SVG, or PNG when the extension is `png`), 900 x 560 pixels.
+pub fn draw(fig: &Figure, path: &Path) -> Result<()> {
+    register_font();
+    let size = (900, 560);
+    if path.extension().is_some_and(|e| e == "png") {
+        draw_on(BitMapBackend::new(path, size).into_drawing_area(), fig)
+    } else {
+        draw_on(SVGBackend::new(path, size).into_drawing_area(), fig)
+    }
+}
+
+fn need(t: &Table, path: &Path, name: &str) -> Result<usize> {
+    t.column(name).ok_or_else(|| Error::InputFile {
+        file: path.display().to_string(),
+        msg: format!("no column `{name}`: is this a hertz output file?"),
+    })
+}
+
+/// The pressure chart of `step` (default: the last) from a contact CSV.
+pub fn pressure_figure(
+    path: &Path,
+    step: Option<usize>,
+    along: Along,
+    hertz: Option<&[f64]>,
+) -> Result<Figure> {
+    let t = Table::read(path)?;
+    let [cs, cx, cy, cz, cp, cc] = ["step", "x", "y", "z", "pressure", "condition"]
+        .map(|c| need(&t, path, c))
+        .into_iter()
+        .collect::<Result<Vec<_>>>()?[..]
+    else {
+        unreachable!("six columns")
+    };
+    let last = t.rows.iter().map(|r| r[cs] as usize).max().unwrap_or(0);
+    let step = step.unwrap_or(last);
+    if !t.rows.iter().any(|r| r[cs] as usize == step) {
+        return Err(Error::InputFile {
+            file: path.display().to_string(),
+            msg: format!("no contact results for step {step} (steps 1..{last})"),
+        });
+    }
+    let centre = hertz.and_then(|h| h.get(2)).copied().unwrap_or(0.0);
+    let coordinate = |r: &[f64]| match along {
+        Along::X => r[cx],
+        Along::Y => r[cy],
+        Along::Z => r[cz],
+        Along::R => ((r[cx] - centre).powi(2) + r[cz].powi(2)).sqrt(),
+    };
+    let mut conditions: Vec<usize> = t.rows.iter().map(|r| r[cc] as usize).collect();
+    conditions.sort_unstable();
+    conditions.dedup();
+    let mut series = Vec::new();
+    for c in conditions {
+        let mut pts: Vec<(f64, f64)> = t
+            .rows
+            .iter()
+            .filter(|r| r[cs] as usize == step && r[cc] as usize == c && r[cp].is_finite())
+            .map(|r| (coordinate(r), r[cp]))
+            .collect();
+        pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+        series.push(Series {
+            label: format!("hertz, contact condition {c}"),
+            points: pts,
+            markers: true,
+        });
+    }
+    if let Some(h) = hertz {
+        let (p0, a) = (h[0], h[1]);
+        let (lo, hi) = range(
+            series.iter().flat_map(|s| s.points.iter().map(|p| p.0)),
+            false,
+        );
+        let c = if along == Along::R { 0.0 } else { centre };
+        let n = 400;
+        let points = (0..=n)
+            .map(|i| {
+                let s = lo + (hi - lo) * i as f64 / n as f64;
+                let q = 1.0 - ((s - c) / a).powi(2);
+                (s, if q > 0.0 { p0 * q.sqrt() } else { 0.0 })
+            })
+            .collect();
+        series.push(Series {
+            label: format!("Hertz: p0 = {p0}, a = {a}"),
+            points,
+            markers: false,
+        });
+    }
+    Ok(Figure {
+        title: format!("Contact pressure, step {step}"),
+        x_label: format!("{:?}", along).to_lowercase(),
+        y_label: "pressure".into(),
+        log_y: false,
+        series,
+    })
+}
+
+/// The load–displacement chart from a steps CSV: each boundary condition's summed reaction
+/// against its prescribed value, for those whose value changes; against time if none does.
+pub fn load_figure(path: &Path) -> Result<Figure> {
+    let t = Table::read(path)?;
+    let ct = need(&t, path, "time")?;
+    let mut series = Vec::new();
+    let mut by_time = Vec::new();
+    for (j, name) in t.columns.iter().enumerate() {
+        let Some(rest) = name.strip_suffix(|c: char| c.is_ascii_digit()) else {
+            continue;
+        };
+        let Some((bc, kind)) = rest.rsplit_once('.') else {
+            continue;
+        };
+        if kind != "r" {
+            continue;
+        }
+        let dof = &name[name.len() - 1..];
+        let Some(ju) = t.column(&format!("{bc}.u{dof}")) else {
+            continue;
+        };
+        let driven = t.rows.iter().any(|r| r[ju] != 0.0);
+        let pts: Vec<(f64, f64)> = t.rows.iter().map(|r| (r[ju], r[j])).collect();
+        let label = format!("{bc}, DOF {dof}");
+        if driven {
+            series.push(Series {
+                label,
+                points: std::iter::once((0.0, 0.0)).chain(pts).collect(),
+                markers: false,
+            });
+        } else if t.rows.iter().any(|r| r[j] != 0.0) {
+            by_time.push(Series {
+                label: format!("{label} (supports)"),
+                points: t.rows.iter().map(|r| (r[ct], r[j])).collect(),
+                markers: false,
+            });
+        }
+    }
+    let (x_label, series) = if series.is_empty() {
+        ("time", by_time)
+    } else {
+        ("prescribed displacement (mean over the set)", series)
+    };
+    Ok(Figure {
+        title: "Reaction force".into(),
+        x_label: x_label.into(),
+        y_label: "summed reaction".into(),
+        log_y: false,
+        series,
+    })
+}
+
+/// The Newton residual chart from a Newton CSV: one line per step, log scale.
+pub fn residual_figure(path: &Path) -> Result<Figure> {
+    let t = Table::read(path)?;
+    let (cs, ci, cr) = (
+        need(&t, path, "step")?,
+        need(&t, path, "iteration")?,
+        need(&t, path, "residual")?,
+    );
+    let mut series: Vec<Series> = Vec::new();
+    for r in &t.rows {
+        let label = format!("step {}", r[cs]);
+        match series.last_mut() {
+            Some(s) if s.label == label => s.points.push((r[ci], r[cr])),
+            _ => series.push(Series {
+                label,
+                points: vec![(r[ci], r[cr])],
+                markers: false,
+            }),
+        }
+    }
+    // Many steps: keep the legend readable by labelling only the first and the last.
+    let n = series.len();
+    if n > 6 {
+        for (i, s) in series.iter_mut().enumerate() {
+            if i != 0 && i != n - 1 {
+                s.label.clear();
+            }
+        }
+    }
+    Ok(Figure {
+        title: "Newton residual per iteration".into(),
+        x_label: "iteration".into(),
+        y_label: "relative residual".into(),
+        log_y: true,
+        series,
+    })
+}
+
+/// The stem of a run from any of its files (`out/run.contact.csv` -> `out/run`).
+fn stem_of(run: &Path) -> PathBuf {
+    let name = run.file_name().and_then(|n| n.to_str()).unwrap_or("");
+    for suffix in [".contact.csv", ".steps.csv", ".newton.csv", ".out", ".pvd"] {
+        if let Some(stem) = name.strip_suffix(suffix) {
+            return run.with_file_name(stem);
+        }
+    }
+    run.to_path_buf()
+}
+
+/// `hertz plot`: draw the asked (or every available) chart; returns the files written.
+pub fn plot_files(args: &PlotArgs) -> Result<Vec<PathBuf>> {
+    let stem = stem_of(&args.run);
+    let base = stem.file_name().and_then(|n| n.to_str()).unwrap_or("hertz");
+    let dir = args
+        .output
+        .clone()
+        .unwrap_or_else(|| stem.parent().map(Path::to_path_buf).unwrap_or_default());
+    let input = |ext: &str| stem.with_file_name(format!("{base}.{ext}"));
+    let charts: Vec<Chart> = if args.chart.is_empty() {
+        [
+            (Chart::Pressure, "contact.csv"),
+            (Chart::Load, "steps.csv"),
+            (Chart::Residuals, "newton.csv"),
+        ]
+        .into_iter()
+        .filter(|(_, ext)| input(ext).is_file())
+        .map(|(c, _)| c)
+        .collect()
+    } else {
+        args.chart.clone()
+    };
+    if charts.is_empty() {
+        return Err(Error::InputFile {
+            file: stem.display().to_string(),
+            msg: "no results to plot: expected STEM.contact.csv, STEM.steps.csv or \
+                  STEM.newton.csv (written by `hertz run`)"
+                .into(),
+        });
+    }
+    std::fs::create_dir_all(&dir)
+        .map_err(|e| Error::Output(format!("cannot create {}: {e}", dir.display())))?;
+    let ext = if args.png { "png" } else { "svg" };
+    let mut written = Vec::new();
+    for c in charts {
+        let (fig, name) = match c {
+            Chart::Pressure => (
+                pressure_figure(
+                    &input("contact.csv"),
+                    args.step,
+                    args.along,
+                    args.hertz.as_deref(),
+                )?,
+                "pressure",
+            ),
+            Chart::Load => (load_figure(&input("steps.csv"))?, "load"),
+            Chart::Residuals => (residual_figure(&input("newton.csv"))?, "residuals"),
+        };
+        let out = dir.join(format!("{base}.{name}.{ext}"));
+        draw(&fig, &out)?;
+        written.push(out);
+    }
+    Ok(written)
+}
+
+/// `hertz plot` for the command line: draw and name the files written.
+pub fn plot_command(args: &PlotArgs) -> Result<()> {
+    for p in plot_files(args)? {
+        eprintln!("wrote {}", p.display());
+    }
+    Ok(())
+}

@@ -1,0 +1,290 @@
+//! Gmsh meshes (tests/data/gmsh, made by box.py; examples/gmsh): every element type hertz maps
+//! passes a patch test (uniform compression, exact displacement field) after conversion, in both
+//! file formats, with mirrored elements turned right; `hertz import` writes what `@gmsh` reads;
+//! the Hertz example meshed in Gmsh meets the analytical solution.
+
+mod common;
+
+use hertz::mesh::gmsh::{convert, Plane};
+use hertz::solve::{run_analysis, SolveParams};
+use std::path::{Path, PathBuf};
+
+fn data(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/gmsh")
+        .join(name)
+}
+
+const STRAIN: f64 = -0.01;
+const NU: f64 = 0.3;
+
+/// Compress the body meshed in `mesh` by 1 % along its last axis (rollers on the planes x = 0,
+/// y = 0, bottom; the top prescribed) and return the worst nodal error against the exact field
+/// u_top = ε·z, u_lateral = −ν·ε·x (plane stress in 2D).
+fn patch_error(mesh: &Path) -> f64 {
+    let c = convert(mesh, Plane::Stress).unwrap();
+    let (dim, nset) = (c.dim, c.sets.len());
+    let set = |name: &str| c.sets.iter().find(|s| s.name == name).unwrap().number;
+    let (domain, lateral) = if dim == 3 {
+        (
+            "3d",
+            format!(
+                "BoundaryCondition 2 loadTimeFunction 1 dofs 1 1 values 1 0 set {}\n\
+             BoundaryCondition 3 loadTimeFunction 1 dofs 1 2 values 1 0 set {}\n",
+                set("x0"),
+                set("y0")
+            ),
+        )
+    } else {
+        (
+            "2dPlaneStress",
+            format!(
+                "BoundaryCondition 2 loadTimeFunction 1 dofs 1 1 values 1 0 set {}\n\
+             BoundaryCondition 3 loadTimeFunction 1 dofs 1 1 values 1 0 set {}\n",
+                set("x0"),
+                set("x0")
+            ),
+        )
+    };
+    let text = format!(
+        "patch.out\nGmsh patch test\nLinearStatic nsteps 1\ndomain {domain}\nOutputManager\n\
+         ndofman {} nelem {} ncrosssect 1 nmat 1 nbc 4 nic 0 nltf 1 nset {nset}\n\
+         @gmsh \"{}\"\n\
+         SimpleCS 1 thick 1 material 1 set {}\n\
+         IsoLE 1 d 0 E 1 n {NU} tAlpha 0\n\
+         BoundaryCondition 1 loadTimeFunction 1 dofs 1 {dim} values 1 0 set {}\n{lateral}\
+         BoundaryCondition 4 loadTimeFunction 1 dofs 1 {dim} values 1 {STRAIN} set {}\n\
+         ConstantFunction 1 f(t) 1\n",
+        c.coords.len(),
+        c.elements.len(),
+        mesh.display(),
+        set("body"),
+        set("bottom"),
+        set("top"),
+    );
+    let model = common::model_from_text(&text).unwrap();
+    let mut worst = f64::NAN;
+    run_analysis(
+        &model,
+        &SolveParams {
+            log_steps: false,
+            ..Default::default()
+        },
+        |r| {
+            worst = 0.0;
+            for (n, node) in model.nodes.iter().enumerate() {
+                let x = node.coords;
+                for d in 1..=dim as u8 {
+                    let exact = if d as usize == dim {
+                        STRAIN * x[dim - 1]
+                    } else {
+                        -NU * STRAIN * x[d as usize - 1]
+                    };
+                    let u = r.displacement(n, d).unwrap();
+                    worst = worst.max((u - exact).abs());
+                }
+            }
+            Ok(())
+        },
+    )
+    .unwrap();
+    worst
+}
+
+#[test]
+fn every_mapped_element_type_passes_the_patch_test() {
+    for (file, etype, n) in [
+        ("cube_hex.msh", "LSpace", 8),
+        ("cube_tet.msh", "LTRSpace", 100),
+        ("cube_prism.msh", "LWedge", 28),
+        ("square_tri.msh", "TrPlaneStress2d", 26),
+        ("square_quad.msh", "PlaneStress2d", 21),
+        ("square_quad8.msh", "QPlaneStress2d", 21),
+    ] {
+        let c = convert(&data(file), Plane::Stress).unwrap();
+        assert_eq!(c.elements.len(), n, "{file}");
+        assert!(c.elements.iter().all(|(t, _)| t.name() == etype), "{file}");
+        assert_eq!(c.n_flipped, 0, "{file}: Gmsh's own elements are positive");
+        let err = patch_error(&data(file));
+        println!("{file}: {n} {etype}, patch test error {err:.2e}");
+        assert!(err < 1e-12, "{file}: {err}");
+    }
+}
+
+/// Physical curves and surfaces become element boundaries with hertz's local numbers: the
+/// boundary nodes of each set lie on its plane and the sets' edge lengths add up.
+#[test]
+fn physical_groups_become_sets_of_element_boundaries() {
+    let c = convert(&data("cube_tet.msh"), Plane::Stress).unwrap();
+    let names: Vec<&str> = c.sets.iter().map(|s| s.name.as_str()).collect();
+    assert_eq!(names, ["body", "x0", "y0", "bottom", "top"]);
+    for (name, axis, value) in [
+        ("x0", 0, 0.0),
+        ("y0", 1, 0.0),
+        ("bottom", 2, 0.0),
+        ("top", 2, 1.0),
+    ] {
+        let s = c.sets.iter().find(|s| s.name == name).unwrap();
+        let mut area = 0.0;
+        for &(e, b) in &s.boundaries {
+            let (etype, nodes) = &c.elements[e];
+            let face = etype.shape().boundaries()[b - 1];
+            let x: Vec<[f64; 3]> = face.iter().map(|&a| c.coords[nodes[a]]).collect();
+            assert!(
+                x.iter().all(|p| (p[axis] - value).abs() < 1e-12),
+                "{name}: {x:?}"
+            );
+            let (u, v) = (sub(x[1], x[0]), sub(x[2], x[0]));
+            area += 0.5 * norm(cross(u, v));
+        }
+        assert!((area - 1.0).abs() < 1e-12, "{name}: area {area}");
+    }
+    let square = convert(&data("square_quad8.msh"), Plane::Stress).unwrap();
+    let top = square.sets.iter().find(|s| s.name == "top").unwrap();
+    let length: f64 = top
+        .boundaries
+        .iter()
+        .map(|&(e, b)| {
+            let (etype, nodes) = &square.elements[e];
+            let edge = etype.shape().boundaries()[b - 1];
+            // Quadratic edge: corners then the mid-side node, which lies half way.
+            let x: Vec<[f64; 3]> = edge.iter().map(|&a| square.coords[nodes[a]]).collect();
+            assert!((x[2][0] - 0.5 * (x[0][0] + x[1][0])).abs() < 1e-12);
+            (x[1][0] - x[0][0]).abs()
+        })
+        .sum();
+    assert!((length - 1.0).abs() < 1e-12, "top length {length}");
+}
+
+/// Elements listed clockwise (a surface meshed with its normal along -z) are mirrored to a
+/// positive Jacobian, and the model still passes the patch test.
+#[test]
+fn clockwise_elements_are_mirrored_and_still_exact() {
+    let text = std::fs::read_to_string(data("square_quad.msh")).unwrap();
+    let mut out = String::new();
+    let mut in_elements = false;
+    for line in text.lines() {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        if line == "$Elements" || line == "$EndElements" {
+            in_elements = line == "$Elements";
+        } else if in_elements && words.len() == 3 + 2 + 4 && words[1] == "3" {
+            // 2.2 record: tag, type 3 (quad), 2 tags, four nodes: reverse the nodes.
+            let mut w = words.clone();
+            w[5..9].reverse();
+            out += &w.join(" ");
+            out.push('\n');
+            continue;
+        }
+        out += line;
+        out.push('\n');
+    }
+    let mirrored = std::env::temp_dir().join(format!("hertz-cw-{}.msh", std::process::id()));
+    std::fs::write(&mirrored, out).unwrap();
+    let c = convert(&mirrored, Plane::Stress).unwrap();
+    assert_eq!(c.n_flipped, c.elements.len());
+    let err = patch_error(&mirrored);
+    std::fs::remove_file(&mirrored).ok();
+    assert!(err < 1e-12, "{err}");
+}
+
+/// `hertz import` writes the records `@gmsh` splices in: the fragment, @included, gives the same
+/// model; and the 2.2 and 4.1 files of one mesh give the same records.
+#[test]
+fn import_fragment_equals_the_gmsh_record_and_formats_agree() {
+    let dir = std::env::temp_dir().join(format!("hertz-import-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let fragment = dir.join("hex.in");
+    let status = std::process::Command::new(env!("CARGO_BIN_EXE_hertz"))
+        .args(["import", data("cube_hex.msh").to_str().unwrap(), "-o"])
+        .arg(&fragment)
+        .output()
+        .unwrap();
+    assert!(status.status.success());
+    let stderr = String::from_utf8_lossy(&status.stderr);
+    assert!(stderr.contains("ndofman 27 nelem 8 nset 5"), "{stderr}");
+    let c = convert(&data("cube_hex.msh"), Plane::Stress).unwrap();
+    let written = std::fs::read_to_string(&fragment).unwrap();
+    let records: Vec<&str> = written.lines().filter(|l| !l.starts_with('#')).collect();
+    assert_eq!(records, c.records());
+    std::fs::remove_dir_all(&dir).ok();
+
+    // One mesh written by Gmsh in both formats converts to the same records.
+    let v41 = convert(&data("square_tri.msh"), Plane::Stress).unwrap();
+    let v22 = convert(&data("square_tri_v22.msh"), Plane::Stress).unwrap();
+    assert!(v41.elements.len() == 26 && v41.sets.len() == 4);
+    assert_eq!(v41.records(), v22.records());
+}
+
+/// The Hertz example meshed in Gmsh: p0 and a within 2 % of the closed form.
+#[test]
+fn hertz_example_meshed_in_gmsh_meets_hertz() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/gmsh/hertz_gmsh.in");
+    let model = hertz::input::read_model(&path).unwrap().model;
+    let mut states = Vec::new();
+    let mut iterations = 0;
+    run_analysis(
+        &model,
+        &SolveParams {
+            log_steps: false,
+            ..Default::default()
+        },
+        |r| {
+            states = r.contact.to_vec();
+            iterations = r.info.iterations;
+            Ok(())
+        },
+    )
+    .unwrap();
+    let c = hertz::analytic::compare_hertz(&model, &states, 0.0).unwrap();
+    println!(
+        "Gmsh Hertz: F {:.4} p0 {:.4} vs {:.4} ({:+.2} %), a {:.4} vs {:.4} ({:+.2} %), {iterations} iterations",
+        c.force,
+        c.p0,
+        c.p0_ref,
+        100.0 * c.p0_error(),
+        c.a,
+        c.a_ref,
+        100.0 * c.a_error()
+    );
+    assert!(c.p0_error().abs() < 0.02 && c.a_error().abs() < 0.02);
+    assert!(iterations <= 5, "{iterations} iterations");
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+fn norm(a: [f64; 3]) -> f64 {
+    (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
+}
+
+/// A mesh hertz cannot represent is refused with what to do instead, naming the file.
+#[test]
+fn unsupported_element_types_and_binary_files_are_named() {
+    let dir = std::env::temp_dir().join(format!("hertz-gmsh-bad-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let tri6 = dir.join("tri6.msh");
+    std::fs::write(
+        &tri6,
+        "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n6\n1 0 0 0\n2 1 0 0\n3 0 1 0\n\
+         4 0.5 0 0\n5 0.5 0.5 0\n6 0 0.5 0\n$EndNodes\n$Elements\n1\n1 9 2 1 1 1 2 3 4 5 6\n\
+         $EndElements\n",
+    )
+    .unwrap();
+    let e = convert(&tri6, Plane::Stress).unwrap_err().to_string();
+    assert!(
+        e.contains("tri6.msh") && e.contains("hertz has no 6-node triangle"),
+        "{e}"
+    );
+    let binary = dir.join("binary.msh");
+    std::fs::write(&binary, "$MeshFormat\n4.1 1 8\n").unwrap();
+    let e = convert(&binary, Plane::Stress).unwrap_err().to_string();
+    assert!(e.contains("binary .msh files are not read"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}
