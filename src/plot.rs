@@ -59,17 +59,27 @@ pub struct PlotArgs {
     pub along: Along,
     /// Draw the Hertz pressure p0·sqrt(1 − (s − c)²/a²) too: P0,A or P0,A,C
     #[arg(long, value_name = "P0,A[,C]", value_parser = parse_hertz)]
-    pub hertz: Option<Vec<f64>>,
+    pub hertz: Option<HertzCurve>,
+}
+
+/// The Hertz pressure p0·√(1 − (s − c)²/a²) drawn over the computed one.
+#[derive(Debug, Clone, Copy)]
+pub struct HertzCurve {
+    pub p0: f64,
+    pub a: f64,
+    /// Centre of the contact along the plotted coordinate.
+    pub centre: f64,
 }
 
 /// `P0,A` or `P0,A,C`: two or three numbers, p0 and a positive.
-fn parse_hertz(s: &str) -> std::result::Result<Vec<f64>, String> {
+fn parse_hertz(s: &str) -> std::result::Result<HertzCurve, String> {
     let v: Vec<f64> = s
         .split(',')
         .map(|w| w.trim().parse::<f64>().map_err(|_| format!("`{w}` is not a number")))
         .collect::<std::result::Result<_, _>>()?;
     match v[..] {
-        [p0, a, ..] if v.len() <= 3 && p0 > 0.0 && a > 0.0 => Ok(v),
+        [p0, a] if p0 > 0.0 && a > 0.0 => Ok(HertzCurve { p0, a, centre: 0.0 }),
+        [p0, a, centre] if p0 > 0.0 && a > 0.0 => Ok(HertzCurve { p0, a, centre }),
         _ => Err("expected P0,A or P0,A,C with P0 > 0 and A > 0".into()),
     }
 }
@@ -263,7 +273,7 @@ pub fn pressure_figure(
     path: &Path,
     step: Option<usize>,
     along: Along,
-    hertz: Option<&[f64]>,
+    hertz: Option<HertzCurve>,
 ) -> Result<Figure> {
     let t = Table::read(path)?;
     let [cs, cx, cy, cz, cp, cc] = ["step", "x", "y", "z", "pressure", "condition"]
@@ -281,7 +291,7 @@ pub fn pressure_figure(
             msg: format!("no contact results for step {step} (steps 1..{last})"),
         });
     }
-    let centre = hertz.and_then(|h| h.get(2)).copied().unwrap_or(0.0);
+    let centre = hertz.map_or(0.0, |h| h.centre);
     let coordinate = |r: &[f64]| match along {
         Along::X => r[cx],
         Along::Y => r[cy],
@@ -307,11 +317,14 @@ pub fn pressure_figure(
         });
     }
     if let Some(h) = hertz {
-        let (p0, a) = (h[0], h[1]);
-        let (lo, hi) = range(
-            series.iter().flat_map(|s| s.points.iter().map(|p| p.0)),
-            false,
-        );
+        let (p0, a) = (h.p0, h.a);
+        let (lo, hi) = series
+            .iter()
+            .flat_map(|s| s.points.iter().map(|p| p.0))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                (a.min(x), b.max(x))
+            });
+        let (lo, hi) = if lo < hi { (lo, hi) } else { (-h.a, h.a) };
         let c = if along == Along::R { 0.0 } else { centre };
         let n = 400;
         let points = (0..=n)
@@ -478,7 +491,7 @@ pub fn plot_files(args: &PlotArgs) -> Result<Vec<PathBuf>> {
                     &input("contact.csv"),
                     args.step,
                     args.along,
-                    args.hertz.as_deref(),
+                    args.hertz,
                 )?,
                 "pressure",
             ),

@@ -214,3 +214,86 @@ fn run_writes_out_vtu_and_pvd_next_to_the_input() {
         .contains(".tmp")));
     std::fs::remove_dir_all(dir).ok();
 }
+
+/// A UTF-8 byte-order mark is skipped (it used to end up in the output file names).
+#[test]
+fn byte_order_mark_is_skipped() {
+    let src = std::fs::read(root().join("tests/data/oofem/patch100.in")).unwrap();
+    let dir = temp_dir("bom");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("bom.in");
+    std::fs::write(&path, [&b"\xEF\xBB\xBF"[..], &src].concat()).unwrap();
+    let out = hertz(&["run", "-q", path.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(names.iter().any(|n| n == "patch100.out"), "{names:?}");
+    assert!(names.iter().all(|n| n.is_ascii()), "{names:?}");
+    std::fs::remove_dir_all(dir).ok();
+}
+
+/// Unread tokens are reported in a short line, and an error's record is cut, however long the
+/// record is; -q silences the warning.
+#[test]
+fn long_records_are_reported_shortly() {
+    let src = std::fs::read_to_string(root().join("tests/data/oofem/patch100.in")).unwrap();
+    let junk: String = (0..200_000).map(|i| format!(" junk{i}")).collect();
+    let dir = temp_dir("long");
+    std::fs::create_dir_all(&dir).unwrap();
+    let (first, rest) = src.split_once("\nnode ").unwrap();
+    let path = dir.join("long.in");
+    std::fs::write(&path, format!("{first}\nnode {}", rest.replacen('\n', &format!("{junk}\n"), 1)))
+        .unwrap();
+    let out = hertz(&["check", path.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    let warning = stderr.lines().find(|l| l.contains("unread")).expect("warning");
+    assert!(warning.contains("and 199994 more"), "{warning}");
+    assert!(warning.len() < 300, "{} characters", warning.len());
+    let quiet = hertz(&["check", "-q", path.to_str().unwrap()]);
+    assert!(quiet.stderr.is_empty(), "{}", String::from_utf8_lossy(&quiet.stderr));
+    // The same record with a bad number: the error shows 160 characters of it.
+    let bad = dir.join("bad.in");
+    std::fs::write(&bad, std::fs::read_to_string(&path).unwrap().replacen("node 1 coords 3  0.0   0.0", "node 1 coords 3  0.0   x.0", 1))
+        .unwrap();
+    let out = hertz(&["check", bad.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.len() < 2000, "{} bytes of message", stderr.len());
+    assert!(stderr.contains("more characters"), "{stderr}");
+    std::fs::remove_dir_all(dir).ok();
+}
+
+/// Absurd benchmark sizes are refused at once (exit 2), before anything is generated.
+#[test]
+fn absurd_bench_sizes_are_refused_before_allocating() {
+    for args in [
+        &["bench", "--n", "1000000"][..],
+        &["bench", "--dim", "3", "--n", "500"][..],
+        &["bench", "--n", "0"][..],
+        &["bench", "--patch", "1000"][..],
+        &["bench", "--sphere", "0.001"][..],
+    ] {
+        let t = std::time::Instant::now();
+        let out = hertz(args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        assert!(String::from_utf8_lossy(&out.stderr).contains("error"), "{args:?}");
+        assert!(t.elapsed().as_secs_f64() < 5.0, "{args:?} took {:?}", t.elapsed());
+    }
+}
+
+#[test]
+fn version_and_completions() {
+    let out = hertz(&["--version"]);
+    assert!(out.status.success());
+    assert_eq!(
+        String::from_utf8_lossy(&out.stdout).trim(),
+        format!("hertz {}", env!("CARGO_PKG_VERSION"))
+    );
+    let out = hertz(&["completions", "bash"]);
+    assert!(out.status.success());
+    let script = String::from_utf8_lossy(&out.stdout);
+    assert!(script.contains("complete") && script.contains("import"), "{script}");
+}

@@ -23,46 +23,9 @@ const NU: f64 = 0.3;
 /// u_top = ε·z, u_lateral = −ν·ε·x (plane stress in 2D).
 fn patch_error(mesh: &Path) -> f64 {
     let c = convert(mesh, Plane::Stress).unwrap();
-    let (dim, nset) = (c.dim, c.sets.len());
-    let set = |name: &str| c.sets.iter().find(|s| s.name == name).unwrap().number;
-    let (domain, lateral) = if dim == 3 {
-        (
-            "3d",
-            format!(
-                "BoundaryCondition 2 loadTimeFunction 1 dofs 1 1 values 1 0 set {}\n\
-             BoundaryCondition 3 loadTimeFunction 1 dofs 1 2 values 1 0 set {}\n",
-                set("x0"),
-                set("y0")
-            ),
-        )
-    } else {
-        (
-            "2dPlaneStress",
-            format!(
-                "BoundaryCondition 2 loadTimeFunction 1 dofs 1 1 values 1 0 set {}\n\
-             BoundaryCondition 3 loadTimeFunction 1 dofs 1 1 values 1 0 set {}\n",
-                set("x0"),
-                set("x0")
-            ),
-        )
-    };
-    let text = format!(
-        "patch.out\nGmsh patch test\nLinearStatic nsteps 1\ndomain {domain}\nOutputManager\n\
-         ndofman {} nelem {} ncrosssect 1 nmat 1 nbc 4 nic 0 nltf 1 nset {nset}\n\
-         @gmsh \"{}\"\n\
-         SimpleCS 1 thick 1 material 1 set {}\n\
-         IsoLE 1 d 0 E 1 n {NU} tAlpha 0\n\
-         BoundaryCondition 1 loadTimeFunction 1 dofs 1 {dim} values 1 0 set {}\n{lateral}\
-         BoundaryCondition 4 loadTimeFunction 1 dofs 1 {dim} values 1 {STRAIN} set {}\n\
-         ConstantFunction 1 f(t) 1\n",
-        c.coords.len(),
-        c.elements.len(),
-        mesh.display(),
-        set("body"),
-        set("bottom"),
-        set("top"),
-    );
+    let text = patch_input(&c, &format!("@gmsh \"{}\"", mesh.display()));
     let model = common::model_from_text(&text).unwrap();
+    let dim = c.dim;
     let mut worst = f64::NAN;
     run_analysis(
         &model,
@@ -89,6 +52,49 @@ fn patch_error(mesh: &Path) -> f64 {
     )
     .unwrap();
     worst
+}
+
+/// The patch-test input of the converted mesh `c`, whose records `mesh` gives (an `@gmsh` line
+/// or the records themselves).
+fn patch_input(c: &hertz::mesh::gmsh::Converted, mesh: &str) -> String {
+    let (dim, nset) = (c.dim, c.sets.len());
+    let set = |name: &str| c.sets.iter().find(|s| s.name == name).unwrap().number;
+    let (domain, lateral) = if dim == 3 {
+        (
+            "3d",
+            format!(
+                "BoundaryCondition 2 loadTimeFunction 1 dofs 1 1 values 1 0 set {}\n\
+             BoundaryCondition 3 loadTimeFunction 1 dofs 1 2 values 1 0 set {}\n",
+                set("x0"),
+                set("y0")
+            ),
+        )
+    } else {
+        (
+            "2dPlaneStress",
+            format!(
+                "BoundaryCondition 2 loadTimeFunction 1 dofs 1 1 values 1 0 set {}\n\
+             BoundaryCondition 3 loadTimeFunction 1 dofs 1 1 values 1 0 set {}\n",
+                set("x0"),
+                set("x0")
+            ),
+        )
+    };
+    format!(
+        "patch.out\nGmsh patch test\nLinearStatic nsteps 1\ndomain {domain}\nOutputManager\n\
+         ndofman {} nelem {} ncrosssect 1 nmat 1 nbc 4 nic 0 nltf 1 nset {nset}\n\
+         {mesh}\n\
+         SimpleCS 1 thick 1 material 1 set {}\n\
+         IsoLE 1 d 0 E 1 n {NU} tAlpha 0\n\
+         BoundaryCondition 1 loadTimeFunction 1 dofs 1 {dim} values 1 0 set {}\n{lateral}\
+         BoundaryCondition 4 loadTimeFunction 1 dofs 1 {dim} values 1 {STRAIN} set {}\n\
+         ConstantFunction 1 f(t) 1\n",
+        c.coords.len(),
+        c.elements.len(),
+        set("body"),
+        set("bottom"),
+        set("top"),
+    )
 }
 
 #[test]
@@ -287,4 +293,65 @@ fn unsupported_element_types_and_binary_files_are_named() {
     let e = convert(&binary, Plane::Stress).unwrap_err().to_string();
     assert!(e.contains("binary .msh files are not read"), "{e}");
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Whatever the orientation of the input's elements, the .vtu cells are in VTK's order with a
+/// positive volume: every other element of the hexahedron, tetrahedron and prism cubes is
+/// written mirrored into the input, and each cell's VTK orientation is checked in the file.
+#[test]
+fn vtu_cells_are_positive_whatever_the_input_orientation() {
+    let dir = std::env::temp_dir().join(format!("hertz-vtu-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for file in ["cube_hex.msh", "cube_tet.msh", "cube_prism.msh"] {
+        let mut c = convert(&data(file), Plane::Stress).unwrap();
+        for (etype, nodes) in c.elements.iter_mut().step_by(2) {
+            *nodes = etype.shape().mirror().iter().map(|&a| nodes[a]).collect();
+        }
+        let input = dir.join("cube.in");
+        std::fs::write(&input, patch_input(&c, &c.records().join("\n"))).unwrap();
+        let report = hertz::app::run_file(
+            &input,
+            &hertz::app::RunOptions {
+                write_outputs: true,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        let vtu = report.written.iter().find(|p| p.extension().is_some_and(|e| e == "vtu")).unwrap();
+        let text = std::fs::read_to_string(vtu).unwrap();
+        let block = |name: &str| -> Vec<f64> {
+            let start = text.find(&format!("Name=\"{name}\"")).unwrap();
+            let body = &text[start..];
+            let body = &body[body.find('>').unwrap() + 1..body.find("</DataArray>").unwrap()];
+            body.split_whitespace().map(|w| w.parse().unwrap()).collect()
+        };
+        let (points, conn, types) = (block("coordinates"), block("connectivity"), block("types"));
+        let p = |k: f64| {
+            let k = k as usize;
+            [points[3 * k], points[3 * k + 1], points[3 * k + 2]]
+        };
+        let mut at = 0;
+        for &t in &types {
+            let (n, sign) = match t as u8 {
+                12 => (8, 1.0),  // hexahedron: (p1-p0) x (p3-p0) . (p4-p0) > 0
+                10 => (4, 1.0),  // tetrahedron: (p1-p0) x (p2-p0) . (p3-p0) > 0
+                13 => (6, -1.0), // wedge: the base (0,1,2) faces away from (3,4,5)
+                other => panic!("cell type {other}"),
+            };
+            let q: Vec<[f64; 3]> = conn[at..at + n].iter().map(|&k| p(k)).collect();
+            let (a, b, d) = match n {
+                8 => (sub(q[1], q[0]), sub(q[3], q[0]), sub(q[4], q[0])),
+                _ => (sub(q[1], q[0]), sub(q[2], q[0]), sub(q[3], q[0])),
+            };
+            let triple = dot(cross(a, b), d);
+            assert!(sign * triple > 0.0, "{file}: cell at {at} has triple product {triple}");
+            at += n;
+        }
+        assert_eq!(at, conn.len());
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }

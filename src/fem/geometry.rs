@@ -69,3 +69,12 @@ pub fn jacobian_dets(shape: super::Shape, x: &[[f64; 3]], rule: &[super::QuadPoi
         })
         .collect()
 }
+
+/// det J at the centre of the reference element: its sign is the element's orientation.
+pub fn det_j_at_centre(shape: super::Shape, x: &[[f64; 3]]) -> f64 {
+    let centre = super::QuadPoint {
+        xi: shape.centre(),
+        weight: 1.0,
+    };
+    jacobian_dets(shape, x, &[centre])[0]
+}

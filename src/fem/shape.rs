@@ -171,6 +171,30 @@ impl Shape {
         }
     }
 
+    /// Centre of the reference element.
+    pub fn centre(self) -> [f64; 3] {
+        match self {
+            Shape::Tri3 | Shape::Wedge6 => [1.0 / 3.0, 1.0 / 3.0, 0.0],
+            Shape::Tet4 => [0.25, 0.25, 0.25],
+            _ => [0.0; 3],
+        }
+    }
+
+    /// Node permutation that mirrors an element (node a of the mirror is node `mirror()[a]`):
+    /// the same element with the opposite orientation (det J of the other sign).
+    pub fn mirror(self) -> &'static [usize] {
+        match self {
+            Shape::Line2 => &[1, 0],
+            Shape::Line3 => &[1, 0, 2],
+            Shape::Tri3 => &[0, 2, 1],
+            Shape::Quad4 => &[0, 3, 2, 1],
+            Shape::Quad8 => &[0, 3, 2, 1, 7, 6, 5, 4],
+            Shape::Tet4 => &[0, 2, 1, 3],
+            Shape::Hexa8 => &[4, 5, 6, 7, 0, 1, 2, 3],
+            Shape::Wedge6 => &[3, 4, 5, 0, 1, 2],
+        }
+    }
+
     /// Local node lists of the element boundaries (edges in 2D, faces in 3D), 1-based numbering
     /// as in OOFEM (spec §1.9). Quad8 edges list (first corner, second corner, mid-side).
     pub fn boundaries(self) -> &'static [&'static [usize]] {

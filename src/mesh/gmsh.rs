@@ -8,6 +8,7 @@
 //! identify it.
 
 use crate::error::{Error, Result};
+use crate::fem::geometry::det_j_at_centre;
 use crate::fem::shape::Shape;
 use crate::model::ElementType;
 use std::collections::{BTreeMap, HashMap};
@@ -393,31 +394,22 @@ fn read_raw(path: &Path) -> Result<RawMesh> {
     Ok(mesh)
 }
 
-/// hertz element type and node order (hertz node a = Gmsh node `order[a]`) of a Gmsh element,
-/// and the permutation that mirrors it (to turn a negative Jacobian positive).
+/// hertz element type and node order (hertz node a = Gmsh node `order[a]`) of a Gmsh element.
 fn hertz_element(
     type_number: usize,
     plane: Plane,
-) -> std::result::Result<(ElementType, &'static [usize], &'static [usize]), String> {
+) -> std::result::Result<(ElementType, &'static [usize]), String> {
     use ElementType as E;
     Ok(match (type_number, plane) {
-        (2, Plane::Stress) => (E::TrPlaneStress2d, &[0, 1, 2], &[0, 2, 1]),
-        (2, Plane::Strain) => (E::TrPlaneStrain, &[0, 1, 2], &[0, 2, 1]),
-        (3, Plane::Stress) => (E::PlaneStress2d, &[0, 1, 2, 3], &[0, 3, 2, 1]),
-        (3, Plane::Strain) => (E::Quad1PlaneStrain, &[0, 1, 2, 3], &[0, 3, 2, 1]),
-        (16, Plane::Stress) => (
-            E::QPlaneStress2d,
-            &[0, 1, 2, 3, 4, 5, 6, 7],
-            &[0, 3, 2, 1, 7, 6, 5, 4],
-        ),
-        (4, _) => (E::LTRSpace, &[1, 2, 3, 0], &[0, 2, 1, 3]),
+        (2, Plane::Stress) => (E::TrPlaneStress2d, &[0, 1, 2]),
+        (2, Plane::Strain) => (E::TrPlaneStrain, &[0, 1, 2]),
+        (3, Plane::Stress) => (E::PlaneStress2d, &[0, 1, 2, 3]),
+        (3, Plane::Strain) => (E::Quad1PlaneStrain, &[0, 1, 2, 3]),
+        (16, Plane::Stress) => (E::QPlaneStress2d, &[0, 1, 2, 3, 4, 5, 6, 7]),
+        (4, _) => (E::LTRSpace, &[1, 2, 3, 0]),
         // Gmsh's hexahedron starts on its bottom face, OOFEM's LSpace on its top face.
-        (5, _) => (
-            E::LSpace,
-            &[4, 7, 6, 5, 0, 3, 2, 1],
-            &[4, 5, 6, 7, 0, 1, 2, 3],
-        ),
-        (6, _) => (E::LWedge, &[0, 1, 2, 3, 4, 5], &[3, 4, 5, 0, 1, 2]),
+        (5, _) => (E::LSpace, &[4, 7, 6, 5, 0, 3, 2, 1]),
+        (6, _) => (E::LWedge, &[0, 1, 2, 3, 4, 5]),
         (16, Plane::Strain) => {
             return Err(
                 "8-node quadrangles exist in hertz only as plane stress (QPlaneStress2d)".into(),
@@ -431,36 +423,6 @@ fn hertz_element(
             ));
         }
     })
-}
-
-/// Jacobian determinant at the element centre.
-fn det_j_at_centre(shape: Shape, x: &[[f64; 3]]) -> f64 {
-    let n_nodes = x.len();
-    let mut n = vec![0.0; n_nodes];
-    let mut dn = vec![[0.0; 3]; n_nodes];
-    let centre = match shape {
-        Shape::Tri3 => [1.0 / 3.0, 1.0 / 3.0, 0.0],
-        Shape::Tet4 => [0.25, 0.25, 0.25],
-        Shape::Wedge6 => [1.0 / 3.0, 1.0 / 3.0, 0.0],
-        _ => [0.0; 3],
-    };
-    shape.eval(centre, &mut n, &mut dn);
-    let dim = shape.dim();
-    let mut j = [[0.0; 3]; 3];
-    for (a, xa) in x.iter().enumerate() {
-        for r in 0..dim {
-            for c in 0..dim {
-                j[r][c] += xa[r] * dn[a][c];
-            }
-        }
-    }
-    if dim == 2 {
-        j[0][0] * j[1][1] - j[0][1] * j[1][0]
-    } else {
-        j[0][0] * (j[1][1] * j[2][2] - j[1][2] * j[2][1])
-            - j[0][1] * (j[1][0] * j[2][2] - j[1][2] * j[2][0])
-            + j[0][2] * (j[1][0] * j[2][1] - j[1][1] * j[2][0])
-    }
 }
 
 /// The set of physical group (`dim`, `physical`), created empty on first use.
@@ -529,8 +491,7 @@ pub fn convert(path: &Path, plane: Plane) -> Result<Converted> {
         .iter()
         .filter(|e| gmsh_type(e.gmsh_type).unwrap().0 == dim)
     {
-        let (etype, order, mirror) =
-            hertz_element(e.gmsh_type, plane).map_err(|m| err(path, 0, m))?;
+        let (etype, order) = hertz_element(e.gmsh_type, plane).map_err(|m| err(path, 0, m))?;
         let mut nodes: Vec<usize> = order
             .iter()
             .map(|&g| index(e.nodes[g]))
@@ -538,7 +499,7 @@ pub fn convert(path: &Path, plane: Plane) -> Result<Converted> {
         let x: Vec<[f64; 3]> = nodes.iter().map(|&n| coords[n]).collect();
         let det = det_j_at_centre(etype.shape(), &x);
         if det < 0.0 {
-            nodes = mirror.iter().map(|&a| nodes[a]).collect();
+            nodes = etype.shape().mirror().iter().map(|&a| nodes[a]).collect();
             n_flipped += 1;
         } else if det == 0.0 {
             return Err(err(

@@ -4,6 +4,7 @@
 
 use super::write_atomic;
 use crate::error::Result;
+use crate::fem::geometry::det_j_at_centre;
 use crate::fem::Shape;
 use crate::model::Model;
 use crate::solve::StepResult;
@@ -54,8 +55,14 @@ pub fn write_step(model: &Model, res: &StepResult, dir: &Path, stem: &str) -> Re
     let mut types = Vec::with_capacity(ne);
     let mut off = 0;
     for el in &model.elements {
-        let (t, perm) = vtk_cell(el.etype.shape());
+        let shape = el.etype.shape();
+        let (t, perm) = vtk_cell(shape);
+        // VTK's orders are for positively oriented elements; a mirrored input element (hertz
+        // takes either orientation) is written mirrored back, so no cell has a negative volume.
+        let x: Vec<[f64; 3]> = el.nodes.iter().map(|&n| model.nodes[n].coords).collect();
+        let flip = det_j_at_centre(shape, &x) < 0.0;
         for &k in perm {
+            let k = if flip { shape.mirror()[k] } else { k };
             let _ = write!(s, "{} ", el.nodes[k]);
         }
         s.push('\n');
