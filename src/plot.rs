@@ -75,7 +75,11 @@ pub struct HertzCurve {
 fn parse_hertz(s: &str) -> std::result::Result<HertzCurve, String> {
     let v: Vec<f64> = s
         .split(',')
-        .map(|w| w.trim().parse::<f64>().map_err(|_| format!("`{w}` is not a number")))
+        .map(|w| {
+            w.trim()
+                .parse::<f64>()
+                .map_err(|_| format!("`{w}` is not a number"))
+        })
         .collect::<std::result::Result<_, _>>()?;
     match v[..] {
         [p0, a] if p0 > 0.0 && a > 0.0 => Ok(HertzCurve { p0, a, centre: 0.0 }),
@@ -487,12 +491,7 @@ pub fn plot_files(args: &PlotArgs) -> Result<Vec<PathBuf>> {
     for c in charts {
         let (fig, name) = match c {
             Chart::Pressure => (
-                pressure_figure(
-                    &input("contact.csv"),
-                    args.step,
-                    args.along,
-                    args.hertz,
-                )?,
+                pressure_figure(&input("contact.csv"), args.step, args.along, args.hertz)?,
                 "pressure",
             ),
             Chart::Load => (load_figure(&input("steps.csv"))?, "load"),

@@ -224,7 +224,11 @@ fn byte_order_mark_is_skipped() {
     let path = dir.join("bom.in");
     std::fs::write(&path, [&b"\xEF\xBB\xBF"[..], &src].concat()).unwrap();
     let out = hertz(&["run", "-q", path.to_str().unwrap()]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let names: Vec<String> = std::fs::read_dir(&dir)
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
@@ -244,20 +248,40 @@ fn long_records_are_reported_shortly() {
     std::fs::create_dir_all(&dir).unwrap();
     let (first, rest) = src.split_once("\nnode ").unwrap();
     let path = dir.join("long.in");
-    std::fs::write(&path, format!("{first}\nnode {}", rest.replacen('\n', &format!("{junk}\n"), 1)))
-        .unwrap();
+    std::fs::write(
+        &path,
+        format!(
+            "{first}\nnode {}",
+            rest.replacen('\n', &format!("{junk}\n"), 1)
+        ),
+    )
+    .unwrap();
     let out = hertz(&["check", path.to_str().unwrap()]);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{stderr}");
-    let warning = stderr.lines().find(|l| l.contains("unread")).expect("warning");
+    let warning = stderr
+        .lines()
+        .find(|l| l.contains("unread"))
+        .expect("warning");
     assert!(warning.contains("and 199994 more"), "{warning}");
     assert!(warning.len() < 300, "{} characters", warning.len());
     let quiet = hertz(&["check", "-q", path.to_str().unwrap()]);
-    assert!(quiet.stderr.is_empty(), "{}", String::from_utf8_lossy(&quiet.stderr));
+    assert!(
+        quiet.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&quiet.stderr)
+    );
     // The same record with a bad number: the error shows 160 characters of it.
     let bad = dir.join("bad.in");
-    std::fs::write(&bad, std::fs::read_to_string(&path).unwrap().replacen("node 1 coords 3  0.0   0.0", "node 1 coords 3  0.0   x.0", 1))
-        .unwrap();
+    std::fs::write(
+        &bad,
+        std::fs::read_to_string(&path).unwrap().replacen(
+            "node 1 coords 3  0.0   0.0",
+            "node 1 coords 3  0.0   x.0",
+            1,
+        ),
+    )
+    .unwrap();
     let out = hertz(&["check", bad.to_str().unwrap()]);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{stderr}");
@@ -279,8 +303,15 @@ fn absurd_bench_sizes_are_refused_before_allocating() {
         let t = std::time::Instant::now();
         let out = hertz(args);
         assert_eq!(out.status.code(), Some(2), "{args:?}");
-        assert!(String::from_utf8_lossy(&out.stderr).contains("error"), "{args:?}");
-        assert!(t.elapsed().as_secs_f64() < 5.0, "{args:?} took {:?}", t.elapsed());
+        assert!(
+            String::from_utf8_lossy(&out.stderr).contains("error"),
+            "{args:?}"
+        );
+        assert!(
+            t.elapsed().as_secs_f64() < 5.0,
+            "{args:?} took {:?}",
+            t.elapsed()
+        );
     }
 }
 
@@ -295,5 +326,8 @@ fn version_and_completions() {
     let out = hertz(&["completions", "bash"]);
     assert!(out.status.success());
     let script = String::from_utf8_lossy(&out.stdout);
-    assert!(script.contains("complete") && script.contains("import"), "{script}");
+    assert!(
+        script.contains("complete") && script.contains("import"),
+        "{script}"
+    );
 }

@@ -317,13 +317,19 @@ fn vtu_cells_are_positive_whatever_the_input_orientation() {
             },
         )
         .unwrap();
-        let vtu = report.written.iter().find(|p| p.extension().is_some_and(|e| e == "vtu")).unwrap();
+        let vtu = report
+            .written
+            .iter()
+            .find(|p| p.extension().is_some_and(|e| e == "vtu"))
+            .unwrap();
         let text = std::fs::read_to_string(vtu).unwrap();
         let block = |name: &str| -> Vec<f64> {
             let start = text.find(&format!("Name=\"{name}\"")).unwrap();
             let body = &text[start..];
             let body = &body[body.find('>').unwrap() + 1..body.find("</DataArray>").unwrap()];
-            body.split_whitespace().map(|w| w.parse().unwrap()).collect()
+            body.split_whitespace()
+                .map(|w| w.parse().unwrap())
+                .collect()
         };
         let (points, conn, types) = (block("coordinates"), block("connectivity"), block("types"));
         let p = |k: f64| {
@@ -344,7 +350,10 @@ fn vtu_cells_are_positive_whatever_the_input_orientation() {
                 _ => (sub(q[1], q[0]), sub(q[2], q[0]), sub(q[3], q[0])),
             };
             let triple = dot(cross(a, b), d);
-            assert!(sign * triple > 0.0, "{file}: cell at {at} has triple product {triple}");
+            assert!(
+                sign * triple > 0.0,
+                "{file}: cell at {at} has triple product {triple}"
+            );
             at += n;
         }
         assert_eq!(at, conn.len());

@@ -46,7 +46,14 @@ fn plots_hold_the_runs_series() {
     let with_pressure = rows
         .lines()
         .skip(1)
-        .filter(|l| l.split(',').nth(8).unwrap().parse::<f64>().unwrap().is_finite())
+        .filter(|l| {
+            l.split(',')
+                .nth(8)
+                .unwrap()
+                .parse::<f64>()
+                .unwrap()
+                .is_finite()
+        })
         .count();
     let svg = std::fs::read_to_string(dir.join("hertz_gmsh.pressure.svg")).unwrap();
     assert!(with_pressure > 30);
@@ -58,7 +65,10 @@ fn plots_hold_the_runs_series() {
     let newton = std::fs::read_to_string(dir.join("hertz_gmsh.newton.csv")).unwrap();
     let n_residuals = newton.lines().count() - 1;
     let svg = std::fs::read_to_string(dir.join("hertz_gmsh.residuals.svg")).unwrap();
-    assert!(polylines(&svg, "#1F77B4").contains(&n_residuals), "{n_residuals}");
+    assert!(
+        polylines(&svg, "#1F77B4").contains(&n_residuals),
+        "{n_residuals}"
+    );
 
     // Load: the driven bottom (bc 2, DOF 2) from the origin to its one step.
     let svg = std::fs::read_to_string(dir.join("hertz_gmsh.load.svg")).unwrap();
@@ -66,7 +76,13 @@ fn plots_hold_the_runs_series() {
     assert!(svg.contains("bc2, DOF 2"));
 
     // PNG: a real image of the chart's size.
-    hertz(&["plot", dir.join("hertz_gmsh").to_str().unwrap(), "--png", "-c", "residuals"]);
+    hertz(&[
+        "plot",
+        dir.join("hertz_gmsh").to_str().unwrap(),
+        "--png",
+        "-c",
+        "residuals",
+    ]);
     let png = std::fs::read(dir.join("hertz_gmsh.residuals.png")).unwrap();
     assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
     assert_eq!(u32::from_be_bytes(png[16..20].try_into().unwrap()), 900);

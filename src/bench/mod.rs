@@ -586,7 +586,7 @@ pub struct BenchArgs {
     /// Write the verification examples of examples/ to DIR
     #[arg(long, value_name = "DIR")]
     pub examples: Option<String>,
-    /// Write the generated input(s) to DIR instead of solving (--sphere, --patch, --suite)
+    /// Write the generated input(s) to DIR instead of solving (--contact, --sphere, --patch, --suite)
     #[arg(long, value_name = "DIR")]
     pub write: Option<String>,
 }
@@ -692,6 +692,22 @@ pub fn main(args: BenchArgs) -> ExitCode {
             if contact { 2 } else { dim }
         );
         return ExitCode::from(2);
+    }
+    if let (true, Some(dir)) = (contact, &write) {
+        let path = Path::new(dir).join(format!("contact_block_{n}.in"));
+        let written = std::fs::create_dir_all(dir)
+            .map_err(|e| Error::Output(format!("cannot create {dir}: {e}")))
+            .and_then(|()| write_contact_block_input(&path, n, n as f64 / 40.0, multipliers));
+        return match written {
+            Ok(()) => {
+                println!("wrote {}", path.display());
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::from(e.exit_code() as u8)
+            }
+        };
     }
     if contact {
         return match run_contact(n, multipliers) {

@@ -26,10 +26,24 @@ fn vtk_cell(shape: Shape) -> (u8, &'static [usize]) {
 }
 
 fn data_array(s: &mut String, name: &str, ncomp: usize, values: impl Iterator<Item = f64>) {
+    use rayon::prelude::*;
     let _ = writeln!(s, "<DataArray type=\"Float64\" Name=\"{name}\" NumberOfComponents=\"{ncomp}\" format=\"ascii\">");
-    for (i, v) in values.enumerate() {
-        let _ = write!(s, "{v:e}");
-        s.push(if (i + 1) % ncomp == 0 { '\n' } else { ' ' });
+    let values: Vec<f64> = values.collect();
+    // Formatting is most of the time of writing a large file: chunks of whole tuples in parallel.
+    let chunk = 4096 * ncomp;
+    let parts: Vec<String> = values
+        .par_chunks(chunk)
+        .map(|c| {
+            let mut s = String::with_capacity(24 * c.len());
+            for (i, v) in c.iter().enumerate() {
+                let _ = write!(s, "{v:e}");
+                s.push(if (i + 1) % ncomp == 0 { '\n' } else { ' ' });
+            }
+            s
+        })
+        .collect();
+    for p in parts {
+        s.push_str(&p);
     }
     s.push_str("</DataArray>\n");
 }
