@@ -27,6 +27,8 @@ struct Cursor {
     pos: usize,
     file: String,
     warnings: Vec<String>,
+    /// The sets came right after the elements: a set record met later is one too many.
+    sets_read_early: bool,
 }
 
 impl Cursor {
@@ -157,7 +159,8 @@ impl Cursor {
         let kw = r.keyword().to_string();
         match Block::of(&kw) {
             Some(found) if found != block => {
-                let why = if found > block {
+                let early_set = found == Block::Set && self.sets_read_early;
+                let why = if found > block && !early_set {
                     format!("`{key} {n}` is larger than the {i} {name} record(s) present")
                 } else {
                     format!("is `{}` too small?", found.count_key())
@@ -231,6 +234,7 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
         pos: 0,
         file: file.clone(),
         warnings: Vec::new(),
+        sets_read_early: false,
     };
 
     // Engineering model record.
@@ -536,6 +540,7 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
     let mut sets: Option<Vec<Set>> = None;
     if nset > 0 && c.peek_keyword().as_deref() == Some("set") {
         sets = Some(read_sets(&mut c, nset, &refs)?);
+        c.sets_read_early = true;
     }
 
     let mut pending_segments = Numbered::new("contact segment", ncontactseg);
