@@ -1,5 +1,7 @@
 //! Examples are verifications: each runs and meets its analytical reference.
 
+mod common;
+
 use hertz::app::{run_file, RunOptions};
 use hertz::output::check::RuleKind;
 use std::path::PathBuf;
@@ -55,7 +57,7 @@ fn cantilever_tip_deflection_matches_timoshenko_within_one_percent() {
     std::fs::remove_dir_all(dir).ok();
 }
 
-/// Solve an example and return its model and last contact state.
+/// Solve an example and return its model, last contact state and residual history.
 fn contact_example(
     name: &str,
 ) -> (
@@ -63,21 +65,7 @@ fn contact_example(
     Vec<hertz::contact::SlotState>,
     Vec<f64>,
 ) {
-    let model = hertz::input::read_model(&example(name)).unwrap().model;
-    let mut out = (Vec::new(), Vec::new());
-    hertz::solve::run_analysis(
-        &model,
-        &hertz::solve::SolveParams {
-            log_steps: false,
-            ..Default::default()
-        },
-        |r| {
-            out = (r.contact.to_vec(), r.info.residual_history.clone());
-            Ok(())
-        },
-    )
-    .unwrap();
-    (model, out.0, out.1)
+    common::solve_contact(&example(name))
 }
 
 /// Rigid cylinder on an elastic block (plane strain): p0 and a within 2 % of Hertz, and Newton

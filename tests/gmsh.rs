@@ -225,22 +225,8 @@ fn import_fragment_equals_the_gmsh_record_and_formats_agree() {
 #[test]
 fn hertz_example_meshed_in_gmsh_meets_hertz() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/gmsh/hertz_gmsh.in");
-    let model = hertz::input::read_model(&path).unwrap().model;
-    let mut states = Vec::new();
-    let mut iterations = 0;
-    run_analysis(
-        &model,
-        &SolveParams {
-            log_steps: false,
-            ..Default::default()
-        },
-        |r| {
-            states = r.contact.to_vec();
-            iterations = r.info.iterations;
-            Ok(())
-        },
-    )
-    .unwrap();
+    let (model, states, residuals) = common::solve_contact(&path);
+    let iterations = residuals.len() - 1;
     let c = hertz::analytic::compare_hertz(&model, &states, 0.0).unwrap();
     println!(
         "Gmsh Hertz: F {:.4} p0 {:.4} vs {:.4} ({:+.2} %), a {:.4} vs {:.4} ({:+.2} %), {iterations} iterations",

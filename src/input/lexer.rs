@@ -63,14 +63,12 @@ fn read_into(path: &Path, out: &mut Vec<Line>, depth: usize) -> Result<()> {
             let name = rest.trim().trim_matches('"');
             let inc = path.parent().unwrap_or(Path::new(".")).join(name);
             if !inc.is_file() {
-                return Err(Error::Input {
-                    span: crate::error::Span {
-                        file: path.to_path_buf(),
-                        line: start,
-                        record: text.trim().to_string(),
-                    },
-                    msg: format!("included file {} does not exist", inc.display()),
-                });
+                return Err(line_error(
+                    path,
+                    start,
+                    &text,
+                    format!("included file {} does not exist", inc.display()),
+                ));
             }
             read_into(&inc, out, depth + 1)?;
             continue;
@@ -91,6 +89,18 @@ fn read_into(path: &Path, out: &mut Vec<Line>, depth: usize) -> Result<()> {
     Ok(())
 }
 
+/// An input error at `line` of `path` (a directive line, before records exist).
+fn line_error(path: &Path, line: usize, text: &str, msg: String) -> Error {
+    Error::Input {
+        span: crate::error::Span {
+            file: path.to_path_buf(),
+            line,
+            record: text.trim().to_string(),
+        },
+        msg,
+    }
+}
+
 /// `@gmsh "mesh.msh" [plane stress|strain]`: the mesh's node, element and set records, as
 /// `hertz import` writes them, in place of the line. They are located in messages as
 /// `mesh.msh [converted]:k`, record k of the conversion.
@@ -102,14 +112,7 @@ fn splice_gmsh(
     out: &mut Vec<Line>,
 ) -> Result<()> {
     use crate::mesh::gmsh::{convert, Plane};
-    let here = |msg: String| Error::Input {
-        span: crate::error::Span {
-            file: path.to_path_buf(),
-            line,
-            record: text.trim().to_string(),
-        },
-        msg,
-    };
+    let here = |msg: String| line_error(path, line, text, msg);
     let words = tokenize(rest);
     let Some(name) = words.first() else {
         return Err(here("`@gmsh` needs a mesh file name".into()));

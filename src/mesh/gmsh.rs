@@ -152,6 +152,17 @@ impl<'a> Tokens<'a> {
         })
     }
 
+    /// Nodes per element of Gmsh type `ty`, or an error naming the type.
+    fn nodes_of_type(&self, ty: usize) -> Result<usize> {
+        gmsh_type(ty).map(|t| t.1).ok_or_else(|| {
+            err(
+                self.path,
+                self.line,
+                format!("Gmsh element type {ty} is not read by hertz"),
+            )
+        })
+    }
+
     fn expect(&mut self, end: &str) -> Result<()> {
         match self.next() {
             Some(w) if w == end => Ok(()),
@@ -306,13 +317,7 @@ fn read_raw(path: &Path) -> Result<RawMesh> {
                     for _ in 0..n {
                         t.num::<usize>("an element tag")?;
                         let ty: usize = t.num("an element type")?;
-                        let (_, nn, _) = gmsh_type(ty).ok_or_else(|| {
-                            err(
-                                path,
-                                t.line,
-                                format!("Gmsh element type {ty} is not read by hertz"),
-                            )
-                        })?;
+                        let nn = t.nodes_of_type(ty)?;
                         let ntags: usize = t.num("the number of element tags")?;
                         let tags = (0..ntags)
                             .map(|_| t.num::<i64>("an element tag"))
@@ -343,13 +348,7 @@ fn read_raw(path: &Path) -> Result<RawMesh> {
                         let tag: usize = t.num("an entity tag")?;
                         let ty: usize = t.num("an element type")?;
                         let n: usize = t.num("the elements in a block")?;
-                        let (_, nn, _) = gmsh_type(ty).ok_or_else(|| {
-                            err(
-                                path,
-                                t.line,
-                                format!("Gmsh element type {ty} is not read by hertz"),
-                            )
-                        })?;
+                        let nn = t.nodes_of_type(ty)?;
                         let physical = entity_physical
                             .get(&(dim, tag))
                             .cloned()

@@ -15,6 +15,26 @@ pub fn model_from_text(text: &str) -> hertz::error::Result<Model> {
     read.map(|r| r.model)
 }
 
+/// Solve the input file `path`; return its model, the last step's contact states and residual
+/// history (iteration 0 first).
+pub fn solve_contact(path: &std::path::Path) -> (Model, Vec<hertz::contact::SlotState>, Vec<f64>) {
+    let model = hertz::input::read_model(path).unwrap().model;
+    let mut out = (Vec::new(), Vec::new());
+    hertz::solve::run_analysis(
+        &model,
+        &hertz::solve::SolveParams {
+            log_steps: false,
+            ..Default::default()
+        },
+        |r| {
+            out = (r.contact.to_vec(), r.info.residual_history.clone());
+            Ok(())
+        },
+    )
+    .unwrap();
+    (model, out.0, out.1)
+}
+
 /// A strip of `nm` unit elements (Q4 or Q8) side by side whose top edges form the master segment,
 /// and a slave quad above it whose bottom-left node (label `s`, printed first) is the contact
 /// node at (sx, sy).
