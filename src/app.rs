@@ -3,7 +3,8 @@
 
 use crate::error::{Error, Result};
 use crate::input::read_model;
-use crate::output::{check, outfile, vtu, write_atomic};
+use crate::output::vtu::{self, VtuFormat};
+use crate::output::{check, outfile, write_atomic, write_atomic_parts};
 use crate::solve::{run_analysis, SolveParams};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -19,6 +20,8 @@ pub struct RunOptions {
     pub log_steps: bool,
     /// One log line per Newton iteration on stderr.
     pub log_iterations: bool,
+    /// How the `.vtu` arrays are written.
+    pub vtu_format: VtuFormat,
 }
 
 /// What a run produced.
@@ -29,6 +32,8 @@ pub struct RunReport {
     pub has_errorcheck: bool,
     pub outcomes: Vec<check::Outcome>,
     pub written: Vec<PathBuf>,
+    /// Wall time spent formatting and writing the output files.
+    pub output_seconds: f64,
 }
 
 impl RunReport {
@@ -91,7 +96,8 @@ pub fn run_file(path: &Path, opts: &RunOptions) -> Result<RunReport> {
         std::fs::create_dir_all(&dir)
             .map_err(|e| Error::Output(format!("cannot create {}: {e}", dir.display())))?;
     }
-    let mut out_text = outfile::header(&model);
+    let mut out_parts = vec![outfile::header(&model)];
+    let mut output_clock = std::time::Duration::ZERO;
     let mut vtus: Vec<(f64, String)> = Vec::new();
     let mut csv = String::from(outfile::CONTACT_CSV_HEADER);
     csv.push('\n');
@@ -117,18 +123,28 @@ pub fn run_file(path: &Path, opts: &RunOptions) -> Result<RunReport> {
             .outcomes
             .extend(check::evaluate_step(&model, &rules, res));
         if opts.write_outputs {
-            if model.output.step(res.step) {
-                out_text.push_str(&outfile::step_block(&model, res));
-            }
+            let start = Instant::now();
+            // The .out block and the .vtu file side by side (each in parallel chunks too).
+            let (block, name) = rayon::join(
+                || {
+                    model
+                        .output
+                        .step(res.step)
+                        .then(|| outfile::step_block(&model, res))
+                },
+                || vtu::write_step(&model, res, &dir, &stem, opts.vtu_format),
+            );
+            out_parts.extend(block.into_iter().flatten());
             csv.push_str(&outfile::contact_csv_rows(&model, res));
             if history.is_empty() {
                 history = outfile::history_csv_header(&model, res.dofs);
             }
             history.push_str(&outfile::history_csv_row(res));
             newton.push_str(&outfile::newton_csv_rows(res));
-            let name = vtu::write_step(&model, res, &dir, &stem)?;
+            let name = name?;
             report.written.push(dir.join(&name));
             vtus.push((res.time, name));
+            output_clock += start.elapsed();
         }
         Ok(())
     });
@@ -136,12 +152,14 @@ pub fn run_file(path: &Path, opts: &RunOptions) -> Result<RunReport> {
     // converge) has no results: it leaves no files behind. After a converged step, the results so
     // far are written with the reason the analysis stopped.
     if opts.write_outputs && (result.is_ok() || steps_done > 0) {
+        let start = Instant::now();
         if let Err(e) = &result {
-            out_text.push_str(&format!("\nAnalysis stopped: {e}\n"));
+            out_parts.push(format!("\nAnalysis stopped: {e}\n"));
         }
-        out_text.push_str(&outfile::footer(clock.elapsed().as_secs_f64()));
+        out_parts.push(outfile::footer(clock.elapsed().as_secs_f64()));
         let out_path = dir.join(&out_name);
-        write_atomic(&out_path, out_text.as_bytes())?;
+        let bytes: Vec<&[u8]> = out_parts.iter().map(|p| p.as_bytes()).collect();
+        write_atomic_parts(&out_path, &bytes)?;
         report.written.push(out_path);
         if !model.contacts.is_empty() {
             let csv_path = dir.join(format!("{stem}.contact.csv"));
@@ -157,7 +175,9 @@ pub fn run_file(path: &Path, opts: &RunOptions) -> Result<RunReport> {
             vtu::write_collection(&dir, &stem, &vtus)?;
             report.written.push(dir.join(format!("{stem}.pvd")));
         }
+        output_clock += start.elapsed();
     }
+    report.output_seconds = output_clock.as_secs_f64();
     result?;
     Ok(report)
 }

@@ -33,7 +33,9 @@ pub enum Along {
     X,
     Y,
     Z,
-    /// Distance from the centre (x, z) = (c, 0) in 3D, for axisymmetric contact
+    /// Distance from the axis of an axisymmetric 3D contact: the coordinate that varies least
+    /// over the contact nodes is the axis's direction; r is measured in the other two from
+    /// (c, 0)
     R,
 }
 
@@ -296,11 +298,28 @@ pub fn pressure_figure(
         });
     }
     let centre = hertz.map_or(0.0, |h| h.centre);
+    // For r: the two in-plane coordinates, the axis's being the one of least range.
+    let in_plane = {
+        let range = |c: usize| {
+            let v = t
+                .rows
+                .iter()
+                .filter(|r| r[cs] as usize == step)
+                .map(|r| r[c]);
+            v.clone().fold(f64::NEG_INFINITY, f64::max) - v.fold(f64::INFINITY, f64::min)
+        };
+        let axis = [cx, cy, cz]
+            .into_iter()
+            .min_by(|&a, &b| range(a).total_cmp(&range(b)))
+            .expect("three coordinates");
+        let mut rest = [cx, cy, cz].into_iter().filter(|&c| c != axis);
+        [rest.next().expect("two"), rest.next().expect("two")]
+    };
     let coordinate = |r: &[f64]| match along {
         Along::X => r[cx],
         Along::Y => r[cy],
         Along::Z => r[cz],
-        Along::R => ((r[cx] - centre).powi(2) + r[cz].powi(2)).sqrt(),
+        Along::R => (r[in_plane[0]] - centre).hypot(r[in_plane[1]]),
     };
     let mut conditions: Vec<usize> = t.rows.iter().map(|r| r[cc] as usize).collect();
     conditions.sort_unstable();
@@ -510,4 +529,31 @@ pub fn plot_command(args: &PlotArgs) -> Result<()> {
         eprintln!("wrote {}", p.display());
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    /// `--along r` measures the distance from the axis, whichever coordinate the axis runs
+    /// along: the same nodes in the plane z = 1 and in the plane y = 1 give the same radii.
+    #[test]
+    fn radius_is_measured_in_the_contact_plane() {
+        let dir = std::env::temp_dir().join(format!("hertz-plot-r-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let points = [(0.0, 0.0, 9.0), (0.3, 0.4, 7.0), (1.2, 0.5, 3.0)];
+        let mut radii = Vec::new();
+        for axis in [1, 2] {
+            let mut csv = format!("{}\n", crate::output::outfile::CONTACT_CSV_HEADER);
+            for (k, &(u, v, p)) in points.iter().enumerate() {
+                let (y, z) = if axis == 2 { (v, 1.0) } else { (1.0, v) };
+                csv.push_str(&format!("1,1,{k},{u},{y},{z},0,{p},{p},1\n"));
+            }
+            let path = dir.join(format!("axis{axis}.contact.csv"));
+            std::fs::write(&path, csv).unwrap();
+            let fig = super::pressure_figure(&path, None, super::Along::R, None).unwrap();
+            radii.push(fig.series[0].points.clone());
+        }
+        assert_eq!(radii[0], radii[1]);
+        assert_eq!(radii[0], vec![(0.0, 9.0), (0.5, 7.0), (1.3, 3.0)]);
+        std::fs::remove_dir_all(dir).ok();
+    }
 }

@@ -2,6 +2,8 @@
 //! (tests/data/bad, expectations in tests/data/bad/EXPECTED.txt): each must give its specific
 //! message with file:line, exit code 2, and write nothing.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -180,6 +182,41 @@ fn check_reports_rules_and_exits_1_on_a_failed_rule() {
         !Path::new(&dir.join("patch100.out")).exists(),
         "check writes no .out"
     );
+    std::fs::remove_dir_all(dir).ok();
+}
+
+/// `--vtu binary` writes raw appended arrays (VTK's header of UInt64 byte counts); `-v` reports
+/// the time the output took.
+#[test]
+fn run_vtu_binary_writes_appended_data_and_verbose_times_the_output() {
+    let dir = temp_dir("vtu-binary");
+    std::fs::create_dir_all(&dir).unwrap();
+    let input = root().join("tests/data/oofem/brick_nlgeo_1.in");
+    let out = hertz(&[
+        "run",
+        "-v",
+        "--vtu",
+        "binary",
+        input.to_str().unwrap(),
+        "-o",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("output files formatted and written in"),
+        "{stderr}"
+    );
+    let vtu = std::fs::read(dir.join("brick_nlgeo_1.5.vtu")).unwrap();
+    let text = String::from_utf8_lossy(&vtu);
+    assert!(text.contains("header_type=\"UInt64\""));
+    assert!(text.contains("format=\"appended\" offset=\"0\""));
+    assert!(!text.contains("format=\"ascii\""));
+    // Step 5: every node translated by 2 (see the test below), read back from the bytes.
+    let arrays = common::read_vtu(&dir.join("brick_nlgeo_1.5.vtu"));
+    assert!(arrays["displacement"].iter().all(|&u| u == 2.0));
+    let bad = hertz(&["run", "--vtu", "base64", input.to_str().unwrap()]);
+    assert_eq!(bad.status.code(), Some(2));
     std::fs::remove_dir_all(dir).ok();
 }
 

@@ -6,6 +6,7 @@
 mod common;
 
 use hertz::mesh::gmsh::{convert, Plane};
+use hertz::output::vtu::VtuFormat;
 use hertz::solve::{run_analysis, SolveParams};
 use std::path::{Path, PathBuf};
 
@@ -295,54 +296,51 @@ fn vtu_cells_are_positive_whatever_the_input_orientation() {
         }
         let input = dir.join("cube.in");
         std::fs::write(&input, patch_input(&c, &c.records().join("\n"))).unwrap();
-        let report = hertz::app::run_file(
-            &input,
-            &hertz::app::RunOptions {
-                write_outputs: true,
-                ..Default::default()
-            },
-        )
-        .unwrap();
-        let vtu = report
-            .written
-            .iter()
-            .find(|p| p.extension().is_some_and(|e| e == "vtu"))
+        for vtu_format in [VtuFormat::Ascii, VtuFormat::Binary] {
+            let report = hertz::app::run_file(
+                &input,
+                &hertz::app::RunOptions {
+                    write_outputs: true,
+                    vtu_format,
+                    ..Default::default()
+                },
+            )
             .unwrap();
-        let text = std::fs::read_to_string(vtu).unwrap();
-        let block = |name: &str| -> Vec<f64> {
-            let start = text.find(&format!("Name=\"{name}\"")).unwrap();
-            let body = &text[start..];
-            let body = &body[body.find('>').unwrap() + 1..body.find("</DataArray>").unwrap()];
-            body.split_whitespace()
-                .map(|w| w.parse().unwrap())
-                .collect()
-        };
-        let (points, conn, types) = (block("coordinates"), block("connectivity"), block("types"));
-        let p = |k: f64| {
-            let k = k as usize;
-            [points[3 * k], points[3 * k + 1], points[3 * k + 2]]
-        };
-        let mut at = 0;
-        for &t in &types {
-            let (n, sign) = match t as u8 {
-                12 => (8, 1.0),  // hexahedron: (p1-p0) x (p3-p0) . (p4-p0) > 0
-                10 => (4, 1.0),  // tetrahedron: (p1-p0) x (p2-p0) . (p3-p0) > 0
-                13 => (6, -1.0), // wedge: the base (0,1,2) faces away from (3,4,5)
-                other => panic!("cell type {other}"),
+            let vtu = report
+                .written
+                .iter()
+                .find(|p| p.extension().is_some_and(|e| e == "vtu"))
+                .unwrap();
+            let arrays = common::read_vtu(vtu);
+            let block = |name: &str| arrays[name].clone();
+            let (points, conn, types) =
+                (block("coordinates"), block("connectivity"), block("types"));
+            let p = |k: f64| {
+                let k = k as usize;
+                [points[3 * k], points[3 * k + 1], points[3 * k + 2]]
             };
-            let q: Vec<[f64; 3]> = conn[at..at + n].iter().map(|&k| p(k)).collect();
-            let (a, b, d) = match n {
-                8 => (sub(q[1], q[0]), sub(q[3], q[0]), sub(q[4], q[0])),
-                _ => (sub(q[1], q[0]), sub(q[2], q[0]), sub(q[3], q[0])),
-            };
-            let triple = dot(cross(a, b), d);
-            assert!(
-                sign * triple > 0.0,
-                "{file}: cell at {at} has triple product {triple}"
-            );
-            at += n;
+            let mut at = 0;
+            for &t in &types {
+                let (n, sign) = match t as u8 {
+                    12 => (8, 1.0),  // hexahedron: (p1-p0) x (p3-p0) . (p4-p0) > 0
+                    10 => (4, 1.0),  // tetrahedron: (p1-p0) x (p2-p0) . (p3-p0) > 0
+                    13 => (6, -1.0), // wedge: the base (0,1,2) faces away from (3,4,5)
+                    other => panic!("cell type {other}"),
+                };
+                let q: Vec<[f64; 3]> = conn[at..at + n].iter().map(|&k| p(k)).collect();
+                let (a, b, d) = match n {
+                    8 => (sub(q[1], q[0]), sub(q[3], q[0]), sub(q[4], q[0])),
+                    _ => (sub(q[1], q[0]), sub(q[2], q[0]), sub(q[3], q[0])),
+                };
+                let triple = dot(cross(a, b), d);
+                assert!(
+                    sign * triple > 0.0,
+                    "{file} ({vtu_format:?}): cell at {at} has triple product {triple}"
+                );
+                at += n;
+            }
+            assert_eq!(at, conn.len());
         }
-        assert_eq!(at, conn.len());
     }
     std::fs::remove_dir_all(&dir).ok();
 }

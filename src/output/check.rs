@@ -2,7 +2,7 @@
 //! the raw file with OOFEM's case-sensitive formats and evaluated after every step.
 
 use crate::model::Model;
-use crate::output::outfile::sci;
+use crate::output::number::sci;
 use crate::solve::StepResult;
 
 /// What a rule checks.

@@ -1,6 +1,7 @@
 //! The OOFEM-style `.out` text file (spec §4): per step the DOF values of the selected nodes, the
 //! integration-point strains and stresses (or F and P for `nlgeo 1`), and the reaction table.
 
+use super::number::{push_sci, push_sci_sign, sci, sci_sign};
 use crate::assembly::DofMap;
 use crate::model::{AnalysisKind, DofId, Model};
 use crate::solve::StepResult;
@@ -65,8 +66,10 @@ pub fn ctime_utc(secs: u64) -> String {
     )
 }
 
-/// The block of one step.
-pub fn step_block(model: &Model, res: &StepResult) -> String {
+/// The block of one step, in pieces to be written one after the other (the node and element
+/// lists of a large model are tens of megabytes: not copied into one string).
+pub fn step_block(model: &Model, res: &StepResult) -> Vec<String> {
+    let mut parts = Vec::new();
     let mut s = String::new();
     match model.analysis.kind {
         AnalysisKind::NonLinearStatic => {
@@ -86,11 +89,13 @@ pub fn step_block(model: &Model, res: &StepResult) -> String {
         }
     }
     s.push_str("\n\nDofManager output:\n------------------\n");
-    s.push_str(&par_blocks(model.nodes.len(), |n, s| {
+    parts.push(std::mem::take(&mut s));
+    parts.extend(par_blocks(model.nodes.len(), |n, s| {
         node_block(model, res, n, s)
     }));
     s.push_str("\n\nElement output:\n---------------\n");
-    s.push_str(&par_blocks(model.elements.len(), |e, s| {
+    parts.push(std::mem::take(&mut s));
+    parts.extend(par_blocks(model.elements.len(), |e, s| {
         element_block(model, res, e, s)
     }));
     s.push_str("\n\n\tR E A C T I O N S  O U T P U T:\n\t_______________________________\n\n\n");
@@ -121,24 +126,28 @@ pub fn step_block(model: &Model, res: &StepResult) -> String {
         "\nUser time consumed by solution step {}: {:.3} [s]\n\n",
         res.step, res.info.wall_seconds
     );
-    s
+    parts.push(s);
+    parts
 }
 
-/// The blocks of items 0..n concatenated in order, formatted in parallel chunks.
-fn par_blocks(n: usize, block: impl Fn(usize, &mut String) + Sync) -> String {
+/// The blocks of items 0..n in order, formatted in parallel chunks.
+fn par_blocks(n: usize, block: impl Fn(usize, &mut String) + Sync) -> Vec<String> {
     use rayon::prelude::*;
     const CHUNK: usize = 2048;
-    let parts: Vec<String> = (0..n.div_ceil(CHUNK))
+    (0..n.div_ceil(CHUNK))
         .into_par_iter()
         .map(|c| {
+            let (start, end) = (c * CHUNK, ((c + 1) * CHUNK).min(n));
             let mut s = String::new();
-            for i in c * CHUNK..((c + 1) * CHUNK).min(n) {
+            block(start, &mut s);
+            // The first block's length sizes the chunk's string: no growing copies.
+            s.reserve((s.len() + s.len() / 8) * (end - start - 1));
+            for i in start + 1..end {
                 block(i, &mut s);
             }
             s
         })
-        .collect();
-    parts.concat()
+        .collect()
 }
 
 /// One node's DOF values (if the output manager selects it).
@@ -152,12 +161,36 @@ fn node_block(model: &Model, res: &StepResult, n: usize, s: &mut String) {
     } else {
         "Node"
     };
-    let _ = writeln!(s, "{:<8}{:8} ({:8}):", class, node.label, n + 1);
+    s.push_str(class);
+    s.push_str(&"        "[class.len().min(8)..]);
+    push_int(s, node.label, 8);
+    s.push_str(" (");
+    push_int(s, n + 1, 8);
+    s.push_str("):\n");
     for &(d, code) in &res.dofs.node_dofs[n] {
-        let _ = write!(s, "  dof {d}   d ");
+        s.push_str("  dof ");
+        push_int(s, usize::from(d), 0);
+        s.push_str("   d ");
         push_sci_sign(s, res.dofs.value(res.u, code), 8);
         s.push('\n');
     }
+}
+
+/// Append `v` right-aligned in `width` columns (`{:width$}` without the formatting machinery).
+fn push_int(s: &mut String, v: usize, width: usize) {
+    let mut buf = [b' '; 24];
+    let mut at = buf.len();
+    let mut m = v;
+    loop {
+        at -= 1;
+        buf[at] = b'0' + (m % 10) as u8;
+        m /= 10;
+        if m == 0 {
+            break;
+        }
+    }
+    let at = at.min(buf.len().saturating_sub(width));
+    s.push_str(std::str::from_utf8(&buf[at..]).expect("ASCII"));
 }
 
 /// One element's integration-point strains and stresses (F and P with `nlgeo 1`).
@@ -166,9 +199,16 @@ fn element_block(model: &Model, res: &StepResult, e: usize, s: &mut String) {
         return;
     }
     let el = &model.elements[e];
-    let _ = writeln!(s, "element {} ({:8}) :", el.label, e + 1);
+    s.push_str("element ");
+    push_int(s, el.label, 0);
+    s.push_str(" (");
+    push_int(s, e + 1, 8);
+    s.push_str(") :\n");
     for (g, st) in res.states[e].iter().enumerate() {
-        let _ = write!(s, "  GP {:2}.{:<2} :", 1, g + 1);
+        // "  GP  1.g  :" with g left-aligned in two columns.
+        s.push_str("  GP  1.");
+        push_int(s, g + 1, 0);
+        s.push_str(if g + 1 < 10 { "  :" } else { " :" });
         let values = |s: &mut String, v: &mut dyn Iterator<Item = f64>| {
             for x in v {
                 s.push(' ');
@@ -308,202 +348,8 @@ pub fn newton_csv_rows(res: &StepResult) -> String {
     s
 }
 
-/// C `%.Ne` formatting (exponent with sign and at least two digits).
-pub fn sci(v: f64, prec: usize) -> String {
-    let mut s = String::with_capacity(prec + 8);
-    push_sci(&mut s, v, prec);
-    s
-}
-
-/// Append C's `%.Ne` of `v` to `s` (the output files' hot loop).
-///
-/// Fast and exact: the shortest round-trip digits of `v` (`{:e}`) rounded to N + 1 digits give
-/// what rounding the exact binary value gives, except when the dropped digits are exactly `5`
-/// (a tie between the shortest digits and the value): then the exact `{:.Ne}` decides. (Were a
-/// shorter midpoint strictly between `v` and its shortest digits, it would be shorter still.)
-pub fn push_sci(s: &mut String, v: f64, prec: usize) {
-    use std::fmt::Write as _;
-    if !v.is_finite() {
-        s.push_str(if v.is_nan() {
-            "nan"
-        } else if v > 0.0 {
-            "inf"
-        } else {
-            "-inf"
-        });
-        return;
-    }
-    // Shortest digits: "-d.ddde-x" -> sign, digits, exponent.
-    let mut buf = ShortBuf::default();
-    let _ = write!(buf, "{v:e}");
-    let text = buf.as_str();
-    let (mantissa, exp) = text.split_once('e').expect("exponent");
-    let mut exp: i32 = exp.parse().expect("integer exponent");
-    let negative = mantissa.starts_with('-');
-    let mut digits = [b'0'; 24];
-    let mut n = 0;
-    for b in mantissa.bytes().filter(u8::is_ascii_digit) {
-        digits[n] = b;
-        n += 1;
-    }
-    let keep = prec + 1;
-    // The argument needs the double's spacing far below the last printed digit: not so for
-    // subnormals or for 16 digits and more.
-    let exact_only = keep >= 16 || (v != 0.0 && v.abs() < f64::MIN_POSITIVE);
-    if exact_only || n > keep {
-        let dropped = &digits[keep.min(n)..n];
-        if exact_only || dropped == b"5" {
-            // A tie in the shortest digits: only the exact value can break it.
-            let start = s.len();
-            let _ = write!(s, "{v:.prec$e}");
-            let at = start + s[start..].rfind('e').expect("exponent");
-            let e: i32 = s[at + 1..].parse().expect("integer exponent");
-            s.truncate(at + 1);
-            push_exponent(s, e);
-            return;
-        }
-        if dropped[0] >= b'5' {
-            let mut i = keep;
-            loop {
-                if i == 0 {
-                    // 9.99..9 rounded up: 1.00..0 with the next exponent.
-                    digits[0] = b'1';
-                    digits[1..keep].fill(b'0');
-                    exp += 1;
-                    break;
-                }
-                i -= 1;
-                if digits[i] == b'9' {
-                    digits[i] = b'0';
-                } else {
-                    digits[i] += 1;
-                    break;
-                }
-            }
-        }
-    } else {
-        digits[n..keep].fill(b'0');
-    }
-    if negative {
-        s.push('-');
-    }
-    s.push(digits[0] as char);
-    if keep > 1 {
-        s.push('.');
-        s.push_str(std::str::from_utf8(&digits[1..keep]).expect("ASCII digits"));
-    }
-    s.push('e');
-    push_exponent(s, exp);
-}
-
-/// `+05`, `-12`, `+100`: the sign and at least two digits, as C prints exponents.
-fn push_exponent(s: &mut String, e: i32) {
-    use std::fmt::Write as _;
-    s.push(if e < 0 { '-' } else { '+' });
-    let e = e.unsigned_abs();
-    if e < 10 {
-        s.push('0');
-    }
-    let _ = write!(s, "{e}");
-}
-
-/// A stack buffer for one shortest float (at most 24 bytes: "-1.2345678901234567e-308").
-#[derive(Default)]
-struct ShortBuf {
-    bytes: [u8; 32],
-    len: usize,
-}
-
-impl ShortBuf {
-    fn as_str(&self) -> &str {
-        std::str::from_utf8(&self.bytes[..self.len]).expect("formatted text")
-    }
-}
-
-impl std::fmt::Write for ShortBuf {
-    fn write_str(&mut self, t: &str) -> std::fmt::Result {
-        let end = self.len + t.len();
-        if end > self.bytes.len() {
-            return Err(std::fmt::Error);
-        }
-        self.bytes[self.len..end].copy_from_slice(t.as_bytes());
-        self.len = end;
-        Ok(())
-    }
-}
-
-/// Append C's `% .Ne` of `v` (a space in place of the plus sign).
-pub fn push_sci_sign(s: &mut String, v: f64, prec: usize) {
-    if !v.is_sign_negative() || v.is_nan() {
-        s.push(' ');
-    }
-    push_sci(s, v, prec);
-}
-
-/// C `% .Ne` (a space in place of the plus sign).
-pub fn sci_sign(v: f64, prec: usize) -> String {
-    let mut s = String::with_capacity(prec + 9);
-    push_sci_sign(&mut s, v, prec);
-    s
-}
-
 #[cfg(test)]
 mod tests {
-    #[test]
-    fn sci_matches_c_printf() {
-        assert_eq!(super::sci(-1.5625, 8), "-1.56250000e+00");
-        assert_eq!(super::sci(4.975e6, 4), "4.9750e+06");
-        assert_eq!(super::sci(1.2e-12, 4), "1.2000e-12");
-        assert_eq!(super::sci(f64::NAN, 4), "nan");
-        assert_eq!(super::sci(f64::NEG_INFINITY, 4), "-inf");
-        assert_eq!(super::sci_sign(2.5, 2), " 2.50e+00");
-        assert_eq!(super::sci_sign(-0.0, 2), "-0.00e+00");
-        assert_eq!(super::sci_sign(f64::NAN, 2), " nan");
-        assert_eq!(super::sci(1e100, 1), "1.0e+100");
-        assert_eq!(super::sci(9.99995, 4), "1.0000e+01");
-        assert_eq!(super::sci(0.0, 4), "0.0000e+00");
-    }
-
-    /// The fast formatter agrees with exact rounding (Rust's `{:.Ne}`, as C's printf) on values
-    /// of every magnitude, on ties of the shortest digits and on carries.
-    #[test]
-    fn fast_sci_equals_exact_rounding() {
-        let exact = |v: f64, prec: usize| {
-            let t = format!("{v:.prec$e}");
-            let (m, e) = t.split_once('e').unwrap();
-            let e: i32 = e.parse().unwrap();
-            format!("{m}e{}{:02}", if e < 0 { '-' } else { '+' }, e.abs())
-        };
-        let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
-        let mut values = vec![
-            0.5,
-            1.5,
-            2.5,
-            1.23455,
-            1.234_45,
-            0.000_125,
-            5e-324,
-            f64::MAX,
-            -0.0,
-        ];
-        for _ in 0..200_000 {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            let v = f64::from_bits(x);
-            if v.is_finite() {
-                values.push(v);
-            }
-            // Short decimals, where ties of the shortest digits happen.
-            values.push((x % 2_000_001) as f64 / 10f64.powi((x % 9) as i32) - 100.0);
-        }
-        for v in values {
-            for prec in [0, 2, 3, 4, 8] {
-                assert_eq!(super::sci(v, prec), exact(v, prec), "{v:e} at {prec}");
-            }
-        }
-    }
-
     /// Dates as `date -u -d @SECS '+%a %b %e %T %Y'` prints them (C's ctime layout).
     #[test]
     fn ctime_matches_the_c_library() {

@@ -22,7 +22,7 @@ use crate::assembly::{Assembler, Contribution, DofMap, Evaluation};
 use crate::contact::{ContactPoint, ContactSystem, PointLaw, Search, SlotState};
 use crate::error::{Error, Result};
 use crate::model::Analysis;
-use crate::output::outfile::sci;
+use crate::output::number::sci;
 use std::time::Instant;
 
 /// How Newton systems with contact are solved.

@@ -13,7 +13,7 @@ use crate::assembly::{Assembler, DofMap};
 use crate::contact::{ContactSystem, Search, SlotState};
 use crate::error::{Error, Result};
 use crate::model::{AnalysisKind, Model};
-use crate::output::outfile::sci;
+use crate::output::number::sci;
 use crate::solid::loads::reference_contributions;
 use crate::solid::GpState;
 use std::io::IsTerminal;

@@ -212,3 +212,53 @@ pub fn face_input(
     let text = inp.render("fd3", "NonLinearStatic nsteps 1 controlmode 1", "3d");
     (text, slave.bottom[4])
 }
+
+/// The data arrays of a `.vtu` file by name, as doubles, whether written as text or as raw
+/// appended binary (`header_type="UInt64"`, little-endian).
+pub fn read_vtu(path: &std::path::Path) -> std::collections::BTreeMap<String, Vec<f64>> {
+    let bytes = std::fs::read(path).unwrap();
+    let marker = b"<AppendedData encoding=\"raw\">";
+    let (xml_end, data) = match bytes.windows(marker.len()).position(|w| w == marker) {
+        Some(at) => {
+            let underscore = at + bytes[at..].iter().position(|&b| b == b'_').unwrap();
+            (at, &bytes[underscore + 1..])
+        }
+        None => (bytes.len(), &bytes[..0]),
+    };
+    let xml = std::str::from_utf8(&bytes[..xml_end]).unwrap();
+    let attr = |tag: &str, key: &str| -> Option<String> {
+        let at = tag.find(&format!(" {key}=\""))? + key.len() + 3;
+        Some(tag[at..at + tag[at..].find('"')?].to_string())
+    };
+    let mut arrays = std::collections::BTreeMap::new();
+    for piece in xml.split("<DataArray").skip(1) {
+        let tag = &piece[..piece.find('>').unwrap()];
+        let name = attr(tag, "Name").unwrap();
+        let values: Vec<f64> = match attr(tag, "format").as_deref() {
+            Some("ascii") => piece[tag.len() + 1..piece.find("</DataArray>").unwrap()]
+                .split_whitespace()
+                .map(|w| w.parse().unwrap())
+                .collect(),
+            Some("appended") => {
+                let offset: usize = attr(tag, "offset").unwrap().parse().unwrap();
+                let len = u64::from_le_bytes(data[offset..offset + 8].try_into().unwrap()) as usize;
+                let block = &data[offset + 8..offset + 8 + len];
+                match attr(tag, "type").as_deref() {
+                    Some("Float64") => block
+                        .chunks(8)
+                        .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
+                        .collect(),
+                    Some("Int64") => block
+                        .chunks(8)
+                        .map(|c| i64::from_le_bytes(c.try_into().unwrap()) as f64)
+                        .collect(),
+                    Some("UInt8") => block.iter().map(|&b| f64::from(b)).collect(),
+                    other => panic!("data type {other:?}"),
+                }
+            }
+            other => panic!("format {other:?}"),
+        };
+        arrays.insert(name, values);
+    }
+    arrays
+}
