@@ -1,7 +1,13 @@
 // Half model (x >= 0) of an elastic block 12 wide and 12 deep under a rigid cylinder of
 // radius 10 touching its top at the origin: examples/gmsh/hertz_gmsh.in.
 // Mesh:  gmsh -2 -format msh41 hertz_block.geo -o hertz_block.msh
-h_fine = 0.04;    // element size at the contact (the contact half-width is about 0.75)
+// 6-node triangles (hertz_gmsh_tri6.in), twice the size for the same node spacing:
+//        gmsh -2 -format msh41 -setnumber order 2 hertz_block.geo -o hertz_block_tri6.msh
+If (!Exists(order))
+  order = 1;
+EndIf
+Mesh.ElementOrder = order;
+h_fine = 0.04 * order;    // element size at the contact (the contact half-width is about 0.75)
 h_coarse = 1.0;   // element size far from it
 
 Point(1) = {0, -12, 0, h_coarse};

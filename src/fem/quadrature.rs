@@ -130,7 +130,7 @@ pub fn rule(shape: Shape, nip: usize) -> Option<Vec<QuadPoint>> {
                 }
             }
         }
-        Shape::Tri3 => {
+        Shape::Tri3 | Shape::Tri6 => {
             for (p, w) in triangle(nip)? {
                 out.push(QuadPoint {
                     xi: [p[0], p[1], 0.0],

@@ -9,6 +9,9 @@ pub enum Shape {
     Line3,
     /// N = (ξ, η, 1−ξ−η).
     Tri3,
+    /// Quadratic triangle in the barycentrics (l1, l2, l3) = (ξ, η, 1−ξ−η): corners 1–3 as
+    /// Tri3, mid-side 4 (1–2), 5 (2–3), 6 (3–1).
+    Tri6,
     /// Node 1 at (+1,+1), 2 (−1,+1), 3 (−1,−1), 4 (+1,−1).
     Quad4,
     /// Corners as Quad4, mid-side 5 (1–2), 6 (2–3), 7 (3–4), 8 (4–1).
@@ -64,7 +67,7 @@ impl Shape {
     pub fn dim(self) -> usize {
         match self {
             Shape::Line2 | Shape::Line3 => 1,
-            Shape::Tri3 | Shape::Quad4 | Shape::Quad8 => 2,
+            Shape::Tri3 | Shape::Tri6 | Shape::Quad4 | Shape::Quad8 => 2,
             Shape::Tet4 | Shape::Hexa8 | Shape::Wedge6 => 3,
         }
     }
@@ -74,7 +77,7 @@ impl Shape {
             Shape::Line2 => 2,
             Shape::Line3 | Shape::Tri3 => 3,
             Shape::Quad4 | Shape::Tet4 => 4,
-            Shape::Wedge6 => 6,
+            Shape::Tri6 | Shape::Wedge6 => 6,
             Shape::Quad8 | Shape::Hexa8 => 8,
         }
     }
@@ -104,6 +107,22 @@ impl Shape {
                 dn[0] = [1.0, 0.0, 0.0];
                 dn[1] = [0.0, 1.0, 0.0];
                 dn[2] = [-1.0, -1.0, 0.0];
+            }
+            Shape::Tri6 => {
+                let l = [x, y, 1.0 - x - y];
+                let dl = [[1.0, 0.0], [0.0, 1.0], [-1.0, -1.0]];
+                for i in 0..3 {
+                    n[i] = (2.0 * l[i] - 1.0) * l[i];
+                    let f = 4.0 * l[i] - 1.0;
+                    dn[i] = [f * dl[i][0], f * dl[i][1], 0.0];
+                    let j = (i + 1) % 3;
+                    n[3 + i] = 4.0 * l[i] * l[j];
+                    dn[3 + i] = [
+                        4.0 * (dl[i][0] * l[j] + l[i] * dl[j][0]),
+                        4.0 * (dl[i][1] * l[j] + l[i] * dl[j][1]),
+                        0.0,
+                    ];
+                }
             }
             Shape::Quad4 => {
                 for (a, p) in QUAD4_NODES.iter().enumerate() {
@@ -174,7 +193,7 @@ impl Shape {
     /// Centre of the reference element.
     pub fn centre(self) -> [f64; 3] {
         match self {
-            Shape::Tri3 | Shape::Wedge6 => [1.0 / 3.0, 1.0 / 3.0, 0.0],
+            Shape::Tri3 | Shape::Tri6 | Shape::Wedge6 => [1.0 / 3.0, 1.0 / 3.0, 0.0],
             Shape::Tet4 => [0.25, 0.25, 0.25],
             _ => [0.0; 3],
         }
@@ -187,6 +206,7 @@ impl Shape {
             Shape::Line2 => &[1, 0],
             Shape::Line3 => &[1, 0, 2],
             Shape::Tri3 => &[0, 2, 1],
+            Shape::Tri6 => &[0, 2, 1, 5, 4, 3],
             Shape::Quad4 => &[0, 3, 2, 1],
             Shape::Quad8 => &[0, 3, 2, 1, 7, 6, 5, 4],
             Shape::Tet4 => &[0, 2, 1, 3],
@@ -196,11 +216,12 @@ impl Shape {
     }
 
     /// Local node lists of the element boundaries (edges in 2D, faces in 3D), 1-based numbering
-    /// as in OOFEM (spec §1.9). Quad8 edges list (first corner, second corner, mid-side).
+    /// as in OOFEM (spec §1.9). Quad8 and Tri6 edges list (first corner, second corner, mid-side).
     pub fn boundaries(self) -> &'static [&'static [usize]] {
         match self {
             Shape::Line2 | Shape::Line3 => &[&[0], &[1]],
             Shape::Tri3 => &[&[0, 1], &[1, 2], &[2, 0]],
+            Shape::Tri6 => &[&[0, 1, 3], &[1, 2, 4], &[2, 0, 5]],
             Shape::Quad4 => &[&[0, 1], &[1, 2], &[2, 3], &[3, 0]],
             Shape::Quad8 => &[&[0, 1, 4], &[1, 2, 5], &[2, 3, 6], &[3, 0, 7]],
             Shape::Tet4 => &[&[0, 2, 1], &[0, 1, 3], &[1, 2, 3], &[0, 3, 2]],
@@ -271,10 +292,11 @@ impl Shape {
 mod tests {
     use super::*;
 
-    const ALL: [Shape; 8] = [
+    const ALL: [Shape; 9] = [
         Shape::Line2,
         Shape::Line3,
         Shape::Tri3,
+        Shape::Tri6,
         Shape::Quad4,
         Shape::Quad8,
         Shape::Tet4,
@@ -330,6 +352,34 @@ mod tests {
             for (b, v) in n.iter().enumerate() {
                 assert!((v - if a == b { 1.0 } else { 0.0 }).abs() < 1e-14);
             }
+        }
+    }
+
+    /// The 6-node triangle: N_a(node b) = δ_ab at its corners and mid-sides (OOFEM's order),
+    /// and it reproduces quadratic fields: Σ N_a·f(ξ_a) = f for f = ξ², ξη, η².
+    #[test]
+    fn tri6_is_kronecker_and_quadratically_complete() {
+        let nodes = [
+            [1.0, 0.0],
+            [0.0, 1.0],
+            [0.0, 0.0],
+            [0.5, 0.5],
+            [0.0, 0.5],
+            [0.5, 0.0],
+        ];
+        let (mut n, mut dn) = ([0.0; 6], [[0.0; 3]; 6]);
+        for (a, p) in nodes.iter().enumerate() {
+            Shape::Tri6.eval([p[0], p[1], 0.0], &mut n, &mut dn);
+            for (b, v) in n.iter().enumerate() {
+                assert!((v - if a == b { 1.0 } else { 0.0 }).abs() < 1e-14);
+            }
+        }
+        let fields: [fn(f64, f64) -> f64; 3] = [|x, _| x * x, |x, y| x * y, |_, y| y * y];
+        let (x, y) = (0.21, 0.37);
+        Shape::Tri6.eval([x, y, 0.0], &mut n, &mut dn);
+        for f in fields {
+            let v: f64 = nodes.iter().zip(n).map(|(p, na)| na * f(p[0], p[1])).sum();
+            assert!((v - f(x, y)).abs() < 1e-14);
         }
     }
 }

@@ -61,10 +61,10 @@ pub struct Converted {
 /// How 2D elements are named.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, clap::ValueEnum)]
 pub enum Plane {
-    /// PlaneStress2d, TrPlaneStress2d, QPlaneStress2d
+    /// PlaneStress2d, TrPlaneStress2d, QPlaneStress2d, QTrPlStr
     #[default]
     Stress,
-    /// Quad1PlaneStrain, TrPlaneStrain
+    /// Quad1PlaneStrain, TrPlaneStrain, QPlaneStrain, QTrPlaneStrain
     Strain,
 }
 
@@ -404,21 +404,20 @@ fn hertz_element(
         (2, Plane::Strain) => (E::TrPlaneStrain, &[0, 1, 2]),
         (3, Plane::Stress) => (E::PlaneStress2d, &[0, 1, 2, 3]),
         (3, Plane::Strain) => (E::Quad1PlaneStrain, &[0, 1, 2, 3]),
+        (9, Plane::Stress) => (E::QTrPlaneStress2d, &[0, 1, 2, 3, 4, 5]),
+        (9, Plane::Strain) => (E::QTrPlaneStrain, &[0, 1, 2, 3, 4, 5]),
         (16, Plane::Stress) => (E::QPlaneStress2d, &[0, 1, 2, 3, 4, 5, 6, 7]),
+        (16, Plane::Strain) => (E::QPlaneStrain, &[0, 1, 2, 3, 4, 5, 6, 7]),
         (4, _) => (E::LTRSpace, &[1, 2, 3, 0]),
         // Gmsh's hexahedron starts on its bottom face, OOFEM's LSpace on its top face.
         (5, _) => (E::LSpace, &[4, 7, 6, 5, 0, 3, 2, 1]),
         (6, _) => (E::LWedge, &[0, 1, 2, 3, 4, 5]),
-        (16, Plane::Strain) => {
-            return Err(
-                "8-node quadrangles exist in hertz only as plane stress (QPlaneStress2d)".into(),
-            )
-        }
         (t, _) => {
             let name = gmsh_type(t).map_or("this element", |x| x.2);
             return Err(format!(
                 "hertz has no {name} element (Gmsh type {t}); mesh with first-order elements \
-                 (Mesh.ElementOrder = 1), or with 8-node quadrangles (Mesh.SecondOrderIncomplete = 1)"
+                 (Mesh.ElementOrder = 1), or second-order triangles and 8-node quadrangles \
+                 (Mesh.ElementOrder = 2, Mesh.SecondOrderIncomplete = 1) in 2D"
             ));
         }
     })
@@ -526,7 +525,8 @@ pub fn convert(path: &Path, plane: Plane) -> Result<Converted> {
     let mut boundary_of: HashMap<Vec<usize>, (usize, usize)> = HashMap::new();
     for (ei, (etype, nodes)) in elements.iter().enumerate() {
         for (b, local) in etype.shape().boundaries().iter().enumerate() {
-            let n_corner = if etype.shape() == Shape::Quad8 {
+            // Quadratic 2D elements: an edge is keyed by its two corners.
+            let n_corner = if matches!(etype.shape(), Shape::Quad8 | Shape::Tri6) {
                 2
             } else {
                 local.len()
@@ -546,7 +546,7 @@ pub fn convert(path: &Path, plane: Plane) -> Result<Converted> {
             if edim + 1 == dim {
                 let n_corner = match e.gmsh_type {
                     8 => 2,
-                    9 | 16 | 10 => return Err(err(path, 0, "second-order boundary elements in a physical group: hertz reads them only on 8-node quadrangles' edges (Gmsh type 8)")),
+                    9 | 16 | 10 => return Err(err(path, 0, "second-order boundary elements in a physical group: hertz reads them only as 3-node lines (Gmsh type 8) on the edges of 6-node triangles and 8-node quadrangles")),
                     _ => nodes.len(),
                 };
                 let key = corners(&nodes, n_corner);

@@ -130,6 +130,12 @@ pub enum ElementType {
     TrPlaneStress2d,
     TrPlaneStrain,
     QPlaneStress2d,
+    /// 8-node quadrilateral, plane strain (OOFEM's QPlaneStrain).
+    QPlaneStrain,
+    /// 6-node triangle, plane stress (OOFEM's QTrPlaneStress2d, keyword `qtrplstr`).
+    QTrPlaneStress2d,
+    /// 6-node triangle, plane strain (OOFEM's QTrPlaneStrain).
+    QTrPlaneStrain,
     LSpace,
     LTRSpace,
     LWedge,
@@ -145,7 +151,7 @@ pub enum StressMode {
 }
 
 impl ElementType {
-    pub const ALL: [(&'static str, ElementType); 10] = [
+    pub const ALL: [(&'static str, ElementType); 13] = [
         ("truss1d", ElementType::Truss1d),
         ("truss2d", ElementType::Truss2d),
         ("planestress2d", ElementType::PlaneStress2d),
@@ -153,6 +159,9 @@ impl ElementType {
         ("trplanestress2d", ElementType::TrPlaneStress2d),
         ("trplanestrain", ElementType::TrPlaneStrain),
         ("qplanestress2d", ElementType::QPlaneStress2d),
+        ("qplanestrain", ElementType::QPlaneStrain),
+        ("qtrplstr", ElementType::QTrPlaneStress2d),
+        ("qtrplanestrain", ElementType::QTrPlaneStrain),
         ("lspace", ElementType::LSpace),
         ("ltrspace", ElementType::LTRSpace),
         ("lwedge", ElementType::LWedge),
@@ -171,6 +180,9 @@ impl ElementType {
             ElementType::TrPlaneStress2d => "TrPlaneStress2d",
             ElementType::TrPlaneStrain => "TrPlaneStrain",
             ElementType::QPlaneStress2d => "QPlaneStress2d",
+            ElementType::QPlaneStrain => "QPlaneStrain",
+            ElementType::QTrPlaneStress2d => "QTrPlStr",
+            ElementType::QTrPlaneStrain => "QTrPlaneStrain",
             ElementType::LSpace => "LSpace",
             ElementType::LTRSpace => "LTRSpace",
             ElementType::LWedge => "LWedge",
@@ -182,8 +194,8 @@ impl ElementType {
             ElementType::Truss1d | ElementType::Truss2d => 2,
             ElementType::PlaneStress2d | ElementType::Quad1PlaneStrain | ElementType::LTRSpace => 4,
             ElementType::TrPlaneStress2d | ElementType::TrPlaneStrain => 3,
-            ElementType::QPlaneStress2d | ElementType::LSpace => 8,
-            ElementType::LWedge => 6,
+            ElementType::QPlaneStress2d | ElementType::QPlaneStrain | ElementType::LSpace => 8,
+            ElementType::QTrPlaneStress2d | ElementType::QTrPlaneStrain | ElementType::LWedge => 6,
         }
     }
 
@@ -192,8 +204,12 @@ impl ElementType {
             ElementType::Truss1d | ElementType::Truss2d => StressMode::Uniaxial,
             ElementType::PlaneStress2d
             | ElementType::TrPlaneStress2d
-            | ElementType::QPlaneStress2d => StressMode::PlaneStress,
-            ElementType::Quad1PlaneStrain | ElementType::TrPlaneStrain => StressMode::PlaneStrain,
+            | ElementType::QPlaneStress2d
+            | ElementType::QTrPlaneStress2d => StressMode::PlaneStress,
+            ElementType::Quad1PlaneStrain
+            | ElementType::TrPlaneStrain
+            | ElementType::QPlaneStrain
+            | ElementType::QTrPlaneStrain => StressMode::PlaneStrain,
             ElementType::LSpace | ElementType::LTRSpace | ElementType::LWedge => StressMode::ThreeD,
         }
     }
@@ -205,7 +221,8 @@ impl ElementType {
             ElementType::Truss1d | ElementType::Truss2d => Shape::Line2,
             ElementType::PlaneStress2d | ElementType::Quad1PlaneStrain => Shape::Quad4,
             ElementType::TrPlaneStress2d | ElementType::TrPlaneStrain => Shape::Tri3,
-            ElementType::QPlaneStress2d => Shape::Quad8,
+            ElementType::QPlaneStress2d | ElementType::QPlaneStrain => Shape::Quad8,
+            ElementType::QTrPlaneStress2d | ElementType::QTrPlaneStrain => Shape::Tri6,
             ElementType::LSpace => Shape::Hexa8,
             ElementType::LTRSpace => Shape::Tet4,
             ElementType::LWedge => Shape::Wedge6,
@@ -219,7 +236,10 @@ impl ElementType {
             ElementType::TrPlaneStress2d | ElementType::TrPlaneStrain | ElementType::LTRSpace => 1,
             ElementType::PlaneStress2d
             | ElementType::Quad1PlaneStrain
-            | ElementType::QPlaneStress2d => 4,
+            | ElementType::QPlaneStress2d
+            | ElementType::QPlaneStrain
+            | ElementType::QTrPlaneStress2d
+            | ElementType::QTrPlaneStrain => 4,
             ElementType::LSpace => 8,
             ElementType::LWedge => 6,
         }

@@ -18,6 +18,7 @@ fn vtk_cell(shape: Shape) -> (u8, &'static [usize]) {
         Shape::Line2 => (3, &[0, 1]),
         Shape::Line3 => (21, &[0, 1, 2]),
         Shape::Tri3 => (5, &[0, 1, 2]),
+        Shape::Tri6 => (22, &[0, 1, 2, 3, 4, 5]),
         Shape::Quad4 => (9, &[0, 1, 2, 3]),
         Shape::Quad8 => (23, &[0, 1, 2, 3, 4, 5, 6, 7]),
         Shape::Tet4 => (10, &[0, 2, 1, 3]),

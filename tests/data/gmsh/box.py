@@ -1,7 +1,7 @@
 """Regenerate the Gmsh test meshes of tests/gmsh.rs (pip install gmsh; python3 box.py).
 
-Unit cube in hexahedra, tetrahedra and prisms; unit square in quadrangles, triangles and
-8-node quadrangles. Physical groups: the body (1), faces/edges x = 0 (2), y = 0 (3), z = 0 or
+Unit cube in hexahedra, tetrahedra and prisms; unit square in quadrangles, triangles,
+6-node triangles and 8-node quadrangles. Physical groups: the body (1), faces/edges x = 0 (2), y = 0 (3), z = 0 or
 the bottom (4), the top (5)."""
 import gmsh
 
@@ -48,11 +48,11 @@ def square(name, kind):
     gmsh.model.occ.addRectangle(0, 0, 0, 1, 1)
     gmsh.model.occ.synchronize()
     gmsh.model.mesh.setSize(gmsh.model.getEntities(0), 0.34)
-    if kind != "tri":
+    if not kind.startswith("tri"):
         gmsh.model.mesh.setRecombine(2, 1)
     groups(2)
     gmsh.model.mesh.generate(2)
-    if kind == "quad8":
+    if kind in ("quad8", "tri6"):
         gmsh.option.setNumber("Mesh.SecondOrderIncomplete", 1)
         gmsh.model.mesh.setOrder(2)
     gmsh.write(name + ".msh")
@@ -72,4 +72,5 @@ square("square_tri", "tri")
 gmsh.option.setNumber("Mesh.MshFileVersion", 2.2)
 square("square_quad", "quad")
 square("square_quad8", "quad8")
+square("square_tri6", "tri6")
 gmsh.finalize()
