@@ -33,11 +33,24 @@ fn fd_error(
     dofs: &hertz::assembly::DofMap,
     u: &[f64],
 ) -> (f64, Vec<hertz::contact::SlotState>, usize) {
-    let (points, states) = contact.evaluate(model, dofs, u, Search::Fresh).unwrap();
+    fd_error_with_history(model, contact, dofs, u, None)
+}
+
+/// [`fd_error`] with a friction history (the converged states of a last step).
+fn fd_error_with_history(
+    model: &hertz::model::Model,
+    contact: &ContactSystem,
+    dofs: &hertz::assembly::DofMap,
+    u: &[f64],
+    history: Option<&[hertz::contact::SlotState]>,
+) -> (f64, Vec<hertz::contact::SlotState>, usize) {
+    let (points, states) = contact
+        .evaluate_with_history(model, dofs, u, Search::Fresh, history)
+        .unwrap();
     let contribs: Vec<_> = points.iter().map(|p| p.contribution()).collect();
     let residual = |u: &[f64], k: usize| {
         contact
-            .evaluate(model, dofs, u, Search::Frozen(&states))
+            .evaluate_with_history(model, dofs, u, Search::Frozen(&states), history)
             .unwrap()
             .0[k]
             .contribution()
@@ -177,6 +190,76 @@ fn n2s_tangents_are_jacobians_of_residuals_on_straight_and_quadratic_edges() {
                     });
                 }
             }
+        }
+    }
+}
+
+/// The frictional tangent (unsymmetric: stick, and slip with the force along the slip) is the
+/// Jacobian of the residual, against straight and quadratic edges in small and large
+/// deformation and against rigid segments (fixed and moving with a node). The history is the
+/// state at u = 0 (the anchor where the node first touched); at the displaced state the node has
+/// slid along the master and pressed into it (μ = 5: stick, μ = 0.05: slip).
+#[test]
+fn friction_tangents_are_jacobians_of_residuals_in_stick_and_slip() {
+    let run = |name: String, text: String, disp: Vec<(usize, [f64; 3])>, stick: bool| {
+        let model = common::model_from_text(&text).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let mut contact = ContactSystem::new(&model).unwrap();
+        let dofs = hertz::solve::number_dofs(&model).unwrap();
+        contact.set_pressure_limit(f64::INFINITY);
+        let u0 = vec![0.0; dofs.n_primary()];
+        let history = contact
+            .evaluate(&model, &dofs, &u0, Search::Fresh)
+            .unwrap()
+            .1;
+        assert!(
+            history.iter().all(|s| s.anchor.is_some()),
+            "{name}: anchors"
+        );
+        let case = Case {
+            name: name.clone(),
+            text,
+            disp,
+            lambda: 0.0,
+            active: 1,
+        };
+        let u = displaced(&model, &dofs, &case);
+        let (err, states, checked) =
+            fd_error_with_history(&model, &contact, &dofs, &u, Some(&history));
+        let (s, force) = states[0]
+            .friction
+            .unwrap_or_else(|| panic!("{name}: friction"));
+        assert_eq!(s, stick, "{name}: stick");
+        assert!(force > 0.0, "{name}: friction force");
+        assert!(checked > 0 && err < 1e-6, "{name}: tangent off by {err:e}");
+    };
+    for (mu, stick) in [(5.0, true), (0.05, false)] {
+        let law = format!("{PEN} friction {mu}");
+        for kind in ["q4", "q8"] {
+            for nlgeo in [0u8, 1] {
+                for c in edge_cases().into_iter().take(2) {
+                    let text = strip(kind, nlgeo, c.nm, c.pos, None, &law);
+                    let mut disp = c.dm.clone();
+                    disp.push((label_of_slave(&text), c.ds));
+                    run(
+                        format!("{}-{kind}-nlgeo{nlgeo}-mu{mu}", c.name),
+                        text,
+                        disp,
+                        stick,
+                    );
+                }
+            }
+        }
+        for seg in [
+            "circlecontactsegment 1 centerpoint 2 0.3 0.2 radius 0.9 node 900",
+            "planecontactsegment 1 point 2 0 1.0 normal 2 0.2 1 node 900",
+            "polynomialcontactsegment 1 coeffs 3 0.4 -0.1 1.0",
+        ] {
+            let text = strip("q4", 0, 1, (0.3, 1.05), Some(seg), &law);
+            let mut disp = vec![(label_of_slave(&text), [0.05, -0.12, 0.0])];
+            if seg.contains("node 900") {
+                disp.push((900, [0.01, 0.03, 0.0]));
+            }
+            run(format!("{seg}-mu{mu}"), text, disp, stick);
         }
     }
 }

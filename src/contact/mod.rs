@@ -69,6 +69,22 @@ pub struct SlotState {
     /// Its constraint repeats one of another condition (two-pass contact with multipliers) and
     /// is dropped.
     pub repeated: bool,
+    /// Friction of a closed point: stick (else slip) and the friction force's magnitude.
+    pub friction: Option<(bool, f64)>,
+    /// Friction history this state leaves if it is the converged one: the anchor for the next
+    /// step (None: no partner, or no friction).
+    pub anchor: Option<Anchor>,
+}
+
+/// The master's material point a frictional contact node sticks to (the friction history).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Anchor {
+    /// The partner the point belongs to (an edge, or a rigid segment).
+    pub partner: Partner,
+    /// Its parameter on an edge.
+    pub xi: [f64; 2],
+    /// Its position relative to a rigid segment's origin (which moves with the segment's node).
+    pub offset: [f64; 3],
 }
 
 /// How partners are found in an evaluation.
@@ -224,13 +240,15 @@ pub trait Formulation {
     fn partner_nodes(&self, _partner: Partner) -> &[usize] {
         &[]
     }
-    /// Evaluate every slot at `ctx`; `first_lambda` is the equation of its first multiplier.
+    /// Evaluate every slot at `ctx`; `first_lambda` is the equation of its first multiplier,
+    /// `history` the converged states of the last step (the friction history), if any.
     /// Returns the seconds spent searching partners.
     fn evaluate(
         &self,
         ctx: &Ctx,
         first_lambda: usize,
         search: Search,
+        history: Option<&[SlotState]>,
         points: &mut Vec<ContactPoint>,
         states: &mut Vec<SlotState>,
     ) -> Result<f64>;
@@ -244,6 +262,8 @@ pub struct ContactSystem {
     /// Seconds spent in evaluations since the last [`ContactSystem::take_times`]: (searching,
     /// in all).
     clock: std::sync::Mutex<(f64, f64)>,
+    /// Some condition has friction.
+    frictional: bool,
 }
 
 impl ContactSystem {
@@ -275,6 +295,7 @@ impl ContactSystem {
             },
             dim: model.domain.nsd(),
             clock: Default::default(),
+            frictional: model.contacts.iter().any(|c| c.friction.is_some()),
         })
     }
 
@@ -352,15 +373,33 @@ impl ContactSystem {
         self.laws.pressure_limit = limit;
     }
 
-    /// Evaluate every contact point at the primary state `u`: the points (whose
-    /// [`contribution`](ContactPoint::contribution) is the current residual and tangent) and
-    /// their states.
+    /// Whether any condition has friction (whose history the solver must keep).
+    pub fn has_friction(&self) -> bool {
+        self.frictional
+    }
+
+    /// Evaluate every contact point at the primary state `u` without friction history: the
+    /// points (whose [`contribution`](ContactPoint::contribution) is the current residual and
+    /// tangent) and their states.
     pub fn evaluate(
         &self,
         model: &Model,
         dofs: &DofMap,
         u: &[f64],
         search: Search,
+    ) -> Result<(Vec<ContactPoint>, Vec<SlotState>)> {
+        self.evaluate_with_history(model, dofs, u, search, None)
+    }
+
+    /// [`ContactSystem::evaluate`] with the converged states of the last step, whose anchors
+    /// are the friction history.
+    pub fn evaluate_with_history(
+        &self,
+        model: &Model,
+        dofs: &DofMap,
+        u: &[f64],
+        search: Search,
+        history: Option<&[SlotState]>,
     ) -> Result<(Vec<ContactPoint>, Vec<SlotState>)> {
         let ctx = Ctx {
             model,
@@ -381,6 +420,7 @@ impl ContactSystem {
                 &ctx,
                 lambda,
                 search.slice(slot..slot + n),
+                history.map(|h| &h[slot..slot + n]),
                 &mut points,
                 &mut states,
             )?;
@@ -493,6 +533,7 @@ impl ContactSystem {
             s.force = 0.0;
             s.pressure = 0.0;
             s.repeated = true;
+            s.friction = None;
         }
     }
 }

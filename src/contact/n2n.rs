@@ -106,6 +106,7 @@ impl Formulation for NodeToNode {
         ctx: &Ctx,
         first_lambda: usize,
         _search: Search,
+        _history: Option<&[SlotState]>,
         points: &mut Vec<ContactPoint>,
         states: &mut Vec<SlotState>,
     ) -> Result<f64> {
@@ -140,6 +141,8 @@ impl Formulation for NodeToNode {
                 x: ctx.position(p.slave)?.0,
                 weight: 1.0,
                 repeated: false,
+                friction: None,
+                anchor: None,
             };
             points.push(apply_law(
                 ctx, self.law, lambda_eq, &local, &kin, p.area, &mut state,

@@ -4,7 +4,7 @@
 use super::record::Record;
 use crate::error::{Error, Result, Span};
 use crate::model::{
-    ContactCondition, ContactLaw, ContactSegment, Element, Pairing, SegmentKind, Set,
+    ContactCondition, ContactLaw, ContactSegment, Element, Friction, Pairing, SegmentKind, Set,
 };
 use std::collections::HashMap;
 
@@ -39,6 +39,7 @@ pub struct PendingSegment {
 pub struct PendingCondition {
     number: usize,
     law: ContactLaw,
+    friction: Option<Friction>,
     sets: Option<(usize, usize)>,
     nodes: Vec<usize>,
     /// hertz's `slaveset k` on a node-to-segment condition: the contact nodes are set k's.
@@ -179,6 +180,37 @@ pub fn read_segment(
     Ok(seg)
 }
 
+/// `friction μ [pt ε_T]` of a node-to-segment penalty condition (hertz extension; `pt` as in
+/// upstream OOFEM's `structuralpenaltycontactbc`, by default the normal `penalty`).
+fn read_friction(r: &Record, kw: &str, law: ContactLaw) -> Result<Option<Friction>> {
+    let Some(mu) = r.opt_float("friction")? else {
+        if r.opt_float("pt")?.is_some() {
+            return Err(r.error("`pt` (the tangential penalty) needs `friction`"));
+        }
+        return Ok(None);
+    };
+    if !(mu >= 0.0 && mu.is_finite()) {
+        return Err(r.error(format!("`friction` must be a coefficient >= 0, found {mu}")));
+    }
+    let ContactLaw::Penalty(pn) = law else {
+        return Err(r.error(
+            "friction is regularized by a tangential penalty: use n2spenaltycontact \
+             (`friction` with Lagrange multipliers is not supported yet)",
+        ));
+    };
+    if kw.starts_with("n2n") {
+        return Err(r.error(
+            "friction is supported on node-to-segment conditions (n2spenaltycontact), \
+             not node-to-node",
+        ));
+    }
+    let pt = r.opt_float("pt")?.unwrap_or(pn);
+    if !(pt > 0.0 && pt.is_finite()) {
+        return Err(r.error(format!("`pt` must be positive, found {pt}")));
+    }
+    Ok(Some(Friction { mu, penalty: pt }))
+}
+
 /// Read a contact condition record of the BC block.
 pub fn read_condition(
     r: &Record,
@@ -200,6 +232,7 @@ pub fn read_condition(
     };
     // The tangent is always the exact one; `usetangent` is accepted for compatibility.
     r.flag("usetangent");
+    let friction = read_friction(r, &kw, law)?;
     let normal = match r.opt_float_array("normal")? {
         None => None,
         Some(v) if v.len() == nsd => {
@@ -217,6 +250,7 @@ pub fn read_condition(
     let mut c = PendingCondition {
         number,
         law,
+        friction,
         sets: None,
         nodes: vec![],
         node_set: None,
@@ -369,6 +403,7 @@ pub fn resolve(
         contacts.push(ContactCondition {
             number: c.number,
             law: c.law,
+            friction: c.friction,
             pairing,
             normal: c.normal,
             span: c.span,

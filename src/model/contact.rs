@@ -59,11 +59,22 @@ pub enum Pairing {
     },
 }
 
+/// Coulomb friction of a condition, regularized by a tangential penalty (the stick stiffness).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Friction {
+    /// Coefficient of friction μ ≥ 0.
+    pub mu: f64,
+    /// Tangential penalty ε_T (force per length of elastic slip, like `penalty`).
+    pub penalty: f64,
+}
+
 #[derive(Debug, Clone)]
 pub struct ContactCondition {
     /// BC record number.
     pub number: usize,
     pub law: ContactLaw,
+    /// Coulomb friction (node-to-segment penalty conditions).
+    pub friction: Option<Friction>,
     pub pairing: Pairing,
     /// Prescribed unit normal (N2N: instead of the initial master-to-slave direction; N2S:
     /// instead of the segment normal).

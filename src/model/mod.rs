@@ -3,7 +3,7 @@
 
 pub mod contact;
 pub mod functions;
-pub use contact::{ContactCondition, ContactLaw, ContactSegment, Pairing, SegmentKind};
+pub use contact::{ContactCondition, ContactLaw, ContactSegment, Friction, Pairing, SegmentKind};
 pub use functions::TimeFunction;
 
 use crate::error::Span;

@@ -61,8 +61,11 @@ pub(super) struct NewtonContext<'a> {
     /// Log every iteration (residual, contact changes) on stderr.
     pub verbose: bool,
     pub condensed: Condensed,
-    /// Contact states of the last converged step (the first hint of the next step's search).
+    /// Contact states of the last converged step (the first hint of the next step's search,
+    /// and the friction history: restoring them restores it).
     pub converged_states: Option<Vec<SlotState>>,
+    /// Contact states at u = 0: the friction history of the first step.
+    pub initial_states: Vec<SlotState>,
     /// Per contact node: how often in the current attempt its partner and branch went back to
     /// what they were two iterations before (A → B → A: chattering, not sliding on).
     pub flips: Vec<usize>,
@@ -108,15 +111,27 @@ fn describe_eq(model: &crate::model::Model, dofs: &DofMap, eq: usize) -> String 
 }
 
 impl NewtonContext<'_> {
+    /// Contact points and states at `u`, with the friction history of the last converged step.
+    fn evaluate_contact(
+        &self,
+        u: &[f64],
+        search: Search,
+    ) -> Result<(Vec<crate::contact::ContactPoint>, Vec<SlotState>)> {
+        let history = self
+            .converged_states
+            .as_deref()
+            .unwrap_or(&self.initial_states);
+        self.contact
+            .evaluate_with_history(self.asm.model, self.dofs, u, search, Some(history))
+    }
+
     /// Elements and contact at state `u` for output: the evaluation and the contact states.
     pub fn evaluate_states(&mut self, u: &[f64]) -> Result<(Evaluation, Vec<SlotState>)> {
         let search = match &self.converged_states {
             Some(s) => Search::Hint(s),
             None => Search::Fresh,
         };
-        let (points, states) = self
-            .contact
-            .evaluate(self.asm.model, self.dofs, u, search)?;
+        let (points, states) = self.evaluate_contact(u, search)?;
         let contribs: Vec<Contribution> = points.iter().map(|p| p.contribution()).collect();
         let t = Instant::now();
         let ev = self.asm.evaluate(u, false, true, None, &contribs)?;
@@ -366,9 +381,7 @@ impl NewtonContext<'_> {
                 Some(p) => Search::Hint(p),
                 None => Search::Fresh,
             };
-            let (points, states) = self
-                .contact
-                .evaluate(self.asm.model, self.dofs, u, search)?;
+            let (points, states) = self.evaluate_contact(u, search)?;
             if let (Some(p), Some(pp)) = (&prev, &prev2) {
                 let key = |s: &SlotState| (s.partner, s.active);
                 for (k, s) in states.iter().enumerate() {
@@ -514,9 +527,7 @@ impl NewtonContext<'_> {
             Some(s) => Search::Hint(s),
             None => Search::Fresh,
         };
-        let (points, _) = self
-            .contact
-            .evaluate(self.asm.model, self.dofs, u, search)?;
+        let (points, _) = self.evaluate_contact(u, search)?;
         let contribs: Vec<Contribution> = points.iter().map(|p| p.contribution()).collect();
         let need_k = !self.factor_valid && !has_contact;
         // K_fp Δu_p of elements and contact (a rigid indenter's prescribed reference node).

@@ -179,6 +179,7 @@ pub fn run_analysis(
         verbose: params.log_iterations,
         condensed,
         converged_states: None,
+        initial_states: initial_states.clone(),
         flips: vec![0; slot_nodes.len()],
         floor_dominated: None,
         slot_nodes,

@@ -12,6 +12,7 @@
 //! and drops the geometric part while the iterate is far from any solution (see
 //! [`Laws::geometric_allowed`]).
 
+pub mod friction;
 pub mod multiplier;
 pub mod penalty;
 
@@ -25,6 +26,16 @@ pub struct PointKinematics {
     pub b: Vec<Jet>,
     /// The node's tributary area (2D: length × thickness), or a floor for isolated nodes.
     pub area: f64,
+    /// Friction of the closed point (penalty conditions with `friction`).
+    pub friction: Option<FrictionKinematics>,
+}
+
+/// The friction part of a closed contact point: its residual contribution and state.
+pub struct FrictionKinematics {
+    /// Residual contribution over the local unknowns, with its gradient.
+    pub residual: Vec<Jet>,
+    pub stick: bool,
+    pub force: f64,
 }
 
 impl PointKinematics {
@@ -35,6 +46,7 @@ impl PointKinematics {
             weight: weight.into(),
             b: b.iter().map(|&v| v.into()).collect(),
             area,
+            friction: None,
         }
     }
 }

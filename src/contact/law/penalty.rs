@@ -2,7 +2,7 @@
 //! tangent is on (as OOFEM), so a body that starts touching under a load has stiffness.
 //!
 //! Closed branch: r = p·g·v, v = w·B;  K = p·(v ⊗ ∇g + g·∂v) (the second term is the geometric
-//! part). At an open point (g > 0) the closed branch is the linear model of the closing force:
+//! part), plus the friction of the point if it has any (see [`super::friction`]). At an open point (g > 0) the closed branch is the linear model of the closing force:
 //! its value p·g·v (a pull) and the material part only; the solver uses it when it predicts that
 //! the point closes within the step.
 
@@ -27,6 +27,15 @@ pub fn evaluate(laws: &Laws, penalty: f64, codes: Vec<usize>, k: &PointKinematic
             ke[i * m + j] = penalty * kij;
         }
     }
-    let fe = v.iter().map(|vi| penalty * g.v * vi.v).collect();
+    let mut fe: Vec<f64> = v.iter().map(|vi| penalty * g.v * vi.v).collect();
+    // Friction acts on a closed point, with its exact (unsymmetric) tangent.
+    if let Some(fr) = k.friction.as_ref().filter(|_| g.v <= 0.0) {
+        for i in 0..m {
+            fe[i] += fr.residual[i].v;
+            for j in 0..m {
+                ke[i * m + j] += fr.residual[i].d[j];
+            }
+        }
+    }
     point(codes, PointLaw::Penalty, k, Some((fe, ke)), g.v <= 0.0)
 }

@@ -6,11 +6,11 @@ use super::{
 use crate::contact::dual::{self, DVec, Dual};
 use crate::contact::geometry::edges::{edge_normal, EdgeGeometry, EdgeSurface};
 use crate::contact::geometry::scalar::Scalar;
-use crate::contact::law::PointKinematics;
+use crate::contact::law::{friction, FrictionKinematics, PointKinematics};
 use crate::contact::search::Candidate;
-use crate::contact::{Ctx, Local, Partner};
+use crate::contact::{Anchor, Ctx, Local, Partner};
 use crate::error::{Error, Result};
-use crate::model::Model;
+use crate::model::{ContactLaw, Model};
 
 /// The unknowns of a pair — the node and the edge's support (with the edges meeting it at its
 /// ends in large deformation, whose normals are averaged) — must fit the duals.
@@ -166,19 +166,31 @@ impl NodeToSegment {
         })
     }
 
-    /// Kinematics against edge `k` with the contact point converged at `s0`.
+    /// Kinematics against edge `k` with the contact point converged at `s0`, with the friction
+    /// of a node anchored at `anchor` (the next anchor is returned).
     pub(super) fn edge_kinematics(
         &self,
         ctx: &Ctx,
         slot: &Slot,
         k: usize,
         s0: f64,
-    ) -> Result<(Local, PointKinematics)> {
+        anchor: Option<&Anchor>,
+    ) -> Result<(Local, PointKinematics, Option<Anchor>)> {
         let edge = &self.edges.edges[k];
         let mut local = Local::new(2);
         local.add(ctx, slot.node)?;
         for n in self.edges.support(k) {
             local.add(ctx, n)?;
+        }
+        // The anchor's edge moves the anchor: its nodes are unknowns of the pair too.
+        let anchor_edge = anchor.and_then(|a| match a.partner {
+            Partner::Edge(ka) => Some((ka, a.xi[0])),
+            _ => None,
+        });
+        if let Some((ka, _)) = anchor_edge {
+            for &n in &self.edges.edges[ka].nodes {
+                local.add(ctx, n)?;
+            }
         }
         let q = local.seed();
         let xy = |n: usize| {
@@ -208,6 +220,76 @@ impl NodeToSegment {
         let b = local.distribute(&coeffs, &dir);
         let weight = self.edge_weight(ctx.model, slot, k, &geom, xs);
         let area = crate::contact::law_area(slot.area, ctx.model);
-        Ok((local, PointKinematics::from_duals(gap, weight, &b, area)))
+        let mut kin = PointKinematics::from_duals(gap, weight, &b, area);
+        let mut next = None;
+        if let Some(law) = self.friction {
+            let xs3 = [xs[0], xs[1], Dual::constant(0.0, m)];
+            // Anchor: its material point on its edge; none yet: the contact point (no force).
+            let xa3 = match anchor_edge {
+                Some((ka, sa)) => {
+                    let xa: Vec<[Dual; 2]> =
+                        self.edges.edges[ka].nodes.iter().map(|&n| xy(n)).collect();
+                    let ga = EdgeGeometry {
+                        n: xa.clone(),
+                        x: xa,
+                        open: self.open_ends(ka),
+                    };
+                    let (c, _, _) = ga.coefficients(Dual::constant(sa, m));
+                    let mut p = [Dual::constant(0.0, m); 3];
+                    for (a, &n) in self.edges.edges[ka].nodes.iter().enumerate() {
+                        let x = xy(n);
+                        p[0] = p[0] + c[a] * x[0];
+                        p[1] = p[1] + c[a] * x[1];
+                    }
+                    Some(p)
+                }
+                None => None,
+            };
+            let at_point = Anchor {
+                partner: Partner::Edge(k),
+                xi: [s.v, 0.0],
+                offset: [0.0; 3],
+            };
+            next = Some(at_point);
+            if let (Some(xa3), true) = (xa3, gap.v <= 0.0) {
+                let ContactLaw::Penalty(p) = self.law else {
+                    unreachable!("friction with the penalty law only")
+                };
+                let pn = -(weight * gap * p);
+                let t = friction::evaluate(
+                    law,
+                    &local,
+                    &coeffs,
+                    &friction::FrictionPoint {
+                        xs: xs3,
+                        xa: xa3,
+                        n: dir,
+                        pn,
+                        dim: 2,
+                    },
+                );
+                let geom_f = EdgeGeometry {
+                    n: geom.n.iter().map(|v| [v[0].v, v[1].v]).collect(),
+                    x: geom.x.iter().map(|v| [v[0].v, v[1].v]).collect(),
+                    open: geom.open,
+                };
+                next = Some(if t.stick {
+                    *anchor.expect("an anchor")
+                } else {
+                    geom_f
+                        .project([t.next_anchor[0], t.next_anchor[1]])
+                        .map_or(at_point, |sa| Anchor {
+                            xi: [sa, 0.0],
+                            ..at_point
+                        })
+                });
+                kin.friction = Some(FrictionKinematics {
+                    residual: t.residual.iter().map(|&v| v.into()).collect(),
+                    stick: t.stick,
+                    force: t.force,
+                });
+            }
+        }
+        Ok((local, kin, next))
     }
 }

@@ -218,6 +218,7 @@ impl NodeToSegment {
                 weight: chain(&weight),
                 b: bj,
                 area: crate::contact::law_area(slot.area, ctx.model),
+                friction: None,
             },
         ))
     }

@@ -31,7 +31,7 @@ use super::search::broad::BroadPhase;
 use super::search::{self, Candidate};
 use super::{apply_law, ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState};
 use crate::error::{Error, Result};
-use crate::model::{ContactLaw, Model, Pairing, SegmentKind};
+use crate::model::{ContactLaw, Friction, Model, Pairing, SegmentKind};
 use std::collections::HashMap;
 
 /// A projection within this distance (in parameter units) of an edge's ends or a face's edges
@@ -59,6 +59,8 @@ struct Slot {
 pub struct NodeToSegment {
     number: usize,
     law: ContactLaw,
+    /// Coulomb friction (edges and rigid segments).
+    friction: Option<Friction>,
     /// Prescribed force direction (`normal`), instead of the segment normal.
     normal: Option<[f64; 3]>,
     slots: Vec<Slot>,
@@ -162,6 +164,13 @@ impl NodeToSegment {
             }
         }
         edges::check_support(model, &edges)?;
+        if c.friction.is_some() && !faces.faces.is_empty() {
+            return Err(err(
+                "friction against element faces (3D) is not supported yet: against edges (2D) \
+                 and rigid segments only"
+                    .into(),
+            ));
+        }
         let tribs = super::tributary::tributaries(model, nodes);
         let slots = nodes
             .iter()
@@ -202,6 +211,7 @@ impl NodeToSegment {
         Ok(NodeToSegment {
             number: c.number,
             law: c.law,
+            friction: c.friction,
             normal: c.normal,
             slots,
             edges,
@@ -385,6 +395,7 @@ impl Formulation for NodeToSegment {
         ctx: &Ctx,
         first_lambda: usize,
         search: Search,
+        history: Option<&[SlotState]>,
         points: &mut Vec<ContactPoint>,
         states: &mut Vec<SlotState>,
     ) -> Result<f64> {
@@ -426,17 +437,30 @@ impl Formulation for NodeToSegment {
                 x: ctx.position(slot.node)?.0,
                 weight: 1.0,
                 repeated: false,
+                friction: None,
+                anchor: None,
             };
+            let anchor = history
+                .and_then(|h| h.get(k))
+                .and_then(|s| s.anchor.as_ref());
             let (local, kin) = match chosen {
                 Some(c) => {
                     state.partner = c.partner;
                     state.xi = c.xi;
-                    match c.partner {
-                        Partner::Edge(e) => self.edge_kinematics(ctx, slot, e, c.xi[0])?,
-                        Partner::Face(f) => self.face_kinematics(ctx, slot, f, c.xi, &cur)?,
-                        Partner::Rigid(seg) => self.rigid_kinematics(ctx, slot, seg, c.xi[0])?,
+                    let (local, kin, next) = match c.partner {
+                        Partner::Edge(e) => self.edge_kinematics(ctx, slot, e, c.xi[0], anchor)?,
+                        Partner::Face(f) => {
+                            let (l, k) = self.face_kinematics(ctx, slot, f, c.xi, &cur)?;
+                            (l, k, None)
+                        }
+                        Partner::Rigid(seg) => {
+                            self.rigid_kinematics(ctx, slot, seg, c.xi[0], anchor)?
+                        }
                         _ => unreachable!("node-to-segment partners are edges, faces or rigid"),
-                    }
+                    };
+                    state.anchor = next;
+                    state.friction = kin.friction.as_ref().map(|f| (f.stick, f.force));
+                    (local, kin)
                 }
                 None => {
                     // No partner: no force; a multiplier is held at zero.

@@ -4,11 +4,11 @@ use super::{NodeToSegment, Slot};
 use crate::contact::dual::{self, DVec, Dual};
 use crate::contact::geometry::rigid;
 use crate::contact::geometry::scalar::Scalar;
-use crate::contact::law::PointKinematics;
+use crate::contact::law::{friction, FrictionKinematics, PointKinematics};
 use crate::contact::search::Candidate;
-use crate::contact::{Ctx, Local, Partner};
+use crate::contact::{Anchor, Ctx, Local, Partner};
 use crate::error::Result;
-use crate::model::{Model, SegmentKind};
+use crate::model::{ContactLaw, Model, SegmentKind};
 
 impl NodeToSegment {
     /// Origin of a rigid segment: its reference point moved with its node, if any.
@@ -100,23 +100,39 @@ impl NodeToSegment {
         }
     }
 
-    /// Kinematics against rigid segment `seg`, with the polynomial's contact abscissa `t0`.
+    /// The node a rigid segment moves with, and its reference point (origin of the anchors).
+    fn rigid_frame(model: &Model, seg: usize) -> (Option<usize>, [f64; 3]) {
+        match &model.segments[seg].kind {
+            SegmentKind::Circle { node, center, .. } => (*node, *center),
+            SegmentKind::Plane { node, point, .. } => (*node, *point),
+            _ => (None, [0.0; 3]),
+        }
+    }
+
+    /// Kinematics against rigid segment `seg`, with the polynomial's contact abscissa `t0`, and
+    /// the friction of a node anchored at `anchor` (the next anchor is returned).
     pub(super) fn rigid_kinematics(
         &self,
         ctx: &Ctx,
         slot: &Slot,
         seg: usize,
         t0: f64,
-    ) -> Result<(Local, PointKinematics)> {
+        anchor: Option<&Anchor>,
+    ) -> Result<(Local, PointKinematics, Option<Anchor>)> {
         let model = ctx.model;
         let dim = self.dim;
         let mut local = Local::new(dim);
         local.add(ctx, slot.node)?;
-        let node = match &model.segments[seg].kind {
-            SegmentKind::Circle { node, .. } | SegmentKind::Plane { node, .. } => *node,
-            _ => None,
-        };
+        let (node, _) = Self::rigid_frame(model, seg);
         if let Some(n) = node {
+            local.add(ctx, n)?;
+        }
+        // The anchor moves with its segment's node.
+        let anchor_frame = anchor.and_then(|a| match a.partner {
+            Partner::Rigid(g) => Some((Self::rigid_frame(model, g), a.offset)),
+            _ => None,
+        });
+        if let Some(((Some(n), _), _)) = anchor_frame {
             local.add(ctx, n)?;
         }
         let q = local.seed();
@@ -154,14 +170,77 @@ impl NodeToSegment {
             }
         };
         let mut coeffs = vec![(0, Dual::constant(1.0, m))];
-        if node.is_some() {
-            coeffs.push((1, Dual::constant(-1.0, m)));
+        if let Some(n) = node {
+            coeffs.push((local.index(n), Dual::constant(-1.0, m)));
         }
         let b = local.distribute(&coeffs, &dir);
         let area = crate::contact::law_area(slot.area, model);
-        Ok((
-            local,
-            PointKinematics::from_duals(gap, Dual::constant(1.0, m), &b, area),
-        ))
+        let mut kin = PointKinematics::from_duals(gap, Dual::constant(1.0, m), &b, area);
+        let mut next = None;
+        if let Some(law) = self.friction {
+            // Anchors are points in the frame of their segment: its origin moved with its node.
+            let origin = |g: usize, q: &[crate::contact::dual::DVec]| -> DVec {
+                let (n, p) = Self::rigid_frame(model, g);
+                let xn = n.map(|n| &q[local.index(n)][..dim]);
+                let o = self.rigid_origin(model, p, n, xn, zero);
+                let mut v = [zero; 3];
+                v[..dim].copy_from_slice(&o);
+                v
+            };
+            let mut xs3 = [zero; 3];
+            xs3[..dim].copy_from_slice(xs);
+            let here = origin(seg, &q);
+            let at_point = Anchor {
+                partner: Partner::Rigid(seg),
+                xi: [0.0; 2],
+                // The contact point: the node moved back along the normal by the gap.
+                offset: std::array::from_fn(|i| {
+                    if i < dim {
+                        xs3[i].v - gap.v * dir[i].v - here[i].v
+                    } else {
+                        0.0
+                    }
+                }),
+            };
+            next = Some(at_point);
+            if let (Some(((_, _), offset)), true) = (anchor_frame, gap.v <= 0.0) {
+                let g = match anchor.expect("an anchor").partner {
+                    Partner::Rigid(g) => g,
+                    _ => unreachable!("a rigid anchor"),
+                };
+                let o = origin(g, &q);
+                let xa3: DVec = std::array::from_fn(|i| o[i] + offset[i]);
+                let ContactLaw::Penalty(p) = self.law else {
+                    unreachable!("friction with the penalty law only")
+                };
+                let pn = -(gap * p);
+                let t = friction::evaluate(
+                    law,
+                    &local,
+                    &coeffs,
+                    &friction::FrictionPoint {
+                        xs: xs3,
+                        xa: xa3,
+                        n: dir,
+                        pn,
+                        dim,
+                    },
+                );
+                next = Some(if t.stick {
+                    *anchor.expect("an anchor")
+                } else {
+                    Anchor {
+                        offset: std::array::from_fn(|i| t.next_anchor[i] - here[i].v),
+                        ..at_point
+                    }
+                });
+                kin.friction = Some(FrictionKinematics {
+                    residual: t.residual.iter().map(|&v| v.into()).collect(),
+                    stick: t.stick,
+                    force: t.force,
+                });
+            }
+        }
+        Ok((local, kin, next))
     }
 }

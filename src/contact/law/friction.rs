@@ -1,0 +1,92 @@
+//! Coulomb friction regularized by a tangential penalty: an elastoplastic return map at each
+//! contact point, evaluated in dual arithmetic so that its (unsymmetric) tangent is exact.
+//!
+//! Glossary (at one contact point, m local unknowns q):
+//! * `xs` the contact node, `xa` the anchor: the master's material point the node stuck to at the
+//!   end of the last converged step (its history), moving with the master;
+//! * `n` the unit force direction of the normal contact, P = I − n ⊗ n;
+//! * g_T = P (xs − xa) the elastic slip, f = ε_T g_T its trial force;
+//! * `pn` the normal contact force (≥ 0 in compression).
+//!
+//! Stick, |f| ≤ μ·pn: the force on the node is −f. Slip: −μ·pn·g_T/|g_T|, and the anchor of the
+//! next step is dragged behind the node so that |g_T| = μ·pn/ε_T (the elastic slip that remains).
+//! The force is distributed like the normal force (the node, and −c_a on the master nodes at the
+//! contact point), and its residual contribution (the internal force) is its negative.
+
+use crate::contact::dual::{DVec, Dual};
+use crate::contact::Local;
+use crate::model::Friction;
+
+/// The tangential part of a contact point.
+pub struct Tangential {
+    /// Residual contribution over the local unknowns (the internal force).
+    pub residual: Vec<Dual>,
+    /// Stick (else slip).
+    pub stick: bool,
+    /// Magnitude of the friction force.
+    pub force: f64,
+    /// Where the anchor would be if the state were converged: unchanged in stick, dragged behind
+    /// the node in slip (a spatial point, to be projected on the partner).
+    pub next_anchor: [f64; 3],
+}
+
+/// A closed contact point as friction sees it (see the glossary).
+pub struct FrictionPoint {
+    pub xs: DVec,
+    pub xa: DVec,
+    pub n: DVec,
+    pub pn: Dual,
+    pub dim: usize,
+}
+
+/// The friction of a closed contact point, its force distributed by `coeffs` (local node,
+/// coefficient) as the normal force is.
+pub fn evaluate(
+    law: Friction,
+    local: &Local,
+    coeffs: &[(usize, Dual)],
+    point: &FrictionPoint,
+) -> Tangential {
+    let FrictionPoint { xs, xa, n, pn, dim } = *point;
+    let m = local.m();
+    let zero = Dual::constant(0.0, m);
+    let d: Vec<Dual> = (0..dim).map(|i| xs[i] - xa[i]).collect();
+    let dn = (0..dim).fold(zero, |acc, i| acc + d[i] * n[i]);
+    let mut gt = [zero; 3];
+    for i in 0..dim {
+        gt[i] = d[i] - n[i] * dn;
+    }
+    let norm2 = (0..dim).fold(zero, |acc, i| acc + gt[i] * gt[i]);
+    let slip_norm = norm2.v.sqrt();
+    let limit = law.mu * pn.v.max(0.0);
+    let stick = law.penalty * slip_norm <= limit;
+    let mut f = [zero; 3];
+    let next_anchor;
+    if stick {
+        for i in 0..dim {
+            f[i] = gt[i] * law.penalty;
+        }
+        next_anchor = std::array::from_fn(|i| if i < dim { xa[i].v } else { 0.0 });
+    } else {
+        let scale = pn * law.mu / norm2.sqrt();
+        for i in 0..dim {
+            f[i] = gt[i] * scale;
+        }
+        // |xs − xa'| tangentially = μ·pn/ε_T, behind the node along the slip.
+        let back = limit / (law.penalty * slip_norm);
+        next_anchor = std::array::from_fn(|i| {
+            if i < dim {
+                xs[i].v - back * gt[i].v
+            } else {
+                0.0
+            }
+        });
+    }
+    let force = (0..dim).map(|i| f[i].v * f[i].v).sum::<f64>().sqrt();
+    Tangential {
+        residual: local.distribute(coeffs, &f),
+        stick,
+        force,
+        next_anchor,
+    }
+}
