@@ -545,7 +545,7 @@ mod tests {
             let mut csv = format!("{}\n", crate::output::outfile::CONTACT_CSV_HEADER);
             for (k, &(u, v, p)) in points.iter().enumerate() {
                 let (y, z) = if axis == 2 { (v, 1.0) } else { (1.0, v) };
-                csv.push_str(&format!("1,1,{k},{u},{y},{z},0,{p},{p},1\n"));
+                csv.push_str(&format!("1,1,{k},{u},{y},{z},0,{p},{p},1,0,0\n"));
             }
             let path = dir.join(format!("axis{axis}.contact.csv"));
             std::fs::write(&path, csv).unwrap();

@@ -161,7 +161,7 @@ fn contact_csv_has_the_documented_header_and_rows() {
     let lines: Vec<&str> = csv.lines().collect();
     assert_eq!(
         lines[0],
-        "step,condition,node,x,y,z,gap,force,pressure,active"
+        "step,condition,node,x,y,z,gap,force,pressure,active,friction,slip"
     );
     assert_eq!(lines.len(), 3, "{csv}");
     let last: Vec<&str> = lines[2].split(',').collect();

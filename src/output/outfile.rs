@@ -262,7 +262,8 @@ fn contact_table(model: &Model, res: &StepResult) -> String {
 }
 
 /// The `.contact.csv` header (one row per contact node and step).
-pub const CONTACT_CSV_HEADER: &str = "step,condition,node,x,y,z,gap,force,pressure,active";
+pub const CONTACT_CSV_HEADER: &str =
+    "step,condition,node,x,y,z,gap,force,pressure,active,friction,slip";
 
 /// CSV rows of one step's contact states.
 pub fn contact_csv_rows(model: &Model, res: &StepResult) -> String {
@@ -270,7 +271,7 @@ pub fn contact_csv_rows(model: &Model, res: &StepResult) -> String {
     for c in res.contact {
         let _ = writeln!(
             s,
-            "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{}",
+            "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e},{}",
             res.step,
             c.condition,
             model.nodes[c.node].label,
@@ -280,7 +281,9 @@ pub fn contact_csv_rows(model: &Model, res: &StepResult) -> String {
             c.gap,
             c.force,
             c.pressure,
-            u8::from(c.active)
+            u8::from(c.active),
+            c.friction.map_or(0.0, |f| f.1),
+            u8::from(c.friction.is_some_and(|f| !f.0))
         );
     }
     s

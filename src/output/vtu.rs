@@ -234,6 +234,19 @@ pub fn write_step(
             };
             active[c.node] = f64::from(u8::from(c.active)).max(active[c.node]);
         }
+        if res.contact.iter().any(|c| c.friction.is_some()) {
+            // Friction force (magnitude) and 1 where the node slides.
+            let mut friction = vec![0.0; nn];
+            let mut slip = vec![0.0; nn];
+            for c in res.contact {
+                if let Some((stick, f)) = c.friction {
+                    friction[c.node] += f;
+                    slip[c.node] = f64::from(u8::from(!stick)).max(slip[c.node]);
+                }
+            }
+            w.array("contact_friction", 1, &friction);
+            w.array("contact_slip", 1, &slip);
+        }
         w.array("contact_gap", 1, &gap);
         w.array("contact_force", 1, &force);
         w.array("contact_pressure", 1, &pressure);

@@ -66,6 +66,9 @@ pub(super) struct NewtonContext<'a> {
     pub converged_states: Option<Vec<SlotState>>,
     /// Contact states at u = 0: the friction history of the first step.
     pub initial_states: Vec<SlotState>,
+    /// The friction history of the current (sub)step: the converged states it started from
+    /// (still the history when the converged state is evaluated again for output).
+    pub history: Option<Vec<SlotState>>,
     /// Per contact node: how often in the current attempt its partner and branch went back to
     /// what they were two iterations before (A → B → A: chattering, not sliding on).
     pub flips: Vec<usize>,
@@ -117,10 +120,7 @@ impl NewtonContext<'_> {
         u: &[f64],
         search: Search,
     ) -> Result<(Vec<crate::contact::ContactPoint>, Vec<SlotState>)> {
-        let history = self
-            .converged_states
-            .as_deref()
-            .unwrap_or(&self.initial_states);
+        let history = self.history.as_deref().unwrap_or(&self.initial_states);
         self.contact
             .evaluate_with_history(self.asm.model, self.dofs, u, search, Some(history))
     }
@@ -361,6 +361,9 @@ impl NewtonContext<'_> {
         info: &mut StepInfo,
     ) -> Result<bool> {
         let nf = self.dofs.n_free;
+        if self.contact.has_friction() {
+            self.history.clone_from(&self.converged_states);
+        }
         if nf == 0 {
             u[nf..].copy_from_slice(up);
             return Ok(true);

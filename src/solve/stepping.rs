@@ -180,6 +180,7 @@ pub fn run_analysis(
         condensed,
         converged_states: None,
         initial_states: initial_states.clone(),
+        history: None,
         flips: vec![0; slot_nodes.len()],
         floor_dominated: None,
         slot_nodes,
