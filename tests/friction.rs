@@ -192,3 +192,72 @@ fn a_cut_back_step_restarts_from_the_converged_friction_history() {
         );
     }
 }
+
+/// Cattaneo–Mindlin (examples/cattaneo_mindlin.in): an elastic cylinder pressed on an elastic
+/// block of the same material, then sheared by Q < μP. The stick zone's half-width is
+/// c = a·√(1 − Q/(μP)) within one element, and the tangential traction follows
+/// q(x) = μp0·√(1 − x²/a²) − μp0·(c/a)·√(1 − x²/c²) in the stick zone, μ·p(x) outside, within
+/// 4 % of μp0 (away from the cusp at ±c, where it changes over one element).
+#[test]
+fn cattaneo_mindlin_stick_zone_and_traction() {
+    const H: f64 = 0.02;
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/cattaneo_mindlin.in");
+    let model = hertz::input::read_model(&path).unwrap().model;
+    let mut last = (0.0, 0.0, Vec::new());
+    let mut iterations = Vec::new();
+    run_analysis(&model, &quiet(), |r| {
+        // P and Q: the reactions of the cap's top (vertical, horizontal).
+        let sum = |dof: u8| -> f64 {
+            r.dofs
+                .prescribed
+                .iter()
+                .zip(r.reactions)
+                .filter(|((n, d, _), _)| *d == dof && model.nodes[*n].coords[1] > 5.0)
+                .map(|(_, &f)| f)
+                .sum()
+        };
+        last = (-sum(2), sum(1), r.contact.to_vec());
+        iterations.push(r.info.iterations);
+        Ok(())
+    })
+    .unwrap();
+    let (p, q, states) = last;
+    let e_star = 1000.0 / (2.0 * (1.0 - 0.3f64 * 0.3));
+    let a = (4.0 * p * 20.0 / (std::f64::consts::PI * e_star)).sqrt();
+    let p0 = 2.0 * p / (std::f64::consts::PI * a);
+    let c = a * (1.0 - q / (MU * p)).sqrt();
+    let closed: Vec<_> = states.iter().filter(|s| s.active).collect();
+    let stick: Vec<f64> = closed
+        .iter()
+        .filter(|s| s.friction.unwrap().0)
+        .map(|s| s.x[0])
+        .collect();
+    let lo = stick.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = stick.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let c_fe = 0.5 * (hi - lo);
+    let friction_sum: f64 = closed.iter().map(|s| s.friction.unwrap().1).sum();
+    let mut worst = 0.0f64;
+    for s in &closed {
+        let x = s.x[0];
+        if x.abs() > 0.9 * a || (x.abs() - c).abs() < 2.0 * H {
+            continue;
+        }
+        let traction = s.friction.unwrap().1 * s.pressure / s.force;
+        let mut exact = MU * p0 * (1.0 - (x / a).powi(2)).max(0.0).sqrt();
+        if x.abs() < c {
+            exact -= MU * p0 * (c / a) * (1.0 - (x / c).powi(2)).sqrt();
+        }
+        worst = worst.max((traction - exact).abs() / (MU * p0));
+    }
+    println!(
+        "Cattaneo-Mindlin: P {p:.5}, Q {q:.5} (Q/muP {:.3}), a {a:.4}, c {c:.4}, stick zone [{lo:.4}, {hi:.4}] \
+         half-width {c_fe:.4}; traction off by {:.2} % of mu p0; iterations {iterations:?}",
+        q / (MU * p),
+        100.0 * worst
+    );
+    assert!((0.3..0.7).contains(&(q / (MU * p))), "Q/μP");
+    assert!((c_fe - c).abs() <= H, "stick zone {c_fe} vs {c}");
+    assert!(worst < 0.04, "traction {worst}");
+    assert!((friction_sum - q).abs() < 1e-6 * q, "{friction_sum} vs {q}");
+    assert!(iterations.iter().all(|&i| i <= 6), "{iterations:?}");
+}

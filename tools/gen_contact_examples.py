@@ -3,7 +3,8 @@
   hertz_rigid_circle.in  rigid cylinder pressed into an elastic block (plane strain, N2S penalty)
   hertz_cylinder.in      elastic cylinder cap on an elastic block (plane strain, N2S penalty)
   flat_punch.in          rigid flat punch under a prescribed force (plane strain, N2S penalty)
-All are half models (x >= 0) with symmetry conditions on x = 0. Meshes are structured and graded:
+  cattaneo_mindlin.in    elastic cylinder on an elastic block pressed, then sheared (friction)
+All but the last are half models (x >= 0) with symmetry conditions on x = 0. Meshes are structured and graded:
 a fine zone of spacing h near the contact, then geometric growth."""
 
 
@@ -227,6 +228,83 @@ Run:  cargo run --release --example flat_punch
     write("examples/flat_punch.in", lines)
 
 
+def cattaneo_mindlin():
+    """The cylinder on the block of hertz_cylinder, whole (shear has no symmetry), pressed by a
+    prescribed displacement of the cap's top, then sheared by a horizontal force on it."""
+    R, h, fine, W, H, delta, MU = 20.0, 0.02, 1.0, 8.0, 8.0, 0.022, 0.3
+    Wc, Hc = 6.0, 6.0
+    m = Mesh()
+
+    def full(xs):
+        return [-x for x in reversed(xs[1:])] + xs
+
+    xs = full(graded(W, h, fine))
+    depth = graded(H, h, 0.6)
+    ys = [-d for d in reversed(depth)]
+    bids, beids = m.block(xs, lambda i: ys)
+    btop_elems = [col[-1] for col in beids]
+    xc = full(graded(Wc, h, fine))
+    hc = graded(Hc, h, 0.6)
+
+    def cap_col(i):
+        yb = R - (R * R - xc[i] ** 2) ** 0.5
+        return [yb + t * (Hc - yb) / Hc for t in hc]
+
+    nb = len(m.elems)
+    cids, ceids = m.block(xc, cap_col)
+    cap_bottom = [col[0] for col in cids]
+    contact_nodes = [cap_bottom[i] for i, x in enumerate(xc) if abs(x) <= 1.5]
+    bottom = [col[0] for col in bids]
+    cap_top = [col[-1] for col in cids]
+    ctop_elems = [col[-1] for col in ceids]
+    comment = f"""
+Cattaneo-Mindlin: the elastic cylinder (R = {R:g}) on the elastic block of hertz_cylinder.in, whole,
+both E = {E:g}, nu = {NU:g} (elastically similar: the normal and tangential problems uncouple).
+Step 1 presses the cap's flat top down by delta = {delta:g}; step 2 moves it sideways by {DX_CM:g}
+(the top is held horizontally throughout): the normal force P and the shear force Q are the
+reactions of the top, Q about half of mu P.
+Node-to-segment penalty contact with Coulomb friction mu = {MU:g} (pt = penalty): cylinder nodes with
+|x| <= 1.5 against the block's top edges; the block's bottom is held.
+Analytical solution (Cattaneo 1938, Mindlin 1949; Johnson, Contact Mechanics, 7.1), Hertz's a and p0
+for the force P, P and Q per unit thickness:
+  stick zone |x| < c,  c = a sqrt(1 - Q/(mu P))
+  q(x) = mu p0 sqrt(1 - x^2/a^2) - mu p0 (c/a) sqrt(1 - x^2/c^2)  (|x| < c),  mu p(x) in the slip zone
+Checks (tests/friction.rs): c within one element (h = {h:g}), q(x) against the formula.
+hertz: P = 5.7449, Q = 0.8293 (Q/(mu P) = 0.481), a = 0.5160, c = 0.3717; stick zone half-width
+0.3689; q(x) within 3.1 % of mu p0 (beyond one element from the cusp at +-c); 2 and 5 iterations.
+Run:  cargo run --release -- run examples/cattaneo_mindlin.in
+"""
+    lines = header("cattaneo_mindlin.out", "Cattaneo-Mindlin: a cylinder pressed then sheared on a block (plane strain)", comment)
+    sets = [
+        f"Set 1 elementranges {{(1 {nb})}}",
+        f"Set 2 elementranges {{({nb + 1} {len(m.elems)})}}",
+        nodeset(3, bottom),
+        nodeset(4, cap_top),
+        f"Set 5 elementboundaries {2 * len(btop_elems)} " + " ".join(f"{e} 1" for e in btop_elems),
+        f"Set 6 elementboundaries {2 * len(ctop_elems)} " + " ".join(f"{e} 1" for e in ctop_elems),
+    ]
+    bcs = [
+        "BoundaryCondition 1 loadTimeFunction 1 dofs 2 1 2 values 2 0.0 0.0 set 3",
+        f"BoundaryCondition 2 loadTimeFunction 1 dofs 1 2 values 1 {-delta:g} set 4",
+        f"BoundaryCondition 3 loadTimeFunction 2 dofs 1 1 values 1 {DX_CM:g} set 4",
+        f"n2spenaltycontact 4 loadTimeFunction 1 penalty {1e4 * E:g} friction {MU:g} nodeset {len(contact_nodes)} "
+        + " ".join(map(str, contact_nodes)) + " segmentset 1 1",
+    ]
+    lines += common_records(
+        m,
+        ["SimpleCS 1 thick 1.0 material 1 set 1", "SimpleCS 2 thick 1.0 material 2 set 2"],
+        [f"IsoLE 1 d 0. E {E:g} n {NU:g} tAlpha 0.", f"IsoLE 2 d 0. E {E:g} n {NU:g} tAlpha 0."],
+        bcs, ["ConstantFunction 1 f(t) 1.0", "PiecewiseLinFunction 2 npoints 2 t 2 1 2 f(t) 2 0 1"], sets, 1,
+        ["linear2delementedgecontactsegment 1 edgeset 5"],
+        "StaticStructural nsteps 2 rtolf 1e-8 maxiter 30",
+    )
+    write("examples/cattaneo_mindlin.in", lines)
+
+
+# cattaneo_mindlin's shear: the top's horizontal displacement in step 2.
+DX_CM = 0.005
+
 hertz_rigid()
 hertz_cylinder()
 flat_punch()
+cattaneo_mindlin()

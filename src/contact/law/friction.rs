@@ -58,8 +58,10 @@ pub fn evaluate(
     }
     let norm2 = (0..dim).fold(zero, |acc, i| acc + gt[i] * gt[i]);
     let slip_norm = norm2.v.sqrt();
-    let limit = law.mu * pn.v.max(0.0);
-    let stick = law.penalty * slip_norm <= limit;
+    // At an open point (pn < 0, the closed branch's continuation) this slides with a negative
+    // force: the closing point's friction continued linearly, as its normal force is.
+    let limit = law.mu * pn.v;
+    let stick = law.penalty * slip_norm <= limit || slip_norm == 0.0;
     let mut f = [zero; 3];
     let next_anchor;
     if stick {
@@ -73,7 +75,7 @@ pub fn evaluate(
             f[i] = gt[i] * scale;
         }
         // |xs − xa'| tangentially = μ·pn/ε_T, behind the node along the slip.
-        let back = limit / (law.penalty * slip_norm);
+        let back = limit.max(0.0) / (law.penalty * slip_norm);
         next_anchor = std::array::from_fn(|i| {
             if i < dim {
                 xs[i].v - back * gt[i].v

@@ -28,8 +28,8 @@ pub fn evaluate(laws: &Laws, penalty: f64, codes: Vec<usize>, k: &PointKinematic
         }
     }
     let mut fe: Vec<f64> = v.iter().map(|vi| penalty * g.v * vi.v).collect();
-    // Friction acts on a closed point, with its exact (unsymmetric) tangent.
-    if let Some(fr) = k.friction.as_ref().filter(|_| g.v <= 0.0) {
+    // Friction, with its exact (unsymmetric) tangent; at an open point its linear continuation.
+    if let Some(fr) = &k.friction {
         for i in 0..m {
             fe[i] += fr.residual[i].v;
             for j in 0..m {

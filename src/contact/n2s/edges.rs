@@ -251,7 +251,9 @@ impl NodeToSegment {
                 offset: [0.0; 3],
             };
             next = Some(at_point);
-            if let (Some(xa3), true) = (xa3, gap.v <= 0.0) {
+            // Open points get it too: the closed branch the solver may predict for them is then
+            // the continuation of the closed point's (see `friction`).
+            if let Some(xa3) = xa3 {
                 let ContactLaw::Penalty(p) = self.law else {
                     unreachable!("friction with the penalty law only")
                 };
@@ -273,7 +275,9 @@ impl NodeToSegment {
                     x: geom.x.iter().map(|v| [v[0].v, v[1].v]).collect(),
                     open: geom.open,
                 };
-                next = Some(if t.stick {
+                next = Some(if gap.v > 0.0 {
+                    at_point
+                } else if t.stick {
                     *anchor.expect("an anchor")
                 } else {
                     geom_f

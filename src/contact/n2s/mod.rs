@@ -459,7 +459,11 @@ impl Formulation for NodeToSegment {
                         _ => unreachable!("node-to-segment partners are edges, faces or rigid"),
                     };
                     state.anchor = next;
-                    state.friction = kin.friction.as_ref().map(|f| (f.stick, f.force));
+                    state.friction = kin
+                        .friction
+                        .as_ref()
+                        .filter(|_| kin.gap.v <= 0.0)
+                        .map(|f| (f.stick, f.force));
                     (local, kin)
                 }
                 None => {

@@ -203,7 +203,8 @@ impl NodeToSegment {
                 }),
             };
             next = Some(at_point);
-            if let (Some(((_, _), offset)), true) = (anchor_frame, gap.v <= 0.0) {
+            // Open points get it too (the continuation of the closed branch, see `friction`).
+            if let Some((_, offset)) = anchor_frame {
                 let g = match anchor.expect("an anchor").partner {
                     Partner::Rigid(g) => g,
                     _ => unreachable!("a rigid anchor"),
@@ -226,7 +227,9 @@ impl NodeToSegment {
                         dim,
                     },
                 );
-                next = Some(if t.stick {
+                next = Some(if gap.v > 0.0 {
+                    at_point
+                } else if t.stick {
                     *anchor.expect("an anchor")
                 } else {
                     Anchor {
