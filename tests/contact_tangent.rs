@@ -542,3 +542,93 @@ fn face_tangents_are_jacobians_of_residuals() {
         }
     }
 }
+
+/// At an open point the closed branch (the linear model the solver uses when it predicts the
+/// point closes) carries friction's continuation, whose tangent is the Jacobian of its part of
+/// the branch (the branch with friction less the one without; the normal part of an open point's
+/// branch is its material part only, by design).
+#[test]
+fn friction_continuation_of_an_open_point_is_jacobian_of_its_closed_branch() {
+    for seg in [
+        None,
+        Some("circlecontactsegment 1 centerpoint 2 0.3 0.2 radius 0.9 node 900"),
+    ] {
+        let with = strip("q4", 1, 1, (0.3, 1.05), seg, &format!("{PEN} friction 0.3"));
+        let without = strip("q4", 1, 1, (0.3, 1.05), seg, PEN);
+        let (mf, m0) = (
+            common::model_from_text(&with).unwrap(),
+            common::model_from_text(&without).unwrap(),
+        );
+        let (cf, c0) = (
+            ContactSystem::new(&mf).unwrap(),
+            ContactSystem::new(&m0).unwrap(),
+        );
+        let dofs = hertz::solve::number_dofs(&mf).unwrap();
+        let u0 = vec![0.0; dofs.n_primary()];
+        let history = cf.evaluate(&mf, &dofs, &u0, Search::Fresh).unwrap().1;
+        // Slid sideways, still clear of the master (gap > 0).
+        let case = Case {
+            name: "open".into(),
+            text: with.clone(),
+            disp: vec![(label_of_slave(&with), [0.04, 0.1, 0.0])],
+            lambda: 0.0,
+            active: 0,
+        };
+        let u = displaced(&mf, &dofs, &case);
+        let (_, states) = cf
+            .evaluate_with_history(&mf, &dofs, &u, Search::Fresh, Some(&history))
+            .unwrap();
+        assert!(states[0].gap > 0.0 && !states[0].active, "{states:?}");
+        assert!(
+            states[0].friction.is_none(),
+            "an open point reports no friction"
+        );
+        // The friction part of the closed branch at u: (fe, ke) with friction less without.
+        let part = |u: &[f64]| {
+            let pf = cf
+                .evaluate_with_history(&mf, &dofs, u, Search::Frozen(&states), Some(&history))
+                .unwrap()
+                .0
+                .remove(0);
+            let p0 = c0
+                .evaluate(&m0, &dofs, u, Search::Frozen(&states))
+                .unwrap()
+                .0
+                .remove(0);
+            assert_eq!(pf.codes, p0.codes);
+            let fe: Vec<f64> = pf
+                .closed_fe
+                .iter()
+                .zip(&p0.closed_fe)
+                .map(|(a, b)| a - b)
+                .collect();
+            let ke: Vec<f64> = pf
+                .closed_ke
+                .iter()
+                .zip(&p0.closed_ke)
+                .map(|(a, b)| a - b)
+                .collect();
+            (pf.codes, fe, ke)
+        };
+        let (codes, fe, ke) = part(&u);
+        assert!(
+            fe.iter().any(|v| v.abs() > 0.0),
+            "{seg:?}: friction in the branch"
+        );
+        let m = codes.len();
+        let scale = ke.iter().fold(1e-12f64, |a, v| a.max(v.abs()));
+        let h = 1e-6;
+        let mut worst = 0.0f64;
+        for j in 0..m {
+            let (mut up, mut um) = (u.clone(), u.clone());
+            up[codes[j]] += h;
+            um[codes[j]] -= h;
+            let (fp, fm) = (part(&up).1, part(&um).1);
+            for i in 0..m {
+                let fd = (fp[i] - fm[i]) / (2.0 * h);
+                worst = worst.max((fd - ke[i * m + j]).abs() / scale);
+            }
+        }
+        assert!(worst < 1e-6, "{seg:?}: {worst:e}");
+    }
+}
