@@ -632,3 +632,42 @@ fn friction_continuation_of_an_open_point_is_jacobian_of_its_closed_branch() {
         assert!(worst < 1e-6, "{seg:?}: {worst:e}");
     }
 }
+
+/// The mortar tangent is the Jacobian of its residual, in small deformation (reference
+/// segmentation and normals, the gap following the nodes) and in large deformation (everything
+/// current: segmentation limits, normals, lengths), for penalty and multipliers, on non-matching
+/// meshes with both blocks displaced and sheared so that the overlaps move.
+#[test]
+fn mortar_tangents_are_jacobians_of_residuals() {
+    for nlgeo in [0u8, 1] {
+        for (law, lambda) in [
+            (
+                "s2spenaltycontact 4 loadTimeFunction 1 penalty 1e4 slavesegment 1 segmentset 1 2",
+                0.0,
+            ),
+            (
+                "s2slagrangianmultipliercontact 4 loadTimeFunction 1 slavesegment 1 segmentset 1 2",
+                3.0,
+            ),
+        ] {
+            let text = common::mortar_blocks(3, 2, nlgeo, law);
+            let model = common::model_from_text(&text).unwrap();
+            // The upper block (nodes after the lower one's 12) sunk by 0.01 and sheared; the
+            // lower block's top nodes (9..12) moved a little.
+            let mut disp: Vec<(usize, [f64; 3])> = (13..=21)
+                .map(|n| {
+                    let y = model.nodes[n - 1].coords[1];
+                    (n, [0.013 + 0.02 * y, -0.01 + 0.003 * (n as f64).sin(), 0.0])
+                })
+                .collect();
+            disp.extend((9..=12).map(|n| (n, [0.004 * (n as f64).cos(), 0.002, 0.0])));
+            check(&Case {
+                name: format!("mortar-nlgeo{nlgeo}-{}", &law[..4]),
+                text,
+                disp,
+                lambda,
+                active: 3,
+            });
+        }
+    }
+}

@@ -4,6 +4,7 @@
   hertz_cylinder.in      elastic cylinder cap on an elastic block (plane strain, N2S penalty)
   flat_punch.in          rigid flat punch under a prescribed force (plane strain, N2S penalty)
   cattaneo_mindlin.in    elastic cylinder on an elastic block pressed, then sheared (friction)
+  hertz_mortar.in        hertz_rigid_circle.in with mortar contact (multipliers)
 All but the last are half models (x >= 0) with symmetry conditions on x = 0. Meshes are structured and graded:
 a fine zone of spacing h near the contact, then geometric growth."""
 
@@ -301,6 +302,55 @@ Run:  cargo run --release -- run examples/cattaneo_mindlin.in
     write("examples/cattaneo_mindlin.in", lines)
 
 
+def hertz_mortar():
+    """hertz_rigid_circle's problem with mortar contact: the block's top edges with x <= 3 are
+    the slave segment, the rigid circle the master; multipliers (no penalty to choose)."""
+    R, h, fine, W, H, delta = 10.0, 0.04, 2.0, 12.0, 12.0, 0.045
+    m = Mesh()
+    xs = graded(W, h, fine)
+    depth = graded(H, h, 1.0)
+    ys = [-d for d in reversed(depth)]
+    ids, eids = m.block(xs, lambda i: ys)
+    ref = m.node(0.0, R)
+    top_elems = [col[-1] for i, col in enumerate(eids) if xs[i + 1] <= 3.0 + 1e-9]
+    sym = [ids[0][j] for j in range(len(ys))]
+    bottom = [col[0] for col in ids]
+    comment = f"""
+Hertz contact of a rigid cylinder on an elastic block with mortar contact: the problem of
+hertz_rigid_circle.in (R = {R:g}, delta = {delta:g}, block {W:g} x {H:g}, E = {E:g}, nu = {NU:g}, plane strain,
+half model x >= 0, h = {h:g} near the contact). The slave segment is the block's top edges with
+x <= 3, the master the rigid circle (moving with node {ref}); Lagrange multipliers, one per slave
+node: the nodal contact pressures, weighted over the slave edges (no tributary lengths).
+Analytical solution (Hertz, rigid indenter, F per unit thickness of the full cylinder):
+  E* = E/(1 - nu^2),  a = sqrt(4 F R/(pi E*)),  p0 = sqrt(F E*/(pi R)),  p(x) = p0 sqrt(1 - x^2/a^2)
+F is twice the sum of the nodal contact forces (half model).
+hertz: p0 and a within 1 % of Hertz, the pressure smooth (tests/mortar.rs).
+Run:  cargo run --release -- run examples/hertz_mortar.in
+"""
+    lines = header("hertz_mortar.out", "Hertz: rigid cylinder on an elastic block, mortar contact (plane strain)", comment)
+    sets = [
+        f"Set 1 elementranges {{(1 {len(m.elems)})}}",
+        nodeset(2, sym),
+        nodeset(3, bottom),
+        nodeset(4, [ref]),
+        f"Set 5 elementboundaries {2 * len(top_elems)} " + " ".join(f"{e} 1" for e in top_elems),
+    ]
+    bcs = [
+        "BoundaryCondition 1 loadTimeFunction 1 dofs 1 1 values 1 0.0 set 2",
+        "BoundaryCondition 2 loadTimeFunction 1 dofs 1 2 values 1 0.0 set 3",
+        f"BoundaryCondition 3 loadTimeFunction 1 dofs 2 1 2 values 2 0.0 {-delta:g} set 4",
+        "s2slagrangianmultipliercontact 4 loadTimeFunction 1 slavesegment 2 segmentset 1 1",
+    ]
+    lines += common_records(
+        m, ["SimpleCS 1 thick 1.0 material 1 set 1"], [f"IsoLE 1 d 0. E {E:g} n {NU:g} tAlpha 0."], bcs,
+        ["ConstantFunction 1 f(t) 1.0"], sets, 2,
+        [f"circlecontactsegment 1 centerpoint 2 0 {R:g} radius {R:g} node {ref}",
+         "linear2delementedgecontactsegment 2 edgeset 5"],
+        "NonLinearStatic nsteps 1 controlmode 1 rtolf 1e-8 manrmsteps 1 maxiter 40",
+    )
+    write("examples/hertz_mortar.in", lines)
+
+
 # cattaneo_mindlin's shear: the top's horizontal displacement in step 2.
 DX_CM = 0.005
 
@@ -308,3 +358,4 @@ hertz_rigid()
 hertz_cylinder()
 flat_punch()
 cattaneo_mindlin()
+hertz_mortar()

@@ -18,6 +18,7 @@
 pub mod dual;
 pub mod geometry;
 pub mod law;
+pub mod mortar;
 pub mod n2n;
 pub mod n2s;
 pub mod point;
@@ -277,6 +278,9 @@ impl ContactSystem {
                 }
                 Pairing::NodeToSegment { .. } => {
                     formulations.push(Box::new(n2s::NodeToSegment::new(model, ci)?))
+                }
+                Pairing::Mortar { .. } => {
+                    formulations.push(Box::new(mortar::Mortar::new(model, ci)?))
                 }
             }
         }

@@ -9,11 +9,13 @@ use crate::model::{
 use std::collections::HashMap;
 
 /// Contact condition record keywords.
-pub const CONDITION_KEYWORDS: [&str; 4] = [
+pub const CONDITION_KEYWORDS: [&str; 6] = [
     "n2npenaltycontact",
     "n2nlagrangianmultipliercontact",
     "n2spenaltycontact",
     "n2slagrangianmultipliercontact",
+    "s2spenaltycontact",
+    "s2slagrangianmultipliercontact",
 ];
 
 /// Contact segment record keywords.
@@ -44,6 +46,8 @@ pub struct PendingCondition {
     nodes: Vec<usize>,
     /// hertz's `slaveset k` on a node-to-segment condition: the contact nodes are set k's.
     node_set: Option<usize>,
+    /// Mortar (`s2s...`): the slave segment.
+    slave_segment: Option<usize>,
     segments: Vec<usize>,
     normal: Option<[f64; 3]>,
     span: Span,
@@ -254,6 +258,7 @@ pub fn read_condition(
         sets: None,
         nodes: vec![],
         node_set: None,
+        slave_segment: None,
         segments: vec![],
         normal,
         span: r.span(),
@@ -269,6 +274,24 @@ pub fn read_condition(
             }
         }
         c.sets = Some((m, s));
+    } else if kw.starts_with("s2s") {
+        // Mortar (hertz extension): a slave contact segment against master segments.
+        let g = r.usize("slavesegment")?;
+        if g == 0 || g > nseg {
+            return Err(r.error(format!(
+                "contact segment {g} does not exist (ncontactseg {nseg})"
+            )));
+        }
+        c.slave_segment = Some(g - 1);
+        c.segments = segment_list(r, nseg)?;
+        if c.segments.is_empty() {
+            return Err(r.error("`segmentset` must not be empty"));
+        }
+        if c.segments.contains(&(g - 1)) {
+            return Err(r.error(format!(
+                "segment {g} is both the slave segment and a master segment"
+            )));
+        }
     } else {
         // OOFEM uses these numbers as raw node indices (spec §2.10 item 11); hertz maps labels.
         // hertz also takes `slaveset k` (the nodes of set k: meshes imported from Gmsh).
@@ -293,24 +316,28 @@ pub fn read_condition(
                     .collect::<Result<_>>()?;
             }
         }
-        c.segments = r
-            .int_array("segmentset")?
-            .into_iter()
-            .map(|s| {
-                if s < 1 || s as usize > nseg {
-                    Err(r.error(format!(
-                        "contact segment {s} does not exist (ncontactseg {nseg})"
-                    )))
-                } else {
-                    Ok(s as usize - 1)
-                }
-            })
-            .collect::<Result<_>>()?;
+        c.segments = segment_list(r, nseg)?;
         if (c.nodes.is_empty() && c.node_set.is_none()) || c.segments.is_empty() {
             return Err(r.error("`nodeset` and `segmentset` must not be empty"));
         }
     }
     Ok(c)
+}
+
+/// `segmentset m g1..gm`: model segment indices.
+fn segment_list(r: &Record, nseg: usize) -> Result<Vec<usize>> {
+    r.int_array("segmentset")?
+        .into_iter()
+        .map(|s| {
+            if s < 1 || s as usize > nseg {
+                Err(r.error(format!(
+                    "contact segment {s} does not exist (ncontactseg {nseg})"
+                )))
+            } else {
+                Ok(s as usize - 1)
+            }
+        })
+        .collect()
 }
 
 fn err(span: &Span, msg: String) -> Error {
@@ -373,8 +400,23 @@ pub fn resolve(
     }
     let mut contacts = Vec::with_capacity(conds.len());
     for c in conds {
-        let pairing = match c.sets {
-            Some((m, s)) => {
+        let pairing = match (c.sets, c.slave_segment) {
+            (_, Some(slave)) => {
+                if !matches!(segments[slave].kind, SegmentKind::Edges { .. }) {
+                    return Err(err(
+                        &c.span,
+                        format!(
+                            "the slave segment {} of a mortar condition must be element edges",
+                            segments[slave].number
+                        ),
+                    ));
+                }
+                Pairing::Mortar {
+                    slave,
+                    segments: c.segments,
+                }
+            }
+            (Some((m, s)), None) => {
                 let (mn, sn) = (&sets[m - 1].nodes, &sets[s - 1].nodes);
                 if mn.len() != sn.len() || mn.is_empty() {
                     return Err(err(
@@ -386,7 +428,7 @@ pub fn resolve(
                     pairs: mn.iter().copied().zip(sn.iter().copied()).collect(),
                 }
             }
-            None => {
+            (None, None) => {
                 let nodes = match c.node_set {
                     Some(k) if sets[k - 1].nodes.is_empty() => {
                         return Err(err(&c.span, format!("set {k} (`slaveset`) has no nodes")))

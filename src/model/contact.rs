@@ -57,6 +57,8 @@ pub enum Pairing {
         nodes: Vec<usize>,
         segments: Vec<usize>,
     },
+    /// Mortar: the slave segment's edges meet the master segments in a weak sense.
+    Mortar { slave: usize, segments: Vec<usize> },
 }
 
 /// Coulomb friction of a condition, regularized by a tangential penalty (the stick stiffness).

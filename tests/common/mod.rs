@@ -262,3 +262,96 @@ pub fn read_vtu(path: &std::path::Path) -> std::collections::BTreeMap<String, Ve
     }
     arrays
 }
+
+/// Two blocks of the same material, [0, 2] x [-1, 0] in `n_low` and [0, 2] x [0, 1] in `n_up`
+/// elements across (two rows each), pressed together by a uniform pressure 10 on the top; rollers
+/// on x = 0 and under the bottom. `condition` is the contact record: `SLAVE` is the upper
+/// block's bottom edges (segment 1) and its nodes (set 4), `MASTER` the lower block's top edges
+/// (segment 2).
+pub fn mortar_blocks(n_low: usize, n_up: usize, nlgeo: u8, condition: &str) -> String {
+    let mut nodes = Vec::new();
+    let mut elems = Vec::new();
+    let mut id = 0;
+    let mut grid = |nx: usize, y0: f64, nodes: &mut Vec<String>| -> Vec<Vec<usize>> {
+        (0..=2)
+            .map(|j| {
+                (0..=nx)
+                    .map(|i| {
+                        id += 1;
+                        nodes.push(format!(
+                            "node {id} coords 2 {} {}",
+                            2.0 * i as f64 / nx as f64,
+                            y0 + 0.5 * j as f64
+                        ));
+                        id
+                    })
+                    .collect()
+            })
+            .collect()
+    };
+    let low = grid(n_low, -1.0, &mut nodes);
+    let up = grid(n_up, 0.0, &mut nodes);
+    let quads = |g: &Vec<Vec<usize>>, mat: usize, elems: &mut Vec<String>| -> Vec<usize> {
+        let mut row = Vec::new();
+        for j in 0..2 {
+            for i in 0..g[0].len() - 1 {
+                let e = elems.len() + 1;
+                elems.push(format!(
+                    "PlaneStress2d {e} nodes 4 {} {} {} {} crossSect 1 mat {mat} nlgeo {nlgeo}",
+                    g[j][i],
+                    g[j][i + 1],
+                    g[j + 1][i + 1],
+                    g[j + 1][i]
+                ));
+                row.push(e);
+            }
+        }
+        row
+    };
+    let el_low = quads(&low, 1, &mut elems);
+    let el_up = quads(&up, 1, &mut elems);
+    // Edge numbers of PlaneStress2d (n1 n2 n3 n4 counter-clockwise from bottom-left): 1 bottom,
+    // 3 top.
+    let top_low: Vec<String> = el_low[n_low..].iter().map(|e| format!("{e} 3")).collect();
+    let bottom_up: Vec<String> = el_up[..n_up].iter().map(|e| format!("{e} 1")).collect();
+    let top_up: Vec<String> = el_up[n_up..].iter().map(|e| format!("{e} 3")).collect();
+    let left: Vec<usize> = low.iter().chain(&up).map(|r| r[0]).collect();
+    let join = |v: &[usize]| {
+        v.iter()
+            .map(|x| x.to_string())
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    format!(
+        "mortar_patch.out\npatch\nStaticStructural nsteps 1 rtolf 1e-12 maxiter 20\n\
+         domain 2dPlaneStress\nOutputManager\n\
+         ndofman {} nelem {} ncrosssect 1 nmat 1 nbc 4 nic 0 nltf 1 nset 6 ncontactseg 2\n\
+         {}\n{}\n\
+         linear2delementedgecontactsegment 1 edgeset 1\n\
+         linear2delementedgecontactsegment 2 edgeset 2\n\
+         SimpleCS 1 thick 1.0 material 1 set 3\nIsoLE 1 d 0 E 1000 n 0.3 tAlpha 0\n\
+         BoundaryCondition 1 loadTimeFunction 1 dofs 1 1 values 1 0 set 5\n\
+         BoundaryCondition 2 loadTimeFunction 1 dofs 1 2 values 1 0 set 6\n\
+         ConstantEdgeLoad 3 loadTimeFunction 1 dofs 2 1 2 components 2 0 -10 set 7\n\
+         {condition}\nConstantFunction 1 f(t) 1\n\
+         Set 1 elementboundaries {} {}\nSet 2 elementboundaries {} {}\nSet 3 allelements\n\
+         Set 4 nodes {} {}\nSet 5 nodes {} {}\nSet 6 nodes {} {}\nSet 7 elementedges {} {}\n",
+        nodes.len(),
+        elems.len(),
+        nodes.join("\n"),
+        elems.join("\n"),
+        2 * n_up,
+        bottom_up.join(" "),
+        2 * n_low,
+        top_low.join(" "),
+        up[0].len(),
+        join(&up[0]),
+        left.len(),
+        join(&left),
+        low[0].len(),
+        join(&low[0]),
+        2 * n_up,
+        top_up.join(" "),
+    )
+    .replace("nset 6", "nset 7")
+}

@@ -1,0 +1,504 @@
+//! Mortar segment-to-segment contact in 2D: the non-penetration condition is imposed in a weak
+//! sense along the slave surface, one constraint per slave node, so that a contact pressure is
+//! transferred between non-matching meshes exactly (the contact patch test).
+//!
+//! Glossary (one slave node j, straight slave edges):
+//! * ξ ∈ [0, 1] along a slave edge x(ξ) = (1 − ξ) x_a + ξ x_b, N_j(ξ) its hat function, L its
+//!   length, ν its unit normal pointing into the slave body (towards it from the master side);
+//! * segmentation: a master edge y(η) overlaps the slave edge on [ξ_lo, ξ_hi], the slave
+//!   parameters of its ends projected along ν (clipped to [0, 1]); a Gauss point ξ meets the
+//!   master where the line x(ξ) + t ν crosses it, at η(ξ);
+//! * gap g(ξ) = (x(ξ) − y(η(ξ)))·ν (< 0: penetration), against a rigid shape its signed distance;
+//! * weighted gap g̃_j = ∫ N_j g ds, D_j = ∫ N_j ds over the overlaps, ḡ_j = g̃_j / D_j;
+//! * force direction B_j: the slave node k gets ∫ N_j N_k ν ds, the master node l −∫ N_j M_l ν ds
+//!   (the variation of g̃_j at fixed segmentation and normal).
+//!
+//! The laws act on ḡ_j along B_j with a pressure λ_j: the penalty λ_j = −ε ḡ_j (ε a penalty per
+//! unit area), the multipliers λ_j with ḡ_j = 0 while active. A uniform pressure p gives λ_j = p
+//! at every slave node, whose forces Σ_j λ_j B_j are then exactly the consistent nodal forces of p
+//! on both meshes (Σ_j N_j = 1): the patch test holds to round-off.
+//! In small deformation the segmentation, the normals and the weights are those of the reference
+//! configuration and only the gap follows the displacements (linear contact); in large
+//! deformation all of it is evaluated at the current state and differentiated.
+
+use super::dual::{self, Dual};
+use super::geometry::edges::EdgeSurface;
+use super::geometry::rigid;
+use super::law::{self, Laws, PointKinematics};
+use super::{ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState};
+use crate::error::{Error, Result};
+use crate::model::{ContactLaw, Model, Pairing, SegmentKind};
+
+/// Gauss points on [−1, 1] (3 points: the integrands of straight pairs are quadratic).
+const GAUSS: [(f64, f64); 3] = [
+    (-0.774_596_669_241_483_4, 5.0 / 9.0),
+    (0.0, 8.0 / 9.0),
+    (0.774_596_669_241_483_4, 5.0 / 9.0),
+];
+
+pub struct Mortar {
+    number: usize,
+    law: ContactLaw,
+    slave: EdgeSurface,
+    master: EdgeSurface,
+    /// Rigid segments of the master side (model segment indices).
+    rigid: Vec<usize>,
+    /// Slave nodes (the slots), and for each the slave edges it belongs to.
+    slots: Vec<(usize, Vec<usize>)>,
+    /// Large deformation: the geometry follows the current state.
+    nlgeo: bool,
+    /// Nodes the rigid segments move with.
+    rigid_nodes: Vec<usize>,
+}
+
+impl Mortar {
+    pub fn new(model: &Model, ci: usize) -> Result<Mortar> {
+        let c = &model.contacts[ci];
+        let Pairing::Mortar { slave, segments } = &c.pairing else {
+            unreachable!("a mortar condition")
+        };
+        let err = |msg: String| Error::Input {
+            span: c.span.clone(),
+            msg,
+        };
+        if c.friction.is_some() {
+            return Err(err(
+                "friction with mortar contact is not supported yet".into()
+            ));
+        }
+        if model.domain.nsd() != 2 {
+            return Err(err(
+                "mortar contact is implemented in 2D (element edges) only so far".into(),
+            ));
+        }
+        let slave = EdgeSurface::new(model, &[*slave]);
+        let master = EdgeSurface::new(model, segments);
+        if slave.edges.is_empty() {
+            return Err(err("the slave segment has no element edges".into()));
+        }
+        if slave
+            .edges
+            .iter()
+            .chain(&master.edges)
+            .any(|e| e.nodes.len() != 2)
+        {
+            return Err(err(
+                "mortar contact takes straight (2-node) edges only so far".into(),
+            ));
+        }
+        let rigid: Vec<usize> = segments
+            .iter()
+            .copied()
+            .filter(|&g| !matches!(model.segments[g].kind, SegmentKind::Edges { .. }))
+            .collect();
+        if rigid
+            .iter()
+            .any(|&g| matches!(model.segments[g].kind, SegmentKind::Faces { .. }))
+        {
+            return Err(err("mortar contact is 2D: no faces".into()));
+        }
+        let shared = slave
+            .edges
+            .iter()
+            .flat_map(|e| &e.nodes)
+            .any(|n| master.edges.iter().any(|m| m.nodes.contains(n)));
+        if shared {
+            return Err(err(
+                "the slave and master segments share nodes: a surface cannot contact itself".into(),
+            ));
+        }
+        let mut slots: Vec<(usize, Vec<usize>)> = Vec::new();
+        for (k, e) in slave.edges.iter().enumerate() {
+            for &n in &e.nodes {
+                match slots.iter_mut().find(|(m, _)| *m == n) {
+                    Some(s) => s.1.push(k),
+                    None => slots.push((n, vec![k])),
+                }
+            }
+        }
+        Ok(Mortar {
+            rigid_nodes: rigid.iter().filter_map(|&g| rigid_node(model, g)).collect(),
+            number: c.number,
+            law: c.law,
+            nlgeo: slave.edges.iter().any(|e| e.nlgeo),
+            slave,
+            master,
+            rigid,
+            slots,
+        })
+    }
+
+    /// Position of node `n`: current (`q`, a dual over the local unknowns) or, for the geometry
+    /// of small deformation, the reference one.
+    fn point(
+        &self,
+        ctx: &Ctx,
+        local: &Local,
+        q: &[dual::DVec],
+        n: usize,
+        geometry: bool,
+    ) -> [Dual; 2] {
+        let m = local.m();
+        if geometry && !self.nlgeo {
+            let c = ctx.model.nodes[n].coords;
+            [Dual::constant(c[0], m), Dual::constant(c[1], m)]
+        } else {
+            let v = q[local.index(n)];
+            [v[0], v[1]]
+        }
+    }
+
+    /// Master edges that can overlap slave edge `k` at the current state: those whose ends
+    /// project within it along its normal, that face it, and that lie within a reach of it.
+    fn overlapping(&self, ctx: &Ctx, k: usize) -> Result<Vec<usize>> {
+        let pos = |n: usize| -> Result<[f64; 2]> {
+            let x = if self.nlgeo {
+                ctx.position(n)?.0
+            } else {
+                ctx.model.nodes[n].coords
+            };
+            Ok([x[0], x[1]])
+        };
+        let e = &self.slave.edges[k];
+        let (a, b) = (pos(e.nodes[0])?, pos(e.nodes[1])?);
+        let t = [b[0] - a[0], b[1] - a[1]];
+        let l2 = t[0] * t[0] + t[1] * t[1];
+        let l = l2.sqrt();
+        // Outward normal of the slave body.
+        let n = [t[1] * e.side / l, -t[0] * e.side / l];
+        let mut out = Vec::new();
+        for (mi, me) in self.master.edges.iter().enumerate() {
+            let (ya, yb) = (pos(me.nodes[0])?, pos(me.nodes[1])?);
+            let xi = |y: [f64; 2]| ((y[0] - a[0]) * t[0] + (y[1] - a[1]) * t[1]) / l2;
+            let (lo, hi) = (xi(ya).min(xi(yb)).max(0.0), xi(ya).max(xi(yb)).min(1.0));
+            if hi - lo <= 1e-12 {
+                continue;
+            }
+            // The master's outward normal must face the slave's.
+            let tm = [yb[0] - ya[0], yb[1] - ya[1]];
+            let lm = (tm[0] * tm[0] + tm[1] * tm[1]).sqrt();
+            let nm = [tm[1] * me.side / lm, -tm[0] * me.side / lm];
+            if nm[0] * n[0] + nm[1] * n[1] >= 0.0 {
+                continue;
+            }
+            // Within reach: the master's middle no farther from the slave line than its length.
+            let mid = [0.5 * (ya[0] + yb[0]), 0.5 * (ya[1] + yb[1])];
+            let dist = ((mid[0] - a[0]) * n[0] + (mid[1] - a[1]) * n[1]).abs();
+            if dist > l.max(lm) {
+                continue;
+            }
+            out.push(mi);
+        }
+        Ok(out)
+    }
+}
+
+/// The gap at a slave parameter ξ, with the master nodes and their shape values there and the
+/// force direction ν.
+type GapAt<'a> = &'a dyn Fn(Dual) -> (Dual, Vec<(usize, Dual)>, [Dual; 2]);
+
+/// What one slave node's constraint integrates to.
+struct Weighted {
+    gap: Dual,
+    area: Dual,
+    b: Vec<Dual>,
+    partner: Partner,
+}
+
+impl Mortar {
+    /// The weighted gap of slot `j`, its support and force direction, over the local unknowns.
+    fn integrate(&self, ctx: &Ctx, j: usize) -> Result<(Local, Weighted)> {
+        let (node, edges) = &self.slots[j];
+        let mut local = Local::new(2);
+        local.add(ctx, *node)?;
+        for n in self.rigid.iter().filter_map(|&g| rigid_node(ctx.model, g)) {
+            local.add(ctx, n)?;
+        }
+        let mut pairs: Vec<(usize, Vec<usize>)> = Vec::new();
+        for &k in edges {
+            for &n in &self.slave.edges[k].nodes {
+                local.add(ctx, n)?;
+            }
+            let over = self.overlapping(ctx, k)?;
+            for &mi in &over {
+                for &n in &self.master.edges[mi].nodes {
+                    local.add(ctx, n)?;
+                }
+            }
+            pairs.push((k, over));
+        }
+        if local.m() > dual::MAXV {
+            return Err(Error::Solve(format!(
+                "mortar contact: slave node {} overlaps too many master edges ({} unknowns, at \
+                 most {})",
+                ctx.model.nodes[*node].label,
+                local.m(),
+                dual::MAXV
+            )));
+        }
+        let q = local.seed();
+        let m = local.m();
+        let zero = Dual::constant(0.0, m);
+        let mut w = Weighted {
+            gap: zero,
+            area: zero,
+            b: vec![zero; m],
+            partner: Partner::None,
+        };
+        for (k, over) in pairs {
+            let e = &self.slave.edges[k];
+            let first = e.nodes[0] == *node;
+            let geo = |n: usize| self.point(ctx, &local, &q, n, true);
+            let cur = |n: usize| self.point(ctx, &local, &q, n, false);
+            let (a, b) = (geo(e.nodes[0]), geo(e.nodes[1]));
+            let (ac, bc) = (cur(e.nodes[0]), cur(e.nodes[1]));
+            let t = [b[0] - a[0], b[1] - a[1]];
+            let l2 = t[0] * t[0] + t[1] * t[1];
+            let l = l2.sqrt();
+            // ν: into the slave body (the master's outward direction at the contact).
+            let nu = [-(t[1] * e.side) / l, t[0] * e.side / l];
+            let add = |w: &mut Weighted, lo: Dual, hi: Dual, gap_at: GapAt| {
+                let half = (hi - lo) * 0.5;
+                for &(z, wz) in &GAUSS {
+                    let xi = lo + half * (1.0 + z);
+                    let ds = half * l * wz;
+                    let nj = if first { -xi + 1.0 } else { xi };
+                    let (g, master, dir) = gap_at(xi);
+                    w.gap = w.gap + nj * g * ds;
+                    w.area = w.area + nj * ds;
+                    // Slave nodes: ∫ N_j N_k ν; master nodes: −∫ N_j M_l ν.
+                    for (kk, &n) in e.nodes.iter().enumerate() {
+                        let nk = if kk == 0 { -xi + 1.0 } else { xi };
+                        let i = local.index(n);
+                        for d in 0..2 {
+                            w.b[2 * i + d] = w.b[2 * i + d] + nj * nk * dir[d] * ds;
+                        }
+                    }
+                    for (n, ml) in master {
+                        let i = local.index(n);
+                        for d in 0..2 {
+                            w.b[2 * i + d] = w.b[2 * i + d] - nj * ml * dir[d] * ds;
+                        }
+                    }
+                }
+            };
+            for &mi in &over {
+                let me = &self.master.edges[mi];
+                let (ya, yb) = (geo(me.nodes[0]), geo(me.nodes[1]));
+                let (yac, ybc) = (cur(me.nodes[0]), cur(me.nodes[1]));
+                let proj = |y: [Dual; 2]| ((y[0] - a[0]) * t[0] + (y[1] - a[1]) * t[1]) / l2;
+                let (pa, pb) = (proj(ya), proj(yb));
+                let (mut lo, mut hi) = if pa.v < pb.v { (pa, pb) } else { (pb, pa) };
+                if lo.v < 0.0 {
+                    lo = zero;
+                }
+                if hi.v > 1.0 {
+                    hi = Dual::constant(1.0, m);
+                }
+                if hi.v - lo.v <= 1e-12 {
+                    continue;
+                }
+                if w.partner == Partner::None {
+                    w.partner = Partner::Edge(mi);
+                }
+                let tm = [yb[0] - ya[0], yb[1] - ya[1]];
+                add(&mut w, lo, hi, &|xi: Dual| {
+                    // η where x(ξ) + s ν crosses the master: (y(η) − x(ξ))·t = 0.
+                    let x = [a[0] + t[0] * xi, a[1] + t[1] * xi];
+                    let eta = ((x[0] - ya[0]) * t[0] + (x[1] - ya[1]) * t[1])
+                        / (tm[0] * t[0] + tm[1] * t[1]);
+                    let xc = [ac[0] + (bc[0] - ac[0]) * xi, ac[1] + (bc[1] - ac[1]) * xi];
+                    let yc = [
+                        yac[0] + (ybc[0] - yac[0]) * eta,
+                        yac[1] + (ybc[1] - yac[1]) * eta,
+                    ];
+                    let g = (xc[0] - yc[0]) * nu[0] + (xc[1] - yc[1]) * nu[1];
+                    (g, vec![(me.nodes[0], -eta + 1.0), (me.nodes[1], eta)], nu)
+                });
+            }
+            if !self.rigid.is_empty() {
+                let one = Dual::constant(1.0, m);
+                w.partner = Partner::Rigid(self.rigid[0]);
+                add(&mut w, zero, one, &|xi: Dual| {
+                    let xc = [ac[0] + (bc[0] - ac[0]) * xi, ac[1] + (bc[1] - ac[1]) * xi];
+                    let (g, n, node) = self.rigid_gap(ctx, &local, &q, &xc);
+                    // A rigid segment moving with a node: the node takes the reaction.
+                    let master = node.map(|n| vec![(n, Dual::constant(1.0, m))]);
+                    (g, master.unwrap_or_default(), [n[0], n[1]])
+                });
+            }
+        }
+        Ok((local, w))
+    }
+
+    /// The smallest gap of a point against the rigid segments, with their outward normal and the
+    /// node the segment moves with, if any.
+    fn rigid_gap(
+        &self,
+        ctx: &Ctx,
+        local: &Local,
+        q: &[dual::DVec],
+        x: &[Dual; 2],
+    ) -> (Dual, Vec<Dual>, Option<usize>) {
+        let m = x[0].n;
+        // A reference point moved with the segment's node.
+        let origin = |p: [f64; 3], node: Option<usize>| -> [Dual; 2] {
+            std::array::from_fn(|i| match node {
+                Some(n) => q[local.index(n)][i] + (p[i] - ctx.model.nodes[n].coords[i]),
+                None => Dual::constant(p[i], m),
+            })
+        };
+        let mut best: Option<(Dual, Vec<Dual>, Option<usize>)> = None;
+        for &g in &self.rigid {
+            let node = rigid_node(ctx.model, g);
+            let (gap, n) = match &ctx.model.segments[g].kind {
+                SegmentKind::Circle {
+                    center,
+                    radius,
+                    cavity,
+                    ..
+                } => rigid::circle(&x[..], &origin(*center, node), *radius, *cavity),
+                SegmentKind::Plane { point, normal, .. } => {
+                    rigid::plane(&x[..], &origin(*point, node), &normal[..2])
+                }
+                SegmentKind::Polynomial { coeffs, body_above } => {
+                    match rigid::project_on_poly(coeffs, [x[0].v, x[1].v]) {
+                        Some(t) => rigid::polynomial(coeffs, &x[..], t, *body_above),
+                        None => continue,
+                    }
+                }
+                _ => unreachable!("rigid segments only"),
+            };
+            if best.as_ref().is_none_or(|b| gap.v < b.0.v) {
+                best = Some((gap, n, node));
+            }
+        }
+        best.expect("a rigid segment")
+    }
+}
+
+/// The node a rigid segment moves with.
+fn rigid_node(model: &Model, g: usize) -> Option<usize> {
+    match &model.segments[g].kind {
+        SegmentKind::Circle { node, .. } | SegmentKind::Plane { node, .. } => *node,
+        _ => None,
+    }
+}
+
+impl Formulation for Mortar {
+    fn n_slots(&self) -> usize {
+        self.slots.len()
+    }
+
+    fn n_multipliers(&self) -> usize {
+        if self.law == ContactLaw::Multiplier {
+            self.slots.len()
+        } else {
+            0
+        }
+    }
+
+    fn nodes_needing_dofs(&self) -> Vec<usize> {
+        let mut out: Vec<usize> = self.slots.iter().map(|s| s.0).collect();
+        out.extend(self.rigid_nodes.iter().copied());
+        out
+    }
+
+    fn candidate_nodes(&self, _ctx: &Ctx) -> Result<Vec<usize>> {
+        let mut out: Vec<usize> = self.nodes_needing_dofs();
+        out.extend(
+            self.master
+                .edges
+                .iter()
+                .flat_map(|e| e.nodes.iter().copied()),
+        );
+        out.sort_unstable();
+        out.dedup();
+        Ok(out)
+    }
+
+    fn symmetric(&self) -> bool {
+        // B = ∇g̃ in small deformation; the tangent is then symmetric (material part only).
+        !self.nlgeo
+    }
+
+    fn partner_nodes(&self, partner: Partner) -> &[usize] {
+        match partner {
+            Partner::Edge(k) => &self.master.edges[k].nodes,
+            _ => &[],
+        }
+    }
+
+    fn evaluate(
+        &self,
+        ctx: &Ctx,
+        first_lambda: usize,
+        _search: Search,
+        _history: Option<&[SlotState]>,
+        points: &mut Vec<ContactPoint>,
+        states: &mut Vec<SlotState>,
+    ) -> Result<f64> {
+        for j in 0..self.slots.len() {
+            let (local, w) = self.integrate(ctx, j)?;
+            let m = local.m();
+            let node = self.slots[j].0;
+            let mut state = SlotState {
+                condition: self.number,
+                node,
+                partner: w.partner,
+                xi: [0.0; 2],
+                gap: f64::NAN,
+                force: 0.0,
+                pressure: 0.0,
+                active: false,
+                x: ctx.position(node)?.0,
+                weight: 1.0,
+                repeated: false,
+                friction: None,
+                anchor: None,
+            };
+            let has = w.area.v > 0.0;
+            let (gap, b) = if has {
+                (w.gap / w.area, w.b.clone())
+            } else {
+                (Dual::constant(f64::NAN, m), vec![Dual::constant(0.0, m); m])
+            };
+            let kin = PointKinematics::from_duals(
+                gap,
+                Dual::constant(if has { 1.0 } else { 0.0 }, m),
+                &b,
+                1.0,
+            );
+            // The multipliers' active-set rule compares a pressure with c·ḡ: c per unit length.
+            let laws = Laws {
+                c: ctx.laws.c / w.area.v.max(1e-300),
+                ..*ctx.laws
+            };
+            let mut codes = local.codes.clone();
+            let point = match self.law {
+                ContactLaw::Penalty(p) => law::penalty::evaluate(&laws, p, codes, &kin),
+                ContactLaw::Multiplier => {
+                    let eq = first_lambda + j;
+                    codes.push(eq);
+                    law::multiplier::evaluate(&laws, ctx.u[eq], codes, &kin)
+                }
+            };
+            if has {
+                state.gap = gap.v;
+                let penalty = match self.law {
+                    ContactLaw::Penalty(p) => p,
+                    ContactLaw::Multiplier => 0.0,
+                };
+                let lambda = law::normal_force(&point, &kin, penalty);
+                state.pressure = lambda;
+                state.force = lambda * w.area.v;
+                state.active = point.closed && (self.law == ContactLaw::Multiplier || gap.v < 0.0);
+            } else {
+                state.partner = Partner::None;
+            }
+            points.push(point);
+            states.push(state);
+        }
+        Ok(0.0)
+    }
+}
