@@ -25,6 +25,7 @@ use super::dual::{self, Dual};
 use super::geometry::edges::EdgeSurface;
 use super::geometry::rigid;
 use super::law::{self, Laws, PointKinematics};
+use super::search::broad::BroadPhase;
 use super::{ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState};
 use crate::error::{Error, Result};
 use crate::model::{ContactLaw, Model, Pairing, SegmentKind};
@@ -148,9 +149,27 @@ impl Mortar {
         }
     }
 
-    /// Master edges that can overlap slave edge `k` at the current state: those whose ends
-    /// project within it along its normal, that face it, and that lie within a reach of it.
-    fn overlapping(&self, ctx: &Ctx, k: usize) -> Result<Vec<usize>> {
+    /// The broad phase of the master edges at the state the geometry is taken from.
+    fn master_boxes(&self, ctx: &Ctx) -> Result<BroadPhase> {
+        let mut boxes = Vec::with_capacity(self.master.edges.len());
+        for e in &self.master.edges {
+            let mut pts = Vec::with_capacity(e.nodes.len());
+            for &n in &e.nodes {
+                pts.push(if self.nlgeo {
+                    ctx.position(n)?.0
+                } else {
+                    ctx.model.nodes[n].coords
+                });
+            }
+            boxes.push(pts);
+        }
+        Ok(BroadPhase::new(boxes.iter().map(|v| &v[..])))
+    }
+
+    /// Master edges that can overlap slave edge `k`: those whose ends project within it along
+    /// its normal, that face it, and that lie within a reach of it (among those whose boxes meet
+    /// the slave edge's, grown by its length).
+    fn overlapping(&self, ctx: &Ctx, boxes: &BroadPhase, k: usize) -> Result<Vec<usize>> {
         let pos = |n: usize| -> Result<[f64; 2]> {
             let x = if self.nlgeo {
                 ctx.position(n)?.0
@@ -167,7 +186,11 @@ impl Mortar {
         // Outward normal of the slave body.
         let n = [t[1] * e.side / l, -t[0] * e.side / l];
         let mut out = Vec::new();
-        for (mi, me) in self.master.edges.iter().enumerate() {
+        let grow = |v: f64, s: f64| v + s * l;
+        let lo = [grow(a[0].min(b[0]), -1.0), grow(a[1].min(b[1]), -1.0), -1.0];
+        let hi = [grow(a[0].max(b[0]), 1.0), grow(a[1].max(b[1]), 1.0), 1.0];
+        for mi in boxes.intersecting(lo, hi) {
+            let me = &self.master.edges[mi];
             let (ya, yb) = (pos(me.nodes[0])?, pos(me.nodes[1])?);
             let xi = |y: [f64; 2]| ((y[0] - a[0]) * t[0] + (y[1] - a[1]) * t[1]) / l2;
             let (lo, hi) = (xi(ya).min(xi(yb)).max(0.0), xi(ya).max(xi(yb)).min(1.0));
@@ -207,7 +230,7 @@ struct Weighted {
 
 impl Mortar {
     /// The weighted gap of slot `j`, its support and force direction, over the local unknowns.
-    fn integrate(&self, ctx: &Ctx, j: usize) -> Result<(Local, Weighted)> {
+    fn integrate(&self, ctx: &Ctx, boxes: &BroadPhase, j: usize) -> Result<(Local, Weighted)> {
         let (node, edges) = &self.slots[j];
         let mut local = Local::new(2);
         local.add(ctx, *node)?;
@@ -219,7 +242,7 @@ impl Mortar {
             for &n in &self.slave.edges[k].nodes {
                 local.add(ctx, n)?;
             }
-            let over = self.overlapping(ctx, k)?;
+            let over = self.overlapping(ctx, boxes, k)?;
             for &mi in &over {
                 for &n in &self.master.edges[mi].nodes {
                     local.add(ctx, n)?;
@@ -438,8 +461,11 @@ impl Formulation for Mortar {
         points: &mut Vec<ContactPoint>,
         states: &mut Vec<SlotState>,
     ) -> Result<f64> {
+        let start = std::time::Instant::now();
+        let boxes = self.master_boxes(ctx)?;
+        let searching = start.elapsed().as_secs_f64();
         for j in 0..self.slots.len() {
-            let (local, w) = self.integrate(ctx, j)?;
+            let (local, w) = self.integrate(ctx, &boxes, j)?;
             let m = local.m();
             let node = self.slots[j].0;
             let mut state = SlotState {
@@ -499,6 +525,6 @@ impl Formulation for Mortar {
             points.push(point);
             states.push(state);
         }
-        Ok(0.0)
+        Ok(searching)
     }
 }

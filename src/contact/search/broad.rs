@@ -53,6 +53,17 @@ impl BroadPhase {
         self.sizes.is_empty()
     }
 
+    /// The items whose boxes meet the box [lo, hi].
+    pub fn intersecting(&self, lo: [f64; 3], hi: [f64; 3]) -> Vec<usize> {
+        let mut out: Vec<usize> = self
+            .tree
+            .locate_in_envelope_intersecting(rstar::AABB::from_corners(lo, hi))
+            .map(|e| e.data)
+            .collect();
+        out.sort_unstable();
+        out
+    }
+
     /// Visit the items that can hold the contact point of a node at `xs` with reach `reach`, in
     /// order of box distance: `visit(k)` projects on item k and returns the |gap| of an inside
     /// candidate, if it found one.
