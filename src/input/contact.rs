@@ -448,6 +448,8 @@ pub fn resolve(
             friction: c.friction,
             pairing,
             normal: c.normal,
+            node_weights: None,
+            tributary_ramp: true,
             span: c.span,
         });
     }

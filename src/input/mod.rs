@@ -4,5 +4,6 @@ pub mod contact;
 pub mod lexer;
 pub mod reader;
 pub mod record;
+pub mod upstream;
 
 pub use reader::{read_model, ReadResult};

@@ -80,6 +80,7 @@ enum Block {
     Node,
     Element,
     Segment,
+    ContactSurface,
     CrossSection,
     Material,
     Condition,
@@ -108,13 +109,20 @@ impl Block {
     fn of(kw: &str) -> Option<Block> {
         Some(match kw {
             "node" | "slavenode" => Block::Node,
-            "simplecs" => Block::CrossSection,
+            "simplecs" | "dummycs" => Block::CrossSection,
+            "structuralfecontactsurface" => Block::ContactSurface,
+            "dummymat" => Block::Material,
             "set" => Block::Set,
-            _ if ElementType::from_keyword(kw).is_some() => Block::Element,
+            _ if ElementType::from_keyword(kw).is_some()
+                || super::upstream::CONTACT_ELEMENTS.iter().any(|c| c.0 == kw) =>
+            {
+                Block::Element
+            }
             _ if super::contact::SEGMENTS.contains(&kw) => Block::Segment,
             _ if MATERIAL_KEYWORDS.contains(&kw) => Block::Material,
             _ if LOAD_KEYWORDS.contains(&kw)
-                || super::contact::CONDITION_KEYWORDS.contains(&kw) =>
+                || super::contact::CONDITION_KEYWORDS.contains(&kw)
+                || kw == "structuralpenaltycontactbc" =>
             {
                 Block::Condition
             }
@@ -128,6 +136,7 @@ impl Block {
             Block::Node => "node",
             Block::Element => "element",
             Block::Segment => "contact segment",
+            Block::ContactSurface => "contact surface",
             Block::CrossSection => "cross-section",
             Block::Material => "material",
             Block::Condition => "boundary-condition",
@@ -141,6 +150,7 @@ impl Block {
             Block::Node => "ndofman",
             Block::Element => "nelem",
             Block::Segment => "ncontactseg",
+            Block::ContactSurface => "ncontactsurf",
             Block::CrossSection => "ncrosssect",
             Block::Material => "nmat",
             Block::Condition => "nbc",
@@ -322,6 +332,7 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
     let nltf = r.usize("nltf")?;
     let nset = r.opt_usize("nset")?.unwrap_or(0);
     let ncontactseg = r.opt_usize("ncontactseg")?.unwrap_or(0);
+    let ncontactsurf = r.opt_usize("ncontactsurf")?.unwrap_or(0);
     let left = c.lines.len() - c.pos;
     for (k, v) in [
         ("ndofman", ndofman),
@@ -333,6 +344,7 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
         ("nltf", nltf),
         ("nset", nset),
         ("ncontactseg", ncontactseg),
+        ("ncontactsurf", ncontactsurf),
     ] {
         if v > left {
             return Err(r.error(format!(
@@ -340,14 +352,7 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
             )));
         }
     }
-    for k in [
-        "nsd",
-        "nbarrier",
-        "nxfemman",
-        "ncontactman",
-        "nfracman",
-        "ncontactsurf",
-    ] {
+    for k in ["nsd", "nbarrier", "nxfemman", "ncontactman", "nfracman"] {
         if r.opt_usize(k)?.unwrap_or(0) > 0 && k != "nsd" {
             return Err(r.error(format!("`{k}` > 0 is not supported by hertz")));
         }
@@ -450,9 +455,24 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
     let mut elem_index: HashMap<usize, usize> = HashMap::new();
     let mut elem_cs: Vec<Option<usize>> = Vec::with_capacity(nelem);
     let mut elem_mat: Vec<Option<usize>> = Vec::with_capacity(nelem);
+    let mut contact_elements: Vec<super::upstream::ContactElement> = Vec::new();
+    let mut contact_index: HashMap<usize, usize> = HashMap::new();
     for i in 0..nelem {
         let r = c.next_of(Block::Element, i, nelem)?;
         let kw = r.keyword().to_string();
+        if kw.starts_with("structuralcontactelement_") {
+            let ce = super::upstream::read_contact_element(&r, &node_index, domain.nsd())?;
+            if elem_index.contains_key(&ce.label)
+                || contact_index
+                    .insert(ce.label, contact_elements.len())
+                    .is_some()
+            {
+                return Err(r.error(format!("element label {} is used twice", ce.label)));
+            }
+            contact_elements.push(ce);
+            c.finish(&r);
+            continue;
+        }
         let Some(etype) = ElementType::from_keyword(&kw) else {
             let names: Vec<&str> = ElementType::ALL.iter().map(|(_, t)| t.name()).collect();
             return Err(r.error(format!(
@@ -515,7 +535,8 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
         r.flag("reducedshearint");
         elem_cs.push(r.opt_usize("crosssect")?);
         elem_mat.push(r.opt_usize("mat")?);
-        if elem_index.insert(label, i).is_some() {
+        if contact_index.contains_key(&label) || elem_index.insert(label, elements.len()).is_some()
+        {
             return Err(r.error(format!("element label {label} is used twice")));
         }
         elements.push(Element {
@@ -536,6 +557,7 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
         nodes: &node_index,
         elements: &elem_index,
         element_list: &elements,
+        contact_elements: &contact_index,
     };
     let mut sets: Option<Vec<Set>> = None;
     if nset > 0 && c.peek_keyword().as_deref() == Some("set") {
@@ -551,12 +573,38 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
         c.finish(&r);
     }
     let pending_segments = pending_segments.finish();
+    let mut surfaces = Numbered::new("contact surface", ncontactsurf);
+    for i in 0..ncontactsurf {
+        let r = c.next_of(Block::ContactSurface, i, ncontactsurf)?;
+        surfaces.put(&r, super::upstream::read_surface(&r, nset)?)?;
+        c.finish(&r);
+    }
+    let surfaces = surfaces.finish();
+    let mut pending_penalty_bcs = Vec::new();
     let mut pending_contacts = Vec::new();
 
     // Cross sections.
     let mut cs = Numbered::new("cross section", ncs);
     for i in 0..ncs {
         let r = c.next_of(Block::CrossSection, i, ncs)?;
+        if r.keyword() == "dummycs" {
+            // Upstream OOFEM's cross section of contact elements: only its material is read.
+            let material = Some(r.usize("mat")?);
+            check_ref(&r, "mat", material, nmat)?;
+            let set = r.opt_usize("set")?.filter(|&s| s > 0);
+            check_ref(&r, "set", set, nset)?;
+            cs.put(
+                &r,
+                CrossSection {
+                    thick: None,
+                    area: 0.0,
+                    material,
+                    set,
+                },
+            )?;
+            c.finish(&r);
+            continue;
+        }
         if r.keyword() != "simplecs" {
             return Err(r.error(format!(
                 "expected cross-section record {} of {ncs} (SimpleCS), found `{}`",
@@ -602,7 +650,15 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
     let mut mats = Numbered::new("material", nmat);
     for i in 0..nmat {
         let r = c.next_of(Block::Material, i, nmat)?;
-        let m = read_material(&r)?;
+        let m = if r.keyword() == "dummymat" {
+            Material {
+                density: 0.0,
+                talpha: 0.0,
+                law: MaterialLaw::Dummy,
+            }
+        } else {
+            read_material(&r)?
+        };
         mats.put(&r, m)?;
         c.finish(&r);
     }
@@ -725,6 +781,19 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
                 });
                 bcs.put(&r, None)?;
             }
+            "structuralpenaltycontactbc" => {
+                if analysis.kind == AnalysisKind::LinearStatic {
+                    return Err(r.error(
+                        "contact needs NonLinearStatic or StaticStructural, not LinearStatic",
+                    ));
+                }
+                pending_penalty_bcs.push(super::upstream::read_penalty_bc(
+                    &r,
+                    domain.nsd(),
+                    ncontactsurf,
+                )?);
+                bcs.put(&r, None)?;
+            }
             k if super::contact::CONDITION_KEYWORDS.contains(&k) => {
                 if analysis.kind == AnalysisKind::LinearStatic {
                     return Err(r.error(
@@ -840,6 +909,12 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
                 e.label
             )));
         }
+        if matches!(materials[mat - 1].law, MaterialLaw::Dummy) {
+            return Err(span_err(format!(
+                "element {} has material {mat}, a DummyMat (for contact elements only)",
+                e.label
+            )));
+        }
         if e.etype.mode() == StressMode::PlaneStress && csr.thick.is_none() {
             return Err(span_err(format!(
                 "element {} is a plane-stress element but cross section {csn} has no `thick`",
@@ -885,8 +960,18 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
     }
 
     check_geometry(&elements_ref_nodes(&nodes), &model_elements)?;
-    let (segments, contacts) =
+    let (mut segments, mut contacts) =
         super::contact::resolve(pending_segments, pending_contacts, &sets, &model_elements)?;
+    let (upstream_segments, upstream_contacts) = super::upstream::resolve(
+        pending_penalty_bcs,
+        &surfaces,
+        &sets,
+        &contact_elements,
+        &model_elements,
+        segments.len(),
+    )?;
+    segments.extend(upstream_segments);
+    contacts.extend(upstream_contacts);
     let model = Model {
         input_path: path.to_path_buf(),
         output_name,
@@ -1075,6 +1160,8 @@ struct Refs<'a> {
     nodes: &'a HashMap<usize, usize>,
     elements: &'a HashMap<usize, usize>,
     element_list: &'a [Element],
+    /// Upstream OOFEM contact elements by label (indices into their own list).
+    contact_elements: &'a HashMap<usize, usize>,
 }
 
 fn read_sets(c: &mut Cursor, nset: usize, refs: &Refs) -> Result<Vec<Set>> {
@@ -1138,10 +1225,20 @@ fn read_sets(c: &mut Cursor, nset: usize, refs: &Refs) -> Result<Vec<Set>> {
             .into_iter()
             .map(node)
             .collect::<Result<_>>()?;
-        let mut elements: Vec<usize> = r
-            .opt_int_array("elements")?
-            .unwrap_or_default()
+        // Contact elements (upstream OOFEM) are listed apart from the bulk elements.
+        let listed = r.opt_int_array("elements")?.unwrap_or_default();
+        let contact_elements: Vec<usize> = listed
+            .iter()
+            .filter_map(|&l| {
+                (l > 0)
+                    .then(|| refs.contact_elements.get(&(l as usize)))
+                    .flatten()
+            })
+            .copied()
+            .collect();
+        let mut elements: Vec<usize> = listed
             .into_iter()
+            .filter(|&l| !(l > 0 && refs.contact_elements.contains_key(&(l as usize))))
             .map(elem)
             .collect::<Result<_>>()?;
         for e in r
@@ -1206,6 +1303,7 @@ fn read_sets(c: &mut Cursor, nset: usize, refs: &Refs) -> Result<Vec<Set>> {
                 boundaries,
                 edges,
                 surfaces,
+                contact_elements,
             },
         )?;
         c.finish(&r);

@@ -81,5 +81,12 @@ pub struct ContactCondition {
     /// Prescribed unit normal (N2N: instead of the initial master-to-slave direction; N2S:
     /// instead of the segment normal).
     pub normal: Option<[f64; 3]>,
+    /// Per contact node, the factor of the penalties (node-to-segment; upstream OOFEM's contact
+    /// BC counts a node once per slave element); None: 1.
+    pub node_weights: Option<Vec<f64>>,
+    /// Past an open boundary of the master, a node's force fades over its tributary extent (the
+    /// default), or within 1 % of the boundary edge (upstream OOFEM input, whose slave points must
+    /// project onto the master).
+    pub tributary_ramp: bool,
     pub span: Span,
 }

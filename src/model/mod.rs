@@ -305,6 +305,9 @@ pub enum MaterialLaw {
     LinearElastic { young: f64, poisson: f64 },
     /// `mooneyrivlincompressiblemat`, `ogdencompressiblemat`, `simopistermat`.
     Hyperelastic(crate::material::Hyperelastic),
+    /// Upstream OOFEM's `DummyMat` of contact elements: no mechanical law (a bulk element with
+    /// it is an input error).
+    Dummy,
 }
 
 impl Material {
@@ -316,6 +319,7 @@ impl Material {
                 let (g, k) = h.moduli();
                 9.0 * k * g / (3.0 * k + g)
             }
+            MaterialLaw::Dummy => 0.0,
         }
     }
 
@@ -327,6 +331,7 @@ impl Material {
                 let (g, k) = h.moduli();
                 (3.0 * k - 2.0 * g) / (2.0 * (3.0 * k + g))
             }
+            MaterialLaw::Dummy => 0.0,
         }
     }
 }
@@ -379,6 +384,8 @@ pub struct Set {
     pub boundaries: Vec<(usize, usize)>,
     pub edges: Vec<(usize, usize)>,
     pub surfaces: Vec<(usize, usize)>,
+    /// Upstream OOFEM contact elements listed in `elements` (indices into the model's).
+    pub contact_elements: Vec<usize>,
 }
 
 /// The whole problem.

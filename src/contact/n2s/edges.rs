@@ -222,7 +222,7 @@ impl NodeToSegment {
         let area = crate::contact::law_area(slot.area, ctx.model);
         let mut kin = PointKinematics::from_duals(gap, weight, &b, area);
         let mut next = None;
-        if let Some(law) = self.friction {
+        if let Some(law) = slot.friction(self.friction) {
             let xs3 = [xs[0], xs[1], Dual::constant(0.0, m)];
             // Anchor: its material point on its edge; none yet: the contact point (no force).
             let xa3 = match anchor_edge {
@@ -254,7 +254,7 @@ impl NodeToSegment {
             // Open points get it too: the closed branch the solver may predict for them is then
             // the continuation of the closed point's (see `friction`).
             if let Some(xa3) = xa3 {
-                let ContactLaw::Penalty(p) = self.law else {
+                let ContactLaw::Penalty(p) = slot.law(self.law) else {
                     unreachable!("friction with the penalty law only")
                 };
                 let pn = -(weight * gap * p);

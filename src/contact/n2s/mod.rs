@@ -54,6 +54,26 @@ struct Slot {
     /// Half the distance to the farthest neighbour: how far past an open boundary the node can
     /// still meet the master.
     reach: f64,
+    /// Factor of the penalties at this node (upstream OOFEM input: its number of slave elements).
+    scale: f64,
+}
+
+impl Slot {
+    /// The condition's law at this node.
+    fn law(&self, law: ContactLaw) -> ContactLaw {
+        match law {
+            ContactLaw::Penalty(p) => ContactLaw::Penalty(p * self.scale),
+            l => l,
+        }
+    }
+
+    /// The condition's friction at this node.
+    fn friction(&self, friction: Option<Friction>) -> Option<Friction> {
+        friction.map(|f| Friction {
+            penalty: f.penalty * self.scale,
+            ..f
+        })
+    }
 }
 
 pub struct NodeToSegment {
@@ -175,10 +195,14 @@ impl NodeToSegment {
         let slots = nodes
             .iter()
             .zip(tribs)
-            .map(|(&node, t)| {
+            .enumerate()
+            .map(|(k, (&node, t))| {
                 let x = model.nodes[node].coords;
-                let neighbors: Vec<[f64; 3]> =
-                    t.neighbors.iter().map(|&m| model.nodes[m].coords).collect();
+                let neighbors: Vec<[f64; 3]> = if c.tributary_ramp {
+                    t.neighbors.iter().map(|&m| model.nodes[m].coords).collect()
+                } else {
+                    Vec::new()
+                };
                 let reach = neighbors
                     .iter()
                     .map(|y| 0.5 * (0..3).map(|i| (y[i] - x[i]).powi(2)).sum::<f64>().sqrt())
@@ -188,6 +212,7 @@ impl NodeToSegment {
                     area: t.measure,
                     neighbors,
                     reach,
+                    scale: c.node_weights.as_ref().map_or(1.0, |w| w[k]),
                 }
             })
             .collect();
@@ -485,7 +510,13 @@ impl Formulation for NodeToSegment {
                 state.weight = kin.weight.v;
             }
             points.push(apply_law(
-                ctx, self.law, lambda_eq, &local, &kin, slot.area, &mut state,
+                ctx,
+                slot.law(self.law),
+                lambda_eq,
+                &local,
+                &kin,
+                slot.area,
+                &mut state,
             ));
             states.push(state);
         }

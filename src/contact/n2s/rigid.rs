@@ -177,7 +177,7 @@ impl NodeToSegment {
         let area = crate::contact::law_area(slot.area, model);
         let mut kin = PointKinematics::from_duals(gap, Dual::constant(1.0, m), &b, area);
         let mut next = None;
-        if let Some(law) = self.friction {
+        if let Some(law) = slot.friction(self.friction) {
             // Anchors are points in the frame of their segment: its origin moved with its node.
             let origin = |g: usize, q: &[crate::contact::dual::DVec]| -> DVec {
                 let (n, p) = Self::rigid_frame(model, g);
@@ -211,7 +211,7 @@ impl NodeToSegment {
                 };
                 let o = origin(g, &q);
                 let xa3: DVec = std::array::from_fn(|i| o[i] + offset[i]);
-                let ContactLaw::Penalty(p) = self.law else {
+                let ContactLaw::Penalty(p) = slot.law(self.law) else {
                     unreachable!("friction with the penalty law only")
                 };
                 let pn = -(gap * p);

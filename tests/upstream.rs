@@ -1,0 +1,95 @@
+//! Today's upstream OOFEM contact input (contact elements, StructuralFEContactSurface,
+//! StructuralPenaltyContactBC with pn, pt, friction), read and solved: the reference inputs of
+//! `../shared/spec/oofem-upstream-contact.md` §5 (tests/data/upstream), against the figures the
+//! upstream binary gives where it is right.
+
+mod common;
+
+use hertz::solve::{run_analysis, SolveParams};
+use std::path::Path;
+
+fn data(name: &str) -> String {
+    std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/data/upstream")
+            .join(name),
+    )
+    .unwrap()
+}
+
+/// Per step: the summed reactions of the boundary conditions `bcs` (DOF 1, 2, 3), the contact
+/// nodes' summed normal and friction forces, and the iterations.
+fn solve(text: &str, bcs: &[usize]) -> Vec<([f64; 3], f64, f64, usize)> {
+    let model = common::model_from_text(text).unwrap();
+    let mut out = Vec::new();
+    run_analysis(
+        &model,
+        &SolveParams {
+            log_steps: false,
+            ..Default::default()
+        },
+        |r| {
+            let mut reaction = [0.0; 3];
+            for (&(_, d, b), &f) in r.dofs.prescribed.iter().zip(r.reactions) {
+                if bcs.contains(&model.dirichlet[b].number) {
+                    reaction[d as usize - 1] += f;
+                }
+            }
+            let normal: f64 = r.contact.iter().map(|s| s.force).sum();
+            let friction: f64 = r
+                .contact
+                .iter()
+                .filter_map(|s| s.friction)
+                .map(|f| f.1)
+                .sum();
+            out.push((reaction, normal, friction, r.info.iterations));
+            Ok(())
+        },
+    )
+    .unwrap();
+    out
+}
+
+/// §5.2: a brick pressed 0.02 onto a base (Ogden, two-pass, frictionless): the top's reaction is
+/// upstream's −137.09, in 3 iterations per step.
+#[test]
+fn upstream_3d_brick_on_base_gives_upstreams_reaction() {
+    let steps = solve(&data("two3d.in"), &[2]);
+    let rz = steps[1].0[2];
+    println!(
+        "3D: sum Rz(top) {rz:.4} (upstream -137.09), iterations {:?}",
+        steps.iter().map(|s| s.3).collect::<Vec<_>>()
+    );
+    assert!((rz + 137.09).abs() < 0.005, "{rz}");
+    assert!(steps.iter().all(|s| s.3 <= 4));
+}
+
+/// §5.1: a block pressed onto a base then slid (Mooney–Rivlin, two-pass, μ = 0.3): in steps 2–4
+/// every slave point slides, the friction is exactly μ times the normal force, and the top's
+/// reactions have the ratio upstream finds, 0.300 (the base's top surface turns a little under
+/// the load, so the reactions' ratio is μ to 3 digits). The master's node order does not matter
+/// (upstream finds no contact at all when the base's contact element lists its nodes clockwise).
+#[test]
+fn upstream_2d_block_slides_at_mu() {
+    let forward = data("two2d.in");
+    let reversed = forward.replace(
+        "StructuralContactElement_LineLin 3 nodes 2 3 4",
+        "StructuralContactElement_LineLin 3 nodes 2 4 3",
+    );
+    assert_ne!(forward, reversed);
+    let runs = [solve(&forward, &[2, 3]), solve(&reversed, &[2, 3])];
+    for (k, s) in runs[0].iter().enumerate().skip(1) {
+        let (r, normal, friction, its) = *s;
+        let ratio = r[0].abs() / r[1].abs();
+        println!(
+            "2D step {}: Rx/Ry {ratio:.5}, friction/normal {:.12}, {its} iterations",
+            k + 1,
+            friction / normal
+        );
+        assert!((ratio - 0.3).abs() < 5e-4, "{ratio}");
+        assert!((friction / normal - 0.3).abs() < 1e-10);
+        assert!(its <= 5);
+        let other = runs[1][k];
+        assert!((other.0[0] - r[0]).abs() < 1e-9 * r[0].abs(), "node order");
+    }
+}
