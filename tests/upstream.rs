@@ -93,3 +93,45 @@ fn upstream_2d_block_slides_at_mu() {
         assert!((other.0[0] - r[0]).abs() < 1e-9 * r[0].abs(), "node order");
     }
 }
+
+/// Upstream's own test `tests/sm/contact2d.in` (a block pressed down an incline, Mooney–Rivlin,
+/// two-pass, pn = 1e8): every displacement its check rules give, to their tolerance 1e-6. (Its
+/// last two rule pairs name node 4 but hold nodes 5 and 6: the values are those of the block's
+/// bottom corners, as hertz's and upstream's `.out` show.)
+#[test]
+fn upstream_contact2d_test_gives_its_checked_displacements() {
+    let model = common::model_from_text(&data("contact2d.in")).unwrap();
+    let expected = [
+        (3, [2.10680587e-01, -1.76686565e-02]),
+        (4, [1.03015750e-01, 4.44336000e-03]),
+        (5, [-1.60418808e-01, -2.39980173e-01]),
+        (6, [-6.69405872e-02, -2.51299903e-01]),
+    ];
+    let mut worst = f64::NAN;
+    let mut iterations = Vec::new();
+    run_analysis(
+        &model,
+        &SolveParams {
+            log_steps: false,
+            ..Default::default()
+        },
+        |r| {
+            iterations.push(r.info.iterations);
+            if r.step == 5 {
+                worst = 0.0;
+                for (label, u) in expected {
+                    let n = model.nodes.iter().position(|x| x.label == label).unwrap();
+                    for d in 0..2 {
+                        let got = r.displacement(n, d as u8 + 1).unwrap();
+                        worst = worst.max((got - u[d]).abs());
+                    }
+                }
+            }
+            Ok(())
+        },
+    )
+    .unwrap();
+    println!("contact2d: worst difference {worst:.2e}, iterations {iterations:?}");
+    assert!(worst < 1e-6, "{worst}");
+    assert!(iterations.iter().all(|&i| i <= 6), "{iterations:?}");
+}

@@ -478,6 +478,8 @@ impl ContactSystem {
         if by_node.len() < 2 {
             return;
         }
+        let position: std::collections::HashMap<usize, [f64; 3]> =
+            states.iter().map(|s| (s.node, s.x)).collect();
         let dist = |a: &[f64; 3], b: &[f64; 3]| {
             ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
         };
@@ -496,14 +498,18 @@ impl ContactSystem {
                     if fj <= fi || !back.contains(&states[i].node) {
                         continue;
                     }
-                    // b's nearest neighbour on its own surface (a's partner nodes other than b).
+                    // b's nearest neighbour on its own surface (a's partner nodes other than b,
+                    // wherever they are: with or without a partner of their own).
                     let xb = states[j].x;
                     let spacing = partner
                         .iter()
                         .filter(|&&n| n != b)
-                        .filter_map(|&n| by_node.get(&n).map(|v| states[v[0]].x))
-                        .map(|x| dist(&x, &xb))
+                        .filter_map(|&n| position.get(&n))
+                        .map(|x| dist(x, &xb))
                         .fold(f64::INFINITY, f64::min);
+                    if !spacing.is_finite() {
+                        continue;
+                    }
                     let before = was_repeated(i) || was_repeated(j);
                     let limit = if before { 1.0 / 3.0 } else { 0.25 };
                     let d = dist(&states[i].x, &xb);
