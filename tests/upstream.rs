@@ -121,9 +121,8 @@ fn upstream_contact2d_test_gives_its_checked_displacements() {
                 worst = 0.0;
                 for (label, u) in expected {
                     let n = model.nodes.iter().position(|x| x.label == label).unwrap();
-                    for d in 0..2 {
-                        let got = r.displacement(n, d as u8 + 1).unwrap();
-                        worst = worst.max((got - u[d]).abs());
+                    for (d, want) in (1u8..).zip(u) {
+                        worst = worst.max((r.displacement(n, d).unwrap() - want).abs());
                     }
                 }
             }
