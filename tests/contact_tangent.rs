@@ -194,6 +194,43 @@ fn n2s_tangents_are_jacobians_of_residuals_on_straight_and_quadratic_edges() {
     }
 }
 
+/// A frictional case: the history is the state at u = 0, the tangent checked at the displaced
+/// state, where the point must stick or slip as `stick` says.
+fn check_friction(name: String, text: String, disp: Vec<(usize, [f64; 3])>, stick: bool) {
+    let model = common::model_from_text(&text).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let mut contact = ContactSystem::new(&model).unwrap();
+    let dofs = hertz::solve::number_dofs(&model).unwrap();
+    contact.set_pressure_limit(f64::INFINITY);
+    let u0 = vec![0.0; dofs.n_primary()];
+    let history = contact
+        .evaluate(&model, &dofs, &u0, Search::Fresh)
+        .unwrap()
+        .1;
+    assert!(
+        history.iter().all(|s| s.anchor.is_some()),
+        "{name}: anchors"
+    );
+    let case = Case {
+        name: name.clone(),
+        text,
+        disp,
+        lambda: 0.0,
+        active: 1,
+    };
+    let u = displaced(&model, &dofs, &case);
+    let (err, states, checked) = fd_error_with_history(&model, &contact, &dofs, &u, Some(&history));
+    let closed = states
+        .iter()
+        .find(|s| s.active)
+        .unwrap_or_else(|| panic!("{name}: a closed point"));
+    let (s, force) = closed
+        .friction
+        .unwrap_or_else(|| panic!("{name}: friction"));
+    assert_eq!(s, stick, "{name}: stick");
+    assert!(force > 0.0, "{name}: friction force");
+    assert!(checked > 0 && err < 1e-6, "{name}: tangent off by {err:e}");
+}
+
 /// The frictional tangent (unsymmetric: stick, and slip with the force along the slip) is the
 /// Jacobian of the residual, against straight and quadratic edges in small and large
 /// deformation and against rigid segments (fixed and moving with a node). The history is the
@@ -201,37 +238,7 @@ fn n2s_tangents_are_jacobians_of_residuals_on_straight_and_quadratic_edges() {
 /// slid along the master and pressed into it (μ = 5: stick, μ = 0.05: slip).
 #[test]
 fn friction_tangents_are_jacobians_of_residuals_in_stick_and_slip() {
-    let run = |name: String, text: String, disp: Vec<(usize, [f64; 3])>, stick: bool| {
-        let model = common::model_from_text(&text).unwrap_or_else(|e| panic!("{name}: {e}"));
-        let mut contact = ContactSystem::new(&model).unwrap();
-        let dofs = hertz::solve::number_dofs(&model).unwrap();
-        contact.set_pressure_limit(f64::INFINITY);
-        let u0 = vec![0.0; dofs.n_primary()];
-        let history = contact
-            .evaluate(&model, &dofs, &u0, Search::Fresh)
-            .unwrap()
-            .1;
-        assert!(
-            history.iter().all(|s| s.anchor.is_some()),
-            "{name}: anchors"
-        );
-        let case = Case {
-            name: name.clone(),
-            text,
-            disp,
-            lambda: 0.0,
-            active: 1,
-        };
-        let u = displaced(&model, &dofs, &case);
-        let (err, states, checked) =
-            fd_error_with_history(&model, &contact, &dofs, &u, Some(&history));
-        let (s, force) = states[0]
-            .friction
-            .unwrap_or_else(|| panic!("{name}: friction"));
-        assert_eq!(s, stick, "{name}: stick");
-        assert!(force > 0.0, "{name}: friction force");
-        assert!(checked > 0 && err < 1e-6, "{name}: tangent off by {err:e}");
-    };
+    let run = check_friction;
     for (mu, stick) in [(5.0, true), (0.05, false)] {
         let law = format!("{PEN} friction {mu}");
         for kind in ["q4", "q8"] {
@@ -260,6 +267,37 @@ fn friction_tangents_are_jacobians_of_residuals_in_stick_and_slip() {
                 disp.push((900, [0.01, 0.03, 0.0]));
             }
             run(format!("{seg}-mu{mu}"), text, disp, stick);
+        }
+    }
+}
+
+/// Friction against faces (hexahedra, tetrahedra, wedges; small and large deformation): stick
+/// and slip, the anchor where the node first met the surface, in the middle of a face and where
+/// the node moves to the neighbouring face (the anchor's corners are unknowns too).
+#[test]
+fn friction_tangents_against_faces_are_jacobians_of_residuals() {
+    for (mu, stick) in [(5.0, true), (0.05, false)] {
+        let law = format!("n2spenaltycontact 1 loadTimeFunction 1 penalty 1000 friction {mu}");
+        for kind in [Solid::Hex, Solid::Tet, Solid::Wedge] {
+            for nlgeo in [0u8, 1] {
+                for (name, pos, ds) in [
+                    ("mid-face", [0.3, 0.4, 1.1], [0.05, -0.03, -0.2]),
+                    ("vertex", [0.97, 0.98, 1.1], [0.06, 0.05, -0.15]),
+                ] {
+                    let (text, node) = face_input(kind, 0, nlgeo, pos, &law);
+                    let disp = vec![
+                        (node, ds),
+                        (14, [0.01, -0.02, 0.03]),
+                        (10, [0.0, 0.01, -0.02]),
+                    ];
+                    check_friction(
+                        format!("{name}-{kind:?}-nlgeo{nlgeo}-mu{mu}"),
+                        text,
+                        disp,
+                        stick,
+                    );
+                }
+            }
         }
     }
 }

@@ -134,3 +134,24 @@ fn upstream_contact2d_test_gives_its_checked_displacements() {
     assert!(worst < 1e-6, "{worst}");
     assert!(iterations.iter().all(|&i| i <= 6), "{iterations:?}");
 }
+
+/// §5.2 with μ = 0.3 and the top then slid by 0.1 over three steps (upstream diverges to NaN in
+/// the first frictional step, QUIRK 5): every slave point slides with friction exactly μ times
+/// its normal force, the top's reactions in the ratio μ to within the base's tilt under the
+/// brick (2 %: the friction drags the soft base's face, whose normal tilts), in at most 6
+/// iterations per step.
+#[test]
+fn upstream_3d_brick_slides_with_friction() {
+    let steps = solve(&data("two3d_friction.in"), &[2, 6]);
+    for (k, &(r, normal, friction, its)) in steps.iter().enumerate().skip(1) {
+        let ratio = r[0].abs() / r[2].abs();
+        println!(
+            "3D slide step {}: Rx/Rz {ratio:.4}, friction/normal {:.12}, {its} iterations",
+            k + 1,
+            friction / normal
+        );
+        assert!((friction / normal - 0.3).abs() < 1e-10);
+        assert!((ratio - 0.3).abs() < 0.3 * 0.02, "{ratio}");
+        assert!(its <= 6, "{its}");
+    }
+}

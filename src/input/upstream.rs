@@ -230,12 +230,6 @@ pub fn resolve(
             boundaries.push(*found);
         }
         let faces = elements[boundaries[0].0].etype.shape().dim() == 3;
-        if faces && bc.mu > 0.0 {
-            return Err(err(
-                &bc.span,
-                "friction against element faces (3D) is not supported yet".into(),
-            ));
-        }
         let seg = first_segment + segments.len();
         segments.push(ContactSegment {
             number: seg + 1,

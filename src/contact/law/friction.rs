@@ -14,13 +14,13 @@
 //! contact point), and its residual contribution (the internal force) is its negative.
 
 use crate::contact::dual::{DVec, Dual};
-use crate::contact::Local;
 use crate::model::Friction;
 
 /// The tangential part of a contact point.
 pub struct Tangential {
-    /// Residual contribution over the local unknowns (the internal force).
-    pub residual: Vec<Dual>,
+    /// The internal force on the node (the friction force on it is its negative); distributed
+    /// like the normal force, it is the point's residual contribution.
+    pub vector: DVec,
     /// Stick (else slip).
     pub stick: bool,
     /// Magnitude of the friction force.
@@ -39,17 +39,10 @@ pub struct FrictionPoint {
     pub dim: usize,
 }
 
-/// The friction of a closed contact point, its force distributed by `coeffs` (local node,
-/// coefficient) as the normal force is.
-pub fn evaluate(
-    law: Friction,
-    local: &Local,
-    coeffs: &[(usize, Dual)],
-    point: &FrictionPoint,
-) -> Tangential {
+/// The friction of a closed contact point.
+pub fn evaluate(law: Friction, point: &FrictionPoint) -> Tangential {
     let FrictionPoint { xs, xa, n, pn, dim } = *point;
-    let m = local.m();
-    let zero = Dual::constant(0.0, m);
+    let zero = Dual::constant(0.0, xs[0].n);
     let d: Vec<Dual> = (0..dim).map(|i| xs[i] - xa[i]).collect();
     let dn = (0..dim).fold(zero, |acc, i| acc + d[i] * n[i]);
     let mut gt = [zero; 3];
@@ -86,7 +79,7 @@ pub fn evaluate(
     }
     let force = (0..dim).map(|i| f[i].v * f[i].v).sum::<f64>().sqrt();
     Tangential {
-        residual: local.distribute(coeffs, &f),
+        vector: f,
         stick,
         force,
         next_anchor,

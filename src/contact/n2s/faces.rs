@@ -13,11 +13,11 @@ use super::{extents, ramp, Current, NodeToSegment, Slot, HYSTERESIS_BAND, INSIDE
 use crate::contact::dual::{self, Dual, Jet};
 use crate::contact::geometry::faces::{edge_excess, FaceGeometry, NodalNormal};
 use crate::contact::geometry::scalar::Scalar;
-use crate::contact::law::PointKinematics;
+use crate::contact::law::{friction, FrictionKinematics, PointKinematics};
 use crate::contact::search::Candidate;
-use crate::contact::{Ctx, Local, Partner};
+use crate::contact::{Anchor, Ctx, Local, Partner};
 use crate::error::Result;
-use crate::model::Model;
+use crate::model::{ContactLaw, Model};
 
 impl NodeToSegment {
     /// Whether the nodal normals of face `k` follow the deformation (large deformation, no
@@ -128,7 +128,8 @@ impl NodeToSegment {
         })
     }
 
-    /// Kinematics against face `k` with the contact point converged at `xi0`.
+    /// Kinematics against face `k` with the contact point converged at `xi0`, with the friction
+    /// of a node anchored at `anchor` (the next anchor is returned).
     pub(super) fn face_kinematics(
         &self,
         ctx: &Ctx,
@@ -136,7 +137,8 @@ impl NodeToSegment {
         k: usize,
         xi0: [f64; 2],
         cur: &Current,
-    ) -> Result<(Local, PointKinematics)> {
+        anchor: Option<&Anchor>,
+    ) -> Result<(Local, PointKinematics, Option<Anchor>)> {
         let face = &self.faces.faces[k];
         let nc = face.nodes.len();
         let moving = self.moving_normals(k);
@@ -144,6 +146,19 @@ impl NodeToSegment {
         local.add(ctx, slot.node)?;
         for &n in &face.nodes {
             local.add(ctx, n)?;
+        }
+        // The anchor's face moves the anchor: its corners are unknowns of the pair too.
+        let friction_law = slot.friction(self.friction);
+        let anchor_face = anchor
+            .filter(|_| friction_law.is_some())
+            .and_then(|a| match a.partner {
+                Partner::Face(ka) => Some((ka, a.xi)),
+                _ => None,
+            });
+        if let Some((ka, _)) = anchor_face {
+            for &n in &self.faces.faces[ka].nodes {
+                local.add(ctx, n)?;
+            }
         }
         let normals: Vec<&NodalNormal> = if moving {
             face.nodes.iter().map(|a| &cur.normals[a]).collect()
@@ -159,10 +174,35 @@ impl NodeToSegment {
         // Dual variables z: the node and corner positions (the first local unknowns), then the
         // corners' nodal normals when they move.
         let npos = 3 * (1 + nc);
-        let nz = npos + if moving { 3 * nc } else { 0 };
+        // Anchor corners that are not corners of face k get variables of their own.
+        let extra: Vec<usize> = anchor_face
+            .map(|(ka, _)| {
+                self.faces.faces[ka]
+                    .nodes
+                    .iter()
+                    .copied()
+                    .filter(|n| !face.nodes.contains(n))
+                    .collect()
+            })
+            .unwrap_or_default();
+        let nanchor = extra.len();
+        let nz = npos + if moving { 3 * nc } else { 0 } + 3 * nanchor;
+        if nz > dual::MAXV {
+            return Err(crate::error::Error::Solve(format!(
+                "contact node {} with friction: {nz} variables for one pair, at most {}",
+                ctx.model.nodes[slot.node].label,
+                dual::MAXV
+            )));
+        }
         let mut zvals = local.values()[..npos].to_vec();
         for nn in &normals {
             zvals.extend_from_slice(&nn.n);
+        }
+        // Then the anchor face's other corners.
+        let zanchor = zvals.len();
+        for &n in &extra {
+            let i = 3 * local.index(n);
+            zvals.extend_from_slice(&local.values()[i..i + 3]);
         }
         let z = dual::seed(&zvals, nz);
         let v3 = |i: usize| [z[3 * i], z[3 * i + 1], z[3 * i + 2]];
@@ -208,19 +248,95 @@ impl NodeToSegment {
                 dz.push(row);
             }
         }
+        for &n in &extra {
+            let base = 3 * local.index(n);
+            dz.extend((0..3).map(|j| vec![(base + j, 1.0)]));
+        }
         let chain = |x: &Dual| Jet::chain(x, &dz, m);
         let mut bj: Vec<Jet> = b.iter().map(chain).collect();
         bj.resize(m, Jet::constant(0.0, m));
-        Ok((
-            local,
-            PointKinematics {
-                gap: chain(&gap),
-                weight: chain(&weight),
-                b: bj,
-                area: crate::contact::law_area(slot.area, ctx.model),
-                friction: None,
-            },
-        ))
+        let mut kin = PointKinematics {
+            gap: chain(&gap),
+            weight: chain(&weight),
+            b: bj,
+            area: crate::contact::law_area(slot.area, ctx.model),
+            friction: None,
+        };
+        let mut next = None;
+        if let Some(law) = friction_law {
+            let at_point = Anchor {
+                partner: Partner::Face(k),
+                xi: [xi.v, eta.v],
+                offset: [0.0; 3],
+            };
+            next = Some(at_point);
+            if let Some((ka, xia)) = anchor_face {
+                let fa = &self.faces.faces[ka];
+                // A corner's variables: those of face k's corner, or its own.
+                let ya: Vec<[Dual; 3]> = fa
+                    .nodes
+                    .iter()
+                    .map(|n| match face.nodes.iter().position(|m| m == n) {
+                        Some(a) => v3(1 + a),
+                        None => {
+                            let e = extra.iter().position(|m| m == n).expect("an extra corner");
+                            std::array::from_fn(|i| z[zanchor + 3 * e + i])
+                        }
+                    })
+                    .collect();
+                let ga = FaceGeometry {
+                    kind: fa.kind,
+                    n: ya.clone(),
+                    x: ya,
+                };
+                let ca = ga.coefficients(Dual::constant(xia[0], nz), Dual::constant(xia[1], nz));
+                let mut xa = [Dual::constant(0.0, nz); 3];
+                for (a, y) in ga.x.iter().enumerate() {
+                    for i in 0..3 {
+                        xa[i] = xa[i] + ca[a] * y[i];
+                    }
+                }
+                let ContactLaw::Penalty(p) = slot.law(self.law) else {
+                    unreachable!("friction with the penalty law only")
+                };
+                let pn = -(weight * gap * p);
+                let t = friction::evaluate(
+                    law,
+                    &friction::FrictionPoint {
+                        xs,
+                        xa,
+                        n: dir,
+                        pn,
+                        dim: 3,
+                    },
+                );
+                // Distributed like the normal force: the node, and −c_a on the face's corners.
+                let mut r: Vec<Dual> = t.vector.to_vec();
+                for ca in c.iter().take(nc) {
+                    r.extend(t.vector.iter().map(|&d| -(*ca * d)));
+                }
+                let mut residual: Vec<Jet> = r.iter().map(chain).collect();
+                residual.resize(m, Jet::constant(0.0, m));
+                next = Some(if gap.v > 0.0 {
+                    at_point
+                } else if t.stick {
+                    *anchor.expect("an anchor")
+                } else {
+                    self.face_geometry_f64(k, cur)
+                        .project(t.next_anchor)
+                        .map_or(at_point, |(a, b)| Anchor {
+                            xi: [a, b],
+                            ..at_point
+                        })
+                });
+                kin.friction = Some(FrictionKinematics {
+                    residual,
+                    stick: t.stick,
+                    force: t.force,
+                });
+            }
+        }
+        Ok((local, kin, next))
     }
 }
 

@@ -184,13 +184,7 @@ impl NodeToSegment {
             }
         }
         edges::check_support(model, &edges)?;
-        if c.friction.is_some() && !faces.faces.is_empty() {
-            return Err(err(
-                "friction against element faces (3D) is not supported yet: against edges (2D) \
-                 and rigid segments only"
-                    .into(),
-            ));
-        }
+
         let tribs = super::tributary::tributaries(model, nodes);
         let slots = nodes
             .iter()
@@ -475,8 +469,7 @@ impl Formulation for NodeToSegment {
                     let (local, kin, next) = match c.partner {
                         Partner::Edge(e) => self.edge_kinematics(ctx, slot, e, c.xi[0], anchor)?,
                         Partner::Face(f) => {
-                            let (l, k) = self.face_kinematics(ctx, slot, f, c.xi, &cur)?;
-                            (l, k, None)
+                            self.face_kinematics(ctx, slot, f, c.xi, &cur, anchor)?
                         }
                         Partner::Rigid(seg) => {
                             self.rigid_kinematics(ctx, slot, seg, c.xi[0], anchor)?

@@ -217,8 +217,6 @@ impl NodeToSegment {
                 let pn = -(gap * p);
                 let t = friction::evaluate(
                     law,
-                    &local,
-                    &coeffs,
                     &friction::FrictionPoint {
                         xs: xs3,
                         xa: xa3,
@@ -238,7 +236,11 @@ impl NodeToSegment {
                     }
                 });
                 kin.friction = Some(FrictionKinematics {
-                    residual: t.residual.iter().map(|&v| v.into()).collect(),
+                    residual: local
+                        .distribute(&coeffs, &t.vector)
+                        .iter()
+                        .map(|&v| v.into())
+                        .collect(),
                     stick: t.stick,
                     force: t.force,
                 });
