@@ -50,6 +50,8 @@ pub struct Mortar {
     nlgeo: bool,
     /// Nodes the rigid segments move with.
     rigid_nodes: Vec<usize>,
+    /// Per slot, the factor of the penalty (from the mesh when the condition gives none).
+    scale: Vec<f64>,
 }
 
 impl Mortar {
@@ -117,7 +119,34 @@ impl Mortar {
                 }
             }
         }
+        // Without a penalty: ε_j = factor·E/h, E of the stiffest element at the node, h the mean
+        // length of its slave edges (a pressure per unit of penetration).
+        let scale = slots
+            .iter()
+            .map(|(n, edges)| {
+                if !c.penalty_from_mesh {
+                    return 1.0;
+                }
+                let e = model
+                    .elements
+                    .iter()
+                    .filter(|el| el.nodes.contains(n))
+                    .map(|el| model.materials[el.material].young())
+                    .fold(0.0, f64::max);
+                let h = edges
+                    .iter()
+                    .map(|&k| {
+                        let (a, b) = (slave.edges[k].nodes[0], slave.edges[k].nodes[1]);
+                        let (x, y) = (model.nodes[a].coords, model.nodes[b].coords);
+                        (0..3).map(|i| (y[i] - x[i]).powi(2)).sum::<f64>().sqrt()
+                    })
+                    .sum::<f64>()
+                    / edges.len() as f64;
+                super::n2s::DEFAULT_PENALTY_FACTOR * e / h
+            })
+            .collect();
         Ok(Mortar {
+            scale,
             rigid_nodes: rigid.iter().filter_map(|&g| rigid_node(model, g)).collect(),
             number: c.number,
             law: c.law,
@@ -502,7 +531,9 @@ impl Formulation for Mortar {
             };
             let mut codes = local.codes.clone();
             let point = match self.law {
-                ContactLaw::Penalty(p) => law::penalty::evaluate(&laws, p, codes, &kin),
+                ContactLaw::Penalty(p) => {
+                    law::penalty::evaluate(&laws, p * self.scale[j], codes, &kin)
+                }
                 ContactLaw::Multiplier => {
                     let eq = first_lambda + j;
                     codes.push(eq);
@@ -512,7 +543,7 @@ impl Formulation for Mortar {
             if has {
                 state.gap = gap.v;
                 let penalty = match self.law {
-                    ContactLaw::Penalty(p) => p,
+                    ContactLaw::Penalty(p) => p * self.scale[j],
                     ContactLaw::Multiplier => 0.0,
                 };
                 let lambda = law::normal_force(&point, &kin, penalty);

@@ -41,6 +41,7 @@ pub struct PendingSegment {
 pub struct PendingCondition {
     number: usize,
     law: ContactLaw,
+    penalty_from_mesh: bool,
     friction: Option<Friction>,
     sets: Option<(usize, usize)>,
     nodes: Vec<usize>,
@@ -225,7 +226,13 @@ pub fn read_condition(
 ) -> Result<PendingCondition> {
     let kw = r.keyword().to_string();
     let number = r.number()?;
-    let law = if kw.contains("penalty") {
+    // Without `penalty` (hertz extension; node-to-segment and mortar) a penalty is chosen from
+    // the stiffness of the elements under each contact node (`DEFAULT_PENALTY_FACTOR`).
+    let penalty_from_mesh =
+        kw.contains("penalty") && !kw.starts_with("n2n") && r.opt_float("penalty")?.is_none();
+    let law = if penalty_from_mesh {
+        ContactLaw::Penalty(1.0)
+    } else if kw.contains("penalty") {
         let p = r.float("penalty")?;
         if !(p > 0.0) {
             return Err(r.error(format!("`penalty` must be positive, found {p}")));
@@ -237,6 +244,11 @@ pub fn read_condition(
     // The tangent is always the exact one; `usetangent` is accepted for compatibility.
     r.flag("usetangent");
     let friction = read_friction(r, &kw, law)?;
+    if penalty_from_mesh && r.opt_float("pt")?.is_some() {
+        return Err(r.error(
+            "`pt` without `penalty`: give both, or neither (both are then chosen from the mesh)",
+        ));
+    }
     let normal = match r.opt_float_array("normal")? {
         None => None,
         Some(v) if v.len() == nsd => {
@@ -254,6 +266,7 @@ pub fn read_condition(
     let mut c = PendingCondition {
         number,
         law,
+        penalty_from_mesh,
         friction,
         sets: None,
         nodes: vec![],
@@ -450,6 +463,7 @@ pub fn resolve(
             normal: c.normal,
             node_weights: None,
             tributary_ramp: true,
+            penalty_from_mesh: c.penalty_from_mesh,
             span: c.span,
         });
     }

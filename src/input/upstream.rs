@@ -268,6 +268,7 @@ pub fn resolve(
             normal: None,
             node_weights: Some(count),
             tributary_ramp: false,
+            penalty_from_mesh: false,
             span: bc.span,
         });
     }

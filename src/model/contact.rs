@@ -88,5 +88,8 @@ pub struct ContactCondition {
     /// default), or within 1 % of the boundary edge (upstream OOFEM input, whose slave points must
     /// project onto the master).
     pub tributary_ramp: bool,
+    /// No `penalty` given: each node's comes from the stiffness of the elements under it (the
+    /// law's penalty is then 1, times the node's weight).
+    pub penalty_from_mesh: bool,
     pub span: Span,
 }

@@ -45,6 +45,10 @@ const HYSTERESIS_BAND: f64 = 1e-6;
 /// Ramp length at an open boundary for a node without neighbours, as a fraction of the
 /// boundary's edge length.
 const ISOLATED_RAMP: f64 = 0.01;
+/// The penalty of a node when the condition gives none: this factor times the stiffness E·A/h
+/// of the elements under it (E their Young's modulus, A its tributary area, h the distance to
+/// its neighbours): 10⁻³ of the elements' own compliance, overlaps of 0.1 % of their strain.
+pub const DEFAULT_PENALTY_FACTOR: f64 = 1e3;
 
 struct Slot {
     node: usize,
@@ -186,6 +190,17 @@ impl NodeToSegment {
         edges::check_support(model, &edges)?;
 
         let tribs = super::tributary::tributaries(model, nodes);
+        // Young's modulus of the stiffest element at each node (for a penalty from the mesh).
+        let mut young: HashMap<usize, f64> = HashMap::new();
+        if c.penalty_from_mesh {
+            for el in &model.elements {
+                let e = model.materials[el.material].young();
+                for &n in &el.nodes {
+                    let v = young.entry(n).or_insert(0.0);
+                    *v = v.max(e);
+                }
+            }
+        }
         let slots = nodes
             .iter()
             .zip(tribs)
@@ -201,12 +216,29 @@ impl NodeToSegment {
                     .iter()
                     .map(|y| 0.5 * (0..3).map(|i| (y[i] - x[i]).powi(2)).sum::<f64>().sqrt())
                     .fold(0.0, f64::max);
+                let mut scale = c.node_weights.as_ref().map_or(1.0, |w| w[k]);
+                if c.penalty_from_mesh {
+                    let h = if t.neighbors.is_empty() {
+                        0.1 * super::model_size(model)
+                    } else {
+                        t.neighbors
+                            .iter()
+                            .map(|&m| {
+                                let y = model.nodes[m].coords;
+                                (0..3).map(|i| (y[i] - x[i]).powi(2)).sum::<f64>().sqrt()
+                            })
+                            .sum::<f64>()
+                            / t.neighbors.len() as f64
+                    };
+                    let e = young.get(&node).copied().unwrap_or(0.0);
+                    scale *= DEFAULT_PENALTY_FACTOR * e * super::law_area(t.measure, model) / h;
+                }
                 Slot {
                     node,
                     area: t.measure,
                     neighbors,
                     reach,
-                    scale: c.node_weights.as_ref().map_or(1.0, |w| w[k]),
+                    scale,
                 }
             })
             .collect();
