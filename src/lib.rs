@@ -19,7 +19,9 @@
 //! u_p = ū·f(t). The total-Lagrangian kernel uses F = I + ∂u/∂X, E = ½(FᵀF − I), S = D:E and
 //! F_int,a = ∫ F·S·∇N_a dV; its tangent adds the geometric term ∫ ∇N_a·S·∇N_b dV·I. Contact adds
 //! internal forces p·w·g·B (penalty) or λ·B with the constraint g = 0 (multipliers) per contact
-//! point, g the gap and B the force direction over the point's unknowns, with exact tangents.
+//! point, g the gap and B the force direction over the point's unknowns (for mortar contact g is
+//! a slave node's weighted mean gap), and on frictional penalty points the Coulomb return map of
+//! the elastic slip from an anchor, with exact (unsymmetric) tangents.
 //!
 //! # Example
 //! ```

@@ -5,8 +5,10 @@
 //! local contributions (one per contact point) for the assembler. Every formulation has the same
 //! inside: [`geometry`] (surfaces, projection, normals), [`search`] (which partner a node meets),
 //! kinematics in [`dual`] arithmetic (gap, weight, force direction and their derivatives) and a
-//! [`law`] (penalty or multiplier) that turns them into a residual and tangent.
-//! Formulations: [`n2n`] (node-to-node), [`n2s`] (node-to-segment).
+//! [`law`] (penalty or multiplier, and Coulomb friction on penalty points) that turns them into a
+//! residual and tangent. Formulations: [`n2n`] (node-to-node), [`n2s`] (node-to-segment),
+//! [`mortar`] (segment-to-segment, 2D). The friction history is the anchors of the converged
+//! contact states ([`Anchor`]): the solver restores them with the states when it cuts a step.
 //!
 //! OOFEM defects fixed here (spec §2.10): normals point out of the master body whatever the node
 //! order; the gap is measured to the contact point; the tangent is the exact derivative, including
