@@ -70,16 +70,26 @@ fn mortar_passes_the_contact_patch_test_on_non_matching_meshes() {
     }
 }
 
-/// Hertz with mortar contact (examples/hertz_mortar.in, multipliers): p0 and a within 1 % of the
+/// Hertz with mortar contact (multipliers), a rigid cylinder (examples/hertz_mortar.in) and an
+/// elastic one (examples/hertz_cylinder_mortar.in) on a block: p0 and a within 1 % of the
 /// closed form, the nodal pressures decreasing monotonically from the centre (no node-to-node
 /// oscillation) and within 2 % of p0 of the Hertz profile at every node inside 0.8 a. (a is the
 /// ellipse fitted to the nodes inside 0.8 a: a mortar pressure is a weighted average over the
 /// node's edges, so the rim's nodes straddle the edge of contact.)
 #[test]
 fn hertz_with_mortar_contact_meets_hertz() {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/hertz_mortar.in");
+    for (file, radius) in [("hertz_mortar.in", 0.0), ("hertz_cylinder_mortar.in", 20.0)] {
+        hertz_case(file, radius);
+    }
+}
+
+/// One Hertz example with mortar contact (see the test above); `radius` of an elastic cylinder.
+fn hertz_case(file: &str, radius: f64) {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("examples")
+        .join(file);
     let (model, states, residuals) = common::solve_contact(&path);
-    let c = hertz::analytic::compare_hertz(&model, &states, 0.0).unwrap();
+    let c = hertz::analytic::compare_hertz(&model, &states, radius).unwrap();
     let profile = hertz::analytic::pressure_profile(&model, &states);
     let inner: Vec<(f64, f64)> = profile
         .iter()
@@ -94,7 +104,7 @@ fn hertz_with_mortar_contact_meets_hertz() {
         .map(|&(x, p)| (p - c.p0_ref * (1.0 - (x / c.a_ref).powi(2)).sqrt()).abs() / c.p0_ref)
         .fold(0.0, f64::max);
     println!(
-        "mortar Hertz: F {:.4}, p0 {:+.2} %, a {:+.2} %, profile within {:.2} % of p0, {} iterations",
+        "{file}: F {:.4}, p0 {:+.2} %, a {:+.2} %, profile within {:.2} % of p0, {} iterations",
         c.force,
         100.0 * c.p0_error(),
         100.0 * a_error,

@@ -5,6 +5,7 @@
   flat_punch.in          rigid flat punch under a prescribed force (plane strain, N2S penalty)
   cattaneo_mindlin.in    elastic cylinder on an elastic block pressed, then sheared (friction)
   hertz_mortar.in        hertz_rigid_circle.in with mortar contact (multipliers)
+  hertz_cylinder_mortar.in  hertz_cylinder.in with mortar contact between the two bodies
 All but the last are half models (x >= 0) with symmetry conditions on x = 0. Meshes are structured and graded:
 a fine zone of spacing h near the contact, then geometric growth."""
 
@@ -182,6 +183,30 @@ Run:  cargo run --release --example hertz -- examples/hertz_cylinder.in
         "NonLinearStatic nsteps 1 controlmode 1 rtolf 1e-8 manrmsteps 1 maxiter 40",
     )
     write("examples/hertz_cylinder.in", lines)
+    # The same bodies with mortar contact: the cap's bottom edges with x <= 1.5 (edge 3 of its
+    # lowest elements) are the slave segment, the block's top edges the master; multipliers.
+    cap_bottom_elems = [col[0] for i, col in enumerate(ceids) if xc[i + 1] <= 1.5 + 1e-9]
+    comment_m = comment.replace(
+        "Node-to-segment penalty contact: cylinder nodes with x <= 1.5 against the block's top edges.",
+        "Mortar contact with multipliers: the cylinder's edges with x <= 1.5 (slave) against the\n"
+        "block's top edges (master), both meshed with h = 0.02 along x near the contact.",
+    ).replace("hertz_cylinder.in", "hertz_cylinder_mortar.in").replace(
+        "F is twice the sum of the reactions on the cap's top (half model).",
+        "F is twice the sum of the nodal contact forces (half model).\n"
+        "hertz: p0 and a within 1 % of Hertz (tests/mortar.rs).")
+    lines = header("hertz_cylinder_mortar.out",
+                   "Hertz: elastic cylinder on an elastic block, mortar contact (plane strain)", comment_m)
+    sets.append(f"Set 7 elementboundaries {2 * len(cap_bottom_elems)} " + " ".join(f"{e} 3" for e in cap_bottom_elems))
+    bcs[3] = "s2slagrangianmultipliercontact 4 loadTimeFunction 1 slavesegment 2 segmentset 1 1"
+    lines += common_records(
+        m,
+        ["SimpleCS 1 thick 1.0 material 1 set 1", "SimpleCS 2 thick 1.0 material 2 set 2"],
+        [f"IsoLE 1 d 0. E {E:g} n {NU:g} tAlpha 0.", f"IsoLE 2 d 0. E {E:g} n {NU:g} tAlpha 0."],
+        bcs, ["ConstantFunction 1 f(t) 1.0"], sets, 2,
+        ["linear2delementedgecontactsegment 1 edgeset 6", "linear2delementedgecontactsegment 2 edgeset 7"],
+        "NonLinearStatic nsteps 1 controlmode 1 rtolf 1e-8 manrmsteps 1 maxiter 40",
+    )
+    write("examples/hertz_cylinder_mortar.in", lines)
 
 
 def flat_punch():
