@@ -674,7 +674,8 @@ fn friction_continuation_of_an_open_point_is_jacobian_of_its_closed_branch() {
 /// The mortar tangent is the Jacobian of its residual, in small deformation (reference
 /// segmentation and normals, the gap following the nodes) and in large deformation (everything
 /// current: segmentation limits, normals, lengths), for penalty and multipliers, on non-matching
-/// meshes with both blocks displaced and sheared so that the overlaps move.
+/// meshes of straight and of curved quadratic edges, with both blocks displaced and sheared so
+/// that the overlaps move.
 #[test]
 fn mortar_tangents_are_jacobians_of_residuals() {
     for nlgeo in [0u8, 1] {
@@ -705,6 +706,27 @@ fn mortar_tangents_are_jacobians_of_residuals() {
                 disp,
                 lambda,
                 active: 3,
+            });
+            // Quadratic edges (3 and 2 elements of 8 nodes: the lower block's top row is nodes
+            // 23..29, the upper block is 30..50, its bottom row 30..34), the mid-side nodes
+            // moved off the chords so the edges curve.
+            let text = common::mortar_blocks_q8(3, 2, nlgeo, law);
+            let model = common::model_from_text(&text).unwrap();
+            let mut disp: Vec<(usize, [f64; 3])> = (30..=50)
+                .map(|n| {
+                    let y = model.nodes[n - 1].coords[1];
+                    (n, [0.013 + 0.02 * y, -0.01 + 0.003 * (n as f64).sin(), 0.0])
+                })
+                .collect();
+            disp.extend(
+                (23..=29).map(|n| (n, [0.004 * (n as f64).cos(), 0.002 * (n as f64).sin(), 0.0])),
+            );
+            check(&Case {
+                name: format!("mortar-q8-nlgeo{nlgeo}-{}", &law[..4]),
+                text,
+                disp,
+                lambda,
+                active: 5,
             });
         }
     }

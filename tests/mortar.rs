@@ -41,8 +41,8 @@ fn patch_errors(text: &str) -> (f64, f64) {
 }
 
 /// Mortar passes the patch test to round-off on non-matching meshes, with multipliers and with a
-/// penalty (uniform penetration P/ε), whichever side is finer; node-to-segment contact misses it
-/// by percent and does not improve with refinement.
+/// penalty (uniform penetration P/ε), whichever side is finer, on straight and quadratic edges;
+/// node-to-segment contact misses it by percent and does not improve with refinement.
 #[test]
 fn mortar_passes_the_contact_patch_test_on_non_matching_meshes() {
     for (n_low, n_up) in [(5, 3), (3, 5), (10, 7), (20, 13)] {
@@ -58,6 +58,20 @@ fn mortar_passes_the_contact_patch_test_on_non_matching_meshes() {
                 &law[..18]
             );
             assert!(s < 1e-10 && p < 1e-10, "{n_low}/{n_up} {law}: {s:e} {p:e}");
+        }
+        for law in [
+            "s2slagrangianmultipliercontact 4 loadTimeFunction 1 slavesegment 1 segmentset 1 2",
+            "s2spenaltycontact 4 loadTimeFunction 1 penalty 1e6 slavesegment 1 segmentset 1 2",
+        ] {
+            let (s, p) = patch_errors(&common::mortar_blocks_q8(n_low, n_up, 0, law));
+            println!(
+                "{n_low}/{n_up} quadratic {}: stress {s:.1e}, pressure {p:.1e}",
+                &law[..18]
+            );
+            assert!(
+                s < 1e-10 && p < 1e-10,
+                "quadratic {n_low}/{n_up} {law}: {s:e} {p:e}"
+            );
         }
         let (s, _) = patch_errors(&common::mortar_blocks(
             n_low,

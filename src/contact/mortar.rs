@@ -2,12 +2,13 @@
 //! sense along the slave surface, one constraint per slave node, so that a contact pressure is
 //! transferred between non-matching meshes exactly (the contact patch test).
 //!
-//! Glossary (one slave node j, straight slave edges):
-//! * ξ ∈ [0, 1] along a slave edge x(ξ) = (1 − ξ) x_a + ξ x_b, N_j(ξ) its hat function, L its
-//!   length, ν its unit normal pointing into the slave body (towards it from the master side);
+//! Glossary (one slave node j; straight or quadratic edges):
+//! * ξ ∈ [0, 1] along a slave edge x(ξ) = Σ N_k(ξ) x_k, N_j(ξ) the node's shape function, ν(ξ)
+//!   the unit normal pointing into the slave body (towards it from the master side);
 //! * segmentation: a master edge y(η) overlaps the slave edge on [ξ_lo, ξ_hi], the slave
-//!   parameters of its ends projected along ν (clipped to [0, 1]); a Gauss point ξ meets the
-//!   master where the line x(ξ) + t ν crosses it, at η(ξ);
+//!   parameters of its ends' closest points (clipped to [0, 1]); a Gauss point ξ meets the
+//!   master where the line x(ξ) + t ν(ξ) crosses it, at η(ξ) (both by Newton, then one Newton
+//!   step in duals for the exact derivative);
 //! * gap g(ξ) = (x(ξ) − y(η(ξ)))·ν (< 0: penetration), against a rigid shape its signed distance;
 //! * weighted gap g̃_j = ∫ N_j g ds, D_j = ∫ N_j ds over the overlaps, ḡ_j = g̃_j / D_j;
 //! * force direction B_j: the slave node k gets ∫ N_j N_k ν ds, the master node l −∫ N_j M_l ν ds
@@ -22,7 +23,7 @@
 //! deformation all of it is evaluated at the current state and differentiated.
 
 use super::dual::{self, Dual};
-use super::geometry::edges::EdgeSurface;
+use super::geometry::edges::{shape, EdgeSurface};
 use super::geometry::rigid;
 use super::law::{self, Laws, PointKinematics};
 use super::search::broad::BroadPhase;
@@ -78,16 +79,6 @@ impl Mortar {
         let master = EdgeSurface::new(model, segments);
         if slave.edges.is_empty() {
             return Err(err("the slave segment has no element edges".into()));
-        }
-        if slave
-            .edges
-            .iter()
-            .chain(&master.edges)
-            .any(|e| e.nodes.len() != 2)
-        {
-            return Err(err(
-                "mortar contact takes straight (2-node) edges only so far".into(),
-            ));
         }
         let rigid: Vec<usize> = segments
             .iter()
@@ -245,9 +236,58 @@ impl Mortar {
     }
 }
 
-/// The gap at a slave parameter ξ, with the master nodes and their shape values there and the
-/// force direction ν.
-type GapAt<'a> = &'a dyn Fn(Dual) -> (Dual, Vec<(usize, Dual)>, [Dual; 2]);
+/// The gap at a slave parameter ξ, with the master nodes and their shape values there, the force
+/// direction ν and ds/dξ.
+type GapAt<'a> = &'a dyn Fn(Dual) -> (Dual, Vec<(usize, Dual)>, [Dual; 2], Dual);
+
+/// Gauss points for quadratic pairs (the integrands are rational there: 5 points).
+const GAUSS5: [(f64, f64); 5] = [
+    (-0.906_179_845_938_664, 0.236_926_885_056_189_1),
+    (-0.538_469_310_105_683, 0.478_628_670_499_366_5),
+    (0.0, 0.568_888_888_888_888_9),
+    (0.538_469_310_105_683, 0.478_628_670_499_366_5),
+    (0.906_179_845_938_664, 0.236_926_885_056_189_1),
+];
+
+/// Point, tangent and second derivative of an edge through `x` (ends first, then the middle of a
+/// quadratic one) at s ∈ [0, 1].
+fn curve(x: &[[Dual; 2]], s: Dual) -> ([Dual; 2], [Dual; 2], [Dual; 2]) {
+    let (n, dn) = shape(x.len(), s);
+    // d²N/ds² of the quadratic edge (η = 2s − 1): 4·(1, 1, −2).
+    let d2 = [4.0, 4.0, -8.0];
+    let zero = s * 0.0;
+    let (mut p, mut t, mut t2) = ([zero; 2], [zero; 2], [zero; 2]);
+    for a in 0..x.len() {
+        for i in 0..2 {
+            p[i] = p[i] + n[a] * x[a][i];
+            t[i] = t[i] + dn[a] * x[a][i];
+            if x.len() == 3 {
+                t2[i] = t2[i] + x[a][i] * d2[a];
+            }
+        }
+    }
+    (p, t, t2)
+}
+
+/// The root of f(s) = 0 near `s0` (f returns f and df/ds), by Newton on the values, then one
+/// Newton step in duals from the root: its derivative with respect to the unknowns is exact.
+fn solve(s0: f64, m: usize, f: impl Fn(Dual) -> (Dual, Dual)) -> Dual {
+    let mut s = s0;
+    for _ in 0..30 {
+        let (v, d) = f(Dual::constant(s, m));
+        if !(d.v.abs() > 1e-300) {
+            break;
+        }
+        let step = v.v / d.v;
+        s -= step;
+        if step.abs() < 1e-15 * (1.0 + s.abs()) {
+            break;
+        }
+    }
+    let c = Dual::constant(s, m);
+    let (v, d) = f(c);
+    c - v / d
+}
 
 /// What one slave node's constraint integrates to.
 struct Weighted {
@@ -299,31 +339,39 @@ impl Mortar {
         };
         for (k, over) in pairs {
             let e = &self.slave.edges[k];
-            let first = e.nodes[0] == *node;
+            let jloc = e
+                .nodes
+                .iter()
+                .position(|n| n == node)
+                .expect("the slot's node");
             let geo = |n: usize| self.point(ctx, &local, &q, n, true);
             let cur = |n: usize| self.point(ctx, &local, &q, n, false);
-            let (a, b) = (geo(e.nodes[0]), geo(e.nodes[1]));
-            let (ac, bc) = (cur(e.nodes[0]), cur(e.nodes[1]));
-            let t = [b[0] - a[0], b[1] - a[1]];
-            let l2 = t[0] * t[0] + t[1] * t[1];
-            let l = l2.sqrt();
-            // ν: into the slave body (the master's outward direction at the contact).
-            let nu = [-(t[1] * e.side) / l, t[0] * e.side / l];
+            let xg: Vec<[Dual; 2]> = e.nodes.iter().map(|&n| geo(n)).collect();
+            let xc: Vec<[Dual; 2]> = e.nodes.iter().map(|&n| cur(n)).collect();
+            let gauss: &[(f64, f64)] = if xg.len() == 3 { &GAUSS5 } else { &GAUSS };
+            // One Gauss point at ξ: the slave point (geometry and current), ν into the slave
+            // body, and ds/dξ.
+            let at = |xi: Dual| {
+                let (x, t, _) = curve(&xg, xi);
+                let jac = (t[0] * t[0] + t[1] * t[1]).sqrt();
+                let nu = [-(t[1] * e.side) / jac, t[0] * e.side / jac];
+                (x, t, nu, jac, curve(&xc, xi).0)
+            };
             let add = |w: &mut Weighted, lo: Dual, hi: Dual, gap_at: GapAt| {
                 let half = (hi - lo) * 0.5;
-                for &(z, wz) in &GAUSS {
+                for &(z, wz) in gauss {
                     let xi = lo + half * (1.0 + z);
-                    let ds = half * l * wz;
-                    let nj = if first { -xi + 1.0 } else { xi };
-                    let (g, master, dir) = gap_at(xi);
+                    let (shape_s, _) = shape(xg.len(), xi);
+                    let (g, master, dir, jac) = gap_at(xi);
+                    let ds = half * jac * wz;
+                    let nj = shape_s[jloc];
                     w.gap = w.gap + nj * g * ds;
                     w.area = w.area + nj * ds;
                     // Slave nodes: ∫ N_j N_k ν; master nodes: −∫ N_j M_l ν.
                     for (kk, &n) in e.nodes.iter().enumerate() {
-                        let nk = if kk == 0 { -xi + 1.0 } else { xi };
                         let i = local.index(n);
                         for d in 0..2 {
-                            w.b[2 * i + d] = w.b[2 * i + d] + nj * nk * dir[d] * ds;
+                            w.b[2 * i + d] = w.b[2 * i + d] + nj * shape_s[kk] * dir[d] * ds;
                         }
                     }
                     for (n, ml) in master {
@@ -336,10 +384,24 @@ impl Mortar {
             };
             for &mi in &over {
                 let me = &self.master.edges[mi];
-                let (ya, yb) = (geo(me.nodes[0]), geo(me.nodes[1]));
-                let (yac, ybc) = (cur(me.nodes[0]), cur(me.nodes[1]));
-                let proj = |y: [Dual; 2]| ((y[0] - a[0]) * t[0] + (y[1] - a[1]) * t[1]) / l2;
-                let (pa, pb) = (proj(ya), proj(yb));
+                let yg: Vec<[Dual; 2]> = me.nodes.iter().map(|&n| geo(n)).collect();
+                let yc: Vec<[Dual; 2]> = me.nodes.iter().map(|&n| cur(n)).collect();
+                // The master's ends projected on the slave edge: (y − x(ξ))·x'(ξ) = 0.
+                let project = |y: [Dual; 2]| {
+                    let chord = [xg[1][0] - xg[0][0], xg[1][1] - xg[0][1]];
+                    let s0 = ((y[0].v - xg[0][0].v) * chord[0].v
+                        + (y[1].v - xg[0][1].v) * chord[1].v)
+                        / (chord[0].v * chord[0].v + chord[1].v * chord[1].v);
+                    solve(s0, m, |s| {
+                        let (x, t, t2) = curve(&xg, s);
+                        let r = [y[0] - x[0], y[1] - x[1]];
+                        (
+                            r[0] * t[0] + r[1] * t[1],
+                            r[0] * t2[0] + r[1] * t2[1] - (t[0] * t[0] + t[1] * t[1]),
+                        )
+                    })
+                };
+                let (pa, pb) = (project(yg[0]), project(yg[1]));
                 let (mut lo, mut hi) = if pa.v < pb.v { (pa, pb) } else { (pb, pa) };
                 if lo.v < 0.0 {
                     lo = zero;
@@ -353,30 +415,37 @@ impl Mortar {
                 if w.partner == Partner::None {
                     w.partner = Partner::Edge(mi);
                 }
-                let tm = [yb[0] - ya[0], yb[1] - ya[1]];
                 add(&mut w, lo, hi, &|xi: Dual| {
-                    // η where x(ξ) + s ν crosses the master: (y(η) − x(ξ))·t = 0.
-                    let x = [a[0] + t[0] * xi, a[1] + t[1] * xi];
-                    let eta = ((x[0] - ya[0]) * t[0] + (x[1] - ya[1]) * t[1])
-                        / (tm[0] * t[0] + tm[1] * t[1]);
-                    let xc = [ac[0] + (bc[0] - ac[0]) * xi, ac[1] + (bc[1] - ac[1]) * xi];
-                    let yc = [
-                        yac[0] + (ybc[0] - yac[0]) * eta,
-                        yac[1] + (ybc[1] - yac[1]) * eta,
-                    ];
-                    let g = (xc[0] - yc[0]) * nu[0] + (xc[1] - yc[1]) * nu[1];
-                    (g, vec![(me.nodes[0], -eta + 1.0), (me.nodes[1], eta)], nu)
+                    let (x, t, nu, jac, xcur) = at(xi);
+                    // η where x(ξ) + s ν crosses the master: (y(η) − x(ξ))·x'(ξ) = 0.
+                    let eta = solve(0.5, m, |eta| {
+                        let (y, ty, _) = curve(&yg, eta);
+                        (
+                            (y[0] - x[0]) * t[0] + (y[1] - x[1]) * t[1],
+                            ty[0] * t[0] + ty[1] * t[1],
+                        )
+                    });
+                    let (ycur, _, _) = curve(&yc, eta);
+                    let g = (xcur[0] - ycur[0]) * nu[0] + (xcur[1] - ycur[1]) * nu[1];
+                    let (shape_m, _) = shape(yg.len(), eta);
+                    let master = me
+                        .nodes
+                        .iter()
+                        .zip(shape_m)
+                        .map(|(&n, ml)| (n, ml))
+                        .collect();
+                    (g, master, nu, jac)
                 });
             }
             if !self.rigid.is_empty() {
                 let one = Dual::constant(1.0, m);
                 w.partner = Partner::Rigid(self.rigid[0]);
                 add(&mut w, zero, one, &|xi: Dual| {
-                    let xc = [ac[0] + (bc[0] - ac[0]) * xi, ac[1] + (bc[1] - ac[1]) * xi];
-                    let (g, n, node) = self.rigid_gap(ctx, &local, &q, &xc);
+                    let (_, _, _, jac, xcur) = at(xi);
+                    let (g, n, node) = self.rigid_gap(ctx, &local, &q, &xcur);
                     // A rigid segment moving with a node: the node takes the reaction.
                     let master = node.map(|n| vec![(n, Dual::constant(1.0, m))]);
-                    (g, master.unwrap_or_default(), [n[0], n[1]])
+                    (g, master.unwrap_or_default(), [n[0], n[1]], jac)
                 });
             }
         }

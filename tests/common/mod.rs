@@ -355,3 +355,98 @@ pub fn mortar_blocks(n_low: usize, n_up: usize, nlgeo: u8, condition: &str) -> S
     )
     .replace("nset 6", "nset 7")
 }
+
+/// `mortar_blocks` in 8-node quadrilaterals (QPlaneStress2d): the contact edges are quadratic.
+pub fn mortar_blocks_q8(n_low: usize, n_up: usize, nlgeo: u8, condition: &str) -> String {
+    let mut nodes = Vec::new();
+    let mut elems = Vec::new();
+    let mut id = 0;
+    // Node ids on the half-spacing grid (none at element centres), rows j = 0..=4.
+    let mut grid = |nx: usize, y0: f64, nodes: &mut Vec<String>| -> Vec<Vec<usize>> {
+        (0..=4)
+            .map(|j| {
+                (0..=2 * nx)
+                    .map(|i| {
+                        if i % 2 == 1 && j % 2 == 1 {
+                            return 0;
+                        }
+                        id += 1;
+                        nodes.push(format!(
+                            "node {id} coords 2 {} {}",
+                            i as f64 / nx as f64,
+                            y0 + 0.25 * j as f64
+                        ));
+                        id
+                    })
+                    .collect()
+            })
+            .collect()
+    };
+    let low = grid(n_low, -1.0, &mut nodes);
+    let up = grid(n_up, 0.0, &mut nodes);
+    let quads = |g: &Vec<Vec<usize>>, elems: &mut Vec<String>| -> Vec<usize> {
+        let mut row = Vec::new();
+        for j in (0..4).step_by(2) {
+            for i in (0..g[0].len() - 1).step_by(2) {
+                let e = elems.len() + 1;
+                elems.push(format!(
+                    "QPlaneStress2d {e} nodes 8 {} {} {} {} {} {} {} {} crossSect 1 mat 1 nlgeo {nlgeo}",
+                    g[j][i],
+                    g[j][i + 2],
+                    g[j + 2][i + 2],
+                    g[j + 2][i],
+                    g[j][i + 1],
+                    g[j + 1][i + 2],
+                    g[j + 2][i + 1],
+                    g[j + 1][i]
+                ));
+                row.push(e);
+            }
+        }
+        row
+    };
+    let el_low = quads(&low, &mut elems);
+    let el_up = quads(&up, &mut elems);
+    let top_low: Vec<String> = el_low[n_low..].iter().map(|e| format!("{e} 3")).collect();
+    let bottom_up: Vec<String> = el_up[..n_up].iter().map(|e| format!("{e} 1")).collect();
+    let top_up: Vec<String> = el_up[n_up..].iter().map(|e| format!("{e} 3")).collect();
+    let left: Vec<usize> = low.iter().chain(&up).map(|r| r[0]).collect();
+    let contact: Vec<usize> = up[0].clone();
+    let join = |v: &[usize]| {
+        v.iter()
+            .map(|x| x.to_string())
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    format!(
+        "mortar_patch.out\npatch\nStaticStructural nsteps 1 rtolf 1e-12 maxiter 20\n\
+         domain 2dPlaneStress\nOutputManager\n\
+         ndofman {} nelem {} ncrosssect 1 nmat 1 nbc 4 nic 0 nltf 1 nset 7 ncontactseg 2\n\
+         {}\n{}\n\
+         linear2delementedgecontactsegment 1 edgeset 1\n\
+         linear2delementedgecontactsegment 2 edgeset 2\n\
+         SimpleCS 1 thick 1.0 material 1 set 3\nIsoLE 1 d 0 E 1000 n 0.3 tAlpha 0\n\
+         BoundaryCondition 1 loadTimeFunction 1 dofs 1 1 values 1 0 set 5\n\
+         BoundaryCondition 2 loadTimeFunction 1 dofs 1 2 values 1 0 set 6\n\
+         ConstantEdgeLoad 3 loadTimeFunction 1 dofs 2 1 2 components 2 0 -10 set 7\n\
+         {condition}\nConstantFunction 1 f(t) 1\n\
+         Set 1 elementboundaries {} {}\nSet 2 elementboundaries {} {}\nSet 3 allelements\n\
+         Set 4 nodes {} {}\nSet 5 nodes {} {}\nSet 6 nodes {} {}\nSet 7 elementedges {} {}\n",
+        nodes.len(),
+        elems.len(),
+        nodes.join("\n"),
+        elems.join("\n"),
+        2 * n_up,
+        bottom_up.join(" "),
+        2 * n_low,
+        top_low.join(" "),
+        contact.len(),
+        join(&contact),
+        left.len(),
+        join(&left),
+        low[0].len(),
+        join(&low[0]),
+        2 * n_up,
+        top_up.join(" "),
+    )
+}
