@@ -13,7 +13,8 @@
 //! The force is distributed like the normal force (the node, and −c_a on the master nodes at the
 //! contact point), and its residual contribution (the internal force) is its negative.
 
-use crate::contact::dual::{DVec, Dual};
+use super::FrictionKinematics;
+use crate::contact::dual::{DVec, Dual, Jet};
 use crate::model::Friction;
 
 /// The tangential part of a contact point.
@@ -28,6 +29,18 @@ pub struct Tangential {
     /// Where the anchor would be if the state were converged: unchanged in stick, dragged behind
     /// the node in slip (a spatial point, to be projected on the partner).
     pub next_anchor: [f64; 3],
+}
+
+impl Tangential {
+    /// The friction part of a point's kinematics, with its residual contribution over the local
+    /// unknowns.
+    pub fn kinematics(&self, residual: Vec<Jet>) -> FrictionKinematics {
+        FrictionKinematics {
+            residual,
+            stick: self.stick,
+            force: self.force,
+        }
+    }
 }
 
 /// A closed contact point as friction sees it (see the glossary).

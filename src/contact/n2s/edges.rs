@@ -6,11 +6,11 @@ use super::{
 use crate::contact::dual::{self, DVec, Dual};
 use crate::contact::geometry::edges::{edge_normal, EdgeGeometry, EdgeSurface};
 use crate::contact::geometry::scalar::Scalar;
-use crate::contact::law::{friction, FrictionKinematics, PointKinematics};
+use crate::contact::law::PointKinematics;
 use crate::contact::search::Candidate;
 use crate::contact::{Anchor, Ctx, Local, Partner};
 use crate::error::{Error, Result};
-use crate::model::{ContactLaw, Model};
+use crate::model::Model;
 
 /// The unknowns of a pair — the node and the edge's support (with the edges meeting it at its
 /// ends in large deformation, whose normals are averaged) — must fit the duals.
@@ -251,49 +251,28 @@ impl NodeToSegment {
                 offset: [0.0; 3],
             };
             next = Some(at_point);
-            // Open points get it too: the closed branch the solver may predict for them is then
-            // the continuation of the closed point's (see `friction`).
-            if let Some(xa3) = xa3 {
-                let ContactLaw::Penalty(p) = slot.law(self.law) else {
-                    unreachable!("friction with the penalty law only")
-                };
-                let pn = -(weight * gap * p);
-                let t = friction::evaluate(
-                    law,
-                    &friction::FrictionPoint {
-                        xs: xs3,
-                        xa: xa3,
-                        n: dir,
-                        pn,
-                        dim: 2,
-                    },
-                );
+            if let (Some(xa3), Some(anchor)) = (xa3, anchor) {
                 let geom_f = EdgeGeometry {
                     n: geom.n.iter().map(|v| [v[0].v, v[1].v]).collect(),
                     x: geom.x.iter().map(|v| [v[0].v, v[1].v]).collect(),
                     open: geom.open,
                 };
-                next = Some(if gap.v > 0.0 {
-                    at_point
-                } else if t.stick {
-                    *anchor.expect("an anchor")
-                } else {
-                    geom_f
-                        .project([t.next_anchor[0], t.next_anchor[1]])
-                        .map_or(at_point, |sa| Anchor {
+                let (t, after) = self.point_friction(
+                    slot,
+                    law,
+                    [xs3, xa3, dir],
+                    (gap, weight),
+                    (anchor, at_point),
+                    |p| {
+                        geom_f.project([p[0], p[1]]).map_or(at_point, |sa| Anchor {
                             xi: [sa, 0.0],
                             ..at_point
                         })
-                });
-                kin.friction = Some(FrictionKinematics {
-                    residual: local
-                        .distribute(&coeffs, &t.vector)
-                        .iter()
-                        .map(|&v| v.into())
-                        .collect(),
-                    stick: t.stick,
-                    force: t.force,
-                });
+                    },
+                );
+                next = Some(after);
+                let residual = local.distribute(&coeffs, &t.vector);
+                kin.friction = Some(t.kinematics(residual.iter().map(|&v| v.into()).collect()));
             }
         }
         Ok((local, kin, next))

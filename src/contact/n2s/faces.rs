@@ -13,11 +13,11 @@ use super::{extents, ramp, Current, NodeToSegment, Slot, HYSTERESIS_BAND, INSIDE
 use crate::contact::dual::{self, Dual, Jet};
 use crate::contact::geometry::faces::{edge_excess, FaceGeometry, NodalNormal};
 use crate::contact::geometry::scalar::Scalar;
-use crate::contact::law::{friction, FrictionKinematics, PointKinematics};
+use crate::contact::law::PointKinematics;
 use crate::contact::search::Candidate;
 use crate::contact::{Anchor, Ctx, Local, Partner};
 use crate::error::Result;
-use crate::model::{ContactLaw, Model};
+use crate::model::Model;
 
 impl NodeToSegment {
     /// Whether the nodal normals of face `k` follow the deformation (large deformation, no
@@ -296,20 +296,22 @@ impl NodeToSegment {
                         xa[i] = xa[i] + ca[a] * y[i];
                     }
                 }
-                let ContactLaw::Penalty(p) = slot.law(self.law) else {
-                    unreachable!("friction with the penalty law only")
-                };
-                let pn = -(weight * gap * p);
-                let t = friction::evaluate(
+                let (t, after) = self.point_friction(
+                    slot,
                     law,
-                    &friction::FrictionPoint {
-                        xs,
-                        xa,
-                        n: dir,
-                        pn,
-                        dim: 3,
+                    [xs, xa, dir],
+                    (gap, weight),
+                    (anchor.expect("an anchor"), at_point),
+                    |p| {
+                        self.face_geometry_f64(k, cur)
+                            .project(p)
+                            .map_or(at_point, |(a, b)| Anchor {
+                                xi: [a, b],
+                                ..at_point
+                            })
                     },
                 );
+                next = Some(after);
                 // Distributed like the normal force: the node, and −c_a on the face's corners.
                 let mut r: Vec<Dual> = t.vector.to_vec();
                 for ca in c.iter().take(nc) {
@@ -317,23 +319,7 @@ impl NodeToSegment {
                 }
                 let mut residual: Vec<Jet> = r.iter().map(chain).collect();
                 residual.resize(m, Jet::constant(0.0, m));
-                next = Some(if gap.v > 0.0 {
-                    at_point
-                } else if t.stick {
-                    *anchor.expect("an anchor")
-                } else {
-                    self.face_geometry_f64(k, cur)
-                        .project(t.next_anchor)
-                        .map_or(at_point, |(a, b)| Anchor {
-                            xi: [a, b],
-                            ..at_point
-                        })
-                });
-                kin.friction = Some(FrictionKinematics {
-                    residual,
-                    stick: t.stick,
-                    force: t.force,
-                });
+                kin.friction = Some(t.kinematics(residual));
             }
         }
         Ok((local, kin, next))

@@ -22,13 +22,15 @@ mod edges;
 mod faces;
 mod rigid;
 
-use super::dual::Dual;
+use super::dual::{DVec, Dual};
 use super::geometry::edges::EdgeSurface;
 use super::geometry::faces::{FaceSurface, NodalNormal};
 use super::geometry::scalar::Scalar;
+use super::law::friction::{self, FrictionPoint, Tangential};
 use super::law::PointKinematics;
 use super::search::broad::BroadPhase;
 use super::search::{self, Candidate};
+use super::Anchor;
 use super::{apply_law, ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState};
 use crate::error::{Error, Result};
 use crate::model::{ContactLaw, Friction, Model, Pairing, SegmentKind};
@@ -115,6 +117,46 @@ struct Current {
     normals: HashMap<usize, NodalNormal>,
     edges: BroadPhase,
     faces: BroadPhase,
+}
+
+impl NodeToSegment {
+    /// The friction of a point with gap `gap`, weight `weight` and force direction `dir`,
+    /// anchored at `xa` (`anchor`): its tangential part and the anchor it leaves for the next
+    /// step — the contact point `at_point` while open, the same anchor while it sticks, `slid` of
+    /// the point it is dragged to when it slides. Open points get the friction too: the closed
+    /// branch the solver may predict for them is then the continuation of the closed point's.
+    fn point_friction(
+        &self,
+        slot: &Slot,
+        law: Friction,
+        point: [DVec; 3],
+        (gap, weight): (Dual, Dual),
+        (anchor, at_point): (&Anchor, Anchor),
+        slid: impl FnOnce([f64; 3]) -> Anchor,
+    ) -> (Tangential, Anchor) {
+        let ContactLaw::Penalty(p) = slot.law(self.law) else {
+            unreachable!("friction with the penalty law only")
+        };
+        let [xs, xa, n] = point;
+        let t = friction::evaluate(
+            law,
+            &FrictionPoint {
+                xs,
+                xa,
+                n,
+                pn: -(weight * gap * p),
+                dim: self.dim,
+            },
+        );
+        let next = if gap.v > 0.0 {
+            at_point
+        } else if t.stick {
+            *anchor
+        } else {
+            slid(t.next_anchor)
+        };
+        (t, next)
+    }
 }
 
 /// C¹ step from 0 (τ ≤ 0) to 1 (τ ≥ 1).

@@ -4,11 +4,11 @@ use super::{NodeToSegment, Slot};
 use crate::contact::dual::{self, DVec, Dual};
 use crate::contact::geometry::rigid;
 use crate::contact::geometry::scalar::Scalar;
-use crate::contact::law::{friction, FrictionKinematics, PointKinematics};
+use crate::contact::law::PointKinematics;
 use crate::contact::search::Candidate;
 use crate::contact::{Anchor, Ctx, Local, Partner};
 use crate::error::Result;
-use crate::model::{ContactLaw, Model, SegmentKind};
+use crate::model::{Model, SegmentKind};
 
 impl NodeToSegment {
     /// Origin of a rigid segment: its reference point moved with its node, if any.
@@ -203,47 +203,26 @@ impl NodeToSegment {
                 }),
             };
             next = Some(at_point);
-            // Open points get it too (the continuation of the closed branch, see `friction`).
-            if let Some((_, offset)) = anchor_frame {
-                let g = match anchor.expect("an anchor").partner {
-                    Partner::Rigid(g) => g,
-                    _ => unreachable!("a rigid anchor"),
+            if let (Some((_, offset)), Some(anchor)) = (anchor_frame, anchor) {
+                let Partner::Rigid(g) = anchor.partner else {
+                    unreachable!("a rigid anchor")
                 };
                 let o = origin(g, &q);
                 let xa3: DVec = std::array::from_fn(|i| o[i] + offset[i]);
-                let ContactLaw::Penalty(p) = slot.law(self.law) else {
-                    unreachable!("friction with the penalty law only")
-                };
-                let pn = -(gap * p);
-                let t = friction::evaluate(
+                let (t, after) = self.point_friction(
+                    slot,
                     law,
-                    &friction::FrictionPoint {
-                        xs: xs3,
-                        xa: xa3,
-                        n: dir,
-                        pn,
-                        dim,
+                    [xs3, xa3, dir],
+                    (gap, Dual::constant(1.0, m)),
+                    (anchor, at_point),
+                    |p| Anchor {
+                        offset: std::array::from_fn(|i| p[i] - here[i].v),
+                        ..at_point
                     },
                 );
-                next = Some(if gap.v > 0.0 {
-                    at_point
-                } else if t.stick {
-                    *anchor.expect("an anchor")
-                } else {
-                    Anchor {
-                        offset: std::array::from_fn(|i| t.next_anchor[i] - here[i].v),
-                        ..at_point
-                    }
-                });
-                kin.friction = Some(FrictionKinematics {
-                    residual: local
-                        .distribute(&coeffs, &t.vector)
-                        .iter()
-                        .map(|&v| v.into())
-                        .collect(),
-                    stick: t.stick,
-                    force: t.force,
-                });
+                next = Some(after);
+                let residual = local.distribute(&coeffs, &t.vector);
+                kin.friction = Some(t.kinematics(residual.iter().map(|&v| v.into()).collect()));
             }
         }
         Ok((local, kin, next))
