@@ -79,6 +79,28 @@ pub struct SlotState {
     pub anchor: Option<Anchor>,
 }
 
+impl SlotState {
+    /// The state of condition `condition`'s contact node `node` at `x` before its evaluation:
+    /// no partner, no force.
+    pub fn unpaired(condition: usize, node: usize, x: [f64; 3]) -> SlotState {
+        SlotState {
+            condition,
+            node,
+            partner: Partner::None,
+            xi: [f64::NAN; 2],
+            gap: f64::NAN,
+            force: 0.0,
+            pressure: 0.0,
+            active: false,
+            x,
+            weight: 1.0,
+            repeated: false,
+            friction: None,
+            anchor: None,
+        }
+    }
+}
+
 /// The master's material point a frictional contact node sticks to (the friction history).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Anchor {
@@ -596,6 +618,19 @@ pub fn model_size(model: &Model) -> f64 {
     }
     let d2: f64 = (0..3).map(|i| (hi[i] - lo[i]).max(0.0).powi(2)).sum();
     d2.sqrt().max(1e-300)
+}
+
+/// Young's modulus of the stiffest element at each node (penalties chosen from the mesh).
+pub fn stiffest_young(model: &Model) -> std::collections::HashMap<usize, f64> {
+    let mut young = std::collections::HashMap::new();
+    for el in &model.elements {
+        let e = model.materials[el.material].young();
+        for &n in &el.nodes {
+            let v = young.entry(n).or_insert(0.0f64);
+            *v = v.max(e);
+        }
+    }
+    young
 }
 
 /// The area a contact node stands for in the laws: its tributary area, or for a node on no

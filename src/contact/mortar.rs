@@ -112,18 +112,18 @@ impl Mortar {
         }
         // Without a penalty: ε_j = factor·E/h, E of the stiffest element at the node, h the mean
         // length of its slave edges (a pressure per unit of penetration).
+        let young = if c.penalty_from_mesh {
+            super::stiffest_young(model)
+        } else {
+            Default::default()
+        };
         let scale = slots
             .iter()
             .map(|(n, edges)| {
                 if !c.penalty_from_mesh {
                     return 1.0;
                 }
-                let e = model
-                    .elements
-                    .iter()
-                    .filter(|el| el.nodes.contains(n))
-                    .map(|el| model.materials[el.material].young())
-                    .fold(0.0, f64::max);
+                let e = young.get(n).copied().unwrap_or(0.0);
                 let h = edges
                     .iter()
                     .map(|&k| {
@@ -567,19 +567,9 @@ impl Formulation for Mortar {
             let m = local.m();
             let node = self.slots[j].0;
             let mut state = SlotState {
-                condition: self.number,
-                node,
                 partner: w.partner,
                 xi: [0.0; 2],
-                gap: f64::NAN,
-                force: 0.0,
-                pressure: 0.0,
-                active: false,
-                x: ctx.position(node)?.0,
-                weight: 1.0,
-                repeated: false,
-                friction: None,
-                anchor: None,
+                ..SlotState::unpaired(self.number, node, ctx.position(node)?.0)
             };
             let has = w.area.v > 0.0;
             let (gap, b) = if has {

@@ -130,19 +130,10 @@ impl Formulation for NodeToNode {
             );
             let lambda_eq = (self.law == ContactLaw::Multiplier).then_some(first_lambda + k);
             let mut state = SlotState {
-                condition: self.number,
-                node: p.slave,
                 partner: Partner::Node(p.master),
                 xi: [0.0; 2],
                 gap: gap.v,
-                force: 0.0,
-                pressure: 0.0,
-                active: false,
-                x: ctx.position(p.slave)?.0,
-                weight: 1.0,
-                repeated: false,
-                friction: None,
-                anchor: None,
+                ..SlotState::unpaired(self.number, p.slave, ctx.position(p.slave)?.0)
             };
             points.push(apply_law(
                 ctx, self.law, lambda_eq, &local, &kin, p.area, &mut state,

@@ -232,17 +232,11 @@ impl NodeToSegment {
         edges::check_support(model, &edges)?;
 
         let tribs = super::tributary::tributaries(model, nodes);
-        // Young's modulus of the stiffest element at each node (for a penalty from the mesh).
-        let mut young: HashMap<usize, f64> = HashMap::new();
-        if c.penalty_from_mesh {
-            for el in &model.elements {
-                let e = model.materials[el.material].young();
-                for &n in &el.nodes {
-                    let v = young.entry(n).or_insert(0.0);
-                    *v = v.max(e);
-                }
-            }
-        }
+        let young = if c.penalty_from_mesh {
+            super::stiffest_young(model)
+        } else {
+            HashMap::new()
+        };
         let slots = nodes
             .iter()
             .zip(tribs)
@@ -518,21 +512,7 @@ impl Formulation for NodeToSegment {
         let searching = start.elapsed().as_secs_f64();
         for (k, (slot, chosen)) in self.slots.iter().zip(chosen).enumerate() {
             let lambda_eq = (self.law == ContactLaw::Multiplier).then_some(first_lambda + k);
-            let mut state = SlotState {
-                condition: self.number,
-                node: slot.node,
-                partner: Partner::None,
-                xi: [f64::NAN; 2],
-                gap: f64::NAN,
-                force: 0.0,
-                pressure: 0.0,
-                active: false,
-                x: ctx.position(slot.node)?.0,
-                weight: 1.0,
-                repeated: false,
-                friction: None,
-                anchor: None,
-            };
+            let mut state = SlotState::unpaired(self.number, slot.node, ctx.position(slot.node)?.0);
             let anchor = history
                 .and_then(|h| h.get(k))
                 .and_then(|s| s.anchor.as_ref());
