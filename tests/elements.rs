@@ -10,7 +10,7 @@ use hertz::fem::{rule, Shape};
 use hertz::material::{Constitutive, Elasticity, Hyperelastic};
 use hertz::model::StressMode;
 use hertz::solid::{ContinuumKernel, GpState};
-use hertz::solve::{run_analysis, SolveParams};
+use hertz::solve::run_analysis;
 use std::fmt::Write;
 
 /// Young's modulus and Poisson's ratio of the linear elastic material of these tests.
@@ -529,20 +529,13 @@ fn solve_patch(
     s.push_str(&sets);
     let model = common::model_from_text(&s).unwrap_or_else(|e| panic!("{e}"));
     let mut out = (Vec::new(), Vec::new());
-    run_analysis(
-        &model,
-        &SolveParams {
-            log_steps: false,
-            ..Default::default()
-        },
-        |r| {
-            out.0 = (0..model.nodes.len())
-                .map(|n| [1u8, 2, 3].map(|d| r.displacement(n, d).unwrap_or(0.0)))
-                .collect();
-            out.1 = r.states.to_vec();
-            Ok(())
-        },
-    )
+    run_analysis(&model, &common::quiet(), |r| {
+        out.0 = (0..model.nodes.len())
+            .map(|n| [1u8, 2, 3].map(|d| r.displacement(n, d).unwrap_or(0.0)))
+            .collect();
+        out.1 = r.states.to_vec();
+        Ok(())
+    })
     .unwrap_or_else(|e| panic!("{e}"));
     out
 }

@@ -71,19 +71,12 @@ fn solve(text: &str, params: &SolveParams) -> hertz::error::Result<Outcome> {
     Ok(out)
 }
 
-fn quiet() -> SolveParams {
-    SolveParams {
-        log_steps: false,
-        ..Default::default()
-    }
-}
-
 /// Below μN the block holds (its slide is the tangential penalty's elastic slip, T/pt per unit
 /// length of the base, far below a millimetre-scale motion); above it no equilibrium exists and
 /// the step fails even after halving.
 #[test]
 fn block_sticks_below_mu_n_and_slides_above() {
-    let below = solve(&pushed_by(0.99), &quiet()).unwrap();
+    let below = solve(&pushed_by(0.99), &common::quiet()).unwrap();
     let elastic_slip = 0.99 * MU * N / (1e5 * 2.0);
     println!(
         "T = 0.99 mu N: slide {:.3e} (elastic slip T/(pt L) = {elastic_slip:.3e}), {:?} iterations",
@@ -95,7 +88,7 @@ fn block_sticks_below_mu_n_and_slides_above() {
         "{:?}",
         below.iterations
     );
-    let above = solve(&pushed_by(1.01), &quiet());
+    let above = solve(&pushed_by(1.01), &common::quiet());
     let err = above.err().expect("no equilibrium above mu N").to_string();
     assert!(err.contains("step 2"), "{err}");
 }
@@ -113,7 +106,7 @@ fn sliding_block_transmits_mu_n() {
             "NodalLoad 4 loadTimeFunction 2 dofs 2 1 2 components 2 0.7425 0.0 set 3",
             "BoundaryCondition 4 loadTimeFunction 2 dofs 1 1 values 1 0.05 set 3",
         );
-    let out = solve(&text, &quiet()).unwrap();
+    let out = solve(&text, &common::quiet()).unwrap();
     println!(
         "pushed 0.05: transmitted {:.15} (mu N = {}), {} nodes stick, {:?} iterations",
         -out.reaction_x[1],
@@ -146,7 +139,7 @@ fn a_cut_back_step_restarts_from_the_converged_friction_history() {
     let model = common::model_from_text(&starved).unwrap();
     let mut slide_cut = f64::NAN;
     let mut states_cut = Vec::new();
-    run_analysis(&model, &quiet(), |r| {
+    run_analysis(&model, &common::quiet(), |r| {
         if r.step == 2 {
             substeps = r.info.substeps;
             slide_cut = r.displacement(0, 1).unwrap();
@@ -168,7 +161,7 @@ fn a_cut_back_step_restarts_from_the_converged_friction_history() {
     let model = common::model_from_text(&stepped).unwrap();
     let mut slide = f64::NAN;
     let mut states = Vec::new();
-    run_analysis(&model, &quiet(), |r| {
+    run_analysis(&model, &common::quiet(), |r| {
         slide = r.displacement(0, 1).unwrap();
         states = r.contact.iter().map(|s| (s.force, s.friction)).collect();
         Ok(())
@@ -205,7 +198,7 @@ fn cattaneo_mindlin_stick_zone_and_traction() {
     let model = hertz::input::read_model(&path).unwrap().model;
     let mut last = (0.0, 0.0, Vec::new());
     let mut iterations = Vec::new();
-    run_analysis(&model, &quiet(), |r| {
+    run_analysis(&model, &common::quiet(), |r| {
         // P and Q: the reactions of the cap's top (vertical, horizontal).
         let sum = |dof: u8| -> f64 {
             r.dofs

@@ -7,7 +7,7 @@ mod common;
 
 use hertz::mesh::gmsh::{convert, Plane};
 use hertz::output::vtu::VtuFormat;
-use hertz::solve::{run_analysis, SolveParams};
+use hertz::solve::run_analysis;
 use std::path::{Path, PathBuf};
 
 fn data(name: &str) -> PathBuf {
@@ -38,29 +38,22 @@ fn patch_error(mesh: &Path, plane: Plane) -> f64 {
     let model = common::model_from_text(&text).unwrap();
     let dim = c.dim;
     let mut worst = f64::NAN;
-    run_analysis(
-        &model,
-        &SolveParams {
-            log_steps: false,
-            ..Default::default()
-        },
-        |r| {
-            worst = 0.0;
-            for (n, node) in model.nodes.iter().enumerate() {
-                let x = node.coords;
-                for d in 1..=dim as u8 {
-                    let exact = if d as usize == dim {
-                        STRAIN * x[dim - 1]
-                    } else {
-                        -lateral * STRAIN * x[d as usize - 1]
-                    };
-                    let u = r.displacement(n, d).unwrap();
-                    worst = worst.max((u - exact).abs());
-                }
+    run_analysis(&model, &common::quiet(), |r| {
+        worst = 0.0;
+        for (n, node) in model.nodes.iter().enumerate() {
+            let x = node.coords;
+            for d in 1..=dim as u8 {
+                let exact = if d as usize == dim {
+                    STRAIN * x[dim - 1]
+                } else {
+                    -lateral * STRAIN * x[d as usize - 1]
+                };
+                let u = r.displacement(n, d).unwrap();
+                worst = worst.max((u - exact).abs());
             }
-            Ok(())
-        },
-    )
+        }
+        Ok(())
+    })
     .unwrap();
     worst
 }
@@ -194,23 +187,16 @@ fn quadratic_elements_reproduce_pure_bending() {
         );
         let model = common::model_from_text(&text).unwrap();
         let mut worst = f64::NAN;
-        run_analysis(
-            &model,
-            &SolveParams {
-                log_steps: false,
-                ..Default::default()
-            },
-            |r| {
-                worst = 0.0;
-                for n in (0..c.coords.len()).filter(|&n| !on_boundary(c.coords[n])) {
-                    let u = exact(c.coords[n]);
-                    for (d, ud) in (1u8..).zip(u) {
-                        worst = worst.max((r.displacement(n, d).unwrap() - ud).abs());
-                    }
+        run_analysis(&model, &common::quiet(), |r| {
+            worst = 0.0;
+            for n in (0..c.coords.len()).filter(|&n| !on_boundary(c.coords[n])) {
+                let u = exact(c.coords[n]);
+                for (d, ud) in (1u8..).zip(u) {
+                    worst = worst.max((r.displacement(n, d).unwrap() - ud).abs());
                 }
-                Ok(())
-            },
-        )
+            }
+            Ok(())
+        })
         .unwrap();
         worst
     };

@@ -7,7 +7,7 @@
 mod common;
 
 use hertz::fem::shape::HEXA8_CORNERS;
-use hertz::solve::{run_analysis, SolveParams};
+use hertz::solve::run_analysis;
 
 /// The laws with spec-upstream §4.5's figures at λ = 1.2: (record, confined P11, P22, free λt,
 /// free P11).
@@ -82,22 +82,15 @@ fn confined_stretch_gives_the_closed_form_stresses() {
         ];
         let model = common::model_from_text(&brick(mat, &bcs)).unwrap();
         let mut seen = 0;
-        run_analysis(
-            &model,
-            &SolveParams {
-                log_steps: false,
-                ..Default::default()
-            },
-            |r| {
-                for gp in &r.states[0] {
-                    assert!((gp.p[0][0] - p11).abs() < 5e-6, "{mat}: P11 {}", gp.p[0][0]);
-                    assert!((gp.p[1][1] - p22).abs() < 5e-6, "{mat}: P22 {}", gp.p[1][1]);
-                    assert!((gp.p[2][2] - p22).abs() < 5e-6, "{mat}: P33 {}", gp.p[2][2]);
-                    seen += 1;
-                }
-                Ok(())
-            },
-        )
+        run_analysis(&model, &common::quiet(), |r| {
+            for gp in &r.states[0] {
+                assert!((gp.p[0][0] - p11).abs() < 5e-6, "{mat}: P11 {}", gp.p[0][0]);
+                assert!((gp.p[1][1] - p22).abs() < 5e-6, "{mat}: P22 {}", gp.p[1][1]);
+                assert!((gp.p[2][2] - p22).abs() < 5e-6, "{mat}: P33 {}", gp.p[2][2]);
+                seen += 1;
+            }
+            Ok(())
+        })
         .unwrap();
         assert_eq!(seen, 8);
     }
@@ -114,40 +107,33 @@ fn free_uniaxial_stress_gives_the_closed_form_lateral_stretch_and_force() {
         ];
         let model = common::model_from_text(&brick(mat, &bcs)).unwrap();
         let mut checked = false;
-        run_analysis(
-            &model,
-            &SolveParams {
-                log_steps: false,
-                ..Default::default()
-            },
-            |r| {
-                // Lateral stretch: the y = 1 nodes moved by λt − 1.
-                for (i, c) in HEXA8_CORNERS.iter().enumerate() {
-                    if c[1] == 1 {
-                        let v = r.displacement(i, 2).unwrap();
-                        assert!((v - (lt - 1.0)).abs() < 2e-6, "{mat}: λt {}", 1.0 + v);
-                    }
+        run_analysis(&model, &common::quiet(), |r| {
+            // Lateral stretch: the y = 1 nodes moved by λt − 1.
+            for (i, c) in HEXA8_CORNERS.iter().enumerate() {
+                if c[1] == 1 {
+                    let v = r.displacement(i, 2).unwrap();
+                    assert!((v - (lt - 1.0)).abs() < 2e-6, "{mat}: λt {}", 1.0 + v);
                 }
-                // Axial force: the reactions of the x = 1 face, over the unit reference area.
-                let f: f64 = r
-                    .dofs
-                    .prescribed
-                    .iter()
-                    .zip(r.reactions)
-                    .filter(|((n, d, _), _)| *d == 1 && HEXA8_CORNERS[*n][0] == 1)
-                    .map(|(_, &v)| v)
-                    .sum();
-                assert!((f - p11).abs() < 2e-6, "{mat}: P11 {f}");
-                // Newton converges quadratically to 1e-12 in a few iterations.
-                assert!(
-                    r.info.iterations <= 6,
-                    "{mat}: {:?}",
-                    r.info.residual_history
-                );
-                checked = true;
-                Ok(())
-            },
-        )
+            }
+            // Axial force: the reactions of the x = 1 face, over the unit reference area.
+            let f: f64 = r
+                .dofs
+                .prescribed
+                .iter()
+                .zip(r.reactions)
+                .filter(|((n, d, _), _)| *d == 1 && HEXA8_CORNERS[*n][0] == 1)
+                .map(|(_, &v)| v)
+                .sum();
+            assert!((f - p11).abs() < 2e-6, "{mat}: P11 {f}");
+            // Newton converges quadratically to 1e-12 in a few iterations.
+            assert!(
+                r.info.iterations <= 6,
+                "{mat}: {:?}",
+                r.info.residual_history
+            );
+            checked = true;
+            Ok(())
+        })
         .unwrap();
         assert!(checked);
     }

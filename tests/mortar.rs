@@ -4,7 +4,7 @@
 
 mod common;
 
-use hertz::solve::{run_analysis, SolveParams};
+use hertz::solve::run_analysis;
 
 /// The pressure on the top of `common::mortar_blocks`.
 const P: f64 = 10.0;
@@ -14,28 +14,21 @@ const P: f64 = 10.0;
 fn patch_errors(text: &str) -> (f64, f64) {
     let model = common::model_from_text(text).unwrap();
     let (mut stress, mut pressure) = (f64::NAN, f64::NAN);
-    run_analysis(
-        &model,
-        &SolveParams {
-            log_steps: false,
-            ..Default::default()
-        },
-        |r| {
-            stress = r
-                .states
-                .iter()
-                .flatten()
-                .map(|g| (g.stress[1] + P).abs() / P)
-                .fold(0.0, f64::max);
-            pressure = r
-                .contact
-                .iter()
-                .filter(|s| s.pressure.is_finite() && s.active)
-                .map(|s| (s.pressure - P).abs() / P)
-                .fold(0.0, f64::max);
-            Ok(())
-        },
-    )
+    run_analysis(&model, &common::quiet(), |r| {
+        stress = r
+            .states
+            .iter()
+            .flatten()
+            .map(|g| (g.stress[1] + P).abs() / P)
+            .fold(0.0, f64::max);
+        pressure = r
+            .contact
+            .iter()
+            .filter(|s| s.pressure.is_finite() && s.active)
+            .map(|s| (s.pressure - P).abs() / P)
+            .fold(0.0, f64::max);
+        Ok(())
+    })
     .unwrap();
     (stress, pressure)
 }

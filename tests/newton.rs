@@ -3,7 +3,7 @@
 
 mod common;
 
-use hertz::solve::{run_analysis, SolveParams};
+use hertz::solve::run_analysis;
 use std::path::PathBuf;
 
 /// Solve tests/data/cantilever_nlgeo.in with the given maxiter; returns (tip v, substeps, history).
@@ -15,21 +15,14 @@ fn solve(maxiter: usize) -> hertz::error::Result<(f64, usize, Vec<f64>)> {
     let model = common::model_from_text(&src.replace("MAXITER", &maxiter.to_string()))?;
     let tip = model.nodes.iter().position(|n| n.label == 63).unwrap();
     let mut out = (0.0, 0, Vec::new());
-    run_analysis(
-        &model,
-        &SolveParams {
-            log_steps: false,
-            ..Default::default()
-        },
-        |r| {
-            out = (
-                r.displacement(tip, 2).unwrap(),
-                r.info.substeps,
-                r.info.residual_history.clone(),
-            );
-            Ok(())
-        },
-    )?;
+    run_analysis(&model, &common::quiet(), |r| {
+        out = (
+            r.displacement(tip, 2).unwrap(),
+            r.info.substeps,
+            r.info.residual_history.clone(),
+        );
+        Ok(())
+    })?;
     Ok(out)
 }
 

@@ -5,7 +5,7 @@
 
 mod common;
 
-use hertz::solve::{run_analysis, SolveParams};
+use hertz::solve::run_analysis;
 use std::path::Path;
 
 fn data(name: &str) -> String {
@@ -22,30 +22,23 @@ fn data(name: &str) -> String {
 fn solve(text: &str, bcs: &[usize]) -> Vec<([f64; 3], f64, f64, usize)> {
     let model = common::model_from_text(text).unwrap();
     let mut out = Vec::new();
-    run_analysis(
-        &model,
-        &SolveParams {
-            log_steps: false,
-            ..Default::default()
-        },
-        |r| {
-            let mut reaction = [0.0; 3];
-            for (&(_, d, b), &f) in r.dofs.prescribed.iter().zip(r.reactions) {
-                if bcs.contains(&model.dirichlet[b].number) {
-                    reaction[d as usize - 1] += f;
-                }
+    run_analysis(&model, &common::quiet(), |r| {
+        let mut reaction = [0.0; 3];
+        for (&(_, d, b), &f) in r.dofs.prescribed.iter().zip(r.reactions) {
+            if bcs.contains(&model.dirichlet[b].number) {
+                reaction[d as usize - 1] += f;
             }
-            let normal: f64 = r.contact.iter().map(|s| s.force).sum();
-            let friction: f64 = r
-                .contact
-                .iter()
-                .filter_map(|s| s.friction)
-                .map(|f| f.1)
-                .sum();
-            out.push((reaction, normal, friction, r.info.iterations));
-            Ok(())
-        },
-    )
+        }
+        let normal: f64 = r.contact.iter().map(|s| s.force).sum();
+        let friction: f64 = r
+            .contact
+            .iter()
+            .filter_map(|s| s.friction)
+            .map(|f| f.1)
+            .sum();
+        out.push((reaction, normal, friction, r.info.iterations));
+        Ok(())
+    })
     .unwrap();
     out
 }
@@ -109,26 +102,19 @@ fn upstream_contact2d_test_gives_its_checked_displacements() {
     ];
     let mut worst = f64::NAN;
     let mut iterations = Vec::new();
-    run_analysis(
-        &model,
-        &SolveParams {
-            log_steps: false,
-            ..Default::default()
-        },
-        |r| {
-            iterations.push(r.info.iterations);
-            if r.step == 5 {
-                worst = 0.0;
-                for (label, u) in expected {
-                    let n = model.nodes.iter().position(|x| x.label == label).unwrap();
-                    for (d, want) in (1u8..).zip(u) {
-                        worst = worst.max((r.displacement(n, d).unwrap() - want).abs());
-                    }
+    run_analysis(&model, &common::quiet(), |r| {
+        iterations.push(r.info.iterations);
+        if r.step == 5 {
+            worst = 0.0;
+            for (label, u) in expected {
+                let n = model.nodes.iter().position(|x| x.label == label).unwrap();
+                for (d, want) in (1u8..).zip(u) {
+                    worst = worst.max((r.displacement(n, d).unwrap() - want).abs());
                 }
             }
-            Ok(())
-        },
-    )
+        }
+        Ok(())
+    })
     .unwrap();
     println!("contact2d: worst difference {worst:.2e}, iterations {iterations:?}");
     assert!(worst < 1e-6, "{worst}");

@@ -15,22 +15,23 @@ pub fn model_from_text(text: &str) -> hertz::error::Result<Model> {
     read.map(|r| r.model)
 }
 
+/// Solver settings of the tests: the defaults, without step lines on stderr.
+pub fn quiet() -> hertz::solve::SolveParams {
+    hertz::solve::SolveParams {
+        log_steps: false,
+        ..Default::default()
+    }
+}
+
 /// Solve the input file `path`; return its model, the last step's contact states and residual
 /// history (iteration 0 first).
 pub fn solve_contact(path: &std::path::Path) -> (Model, Vec<hertz::contact::SlotState>, Vec<f64>) {
     let model = hertz::input::read_model(path).unwrap().model;
     let mut out = (Vec::new(), Vec::new());
-    hertz::solve::run_analysis(
-        &model,
-        &hertz::solve::SolveParams {
-            log_steps: false,
-            ..Default::default()
-        },
-        |r| {
-            out = (r.contact.to_vec(), r.info.residual_history.clone());
-            Ok(())
-        },
-    )
+    hertz::solve::run_analysis(&model, &quiet(), |r| {
+        out = (r.contact.to_vec(), r.info.residual_history.clone());
+        Ok(())
+    })
     .unwrap();
     (model, out.0, out.1)
 }
@@ -310,50 +311,7 @@ pub fn mortar_blocks(n_low: usize, n_up: usize, nlgeo: u8, condition: &str) -> S
     };
     let el_low = quads(&low, 1, &mut elems);
     let el_up = quads(&up, 1, &mut elems);
-    // Edge numbers of PlaneStress2d (n1 n2 n3 n4 counter-clockwise from bottom-left): 1 bottom,
-    // 3 top.
-    let top_low: Vec<String> = el_low[n_low..].iter().map(|e| format!("{e} 3")).collect();
-    let bottom_up: Vec<String> = el_up[..n_up].iter().map(|e| format!("{e} 1")).collect();
-    let top_up: Vec<String> = el_up[n_up..].iter().map(|e| format!("{e} 3")).collect();
-    let left: Vec<usize> = low.iter().chain(&up).map(|r| r[0]).collect();
-    let join = |v: &[usize]| {
-        v.iter()
-            .map(|x| x.to_string())
-            .collect::<Vec<_>>()
-            .join(" ")
-    };
-    format!(
-        "mortar_patch.out\npatch\nStaticStructural nsteps 1 rtolf 1e-12 maxiter 20\n\
-         domain 2dPlaneStress\nOutputManager\n\
-         ndofman {} nelem {} ncrosssect 1 nmat 1 nbc 4 nic 0 nltf 1 nset 6 ncontactseg 2\n\
-         {}\n{}\n\
-         linear2delementedgecontactsegment 1 edgeset 1\n\
-         linear2delementedgecontactsegment 2 edgeset 2\n\
-         SimpleCS 1 thick 1.0 material 1 set 3\nIsoLE 1 d 0 E 1000 n 0.3 tAlpha 0\n\
-         BoundaryCondition 1 loadTimeFunction 1 dofs 1 1 values 1 0 set 5\n\
-         BoundaryCondition 2 loadTimeFunction 1 dofs 1 2 values 1 0 set 6\n\
-         ConstantEdgeLoad 3 loadTimeFunction 1 dofs 2 1 2 components 2 0 -10 set 7\n\
-         {condition}\nConstantFunction 1 f(t) 1\n\
-         Set 1 elementboundaries {} {}\nSet 2 elementboundaries {} {}\nSet 3 allelements\n\
-         Set 4 nodes {} {}\nSet 5 nodes {} {}\nSet 6 nodes {} {}\nSet 7 elementedges {} {}\n",
-        nodes.len(),
-        elems.len(),
-        nodes.join("\n"),
-        elems.join("\n"),
-        2 * n_up,
-        bottom_up.join(" "),
-        2 * n_low,
-        top_low.join(" "),
-        up[0].len(),
-        join(&up[0]),
-        left.len(),
-        join(&left),
-        low[0].len(),
-        join(&low[0]),
-        2 * n_up,
-        top_up.join(" "),
-    )
-    .replace("nset 6", "nset 7")
+    blocks_input(&nodes, &elems, (&low, &el_low), (&up, &el_up), condition)
 }
 
 /// `mortar_blocks` in 8-node quadrilaterals (QPlaneStress2d): the contact edges are quadratic.
@@ -407,17 +365,33 @@ pub fn mortar_blocks_q8(n_low: usize, n_up: usize, nlgeo: u8, condition: &str) -
     };
     let el_low = quads(&low, &mut elems);
     let el_up = quads(&up, &mut elems);
-    let top_low: Vec<String> = el_low[n_low..].iter().map(|e| format!("{e} 3")).collect();
-    let bottom_up: Vec<String> = el_up[..n_up].iter().map(|e| format!("{e} 1")).collect();
-    let top_up: Vec<String> = el_up[n_up..].iter().map(|e| format!("{e} 3")).collect();
-    let left: Vec<usize> = low.iter().chain(&up).map(|r| r[0]).collect();
-    let contact: Vec<usize> = up[0].clone();
+    blocks_input(&nodes, &elems, (&low, &el_low), (&up, &el_up), condition)
+}
+
+/// The input of `mortar_blocks`: nodes and elements, each block's node grid (rows bottom to top,
+/// 0 where no node) and its elements (the bottom row's first), and the contact record.
+/// Elements' edges: 1 bottom, 3 top.
+fn blocks_input(
+    nodes: &[String],
+    elems: &[String],
+    (low, el_low): (&[Vec<usize>], &[usize]),
+    (up, el_up): (&[Vec<usize>], &[usize]),
+    condition: &str,
+) -> String {
+    let (n_low, n_up) = (el_low.len() / 2, el_up.len() / 2);
+    let edges = |els: &[usize], k: usize| -> String {
+        els.iter()
+            .map(|e| format!("{e} {k}"))
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
     let join = |v: &[usize]| {
         v.iter()
             .map(|x| x.to_string())
             .collect::<Vec<_>>()
             .join(" ")
     };
+    let left: Vec<usize> = low.iter().chain(up).map(|r| r[0]).collect();
     format!(
         "mortar_patch.out\npatch\nStaticStructural nsteps 1 rtolf 1e-12 maxiter 20\n\
          domain 2dPlaneStress\nOutputManager\n\
@@ -437,16 +411,16 @@ pub fn mortar_blocks_q8(n_low: usize, n_up: usize, nlgeo: u8, condition: &str) -
         nodes.join("\n"),
         elems.join("\n"),
         2 * n_up,
-        bottom_up.join(" "),
+        edges(&el_up[..n_up], 1),
         2 * n_low,
-        top_low.join(" "),
-        contact.len(),
-        join(&contact),
+        edges(&el_low[n_low..], 3),
+        up[0].len(),
+        join(&up[0]),
         left.len(),
         join(&left),
         low[0].len(),
         join(&low[0]),
         2 * n_up,
-        top_up.join(" "),
+        edges(&el_up[n_up..], 3),
     )
 }
