@@ -80,14 +80,27 @@ E, NU = 1000.0, 0.3
 ESTAR_RIGID = E / (1 - NU * NU)
 
 
-def hertz_rigid():
-    R, h, fine, W, H, delta = 10.0, 0.04, 2.0, 12.0, 12.0, 0.045
+# The rigid cylinder's problem (hertz_rigid, hertz_mortar): radius, mesh size, fine zone, block
+# width and depth, indentation.
+RIGID = (10.0, 0.04, 2.0, 12.0, 12.0, 0.045)
+
+
+def rigid_block():
+    """The block of the rigid-cylinder problem and the cylinder's node: (mesh, xs, ys, node ids,
+    element ids, reference node)."""
+    R, h, fine, W, H, _ = RIGID
     m = Mesh()
     xs = graded(W, h, fine)
     depth = graded(H, h, 1.0)
     ys = [-d for d in reversed(depth)]
     ids, eids = m.block(xs, lambda i: ys)
     ref = m.node(0.0, R)
+    return m, xs, ys, ids, eids, ref
+
+
+def hertz_rigid():
+    R, h, fine, W, H, delta = RIGID
+    m, xs, ys, ids, eids, ref = rigid_block()
     top = [col[-1] for col in ids]
     contact_nodes = [top[i] for i, x in enumerate(xs) if x <= 3.0]
     sym = [ids[0][j] for j in range(len(ys))]
@@ -126,16 +139,27 @@ Run:  cargo run --release --example hertz -- examples/hertz_rigid_circle.in
     write("examples/hertz_rigid_circle.in", lines)
 
 
-def hertz_cylinder():
-    R, h, fine, W, H, delta = 20.0, 0.02, 1.0, 8.0, 8.0, 0.022
-    Wc, Hc = 6.0, 6.0
+# The elastic cylinder's problem (hertz_cylinder, cattaneo_mindlin): radius, mesh size, fine
+# zone, block width and depth, indentation, cap width and height.
+CYLINDER = (20.0, 0.02, 1.0, 8.0, 8.0, 0.022, 6.0, 6.0)
+
+
+def cylinder_on_block(whole):
+    """The block and the cylinder's cap of the elastic-cylinder problem, half (x >= 0) or whole:
+    (mesh, xs, ys, block node and element ids, xc, hc, cap node and element ids, the number of
+    block elements)."""
+    R, h, fine, W, H, _, Wc, Hc = CYLINDER
+
+    def columns(length):
+        xs = graded(length, h, fine)
+        return [-x for x in reversed(xs[1:])] + xs if whole else xs
+
     m = Mesh()
-    xs = graded(W, h, fine)
+    xs = columns(W)
     depth = graded(H, h, 0.6)
     ys = [-d for d in reversed(depth)]
     bids, beids = m.block(xs, lambda i: ys)
-    btop_elems = [col[-1] for col in beids]
-    xc = graded(Wc, h, fine)
+    xc = columns(Wc)
     hc = graded(Hc, h, 0.6)
 
     def cap_col(i):
@@ -144,6 +168,13 @@ def hertz_cylinder():
 
     nb = len(m.elems)
     cids, ceids = m.block(xc, cap_col)
+    return m, xs, ys, bids, beids, xc, hc, cids, ceids, nb
+
+
+def hertz_cylinder():
+    R, h, fine, W, H, delta, Wc, Hc = CYLINDER
+    m, xs, ys, bids, beids, xc, hc, cids, ceids, nb = cylinder_on_block(False)
+    btop_elems = [col[-1] for col in beids]
     cap_bottom = [col[0] for col in cids]
     contact_nodes = [cap_bottom[i] for i, x in enumerate(xc) if x <= 1.5]
     sym = [bids[0][j] for j in range(len(ys))] + [cids[0][j] for j in range(len(hc))]
@@ -256,28 +287,11 @@ Run:  cargo run --release --example flat_punch
 
 def cattaneo_mindlin():
     """The cylinder on the block of hertz_cylinder, whole (shear has no symmetry), pressed by a
-    prescribed displacement of the cap's top, then sheared by a horizontal force on it."""
-    R, h, fine, W, H, delta, MU = 20.0, 0.02, 1.0, 8.0, 8.0, 0.022, 0.3
-    Wc, Hc = 6.0, 6.0
-    m = Mesh()
-
-    def full(xs):
-        return [-x for x in reversed(xs[1:])] + xs
-
-    xs = full(graded(W, h, fine))
-    depth = graded(H, h, 0.6)
-    ys = [-d for d in reversed(depth)]
-    bids, beids = m.block(xs, lambda i: ys)
+    prescribed displacement of the cap's top, then moved sideways."""
+    R, h, fine, W, H, delta, Wc, Hc = CYLINDER
+    MU = 0.3
+    m, xs, ys, bids, beids, xc, hc, cids, ceids, nb = cylinder_on_block(True)
     btop_elems = [col[-1] for col in beids]
-    xc = full(graded(Wc, h, fine))
-    hc = graded(Hc, h, 0.6)
-
-    def cap_col(i):
-        yb = R - (R * R - xc[i] ** 2) ** 0.5
-        return [yb + t * (Hc - yb) / Hc for t in hc]
-
-    nb = len(m.elems)
-    cids, ceids = m.block(xc, cap_col)
     cap_bottom = [col[0] for col in cids]
     contact_nodes = [cap_bottom[i] for i, x in enumerate(xc) if abs(x) <= 1.5]
     bottom = [col[0] for col in bids]
@@ -330,13 +344,8 @@ Run:  cargo run --release -- run examples/cattaneo_mindlin.in
 def hertz_mortar():
     """hertz_rigid_circle's problem with mortar contact: the block's top edges with x <= 3 are
     the slave segment, the rigid circle the master; multipliers (no penalty to choose)."""
-    R, h, fine, W, H, delta = 10.0, 0.04, 2.0, 12.0, 12.0, 0.045
-    m = Mesh()
-    xs = graded(W, h, fine)
-    depth = graded(H, h, 1.0)
-    ys = [-d for d in reversed(depth)]
-    ids, eids = m.block(xs, lambda i: ys)
-    ref = m.node(0.0, R)
+    R, h, fine, W, H, delta = RIGID
+    m, xs, ys, ids, eids, ref = rigid_block()
     top_elems = [col[-1] for i, col in enumerate(eids) if xs[i + 1] <= 3.0 + 1e-9]
     sym = [ids[0][j] for j in range(len(ys))]
     bottom = [col[0] for col in ids]
