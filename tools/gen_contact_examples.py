@@ -296,7 +296,6 @@ def cattaneo_mindlin():
     contact_nodes = [cap_bottom[i] for i, x in enumerate(xc) if abs(x) <= 1.5]
     bottom = [col[0] for col in bids]
     cap_top = [col[-1] for col in cids]
-    ctop_elems = [col[-1] for col in ceids]
     comment = f"""
 Cattaneo-Mindlin: the elastic cylinder (R = {R:g}) on the elastic block of hertz_cylinder.in, whole,
 both E = {E:g}, nu = {NU:g} (elastically similar: the normal and tangential problems uncouple).
@@ -321,7 +320,6 @@ Run:  cargo run --release -- run examples/cattaneo_mindlin.in
         nodeset(3, bottom),
         nodeset(4, cap_top),
         f"Set 5 elementboundaries {2 * len(btop_elems)} " + " ".join(f"{e} 1" for e in btop_elems),
-        f"Set 6 elementboundaries {2 * len(ctop_elems)} " + " ".join(f"{e} 1" for e in ctop_elems),
     ]
     bcs = [
         "BoundaryCondition 1 loadTimeFunction 1 dofs 2 1 2 values 2 0.0 0.0 set 3",
