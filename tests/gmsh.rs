@@ -401,21 +401,8 @@ fn vtu_cells_are_positive_whatever_the_input_orientation() {
         let input = dir.join("cube.in");
         std::fs::write(&input, patch_input(&c, &c.records().join("\n"))).unwrap();
         for vtu_format in [VtuFormat::Ascii, VtuFormat::Binary] {
-            let report = hertz::app::run_file(
-                &input,
-                &hertz::app::RunOptions {
-                    write_outputs: true,
-                    vtu_format,
-                    ..Default::default()
-                },
-            )
-            .unwrap();
-            let vtu = report
-                .written
-                .iter()
-                .find(|p| p.extension().is_some_and(|e| e == "vtu"))
-                .unwrap();
-            let arrays = common::read_vtu(vtu);
+            let vtu = common::run_writing_vtu(&input, None, vtu_format);
+            let arrays = common::read_vtu(&vtu);
             let block = |name: &str| arrays[name].clone();
             let (points, conn, types) =
                 (block("coordinates"), block("connectivity"), block("types"));

@@ -214,6 +214,31 @@ pub fn face_input(
     (text, slave.bottom[4])
 }
 
+/// Run the input file `path` writing its outputs (into `out_dir`, else next to it) with VTU
+/// arrays in `format`; the last `.vtu` written.
+pub fn run_writing_vtu(
+    path: &std::path::Path,
+    out_dir: Option<std::path::PathBuf>,
+    vtu_format: hertz::output::vtu::VtuFormat,
+) -> std::path::PathBuf {
+    let report = hertz::app::run_file(
+        path,
+        &hertz::app::RunOptions {
+            write_outputs: true,
+            out_dir,
+            vtu_format,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    report
+        .written
+        .into_iter()
+        .rev()
+        .find(|p| p.extension().is_some_and(|e| e == "vtu"))
+        .expect("a .vtu written")
+}
+
 /// The data arrays of a `.vtu` file by name, as doubles, whether written as text or as raw
 /// appended binary (`header_type="UInt64"`, little-endian).
 pub fn read_vtu(path: &std::path::Path) -> std::collections::BTreeMap<String, Vec<f64>> {
