@@ -270,10 +270,11 @@ fn curve(x: &[[Dual; 2]], s: Dual) -> ([Dual; 2], [Dual; 2], [Dual; 2]) {
 }
 
 /// The root of f(s) = 0 near `s0` (f returns f and df/ds), by Newton on the values, then one
-/// Newton step in duals from the root: its derivative with respect to the unknowns is exact.
-fn solve(s0: f64, m: usize, f: impl Fn(Dual) -> (Dual, Dual)) -> Dual {
+/// Newton step in duals from the root: its derivative with respect to the unknowns is exact. A
+/// `linear` f (straight edges) needs only that step.
+fn solve(s0: f64, m: usize, linear: bool, f: impl Fn(Dual) -> (Dual, Dual)) -> Dual {
     let mut s = s0;
-    for _ in 0..30 {
+    for _ in 0..if linear { 0 } else { 30 } {
         let (v, d) = f(Dual::constant(s, m));
         if !(d.v.abs() > 1e-300) {
             break;
@@ -298,21 +299,22 @@ struct Weighted {
 }
 
 impl Mortar {
-    /// The weighted gap of slot `j`, its support and force direction, over the local unknowns.
-    fn integrate(&self, ctx: &Ctx, boxes: &BroadPhase, j: usize) -> Result<(Local, Weighted)> {
+    /// The weighted gap of slot `j`, its support and force direction, over the local unknowns;
+    /// `overlaps[k]` are the master edges that can overlap slave edge k.
+    fn integrate(&self, ctx: &Ctx, overlaps: &[Vec<usize>], j: usize) -> Result<(Local, Weighted)> {
         let (node, edges) = &self.slots[j];
         let mut local = Local::new(2);
         local.add(ctx, *node)?;
         for n in self.rigid.iter().filter_map(|&g| rigid_node(ctx.model, g)) {
             local.add(ctx, n)?;
         }
-        let mut pairs: Vec<(usize, Vec<usize>)> = Vec::new();
+        let mut pairs: Vec<(usize, &[usize])> = Vec::new();
         for &k in edges {
             for &n in &self.slave.edges[k].nodes {
                 local.add(ctx, n)?;
             }
-            let over = self.overlapping(ctx, boxes, k)?;
-            for &mi in &over {
+            let over = &overlaps[k];
+            for &mi in over {
                 for &n in &self.master.edges[mi].nodes {
                     local.add(ctx, n)?;
                 }
@@ -382,7 +384,7 @@ impl Mortar {
                     }
                 }
             };
-            for &mi in &over {
+            for &mi in over {
                 let me = &self.master.edges[mi];
                 let yg: Vec<[Dual; 2]> = me.nodes.iter().map(|&n| geo(n)).collect();
                 let yc: Vec<[Dual; 2]> = me.nodes.iter().map(|&n| cur(n)).collect();
@@ -392,7 +394,7 @@ impl Mortar {
                     let s0 = ((y[0].v - xg[0][0].v) * chord[0].v
                         + (y[1].v - xg[0][1].v) * chord[1].v)
                         / (chord[0].v * chord[0].v + chord[1].v * chord[1].v);
-                    solve(s0, m, |s| {
+                    solve(s0, m, xg.len() == 2, |s| {
                         let (x, t, t2) = curve(&xg, s);
                         let r = [y[0] - x[0], y[1] - x[1]];
                         (
@@ -418,7 +420,7 @@ impl Mortar {
                 add(&mut w, lo, hi, &|xi: Dual| {
                     let (x, t, nu, jac, xcur) = at(xi);
                     // η where x(ξ) + s ν crosses the master: (y(η) − x(ξ))·x'(ξ) = 0.
-                    let eta = solve(0.5, m, |eta| {
+                    let eta = solve(0.5, m, yg.len() == 2, |eta| {
                         let (y, ty, _) = curve(&yg, eta);
                         (
                             (y[0] - x[0]) * t[0] + (y[1] - x[1]) * t[1],
@@ -559,11 +561,15 @@ impl Formulation for Mortar {
         points: &mut Vec<ContactPoint>,
         states: &mut Vec<SlotState>,
     ) -> Result<f64> {
+        // The search, once per slave edge (each edge serves the slots of its nodes).
         let start = std::time::Instant::now();
         let boxes = self.master_boxes(ctx)?;
+        let overlaps = (0..self.slave.edges.len())
+            .map(|k| self.overlapping(ctx, &boxes, k))
+            .collect::<Result<Vec<_>>>()?;
         let searching = start.elapsed().as_secs_f64();
         for j in 0..self.slots.len() {
-            let (local, w) = self.integrate(ctx, &boxes, j)?;
+            let (local, w) = self.integrate(ctx, &overlaps, j)?;
             let m = local.m();
             let node = self.slots[j].0;
             let mut state = SlotState {
