@@ -674,8 +674,8 @@ fn friction_continuation_of_an_open_point_is_jacobian_of_its_closed_branch() {
 /// The mortar tangent is the Jacobian of its residual, in small deformation (reference
 /// segmentation and normals, the gap following the nodes) and in large deformation (everything
 /// current: segmentation limits, normals, lengths), for penalty and multipliers, on non-matching
-/// meshes of straight and of curved quadratic edges, with both blocks displaced and sheared so
-/// that the overlaps move.
+/// meshes of straight and of curved quadratic edges and against a rigid circle moving with a node,
+/// with both blocks displaced and sheared so that the overlaps move.
 #[test]
 fn mortar_tangents_are_jacobians_of_residuals() {
     for nlgeo in [0u8, 1] {
@@ -706,6 +706,32 @@ fn mortar_tangents_are_jacobians_of_residuals() {
                 disp,
                 lambda,
                 active: 3,
+            });
+            // Against a rigid circle moving with a node (999) instead of the lower block.
+            let text = common::mortar_blocks(3, 2, nlgeo, law)
+                .replace(
+                    "linear2delementedgecontactsegment 2 edgeset 2",
+                    "circlecontactsegment 2 centerpoint 2 1.0 -3.0 radius 3.0 node 999",
+                )
+                .replace("ndofman 21 ", "ndofman 22 ")
+                .replace(
+                    "\nnode 1 coords",
+                    "\nnode 999 coords 2 1.0 -3.0\nnode 1 coords",
+                );
+            let model = common::model_from_text(&text).unwrap();
+            let mut disp: Vec<(usize, [f64; 3])> = (13..=21)
+                .map(|n| {
+                    let y = model.nodes.iter().find(|x| x.label == n).unwrap().coords[1];
+                    (n, [0.013 + 0.02 * y, -0.05 + 0.003 * (n as f64).sin(), 0.0])
+                })
+                .collect();
+            disp.push((999, [0.01, 0.02, 0.0]));
+            check(&Case {
+                name: format!("mortar-circle-nlgeo{nlgeo}-{}", &law[..4]),
+                text,
+                disp,
+                lambda,
+                active: 1,
             });
             // Quadratic edges (3 and 2 elements of 8 nodes: the lower block's top row is nodes
             // 23..29, the upper block is 30..50, its bottom row 30..34), the mid-side nodes
