@@ -86,6 +86,8 @@ fn patch_test_transmits_the_exact_uniform_pressure() {
                 delta: if nlgeo { 0.2 } else { 0.01 },
                 steps: if nlgeo { 4 } else { 1 },
                 law,
+                slave_n: None,
+                mortar: false,
             };
             let exact = if nlgeo {
                 -uniaxial_stress(&neo_hookean_law(), 1.0 - 0.2 / (2.0 * PATCH_H)).1
@@ -126,6 +128,7 @@ fn hertz_sphere(kind: Solid, sym: usize, h: f64, law: Law) -> (f64, f64, f64) {
         delta: 0.15,
         nlgeo: false,
         law,
+        mortar: false,
     };
     let text = hs.input();
     let model = common::model_from_text(&text).unwrap();
@@ -480,6 +483,8 @@ fn wedge_pressed_onto_a_brick() {
             delta: if nlgeo { 0.2 } else { 0.01 },
             steps: if nlgeo { 4 } else { 1 },
             law: Law::Multiplier,
+            slave_n: None,
+            mortar: false,
         };
         let exact = if nlgeo {
             -uniaxial_stress(&neo_hookean_law(), 0.8).1
@@ -576,6 +581,8 @@ fn large_contact_zone_patch_test_by_gmres() {
             delta: 0.01,
             steps: 1,
             law,
+            slave_n: None,
+            mortar: false,
         }
         .input();
         let model = common::model_from_text(&text).unwrap();

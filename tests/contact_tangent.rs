@@ -757,3 +757,78 @@ fn mortar_tangents_are_jacobians_of_residuals() {
         }
     }
 }
+
+/// The 3D mortar tangent is the Jacobian of its residual, in small deformation (reference
+/// segmentation, the gap following the nodes) and in large deformation (the clipping, the plane,
+/// the normals and the weights at the current state), for penalty and multipliers, on
+/// non-matching quadrilateral (hexahedra), triangular (tetrahedra) and mixed (wedges) faces,
+/// with the slave block sunk and sheared so that the overlaps move and the master's top nodes
+/// moved out of plane.
+#[test]
+fn mortar_tangents_in_3d_are_jacobians_of_residuals() {
+    use hertz::bench::mesh::Solid;
+    use hertz::bench::suite::Law;
+    use hertz::bench::verify::Patch;
+    for kind in [Solid::Hex, Solid::Tet, Solid::Wedge] {
+        for nlgeo in [false, true] {
+            for (law, lambda) in [(Law::Penalty(1e4), 0.0), (Law::Multiplier, 3.0)] {
+                let text = Patch {
+                    kind,
+                    slave_kind: None,
+                    sym: 0,
+                    n: 1,
+                    nlgeo,
+                    delta: 0.01,
+                    steps: 1,
+                    law,
+                    slave_n: Some(2),
+                    mortar: true,
+                }
+                .input();
+                let model = common::model_from_text(&text).unwrap();
+                let disp: Vec<(usize, [f64; 3])> = model
+                    .nodes
+                    .iter()
+                    .filter_map(|n| {
+                        let [x, y, z] = n.coords;
+                        let k = n.label as f64;
+                        // The master block's 2 × 2 × 3 nodes come first.
+                        if n.label > 12 {
+                            Some((
+                                n.label,
+                                [0.013 + 0.02 * z, -0.007 + 0.01 * z, -0.01 + 0.003 * k.sin()],
+                            ))
+                        } else if z.abs() < 1e-9 {
+                            Some((n.label, [0.004 * k.cos(), 0.002 * x, 0.003 * (k + y).sin()]))
+                        } else {
+                            None
+                        }
+                    })
+                    .collect();
+                let name = format!("mortar3d {kind:?} nlgeo {nlgeo} {law:?}");
+                let mut contact = ContactSystem::new(&model).unwrap();
+                let dofs = hertz::solve::number_dofs(&model).unwrap();
+                contact.set_pressure_limit(f64::INFINITY);
+                let u = displaced(
+                    &model,
+                    &dofs,
+                    &Case {
+                        name: name.clone(),
+                        text: String::new(),
+                        disp,
+                        lambda,
+                        active: 0,
+                    },
+                );
+                let (err, states, checked) = fd_error(&model, &contact, &dofs, &u);
+                let active = states.iter().filter(|s| s.active).count();
+                println!("{name}: {err:.1e} over {checked} points, {active} active");
+                assert!(
+                    active >= 9 && checked >= 9,
+                    "{name}: {active} active, {checked} checked"
+                );
+                assert!(err < 1e-6, "{name}: tangent off by {err:e} (relative)");
+            }
+        }
+    }
+}

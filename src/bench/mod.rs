@@ -308,6 +308,7 @@ impl Model3d {
                 delta: 0.15,
                 nlgeo: false,
                 law,
+                mortar: false,
             }
             .input(),
             Model3d::Patch(n) => verify::Patch {
@@ -319,6 +320,8 @@ impl Model3d {
                 delta: PATCH_DELTA,
                 steps: 1,
                 law,
+                slave_n: None,
+                mortar: false,
             }
             .input(),
         }

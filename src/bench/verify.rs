@@ -35,6 +35,35 @@ fn contact_faces_and_material(inp: &mut Input, master: &Block, z: f64, nlgeo: bo
     });
 }
 
+/// Condition 5, on master segment 1: node-to-segment from `nodes`, or mortar from the faces of
+/// `slave` whose nodes satisfy `on` (segment 2).
+fn contact(
+    inp: &mut Input,
+    law: Law,
+    mortar: bool,
+    slave: &Block,
+    nodes: &[usize],
+    on: &dyn Fn([f64; 3]) -> bool,
+) {
+    if !mortar {
+        inp.bcs.push(n2s(5, law, nodes, &[1], ""));
+        return;
+    }
+    let faces = inp.faces_where(slave, on);
+    let set = inp.boundary_set(&faces);
+    inp.segments.push(format!(
+        "linear3delementsurfacecontactsegment 2 boundaryset {set}"
+    ));
+    inp.bcs.push(match law {
+        Law::Penalty(p) => {
+            format!("s2spenaltycontact 5 loadTimeFunction 1 penalty {p:e} slavesegment 2 segmentset 1 1")
+        }
+        Law::Multiplier => {
+            "s2slagrangianmultipliercontact 5 loadTimeFunction 1 slavesegment 2 segmentset 1 1".into()
+        }
+    });
+}
+
 /// Conditions 1–3: rollers on the planes x = 0 and y = 0 and on the nodes `bottom` (held in z);
 /// condition 4: the nodes `top` moved down by `delta` times function 1.
 fn rollers_and_push(inp: &mut Input, bottom: &[usize], top: &[usize], delta: f64) {
@@ -72,6 +101,10 @@ pub struct Patch {
     pub delta: f64,
     pub steps: usize,
     pub law: Law,
+    /// Elements across the slave block, if not 2n (non-nested meshes).
+    pub slave_n: Option<usize>,
+    /// Mortar (segment-to-segment) contact of the slave's bottom faces, else node-to-segment.
+    pub mortar: bool,
 }
 
 /// Height of each block of the patch test.
@@ -81,7 +114,10 @@ impl Patch {
     pub fn input(&self) -> String {
         let mut inp = Input::default();
         let extra = format!("mat 1 crossSect 1 nlgeo {}", u8::from(self.nlgeo));
-        let (g, gs) = (uniform(0.0, 1.0, self.n), uniform(0.0, 1.0, 2 * self.n));
+        let (g, gs) = (
+            uniform(0.0, 1.0, self.n),
+            uniform(0.0, 1.0, self.slave_n.unwrap_or(2 * self.n)),
+        );
         let master = inp.solid3d(
             self.kind,
             &g,
@@ -100,7 +136,10 @@ impl Patch {
         );
         contact_faces_and_material(&mut inp, &master, 0.0, self.nlgeo);
         rollers_and_push(&mut inp, &master.bottom, &slave.top, self.delta);
-        inp.bcs.push(n2s(5, self.law, &slave.bottom, &[1], ""));
+        let bottom = slave.bottom.clone();
+        contact(&mut inp, self.law, self.mortar, &slave, &bottom, &|p| {
+            p[2].abs() < 1e-12
+        });
         let steps: Vec<f64> = (1..=self.steps)
             .map(|k| k as f64 / self.steps as f64)
             .collect();
@@ -162,6 +201,8 @@ pub struct HertzSphere {
     pub delta: f64,
     pub nlgeo: bool,
     pub law: Law,
+    /// Mortar (segment-to-segment) contact of the cap's bottom faces, else node-to-segment.
+    pub mortar: bool,
 }
 
 /// Sphere radius, cap height and width, and block size of [`HertzSphere`].
@@ -193,16 +234,17 @@ impl HertzSphere {
         }
         contact_faces_and_material(&mut inp, &block, 0.0, self.nlgeo);
         rollers_and_push(&mut inp, &block.bottom, &cap.top, self.delta);
-        let contact: Vec<usize> = cap
+        let near = |p: [f64; 3]| p[0].hypot(p[1]) <= 1.6;
+        let nodes: Vec<usize> = cap
             .bottom
             .iter()
             .copied()
-            .filter(|&n| {
-                let p = inp.nodes[n - 1];
-                p[0].hypot(p[1]) <= 1.6
-            })
+            .filter(|&n| near(inp.nodes[n - 1]))
             .collect();
-        inp.bcs.push(n2s(5, self.law, &contact, &[1], ""));
+        contact(&mut inp, self.law, self.mortar, &cap, &nodes, &|p| {
+            let zb = HERTZ_R - (HERTZ_R * HERTZ_R - p[0] * p[0] - p[1] * p[1]).sqrt();
+            near(p) && (p[2] - zb).abs() < 1e-9
+        });
         inp.functions.push(history(&[1.0]));
         inp.functions.push("ConstantFunction 2 f(t) 1.0".into());
         inp.render("hertz3d", &analysis(1), "3d")

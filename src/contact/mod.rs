@@ -303,9 +303,7 @@ impl ContactSystem {
                 Pairing::NodeToSegment { .. } => {
                     formulations.push(Box::new(n2s::NodeToSegment::new(model, ci)?))
                 }
-                Pairing::Mortar { .. } => {
-                    formulations.push(Box::new(mortar::Mortar::new(model, ci)?))
-                }
+                Pairing::Mortar { .. } => formulations.push(mortar::new(model, ci)?),
             }
         }
         let young = model

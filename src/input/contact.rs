@@ -415,11 +415,15 @@ pub fn resolve(
     for c in conds {
         let pairing = match (c.sets, c.slave_segment) {
             (_, Some(slave)) => {
-                if !matches!(segments[slave].kind, SegmentKind::Edges { .. }) {
+                if !matches!(
+                    segments[slave].kind,
+                    SegmentKind::Edges { .. } | SegmentKind::Faces { .. }
+                ) {
                     return Err(err(
                         &c.span,
                         format!(
-                            "the slave segment {} of a mortar condition must be element edges",
+                            "the slave segment {} of a mortar condition must be element edges \
+                             (2D) or faces (3D)",
                             segments[slave].number
                         ),
                     ));

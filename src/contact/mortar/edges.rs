@@ -1,35 +1,26 @@
-//! Mortar segment-to-segment contact in 2D: the non-penetration condition is imposed in a weak
-//! sense along the slave surface, one constraint per slave node, so that a contact pressure is
-//! transferred between non-matching meshes exactly (the contact patch test).
+//! Mortar contact in 2D: straight or quadratic slave edges against master edges or rigid shapes.
 //!
-//! Glossary (one slave node j; straight or quadratic edges):
+//! Glossary (one slave node j; see [`super`] for the weighted gap and force direction):
 //! * ξ ∈ [0, 1] along a slave edge x(ξ) = Σ N_k(ξ) x_k, N_j(ξ) the node's shape function, ν(ξ)
 //!   the unit normal pointing into the slave body (towards it from the master side);
 //! * segmentation: a master edge y(η) overlaps the slave edge on [ξ_lo, ξ_hi], the slave
 //!   parameters of its ends' closest points (clipped to [0, 1]); a Gauss point ξ meets the
 //!   master where the line x(ξ) + t ν(ξ) crosses it, at η(ξ) (both by Newton, then one Newton
 //!   step in duals for the exact derivative);
-//! * gap g(ξ) = (x(ξ) − y(η(ξ)))·ν (< 0: penetration), against a rigid shape its signed distance;
-//! * weighted gap g̃_j = ∫ N_j g ds, D_j = ∫ N_j ds over the overlaps, ḡ_j = g̃_j / D_j;
-//! * force direction B_j: the slave node k gets ∫ N_j N_k ν ds, the master node l −∫ N_j M_l ν ds
-//!   (the variation of g̃_j at fixed segmentation and normal).
+//! * gap g(ξ) = (x(ξ) − y(η(ξ)))·ν (< 0: penetration), against a rigid shape its signed distance.
 //!
-//! The laws act on ḡ_j along B_j with a pressure λ_j: the penalty λ_j = −ε ḡ_j (ε a penalty per
-//! unit area), the multipliers λ_j with ḡ_j = 0 while active. A uniform pressure p gives λ_j = p
-//! at every slave node, whose forces Σ_j λ_j B_j are then exactly the consistent nodal forces of p
-//! on both meshes (Σ_j N_j = 1): the patch test holds to round-off.
 //! In small deformation the segmentation, the normals and the weights are those of the reference
 //! configuration and only the gap follows the displacements (linear contact); in large
 //! deformation all of it is evaluated at the current state and differentiated.
 
-use super::dual::{self, Dual};
-use super::geometry::edges::{shape, EdgeSurface};
-use super::geometry::rigid;
-use super::law::{self, Laws, PointKinematics};
-use super::search::broad::BroadPhase;
-use super::{ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState};
+use super::{nearest_sheet, rigid_node, search_limit, Facing, SlotLaw, Weighted};
+use crate::contact::dual::{self, Dual};
+use crate::contact::geometry::edges::{shape, EdgeSurface};
+use crate::contact::geometry::rigid;
+use crate::contact::search::broad::BroadPhase;
+use crate::contact::{ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState};
 use crate::error::{Error, Result};
-use crate::model::{ContactLaw, Model, Pairing, SegmentKind};
+use crate::model::{Model, Pairing, SegmentKind};
 
 /// Gauss points on [−1, 1] (3 points: the integrands of straight pairs are quadratic).
 const GAUSS: [(f64, f64); 3] = [
@@ -39,8 +30,7 @@ const GAUSS: [(f64, f64); 3] = [
 ];
 
 pub struct Mortar {
-    number: usize,
-    law: ContactLaw,
+    law: SlotLaw,
     slave: EdgeSurface,
     master: EdgeSurface,
     /// Rigid segments of the master side (model segment indices).
@@ -51,8 +41,8 @@ pub struct Mortar {
     nlgeo: bool,
     /// Nodes the rigid segments move with.
     rigid_nodes: Vec<usize>,
-    /// Per slot, the factor of the penalty (from the mesh when the condition gives none).
-    scale: Vec<f64>,
+    /// How far the search for master edges goes.
+    search_limit: f64,
 }
 
 impl Mortar {
@@ -68,11 +58,6 @@ impl Mortar {
         if c.friction.is_some() {
             return Err(err(
                 "friction with mortar contact is not supported yet".into()
-            ));
-        }
-        if model.domain.nsd() != 2 {
-            return Err(err(
-                "mortar contact is implemented in 2D (element edges) only so far".into(),
             ));
         }
         let slave = EdgeSurface::new(model, &[*slave]);
@@ -110,37 +95,30 @@ impl Mortar {
                 }
             }
         }
-        // Without a penalty: ε_j = factor·E/h, E of the stiffest element at the node, h the mean
-        // length of its slave edges (a pressure per unit of penetration).
-        let young = if c.penalty_from_mesh {
-            super::stiffest_young(model)
-        } else {
-            Default::default()
-        };
-        let scale = slots
+        // Without a penalty, h is the mean length of the node's slave edges.
+        let nodes: Vec<usize> = slots.iter().map(|s| s.0).collect();
+        let law = SlotLaw::new(model, ci, &nodes, |j| {
+            let edges = &slots[j].1;
+            edges
+                .iter()
+                .map(|&k| {
+                    let (a, b) = (slave.edges[k].nodes[0], slave.edges[k].nodes[1]);
+                    let (x, y) = (model.nodes[a].coords, model.nodes[b].coords);
+                    (0..3).map(|i| (y[i] - x[i]).powi(2)).sum::<f64>().sqrt()
+                })
+                .sum::<f64>()
+                / edges.len() as f64
+        });
+        let nodes = slave
+            .edges
             .iter()
-            .map(|(n, edges)| {
-                if !c.penalty_from_mesh {
-                    return 1.0;
-                }
-                let e = young.get(n).copied().unwrap_or(0.0);
-                let h = edges
-                    .iter()
-                    .map(|&k| {
-                        let (a, b) = (slave.edges[k].nodes[0], slave.edges[k].nodes[1]);
-                        let (x, y) = (model.nodes[a].coords, model.nodes[b].coords);
-                        (0..3).map(|i| (y[i] - x[i]).powi(2)).sum::<f64>().sqrt()
-                    })
-                    .sum::<f64>()
-                    / edges.len() as f64;
-                super::n2s::DEFAULT_PENALTY_FACTOR * e / h
-            })
-            .collect();
+            .chain(&master.edges)
+            .flat_map(|e| e.nodes.iter().copied());
+        let search_limit = search_limit(model, nodes);
         Ok(Mortar {
-            scale,
+            search_limit,
+            law,
             rigid_nodes: rigid.iter().filter_map(|&g| rigid_node(model, g)).collect(),
-            number: c.number,
-            law: c.law,
             nlgeo: slave.edges.iter().any(|e| e.nlgeo),
             slave,
             master,
@@ -187,8 +165,7 @@ impl Mortar {
     }
 
     /// Master edges that can overlap slave edge `k`: those whose ends project within it along
-    /// its normal, that face it, and that lie within a reach of it (among those whose boxes meet
-    /// the slave edge's, grown by its length).
+    /// its normal and that face it, of the nearest sheet ([`nearest_sheet`]).
     fn overlapping(&self, ctx: &Ctx, boxes: &BroadPhase, k: usize) -> Result<Vec<usize>> {
         let pos = |n: usize| -> Result<[f64; 2]> {
             let x = if self.nlgeo {
@@ -205,34 +182,38 @@ impl Mortar {
         let l = l2.sqrt();
         // Outward normal of the slave body.
         let n = [t[1] * e.side / l, -t[0] * e.side / l];
-        let mut out = Vec::new();
-        let grow = |v: f64, s: f64| v + s * l;
-        let lo = [grow(a[0].min(b[0]), -1.0), grow(a[1].min(b[1]), -1.0), -1.0];
-        let hi = [grow(a[0].max(b[0]), 1.0), grow(a[1].max(b[1]), 1.0), 1.0];
-        for mi in boxes.intersecting(lo, hi) {
-            let me = &self.master.edges[mi];
-            let (ya, yb) = (pos(me.nodes[0])?, pos(me.nodes[1])?);
-            let xi = |y: [f64; 2]| ((y[0] - a[0]) * t[0] + (y[1] - a[1]) * t[1]) / l2;
-            let (lo, hi) = (xi(ya).min(xi(yb)).max(0.0), xi(ya).max(xi(yb)).min(1.0));
-            if hi - lo <= 1e-12 {
-                continue;
+        let (slo, shi) = (
+            [a[0].min(b[0]), a[1].min(b[1])],
+            [a[0].max(b[0]), a[1].max(b[1])],
+        );
+        nearest_sheet(l, self.search_limit, |grow| {
+            let lo = [slo[0] - grow, slo[1] - grow, -1.0];
+            let hi = [shi[0] + grow, shi[1] + grow, 1.0];
+            let mut facing = Vec::new();
+            for mi in boxes.intersecting(lo, hi) {
+                let me = &self.master.edges[mi];
+                let (ya, yb) = (pos(me.nodes[0])?, pos(me.nodes[1])?);
+                let xi = |y: [f64; 2]| ((y[0] - a[0]) * t[0] + (y[1] - a[1]) * t[1]) / l2;
+                let (lo, hi) = (xi(ya).min(xi(yb)).max(0.0), xi(ya).max(xi(yb)).min(1.0));
+                if hi - lo <= 1e-12 {
+                    continue;
+                }
+                // The master's outward normal must face the slave's.
+                let tm = [yb[0] - ya[0], yb[1] - ya[1]];
+                let lm = (tm[0] * tm[0] + tm[1] * tm[1]).sqrt();
+                let nm = [tm[1] * me.side / lm, -tm[0] * me.side / lm];
+                if nm[0] * n[0] + nm[1] * n[1] >= 0.0 {
+                    continue;
+                }
+                let mid = [0.5 * (ya[0] + yb[0]), 0.5 * (ya[1] + yb[1])];
+                facing.push(Facing {
+                    index: mi,
+                    dist: (mid[0] - a[0]) * n[0] + (mid[1] - a[1]) * n[1],
+                    size: lm,
+                });
             }
-            // The master's outward normal must face the slave's.
-            let tm = [yb[0] - ya[0], yb[1] - ya[1]];
-            let lm = (tm[0] * tm[0] + tm[1] * tm[1]).sqrt();
-            let nm = [tm[1] * me.side / lm, -tm[0] * me.side / lm];
-            if nm[0] * n[0] + nm[1] * n[1] >= 0.0 {
-                continue;
-            }
-            // Within reach: the master's middle no farther from the slave line than its length.
-            let mid = [0.5 * (ya[0] + yb[0]), 0.5 * (ya[1] + yb[1])];
-            let dist = ((mid[0] - a[0]) * n[0] + (mid[1] - a[1]) * n[1]).abs();
-            if dist > l.max(lm) {
-                continue;
-            }
-            out.push(mi);
-        }
-        Ok(out)
+            Ok(facing)
+        })
     }
 }
 
@@ -290,8 +271,8 @@ fn solve(s0: f64, m: usize, linear: bool, f: impl Fn(Dual) -> (Dual, Dual)) -> D
     c - v / d
 }
 
-/// What one slave node's constraint integrates to.
-struct Weighted {
+/// What one slave node's constraint integrates to, in duals.
+struct Integrals {
     gap: Dual,
     area: Dual,
     b: Vec<Dual>,
@@ -301,7 +282,12 @@ struct Weighted {
 impl Mortar {
     /// The weighted gap of slot `j`, its support and force direction, over the local unknowns;
     /// `overlaps[k]` are the master edges that can overlap slave edge k.
-    fn integrate(&self, ctx: &Ctx, overlaps: &[Vec<usize>], j: usize) -> Result<(Local, Weighted)> {
+    fn integrate(
+        &self,
+        ctx: &Ctx,
+        overlaps: &[Vec<usize>],
+        j: usize,
+    ) -> Result<(Local, Integrals)> {
         let (node, edges) = &self.slots[j];
         let mut local = Local::new(2);
         local.add(ctx, *node)?;
@@ -333,7 +319,7 @@ impl Mortar {
         let q = local.seed();
         let m = local.m();
         let zero = Dual::constant(0.0, m);
-        let mut w = Weighted {
+        let mut w = Integrals {
             gap: zero,
             area: zero,
             b: vec![zero; m],
@@ -359,7 +345,7 @@ impl Mortar {
                 let nu = [-(t[1] * e.side) / jac, t[0] * e.side / jac];
                 (x, t, nu, jac, curve(&xc, xi).0)
             };
-            let add = |w: &mut Weighted, lo: Dual, hi: Dual, gap_at: GapAt| {
+            let add = |w: &mut Integrals, lo: Dual, hi: Dual, gap_at: GapAt| {
                 let half = (hi - lo) * 0.5;
                 for &(z, wz) in gauss {
                     let xi = lo + half * (1.0 + z);
@@ -500,25 +486,13 @@ impl Mortar {
     }
 }
 
-/// The node a rigid segment moves with.
-fn rigid_node(model: &Model, g: usize) -> Option<usize> {
-    match &model.segments[g].kind {
-        SegmentKind::Circle { node, .. } | SegmentKind::Plane { node, .. } => *node,
-        _ => None,
-    }
-}
-
 impl Formulation for Mortar {
     fn n_slots(&self) -> usize {
         self.slots.len()
     }
 
     fn n_multipliers(&self) -> usize {
-        if self.law == ContactLaw::Multiplier {
-            self.slots.len()
-        } else {
-            0
-        }
+        self.law.n_multipliers(self.slots.len())
     }
 
     fn nodes_needing_dofs(&self) -> Vec<usize> {
@@ -570,54 +544,15 @@ impl Formulation for Mortar {
         let searching = start.elapsed().as_secs_f64();
         for j in 0..self.slots.len() {
             let (local, w) = self.integrate(ctx, &overlaps, j)?;
-            let m = local.m();
-            let node = self.slots[j].0;
-            let mut state = SlotState {
+            let w = Weighted {
+                gap: w.gap.into(),
+                area: w.area.into(),
+                b: w.b.into_iter().map(Into::into).collect(),
                 partner: w.partner,
-                xi: [0.0; 2],
-                ..SlotState::unpaired(self.number, node, ctx.position(node)?.0)
             };
-            let has = w.area.v > 0.0;
-            let (gap, b) = if has {
-                (w.gap / w.area, w.b.clone())
-            } else {
-                (Dual::constant(f64::NAN, m), vec![Dual::constant(0.0, m); m])
-            };
-            let kin = PointKinematics::from_duals(
-                gap,
-                Dual::constant(if has { 1.0 } else { 0.0 }, m),
-                &b,
-                1.0,
-            );
-            // The multipliers' active-set rule compares a pressure with c·ḡ: c per unit length.
-            let laws = Laws {
-                c: ctx.laws.c / w.area.v.max(1e-300),
-                ..*ctx.laws
-            };
-            let mut codes = local.codes.clone();
-            let point = match self.law {
-                ContactLaw::Penalty(p) => {
-                    law::penalty::evaluate(&laws, p * self.scale[j], codes, &kin)
-                }
-                ContactLaw::Multiplier => {
-                    let eq = first_lambda + j;
-                    codes.push(eq);
-                    law::multiplier::evaluate(&laws, ctx.u[eq], codes, &kin)
-                }
-            };
-            if has {
-                state.gap = gap.v;
-                let penalty = match self.law {
-                    ContactLaw::Penalty(p) => p * self.scale[j],
-                    ContactLaw::Multiplier => 0.0,
-                };
-                let lambda = law::normal_force(&point, &kin, penalty);
-                state.pressure = lambda;
-                state.force = lambda * w.area.v;
-                state.active = point.closed && (self.law == ContactLaw::Multiplier || gap.v < 0.0);
-            } else {
-                state.partner = Partner::None;
-            }
+            let (point, state) =
+                self.law
+                    .evaluate(ctx, first_lambda, j, self.slots[j].0, &local, w)?;
             points.push(point);
             states.push(state);
         }

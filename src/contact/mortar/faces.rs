@@ -1,0 +1,523 @@
+//! Mortar contact in 3D: triangle and quadrilateral slave faces against master faces, segmented
+//! pair by pair on the slave face's auxiliary plane ([`super::segment`]).
+//!
+//! The weighted gap and the force direction are weighted by the slave nodes' dual shape functions
+//! Φ_j (biorthogonal to N_j on each slave face, [`super::segment::dual_basis`], from the reference
+//! configuration): a slave node's force is then its own multiplier times its support, not spread
+//! over its neighbours, so the pressure does not oscillate from node to node. The support D_j
+//! stays ∫ N_j dA over the overlaps (positive where ∫ Φ_j need not be: on a slave face that the
+//! master covers only in part).
+//!
+//! Small deformation: the segmentation, ν and the weights are those of the reference
+//! configuration, so each slave node's weighted gap is a fixed linear form of the current
+//! positions, g̃_j = Σ_n c_jn·x_n with c_jn = B_j at node n (computed once). Large deformation:
+//! each overlapping pair is segmented at the current state in duals over its two faces'
+//! coordinates and its integrals are scattered into the constraints of the slave face's nodes.
+
+use super::segment::{dual_basis, overlap, Point};
+use super::{nearest_sheet, search_limit, Facing, SlotLaw, Weighted};
+use crate::contact::dual::{DualN, Jet};
+use crate::contact::geometry::faces::{centre, face_normal, FaceKind, FaceSurface};
+use crate::contact::search::broad::BroadPhase;
+use crate::contact::{ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState};
+use crate::error::{Error, Result};
+use crate::model::{Model, Pairing, SegmentKind};
+use std::collections::HashMap;
+
+/// Duals over the coordinates of one slave and one master face (4 + 4 nodes).
+type PairDual = DualN<24>;
+
+/// A slave node's weighted gap as a linear form of the current positions (small deformation).
+struct LinearSlot {
+    /// D_j.
+    area: f64,
+    /// (node, c_jn): g̃_j = Σ c_jn·x_n, and B_j.
+    coeffs: Vec<(usize, [f64; 3])>,
+    partner: Partner,
+}
+
+pub struct FaceMortar {
+    law: SlotLaw,
+    slave: FaceSurface,
+    master: FaceSurface,
+    /// Slave nodes (the slots), and for each the slave faces it belongs to.
+    slots: Vec<(usize, Vec<usize>)>,
+    slot_of: HashMap<usize, usize>,
+    /// Large deformation: the geometry follows the current state.
+    nlgeo: bool,
+    /// Small deformation: the slots' linear forms, from the reference segmentation.
+    linear: Vec<LinearSlot>,
+    /// Per slave face, the coefficients of its dual basis (reference configuration).
+    dual: Vec<[[f64; 4]; 4]>,
+    /// How far the search for master faces goes.
+    search_limit: f64,
+}
+
+impl FaceMortar {
+    pub fn new(model: &Model, ci: usize) -> Result<FaceMortar> {
+        let c = &model.contacts[ci];
+        let Pairing::Mortar { slave, segments } = &c.pairing else {
+            unreachable!("a mortar condition")
+        };
+        let err = |msg: &str| Error::Input {
+            span: c.span.clone(),
+            msg: msg.into(),
+        };
+        if c.friction.is_some() {
+            return Err(err("friction with mortar contact is not supported yet"));
+        }
+        if !matches!(model.segments[*slave].kind, SegmentKind::Faces { .. }) {
+            return Err(err(
+                "in 3D the slave segment of a mortar condition must be element faces",
+            ));
+        }
+        if segments
+            .iter()
+            .any(|&g| !matches!(model.segments[g].kind, SegmentKind::Faces { .. }))
+        {
+            return Err(err(
+                "mortar contact in 3D meets element faces only (rigid master shapes: use \
+                 node-to-segment contact)",
+            ));
+        }
+        let slave = FaceSurface::new(model, &[*slave]);
+        let master = FaceSurface::new(model, segments);
+        if slave.faces.is_empty() || master.faces.is_empty() {
+            return Err(err("the slave or master segment has no element faces"));
+        }
+        if slave.at_node.keys().any(|n| master.at_node.contains_key(n)) {
+            return Err(err(
+                "the slave and master segments share nodes: a surface cannot contact itself",
+            ));
+        }
+        let mut slots: Vec<(usize, Vec<usize>)> = Vec::new();
+        let mut slot_of = HashMap::new();
+        for (k, f) in slave.faces.iter().enumerate() {
+            for &n in &f.nodes {
+                let j = *slot_of.entry(n).or_insert_with(|| {
+                    slots.push((n, Vec::new()));
+                    slots.len() - 1
+                });
+                slots[j].1.push(k);
+            }
+        }
+        // Without a penalty, h is the mean size (√area) of the node's slave faces.
+        let nodes: Vec<usize> = slots.iter().map(|s| s.0).collect();
+        let reference = |n: usize| model.nodes[n].coords;
+        let law = SlotLaw::new(model, ci, &nodes, |j| {
+            let faces = &slots[j].1;
+            faces
+                .iter()
+                .map(|&k| face_size(&slave.faces[k].nodes, &reference))
+                .sum::<f64>()
+                / faces.len() as f64
+        });
+        let dual = slave
+            .faces
+            .iter()
+            .map(|f| {
+                let x: Vec<[f64; 3]> = f.nodes.iter().map(|&n| reference(n)).collect();
+                dual_basis(f.kind, &x)
+            })
+            .collect();
+        let nodes = slave
+            .faces
+            .iter()
+            .chain(&master.faces)
+            .flat_map(|f| f.nodes.iter().copied());
+        let mut mortar = FaceMortar {
+            search_limit: search_limit(model, nodes),
+            dual,
+            law,
+            nlgeo: slave.faces.iter().any(|f| f.nlgeo),
+            slave,
+            master,
+            slots,
+            slot_of,
+            linear: Vec::new(),
+        };
+        if !mortar.nlgeo {
+            mortar.linear = mortar.reference_forms(model);
+        }
+        Ok(mortar)
+    }
+
+    /// Master faces that can overlap slave face `k` at positions `pos`: facing it, their
+    /// centres within reach of its projection, of the nearest sheet ([`nearest_sheet`]).
+    fn candidates(
+        &self,
+        boxes: &BroadPhase,
+        k: usize,
+        pos: &dyn Fn(usize) -> [f64; 3],
+    ) -> Vec<usize> {
+        let f = &self.slave.faces[k];
+        let (c, n) = centre_and_normal(f.kind, &f.nodes, f.side, pos);
+        let size = face_size(&f.nodes, pos);
+        let reach = diameter(&f.nodes, pos);
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for &a in &f.nodes {
+            let x = pos(a);
+            for i in 0..3 {
+                lo[i] = lo[i].min(x[i]);
+                hi[i] = hi[i].max(x[i]);
+            }
+        }
+        let found = nearest_sheet(size, self.search_limit, |grow| {
+            let lo = lo.map(|v| v - grow);
+            let hi = hi.map(|v| v + grow);
+            Ok(boxes
+                .intersecting(lo, hi)
+                .into_iter()
+                .filter_map(|mi| {
+                    let m = &self.master.faces[mi];
+                    let (cm, nm) = centre_and_normal(m.kind, &m.nodes, m.side, pos);
+                    let d = sub(cm, c);
+                    let dist = (0..3).map(|i| d[i] * n[i]).sum::<f64>();
+                    let facing = (0..3).map(|i| n[i] * nm[i]).sum::<f64>() < 0.0;
+                    // The centre's offset in the slave's plane against both faces' reach.
+                    let inplane = (0..3)
+                        .map(|i| (d[i] - dist * n[i]).powi(2))
+                        .sum::<f64>()
+                        .sqrt();
+                    let near = inplane <= reach + diameter(&m.nodes, pos);
+                    (facing && near).then(|| Facing {
+                        index: mi,
+                        dist,
+                        size: face_size(&m.nodes, pos),
+                    })
+                })
+                .collect())
+        });
+        found.unwrap_or_default()
+    }
+
+    /// The broad phase of the master faces at positions `pos`.
+    fn master_boxes(&self, pos: &dyn Fn(usize) -> [f64; 3]) -> BroadPhase {
+        let boxes: Vec<Vec<[f64; 3]>> = self
+            .master
+            .faces
+            .iter()
+            .map(|f| f.nodes.iter().map(|&n| pos(n)).collect())
+            .collect();
+        BroadPhase::new(boxes.iter().map(|v| &v[..]))
+    }
+
+    /// The slots' linear forms g̃_j = Σ c_jn·x_n from the reference segmentation.
+    fn reference_forms(&self, model: &Model) -> Vec<LinearSlot> {
+        let pos = |n: usize| model.nodes[n].coords;
+        let boxes = self.master_boxes(&pos);
+        let mut forms: Vec<LinearSlot> = (0..self.slots.len())
+            .map(|_| LinearSlot {
+                area: 0.0,
+                coeffs: Vec::new(),
+                partner: Partner::None,
+            })
+            .collect();
+        for k in 0..self.slave.faces.len() {
+            let sf = &self.slave.faces[k];
+            let xs: Vec<[f64; 3]> = sf.nodes.iter().map(|&n| pos(n)).collect();
+            for mi in self.candidates(&boxes, k, &pos) {
+                let mf = &self.master.faces[mi];
+                let xm: Vec<[f64; 3]> = mf.nodes.iter().map(|&n| pos(n)).collect();
+                for p in overlap(sf.kind, &xs, sf.side, mf.kind, &xm) {
+                    for (a, &node) in sf.nodes.iter().enumerate() {
+                        let form = &mut forms[self.slot_of[&node]];
+                        if form.partner == Partner::None {
+                            form.partner = Partner::Face(mi);
+                        }
+                        let phi: f64 = (0..4).map(|b| self.dual[k][a][b] * p.slave[b]).sum();
+                        let na = phi * p.weight;
+                        form.area += p.slave[a] * p.weight;
+                        let pairs = sf
+                            .nodes
+                            .iter()
+                            .zip(p.slave)
+                            .chain(mf.nodes.iter().zip(p.master.map(|v| -v)));
+                        for (&n, shape) in pairs {
+                            let c = match form.coeffs.iter_mut().find(|(m, _)| *m == n) {
+                                Some(c) => c,
+                                None => {
+                                    form.coeffs.push((n, [0.0; 3]));
+                                    form.coeffs.last_mut().expect("pushed")
+                                }
+                            };
+                            for i in 0..3 {
+                                c.1[i] += na * shape * p.nu[i];
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        forms
+    }
+
+    /// Slot `j` in small deformation: its linear form at the current positions.
+    fn linear_slot(&self, ctx: &Ctx, j: usize) -> Result<(Local, Weighted)> {
+        let form = &self.linear[j];
+        let mut local = Local::new(3);
+        local.add(ctx, self.slots[j].0)?;
+        for &(n, _) in &form.coeffs {
+            local.add(ctx, n)?;
+        }
+        let m = local.m();
+        let mut w = Weighted {
+            gap: Jet::constant(0.0, m),
+            area: Jet::constant(form.area, m),
+            b: vec![Jet::constant(0.0, m); m],
+            partner: form.partner,
+        };
+        for &(n, c) in &form.coeffs {
+            let k = local.index(n);
+            for i in 0..3 {
+                w.gap.v += c[i] * local.values()[3 * k + i];
+                w.gap.d[3 * k + i] = c[i];
+                w.b[3 * k + i].v = c[i];
+            }
+        }
+        Ok((local, w))
+    }
+
+    /// Every slot in large deformation: the current segmentation of each slave face against its
+    /// candidates, each pair's integrals scattered into the slots of the slave face's nodes.
+    /// Also gives the seconds spent finding the candidates.
+    fn current_slots(&self, ctx: &Ctx) -> Result<(Vec<(Local, Weighted)>, f64)> {
+        let start = std::time::Instant::now();
+        let mut positions = HashMap::new();
+        for f in self.slave.faces.iter().chain(&self.master.faces) {
+            for &n in &f.nodes {
+                if let std::collections::hash_map::Entry::Vacant(e) = positions.entry(n) {
+                    e.insert(ctx.position(n)?.0);
+                }
+            }
+        }
+        let pos = |n: usize| positions[&n];
+        let boxes = self.master_boxes(&pos);
+        let candidates: Vec<Vec<usize>> = (0..self.slave.faces.len())
+            .map(|k| self.candidates(&boxes, k, &pos))
+            .collect();
+        let searching = start.elapsed().as_secs_f64();
+        let mut out = Vec::with_capacity(self.slots.len());
+        for (node, faces) in &self.slots {
+            let mut local = Local::new(3);
+            local.add(ctx, *node)?;
+            for &k in faces {
+                for &n in &self.slave.faces[k].nodes {
+                    local.add(ctx, n)?;
+                }
+                for &mi in &candidates[k] {
+                    for &n in &self.master.faces[mi].nodes {
+                        local.add(ctx, n)?;
+                    }
+                }
+            }
+            let m = local.m();
+            let w = Weighted {
+                gap: Jet::constant(0.0, m),
+                area: Jet::constant(0.0, m),
+                b: vec![Jet::constant(0.0, m); m],
+                partner: Partner::None,
+            };
+            out.push((local, w));
+        }
+        for (k, sf) in self.slave.faces.iter().enumerate() {
+            for &mi in &candidates[k] {
+                let mf = &self.master.faces[mi];
+                let nodes: Vec<usize> = sf.nodes.iter().chain(&mf.nodes).copied().collect();
+                let nv = 3 * nodes.len();
+                let x: Vec<[PairDual; 3]> = nodes
+                    .iter()
+                    .enumerate()
+                    .map(|(b, &n)| {
+                        let p = pos(n);
+                        std::array::from_fn(|i| PairDual::variable(p[i], 3 * b + i, nv))
+                    })
+                    .collect();
+                let (xs, xm) = x.split_at(sf.nodes.len());
+                let points = overlap(sf.kind, xs, sf.side, mf.kind, xm);
+                if points.is_empty() {
+                    continue;
+                }
+                for (a, &node) in sf.nodes.iter().enumerate() {
+                    let (local, w) = &mut out[self.slot_of[&node]];
+                    if w.partner == Partner::None {
+                        w.partner = Partner::Face(mi);
+                    }
+                    // Pair unknown p is slot unknown map[p].
+                    let map: Vec<usize> = nodes
+                        .iter()
+                        .flat_map(|&n| {
+                            let k = local.index(n);
+                            [3 * k, 3 * k + 1, 3 * k + 2]
+                        })
+                        .collect();
+                    for p in &points {
+                        accumulate(w, &map, (a, &self.dual[k][a]), xs, xm, p);
+                    }
+                }
+            }
+        }
+        Ok((out, searching))
+    }
+}
+
+/// Add point `p`'s share of the integrals of slave face node `a` to `w`: the weighted gap and
+/// the force direction weighted by its dual shape function Φ = Σ_b `dual`_b N_b, the support
+/// by N_a (pair unknown i is `w`'s unknown `map[i]`; the slave face's nodes come first).
+fn accumulate(
+    w: &mut Weighted,
+    map: &[usize],
+    (a, dual): (usize, &[f64; 4]),
+    xs: &[[PairDual; 3]],
+    xm: &[[PairDual; 3]],
+    p: &Point<PairDual>,
+) {
+    let add = |jet: &mut Jet, v: PairDual| {
+        jet.v += v.v;
+        for (i, &t) in map.iter().enumerate() {
+            jet.d[t] += v.d[i];
+        }
+    };
+    let mut phi = p.weight * 0.0;
+    for (b, &c) in dual.iter().enumerate() {
+        phi = phi + p.slave[b] * c;
+    }
+    let na = phi * p.weight;
+    // g = (x_S − x_M)·ν at the point.
+    let mut g = na * 0.0;
+    for i in 0..3 {
+        let mut d = na * 0.0;
+        for (b, x) in xs.iter().enumerate() {
+            d = d + p.slave[b] * x[i];
+        }
+        for (l, y) in xm.iter().enumerate() {
+            d = d - p.master[l] * y[i];
+        }
+        g = g + d * p.nu[i];
+    }
+    add(&mut w.gap, na * g);
+    add(&mut w.area, p.slave[a] * p.weight);
+    let shapes = p.slave[..xs.len()]
+        .iter()
+        .copied()
+        .chain(p.master[..xm.len()].iter().map(|&v| -v));
+    for (b, s) in shapes.enumerate() {
+        for i in 0..3 {
+            add(&mut w.b[map[3 * b + i]], na * s * p.nu[i]);
+        }
+    }
+}
+
+/// Centre and unit outward normal of a face at positions `pos`.
+fn centre_and_normal(
+    kind: FaceKind,
+    nodes: &[usize],
+    side: f64,
+    pos: &dyn Fn(usize) -> [f64; 3],
+) -> ([f64; 3], [f64; 3]) {
+    let x: Vec<[f64; 3]> = nodes.iter().map(|&n| pos(n)).collect();
+    let k = x.len() as f64;
+    let c = x.iter().fold([0.0; 3], |c, p| {
+        [c[0] + p[0] / k, c[1] + p[1] / k, c[2] + p[2] / k]
+    });
+    let (cx, ce) = centre(kind);
+    (c, face_normal(kind, &x, side, cx, ce))
+}
+
+/// The largest distance between two nodes of a face.
+fn diameter(nodes: &[usize], pos: &dyn Fn(usize) -> [f64; 3]) -> f64 {
+    let mut d = 0.0f64;
+    for (i, &a) in nodes.iter().enumerate() {
+        for &b in &nodes[i + 1..] {
+            let v = sub(pos(a), pos(b));
+            d = d.max((v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt());
+        }
+    }
+    d
+}
+
+/// Size of a face: the square root of its area (from the diagonals' cross product).
+fn face_size(nodes: &[usize], pos: &dyn Fn(usize) -> [f64; 3]) -> f64 {
+    let x: Vec<[f64; 3]> = nodes.iter().map(|&n| pos(n)).collect();
+    let (d1, d2) = if x.len() == 4 {
+        (sub(x[2], x[0]), sub(x[3], x[1]))
+    } else {
+        (sub(x[1], x[0]), sub(x[2], x[0]))
+    };
+    let c = [
+        d1[1] * d2[2] - d1[2] * d2[1],
+        d1[2] * d2[0] - d1[0] * d2[2],
+        d1[0] * d2[1] - d1[1] * d2[0],
+    ];
+    (0.5 * (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt()).sqrt()
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+impl Formulation for FaceMortar {
+    fn n_slots(&self) -> usize {
+        self.slots.len()
+    }
+
+    fn n_multipliers(&self) -> usize {
+        self.law.n_multipliers(self.slots.len())
+    }
+
+    fn nodes_needing_dofs(&self) -> Vec<usize> {
+        self.slots.iter().map(|s| s.0).collect()
+    }
+
+    fn candidate_nodes(&self, _ctx: &Ctx) -> Result<Vec<usize>> {
+        let mut out = self.nodes_needing_dofs();
+        out.extend(
+            self.master
+                .faces
+                .iter()
+                .flat_map(|f| f.nodes.iter().copied()),
+        );
+        out.sort_unstable();
+        out.dedup();
+        Ok(out)
+    }
+
+    fn symmetric(&self) -> bool {
+        // B = ∇g̃ in small deformation.
+        !self.nlgeo
+    }
+
+    fn partner_nodes(&self, partner: Partner) -> &[usize] {
+        match partner {
+            Partner::Face(k) => &self.master.faces[k].nodes,
+            _ => &[],
+        }
+    }
+
+    fn evaluate(
+        &self,
+        ctx: &Ctx,
+        first_lambda: usize,
+        _search: Search,
+        _history: Option<&[SlotState]>,
+        points: &mut Vec<ContactPoint>,
+        states: &mut Vec<SlotState>,
+    ) -> Result<f64> {
+        let (slots, searching) = if self.nlgeo {
+            self.current_slots(ctx)?
+        } else {
+            let slots = (0..self.slots.len())
+                .map(|j| self.linear_slot(ctx, j))
+                .collect::<Result<Vec<_>>>()?;
+            (slots, 0.0)
+        };
+        for (j, (local, w)) in slots.into_iter().enumerate() {
+            let (point, state) =
+                self.law
+                    .evaluate(ctx, first_lambda, j, self.slots[j].0, &local, w)?;
+            points.push(point);
+            states.push(state);
+        }
+        Ok(searching)
+    }
+}

@@ -1,0 +1,218 @@
+//! Mortar segment-to-segment contact: the non-penetration condition is imposed in a weak sense
+//! along the slave surface, one constraint per slave node, so that a contact pressure is
+//! transferred between non-matching meshes exactly (the contact patch test).
+//!
+//! Glossary (one slave node j with shape function N_j on the slave surface):
+//! * weighted gap g̃_j = ∫ N_j g dA, support D_j = ∫ N_j dA over the parts of the slave surface
+//!   that overlap the master, mean gap ḡ_j = g̃_j / D_j (g < 0: penetration);
+//! * force direction B_j: the slave node k gets ∫ N_j N_k ν dA, the master node l −∫ N_j M_l ν dA
+//!   (ν towards the slave body; the variation of g̃_j at fixed segmentation and normal).
+//!
+//! The laws act on ḡ_j along B_j with a pressure λ_j: the penalty λ_j = −ε ḡ_j (ε a penalty per
+//! unit area), the multipliers λ_j with ḡ_j = 0 while active. A uniform pressure p gives λ_j = p
+//! at every slave node, whose forces Σ_j λ_j B_j are then exactly the consistent nodal forces of p
+//! on both meshes (Σ_j N_j = 1): the patch test holds to round-off.
+//!
+//! [`edges`]: 2D, straight and quadratic edges, against edges or rigid shapes; [`faces`]: 3D,
+//! triangle and quadrilateral faces, segmented by [`segment`].
+
+pub mod edges;
+pub mod faces;
+pub mod segment;
+
+use super::dual::Jet;
+use super::law::{self, Laws, PointKinematics};
+use super::{ContactPoint, Ctx, Formulation, Local, Partner, SlotState};
+use crate::error::Result;
+use crate::model::{ContactLaw, Model, SegmentKind};
+
+/// The formulation of mortar condition `ci`: edges in 2D, faces in 3D.
+pub fn new(model: &Model, ci: usize) -> Result<Box<dyn Formulation + Send + Sync>> {
+    if model.domain.nsd() == 3 {
+        Ok(Box::new(faces::FaceMortar::new(model, ci)?))
+    } else {
+        Ok(Box::new(edges::Mortar::new(model, ci)?))
+    }
+}
+
+/// The size of a problem's contact surfaces: 4 × the diagonal of the box around `nodes` in the
+/// reference configuration (the search for a partner gives up beyond it).
+fn search_limit(model: &Model, nodes: impl Iterator<Item = usize>) -> f64 {
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for n in nodes {
+        let x = model.nodes[n].coords;
+        for i in 0..3 {
+            lo[i] = lo[i].min(x[i]);
+            hi[i] = hi[i].max(x[i]);
+        }
+    }
+    4.0 * (0..3).map(|i| (hi[i] - lo[i]).powi(2)).sum::<f64>().sqrt()
+}
+
+/// The node a rigid segment moves with.
+fn rigid_node(model: &Model, g: usize) -> Option<usize> {
+    match &model.segments[g].kind {
+        SegmentKind::Circle { node, .. } | SegmentKind::Plane { node, .. } => *node,
+        _ => None,
+    }
+}
+
+/// A master facet that can overlap a slave facet: its index, its distance from the slave facet
+/// along the slave's outward normal (< 0: behind it) and its size.
+#[derive(Debug, Clone, Copy)]
+struct Facing {
+    index: usize,
+    dist: f64,
+    size: f64,
+}
+
+/// The master facets of the sheet nearest to a slave facet of size `size`, among the facing,
+/// overlapping ones that `query(grow)` finds in the slave facet's box grown by `grow`: the box
+/// grows (up to `limit`, the problem's size) until it holds the nearest facet and the rest of its
+/// sheet (those within a facet size of its distance), so that a facet finds its partners at any
+/// gap — in small deformation the reference segmentation is final — while a farther sheet (the
+/// other side of a thin body) is left out.
+fn nearest_sheet(
+    size: f64,
+    limit: f64,
+    mut query: impl FnMut(f64) -> Result<Vec<Facing>>,
+) -> Result<Vec<usize>> {
+    let mut grow = size;
+    loop {
+        let found = query(grow)?;
+        let nearest = found
+            .iter()
+            .min_by(|a, b| a.dist.abs().total_cmp(&b.dist.abs()));
+        if let Some(best) = nearest {
+            let tol = |f: &Facing| size.max(f.size).max(best.size);
+            if best.dist.abs() + 2.0 * tol(best) <= grow || grow >= limit {
+                return Ok(found
+                    .iter()
+                    .filter(|f| (f.dist - best.dist).abs() <= tol(f))
+                    .map(|f| f.index)
+                    .collect());
+            }
+        } else if grow >= limit {
+            return Ok(Vec::new());
+        }
+        grow *= 2.0;
+    }
+}
+
+/// What one slave node's constraint integrates to, over its local unknowns.
+struct Weighted {
+    /// g̃_j.
+    gap: Jet,
+    /// D_j.
+    area: Jet,
+    /// B_j.
+    b: Vec<Jet>,
+    partner: Partner,
+}
+
+/// The law of a mortar condition, shared by its slots.
+struct SlotLaw {
+    number: usize,
+    law: ContactLaw,
+    /// Per slot, the factor of the penalty (from the mesh when the condition gives none).
+    scale: Vec<f64>,
+}
+
+impl SlotLaw {
+    /// The per-slot penalty factors: 1, or without a penalty ε_j = factor·E/h, E of the stiffest
+    /// element at the node and h (`size`) the size of its slave facets.
+    fn new(model: &Model, ci: usize, slots: &[usize], size: impl Fn(usize) -> f64) -> SlotLaw {
+        let c = &model.contacts[ci];
+        let young = if c.penalty_from_mesh {
+            super::stiffest_young(model)
+        } else {
+            Default::default()
+        };
+        let scale = (0..slots.len())
+            .map(|j| {
+                if !c.penalty_from_mesh {
+                    return 1.0;
+                }
+                let e = young.get(&slots[j]).copied().unwrap_or(0.0);
+                super::n2s::DEFAULT_PENALTY_FACTOR * e / size(j)
+            })
+            .collect();
+        SlotLaw {
+            number: c.number,
+            law: c.law,
+            scale,
+        }
+    }
+
+    fn n_multipliers(&self, slots: usize) -> usize {
+        if self.law == ContactLaw::Multiplier {
+            slots
+        } else {
+            0
+        }
+    }
+
+    /// The contact point and state of slot `j` (slave node `node`) from its integrals.
+    fn evaluate(
+        &self,
+        ctx: &Ctx,
+        first_lambda: usize,
+        j: usize,
+        node: usize,
+        local: &Local,
+        w: Weighted,
+    ) -> Result<(ContactPoint, SlotState)> {
+        let m = local.m();
+        let mut state = SlotState {
+            partner: w.partner,
+            xi: [0.0; 2],
+            ..SlotState::unpaired(self.number, node, ctx.position(node)?.0)
+        };
+        let has = w.area.v > 0.0;
+        let (gap, b) = if has {
+            // ḡ = g̃ / D with its gradient.
+            let q = w.gap.v / w.area.v;
+            let d = (w.gap.d.iter().zip(&w.area.d))
+                .map(|(a, b)| (a - q * b) / w.area.v)
+                .collect();
+            (Jet { v: q, d }, w.b)
+        } else {
+            (Jet::constant(f64::NAN, m), vec![Jet::constant(0.0, m); m])
+        };
+        let kin = PointKinematics {
+            gap,
+            weight: Jet::constant(if has { 1.0 } else { 0.0 }, m),
+            b,
+            area: 1.0,
+            friction: None,
+        };
+        // The multipliers' active-set rule compares a pressure with c·ḡ: c per unit area.
+        let laws = Laws {
+            c: ctx.laws.c / w.area.v.max(1e-300),
+            ..*ctx.laws
+        };
+        let mut codes = local.codes.clone();
+        let penalty = match self.law {
+            ContactLaw::Penalty(p) => p * self.scale[j],
+            ContactLaw::Multiplier => 0.0,
+        };
+        let point = match self.law {
+            ContactLaw::Penalty(_) => law::penalty::evaluate(&laws, penalty, codes, &kin),
+            ContactLaw::Multiplier => {
+                let eq = first_lambda + j;
+                codes.push(eq);
+                law::multiplier::evaluate(&laws, ctx.u[eq], codes, &kin)
+            }
+        };
+        if has {
+            state.gap = kin.gap.v;
+            let lambda = law::normal_force(&point, &kin, penalty);
+            state.pressure = lambda;
+            state.force = lambda * w.area.v;
+            state.active = point.closed && (self.law == ContactLaw::Multiplier || kin.gap.v < 0.0);
+        } else {
+            state.partner = Partner::None;
+        }
+        Ok((point, state))
+    }
+}
