@@ -266,6 +266,26 @@ fn hertz_sphere_example_matches_hertz() {
     assert!(c.p0_error().abs() < 0.03 && c.a_error().abs() < 0.05);
 }
 
+/// examples/hertz_sphere_mortar.in: p0 and a within 2 % of Hertz for the computed force.
+#[test]
+fn hertz_sphere_mortar_example_matches_hertz() {
+    use hertz::analytic::{compare_hertz_sphere, contact_modulus};
+    use hertz::bench::verify::{E, HERTZ_R, NU};
+    let mut c = None;
+    run_example("hertz_sphere_mortar.in", |model, r| {
+        c = compare_hertz_sphere(model, r.contact, HERTZ_R, contact_modulus(E, NU, E, NU));
+        r.info.iterations
+    });
+    let c = c.expect("a contact zone");
+    println!(
+        "hertz sphere mortar: F {:.4}, p0 {:+.2} %, a {:+.2} %",
+        c.force,
+        100.0 * c.p0_error(),
+        100.0 * c.a_error()
+    );
+    assert!(c.p0_error().abs() < 0.02 && c.a_error().abs() < 0.02);
+}
+
 /// examples/two_beams.in: the clamps balance the end forces to 1e-8 and the upper clamp's force
 /// is the header's −0.626077.
 #[test]
