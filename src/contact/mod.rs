@@ -7,8 +7,9 @@
 //! kinematics in [`dual`] arithmetic (gap, weight, force direction and their derivatives) and a
 //! [`law`] (penalty or multiplier, and Coulomb friction on penalty points) that turns them into a
 //! residual and tangent. Formulations: [`n2n`] (node-to-node), [`n2s`] (node-to-segment),
-//! [`mortar`] (segment-to-segment, 2D). The friction history is the anchors of the converged
-//! contact states ([`Anchor`]): the solver restores them with the states when it cuts a step.
+//! [`mortar`] (segment-to-segment, 2D edges and 3D faces). The friction history is the anchors
+//! of the converged contact states ([`Anchor`]): the solver restores them with the states when
+//! it cuts a step.
 //!
 //! OOFEM defects fixed here (spec §2.10): normals point out of the master body whatever the node
 //! order; the gap is measured to the contact point; the tangent is the exact derivative, including
