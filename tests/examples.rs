@@ -246,43 +246,36 @@ fn patch3d_example_transmits_the_exact_pressure() {
     assert!(its.iter().all(|&i| i <= 3), "{its:?}");
 }
 
-/// examples/hertz_sphere.in: p0 within 3 % and a within 5 % of Hertz for the computed force.
-#[test]
-fn hertz_sphere_example_matches_hertz() {
+/// Run a Hertz sphere example: its comparison with Hertz for the computed force.
+fn hertz_sphere_example(file: &str) -> hertz::analytic::HertzComparison {
     use hertz::analytic::{compare_hertz_sphere, contact_modulus};
     use hertz::bench::verify::{E, HERTZ_R, NU};
     let mut c = None;
-    run_example("hertz_sphere.in", |model, r| {
+    run_example(file, |model, r| {
         c = compare_hertz_sphere(model, r.contact, HERTZ_R, contact_modulus(E, NU, E, NU));
         r.info.iterations
     });
     let c = c.expect("a contact zone");
     println!(
-        "hertz sphere: F {:.4}, p0 {:+.2} %, a {:+.2} %",
+        "{file}: F {:.4}, p0 {:+.2} %, a {:+.2} %",
         c.force,
         100.0 * c.p0_error(),
         100.0 * c.a_error()
     );
+    c
+}
+
+/// examples/hertz_sphere.in: p0 within 3 % and a within 5 % of Hertz for the computed force.
+#[test]
+fn hertz_sphere_example_matches_hertz() {
+    let c = hertz_sphere_example("hertz_sphere.in");
     assert!(c.p0_error().abs() < 0.03 && c.a_error().abs() < 0.05);
 }
 
 /// examples/hertz_sphere_mortar.in: p0 and a within 2 % of Hertz for the computed force.
 #[test]
 fn hertz_sphere_mortar_example_matches_hertz() {
-    use hertz::analytic::{compare_hertz_sphere, contact_modulus};
-    use hertz::bench::verify::{E, HERTZ_R, NU};
-    let mut c = None;
-    run_example("hertz_sphere_mortar.in", |model, r| {
-        c = compare_hertz_sphere(model, r.contact, HERTZ_R, contact_modulus(E, NU, E, NU));
-        r.info.iterations
-    });
-    let c = c.expect("a contact zone");
-    println!(
-        "hertz sphere mortar: F {:.4}, p0 {:+.2} %, a {:+.2} %",
-        c.force,
-        100.0 * c.p0_error(),
-        100.0 * c.a_error()
-    );
+    let c = hertz_sphere_example("hertz_sphere_mortar.in");
     assert!(c.p0_error().abs() < 0.02 && c.a_error().abs() < 0.02);
 }
 

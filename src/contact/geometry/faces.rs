@@ -51,7 +51,8 @@ pub struct FaceSurface {
 
 type V3<T> = [T; 3];
 
-fn cross<T: Scalar>(a: &V3<T>, b: &V3<T>) -> V3<T> {
+/// a × b.
+pub fn cross<T: Scalar>(a: &V3<T>, b: &V3<T>) -> V3<T> {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],
@@ -59,8 +60,14 @@ fn cross<T: Scalar>(a: &V3<T>, b: &V3<T>) -> V3<T> {
     ]
 }
 
-fn dot<T: Scalar>(a: &V3<T>, b: &V3<T>) -> T {
+/// a·b.
+pub fn dot<T: Scalar>(a: &V3<T>, b: &V3<T>) -> T {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// a − b.
+pub fn sub<T: Scalar>(a: &V3<T>, b: &V3<T>) -> V3<T> {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
 fn normalize<T: Scalar>(a: &V3<T>) -> V3<T> {

@@ -17,7 +17,7 @@
 use super::segment::{dual_basis, overlap, Point};
 use super::{nearest_sheet, search_limit, Facing, SlotLaw, Weighted};
 use crate::contact::dual::{DualN, Jet};
-use crate::contact::geometry::faces::{centre, face_normal, FaceKind, FaceSurface};
+use crate::contact::geometry::faces::{self, cross, dot, face_normal, sub, Face, FaceSurface};
 use crate::contact::search::broad::BroadPhase;
 use crate::contact::{ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState};
 use crate::error::{Error, Result};
@@ -108,7 +108,7 @@ impl FaceMortar {
             let faces = &slots[j].1;
             faces
                 .iter()
-                .map(|&k| face_size(&slave.faces[k].nodes, &reference))
+                .map(|&k| Facet::at(&slave.faces[k], &reference).size)
                 .sum::<f64>()
                 / faces.len() as f64
         });
@@ -146,44 +146,30 @@ impl FaceMortar {
     /// centres within reach of its projection, of the nearest sheet ([`nearest_sheet`]).
     fn candidates(
         &self,
-        boxes: &BroadPhase,
+        masters: &MasterIndex,
         k: usize,
         pos: &dyn Fn(usize) -> [f64; 3],
     ) -> Vec<usize> {
-        let f = &self.slave.faces[k];
-        let (c, n) = centre_and_normal(f.kind, &f.nodes, f.side, pos);
-        let size = face_size(&f.nodes, pos);
-        let reach = diameter(&f.nodes, pos);
-        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-        for &a in &f.nodes {
-            let x = pos(a);
-            for i in 0..3 {
-                lo[i] = lo[i].min(x[i]);
-                hi[i] = hi[i].max(x[i]);
-            }
-        }
-        let found = nearest_sheet(size, self.search_limit, |grow| {
-            let lo = lo.map(|v| v - grow);
-            let hi = hi.map(|v| v + grow);
-            Ok(boxes
+        let f = Facet::at(&self.slave.faces[k], pos);
+        let found = nearest_sheet(f.size, self.search_limit, |grow| {
+            let lo = f.lo.map(|v| v - grow);
+            let hi = f.hi.map(|v| v + grow);
+            Ok(masters
+                .boxes
                 .intersecting(lo, hi)
                 .into_iter()
                 .filter_map(|mi| {
-                    let m = &self.master.faces[mi];
-                    let (cm, nm) = centre_and_normal(m.kind, &m.nodes, m.side, pos);
-                    let d = sub(cm, c);
-                    let dist = (0..3).map(|i| d[i] * n[i]).sum::<f64>();
-                    let facing = (0..3).map(|i| n[i] * nm[i]).sum::<f64>() < 0.0;
+                    let m = &masters.facets[mi];
+                    let d = sub(&m.centre, &f.centre);
+                    let dist = dot(&d, &f.normal);
+                    let facing = dot(&f.normal, &m.normal) < 0.0;
                     // The centre's offset in the slave's plane against both faces' reach.
-                    let inplane = (0..3)
-                        .map(|i| (d[i] - dist * n[i]).powi(2))
-                        .sum::<f64>()
-                        .sqrt();
-                    let near = inplane <= reach + diameter(&m.nodes, pos);
-                    (facing && near).then(|| Facing {
+                    let offset = sub(&d, &f.normal.map(|v| v * dist));
+                    let near = dot(&offset, &offset).sqrt() <= f.diameter + m.diameter;
+                    (facing && near).then_some(Facing {
                         index: mi,
                         dist,
-                        size: face_size(&m.nodes, pos),
+                        size: m.size,
                     })
                 })
                 .collect())
@@ -191,21 +177,29 @@ impl FaceMortar {
         found.unwrap_or_default()
     }
 
-    /// The broad phase of the master faces at positions `pos`.
-    fn master_boxes(&self, pos: &dyn Fn(usize) -> [f64; 3]) -> BroadPhase {
+    /// The master faces at positions `pos`, for the search.
+    fn master_index(&self, pos: &dyn Fn(usize) -> [f64; 3]) -> MasterIndex {
         let boxes: Vec<Vec<[f64; 3]>> = self
             .master
             .faces
             .iter()
             .map(|f| f.nodes.iter().map(|&n| pos(n)).collect())
             .collect();
-        BroadPhase::new(boxes.iter().map(|v| &v[..]))
+        MasterIndex {
+            boxes: BroadPhase::new(boxes.iter().map(|v| &v[..])),
+            facets: self
+                .master
+                .faces
+                .iter()
+                .map(|f| Facet::at(f, pos))
+                .collect(),
+        }
     }
 
     /// The slots' linear forms g̃_j = Σ c_jn·x_n from the reference segmentation.
     fn reference_forms(&self, model: &Model) -> Vec<LinearSlot> {
         let pos = |n: usize| model.nodes[n].coords;
-        let boxes = self.master_boxes(&pos);
+        let masters = self.master_index(&pos);
         let mut forms: Vec<LinearSlot> = (0..self.slots.len())
             .map(|_| LinearSlot {
                 area: 0.0,
@@ -216,7 +210,7 @@ impl FaceMortar {
         for k in 0..self.slave.faces.len() {
             let sf = &self.slave.faces[k];
             let xs: Vec<[f64; 3]> = sf.nodes.iter().map(|&n| pos(n)).collect();
-            for mi in self.candidates(&boxes, k, &pos) {
+            for mi in self.candidates(&masters, k, &pos) {
                 let mf = &self.master.faces[mi];
                 let xm: Vec<[f64; 3]> = mf.nodes.iter().map(|&n| pos(n)).collect();
                 for p in overlap(sf.kind, &xs, sf.side, mf.kind, &xm) {
@@ -292,9 +286,9 @@ impl FaceMortar {
             }
         }
         let pos = |n: usize| positions[&n];
-        let boxes = self.master_boxes(&pos);
+        let masters = self.master_index(&pos);
         let candidates: Vec<Vec<usize>> = (0..self.slave.faces.len())
-            .map(|k| self.candidates(&boxes, k, &pos))
+            .map(|k| self.candidates(&masters, k, &pos))
             .collect();
         let searching = start.elapsed().as_secs_f64();
         let mut out = Vec::with_capacity(self.slots.len());
@@ -408,52 +402,62 @@ fn accumulate(
     }
 }
 
-/// Centre and unit outward normal of a face at positions `pos`.
-fn centre_and_normal(
-    kind: FaceKind,
-    nodes: &[usize],
-    side: f64,
-    pos: &dyn Fn(usize) -> [f64; 3],
-) -> ([f64; 3], [f64; 3]) {
-    let x: Vec<[f64; 3]> = nodes.iter().map(|&n| pos(n)).collect();
-    let k = x.len() as f64;
-    let c = x.iter().fold([0.0; 3], |c, p| {
-        [c[0] + p[0] / k, c[1] + p[1] / k, c[2] + p[2] / k]
-    });
-    let (cx, ce) = centre(kind);
-    (c, face_normal(kind, &x, side, cx, ce))
+/// The master faces at some positions: their broad phase and their shapes.
+struct MasterIndex {
+    boxes: BroadPhase,
+    facets: Vec<Facet>,
 }
 
-/// The largest distance between two nodes of a face.
-fn diameter(nodes: &[usize], pos: &dyn Fn(usize) -> [f64; 3]) -> f64 {
-    let mut d = 0.0f64;
-    for (i, &a) in nodes.iter().enumerate() {
-        for &b in &nodes[i + 1..] {
-            let v = sub(pos(a), pos(b));
-            d = d.max((v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt());
+/// What the search needs of a face at some positions.
+struct Facet {
+    centre: [f64; 3],
+    /// Unit outward normal at the parametric centre.
+    normal: [f64; 3],
+    /// The square root of its area.
+    size: f64,
+    /// The largest distance between two of its nodes.
+    diameter: f64,
+    /// Its bounding box.
+    lo: [f64; 3],
+    hi: [f64; 3],
+}
+
+impl Facet {
+    fn at(face: &Face, pos: &dyn Fn(usize) -> [f64; 3]) -> Facet {
+        let x: Vec<[f64; 3]> = face.nodes.iter().map(|&n| pos(n)).collect();
+        let k = x.len() as f64;
+        let centre = x.iter().fold([0.0; 3], |c, p| {
+            [c[0] + p[0] / k, c[1] + p[1] / k, c[2] + p[2] / k]
+        });
+        let (cx, ce) = faces::centre(face.kind);
+        // The area from the diagonals' (a triangle's sides') cross product.
+        let (d1, d2) = if x.len() == 4 {
+            (sub(&x[2], &x[0]), sub(&x[3], &x[1]))
+        } else {
+            (sub(&x[1], &x[0]), sub(&x[2], &x[0]))
+        };
+        let c = cross(&d1, &d2);
+        let mut diameter = 0.0f64;
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for (i, a) in x.iter().enumerate() {
+            for b in &x[i + 1..] {
+                let v = sub(a, b);
+                diameter = diameter.max(dot(&v, &v).sqrt());
+            }
+            for j in 0..3 {
+                lo[j] = lo[j].min(a[j]);
+                hi[j] = hi[j].max(a[j]);
+            }
+        }
+        Facet {
+            centre,
+            normal: face_normal(face.kind, &x, face.side, cx, ce),
+            size: (0.5 * dot(&c, &c).sqrt()).sqrt(),
+            diameter,
+            lo,
+            hi,
         }
     }
-    d
-}
-
-/// Size of a face: the square root of its area (from the diagonals' cross product).
-fn face_size(nodes: &[usize], pos: &dyn Fn(usize) -> [f64; 3]) -> f64 {
-    let x: Vec<[f64; 3]> = nodes.iter().map(|&n| pos(n)).collect();
-    let (d1, d2) = if x.len() == 4 {
-        (sub(x[2], x[0]), sub(x[3], x[1]))
-    } else {
-        (sub(x[1], x[0]), sub(x[2], x[0]))
-    };
-    let c = [
-        d1[1] * d2[2] - d1[2] * d2[1],
-        d1[2] * d2[0] - d1[0] * d2[2],
-        d1[0] * d2[1] - d1[1] * d2[0],
-    ];
-    (0.5 * (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt()).sqrt()
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
 impl Formulation for FaceMortar {

@@ -19,7 +19,7 @@
 //! choice (which vertices survive the clipping) is made on the values and every quantity is
 //! differentiated through.
 
-use crate::contact::geometry::faces::{face_normal, shape, FaceKind};
+use crate::contact::geometry::faces::{centre, cross, dot, face_normal, shape, sub, FaceKind};
 use crate::contact::geometry::scalar::Scalar;
 
 type V3<T> = [T; 3];
@@ -52,22 +52,6 @@ fn triangle_rule() -> [([f64; 3], f64); 7] {
         ([a2, a2, 1.0 - 2.0 * a2], w2),
         ([a2, 1.0 - 2.0 * a2, a2], w2),
         ([1.0 - 2.0 * a2, a2, a2], w2),
-    ]
-}
-
-fn sub3<T: Scalar>(a: &V3<T>, b: &V3<T>) -> V3<T> {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot3<T: Scalar>(a: &V3<T>, b: &V3<T>) -> T {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross3<T: Scalar>(a: &V3<T>, b: &V3<T>) -> V3<T> {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
     ]
 }
 
@@ -180,7 +164,7 @@ pub fn overlap<T: Scalar>(
     xm: &[V3<T>],
 ) -> Vec<Point<T>> {
     let z = xs[0][0].cst(0.0);
-    let (cx, ce) = crate::contact::geometry::faces::centre(sk);
+    let (cx, ce) = centre(sk);
     let (cn, _, _) = shape(sk, z + cx, z + ce);
     let mut c0 = [z; 3];
     for (a, x) in xs.iter().enumerate() {
@@ -189,14 +173,14 @@ pub fn overlap<T: Scalar>(
         }
     }
     let n0 = face_normal(sk, xs, side, z + cx, z + ce);
-    let d = sub3(&xs[1], &xs[0]);
-    let t = sub3(&d, &n0.map(|v| v * dot3(&d, &n0)));
-    let len = dot3(&t, &t).sqrt();
+    let d = sub(&xs[1], &xs[0]);
+    let t = sub(&d, &n0.map(|v| v * dot(&d, &n0)));
+    let len = dot(&t, &t).sqrt();
     let e1 = t.map(|v| v / len);
-    let e2 = cross3(&n0, &e1);
+    let e2 = cross(&n0, &e1);
     let plane = |x: &V3<T>| {
-        let r = sub3(x, &c0);
-        [dot3(&r, &e1), dot3(&r, &e2)]
+        let r = sub(x, &c0);
+        [dot(&r, &e1), dot(&r, &e2)]
     };
     let ps: Vec<V2<T>> = xs.iter().map(plane).collect();
     let pm: Vec<V2<T>> = xm.iter().map(plane).collect();
@@ -207,8 +191,9 @@ pub fn overlap<T: Scalar>(
         }
         p
     };
-    let poly = clip(&ccw(&ps), &ccw(&pm));
-    if poly.len() < 3 || area2(&poly).val() <= 1e-12 * area2(&ccw(&ps)).val() {
+    let slave_poly = ccw(&ps);
+    let poly = clip(&slave_poly, &ccw(&pm));
+    if poly.len() < 3 || area2(&poly).val() <= 1e-12 * area2(&slave_poly).val() {
         return Vec::new();
     }
     let k = poly.len() as f64;
@@ -246,9 +231,9 @@ pub fn overlap<T: Scalar>(
                     j2[i] = j2[i] + ps[a][i] * de[a];
                 }
             }
-            let n = cross3(&t1, &t2);
+            let n = cross(&t1, &t2);
             let det = j1[0] * j2[1] - j1[1] * j2[0];
-            let ratio = dot3(&n, &n).sqrt() / if det.val() < 0.0 { -det } else { det };
+            let ratio = dot(&n, &n).sqrt() / if det.val() < 0.0 { -det } else { det };
             out.push(Point {
                 slave,
                 master: shape(mk, mxi, meta).0,
@@ -276,8 +261,8 @@ pub fn dual_basis(kind: FaceKind, x: &[[f64; 3]]) -> [[f64; 4]; 4] {
                 t2[i] += x[a][i] * de[a];
             }
         }
-        let c = cross3(&t1, &t2);
-        let da = w * dot3(&c, &c).sqrt();
+        let c = cross(&t1, &t2);
+        let da = w * dot(&c, &c).sqrt();
         for a in 0..k {
             d[a] += n[a] * da;
             for b in 0..k {
