@@ -344,9 +344,12 @@ impl ContactSystem {
         self.formulations.iter().map(|f| f.n_multipliers()).sum()
     }
 
-    /// Whether every contact tangent is symmetric.
+    /// Whether every contact tangent is symmetric: friction's is not where a point slides (its
+    /// force follows the slip, its size the normal force), whatever the formulation's normal
+    /// part. (Taken as symmetric before, a node sliding on a rigid shape had its slip tangent
+    /// cut to one triangle.)
     pub fn symmetric(&self) -> bool {
-        self.formulations.iter().all(|f| f.symmetric())
+        !self.frictional && self.formulations.iter().all(|f| f.symmetric())
     }
 
     /// What the DOF numbering must provide for the contact conditions.

@@ -67,7 +67,17 @@ pub fn evaluate(law: Friction, point: &FrictionPoint) -> Tangential {
     // At an open point (pn < 0, the closed branch's continuation) this slides with a negative
     // force: the closing point's friction continued linearly, as its normal force is.
     let limit = law.mu * pn.v;
-    let stick = law.penalty * slip_norm <= limit || slip_norm == 0.0;
+    // A slip within the round-off of the positions it is the difference of has no direction:
+    // it sticks. (Taken as a slip at a point that just touches, pn = 0, its tangent μ·∇pn ⊗ ĝ_T
+    // would couple the normal motion to the tangential force along a direction that is noise —
+    // a node anchored at a parameter that does not round-trip exactly, as 4/7 of an edge, sent
+    // the first Newton step of a pressed pair of elastic blocks far off.)
+    let resolution = 64.0
+        * f64::EPSILON
+        * (0..dim)
+            .map(|i| xs[i].v.abs().max(xa[i].v.abs()))
+            .fold(0.0, f64::max);
+    let stick = law.penalty * slip_norm <= limit || slip_norm <= resolution;
     let mut f = [zero; 3];
     let next_anchor;
     if stick {
