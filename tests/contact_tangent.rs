@@ -832,3 +832,123 @@ fn mortar_tangents_in_3d_are_jacobians_of_residuals() {
         }
     }
 }
+
+/// Mortar friction's tangent (unsymmetric) is the Jacobian of its residual in stick (μ = 5) and
+/// slip (μ = 0.05), small deformation: 2D straight and quadratic edges and a rigid circle moving
+/// with a node, 3D hexahedra, tetrahedra and wedges; the history is the state at u = 0, the
+/// slave block then sunk and sheared, the master's surface nodes moved a little.
+#[test]
+fn mortar_friction_tangents_are_jacobians_in_stick_and_slip() {
+    use hertz::bench::mesh::Solid;
+    use hertz::bench::suite::Law;
+    use hertz::bench::verify::Patch;
+    let law = "s2spenaltycontact 4 loadTimeFunction 1 penalty 1e4 slavesegment 1 segmentset 1 2";
+    let shear = |n: usize, y: f64| [0.013 + 0.02 * y, -0.01 + 0.003 * (n as f64).sin(), 0.0];
+    let mut cases: Vec<(String, String, Disp)> = Vec::new();
+    let text = common::mortar_blocks(3, 2, 0, law);
+    let model = common::model_from_text(&text).unwrap();
+    let mut disp: Disp = (13..=21)
+        .map(|n| (n, shear(n, model.nodes[n - 1].coords[1])))
+        .collect();
+    disp.extend((9..=12).map(|n| (n, [0.004 * (n as f64).cos(), 0.002, 0.0])));
+    cases.push(("straight".into(), text, disp));
+    let text = common::mortar_blocks_q8(3, 2, 0, law);
+    let model = common::model_from_text(&text).unwrap();
+    let mut disp: Disp = (30..=50)
+        .map(|n| (n, shear(n, model.nodes[n - 1].coords[1])))
+        .collect();
+    disp.extend((23..=29).map(|n| (n, [0.004 * (n as f64).cos(), 0.002 * (n as f64).sin(), 0.0])));
+    cases.push(("quadratic".into(), text, disp));
+    let text = common::mortar_blocks(3, 2, 0, law)
+        .replace(
+            "linear2delementedgecontactsegment 2 edgeset 2",
+            "circlecontactsegment 2 centerpoint 2 1.0 -3.0 radius 3.0 node 999",
+        )
+        .replace("ndofman 21 ", "ndofman 22 ")
+        .replace(
+            "\nnode 1 coords",
+            "\nnode 999 coords 2 1.0 -3.0\nnode 1 coords",
+        );
+    let model = common::model_from_text(&text).unwrap();
+    let mut disp: Disp = (13..=21)
+        .map(|n| {
+            let y = model.nodes.iter().find(|x| x.label == n).unwrap().coords[1];
+            (n, [0.013 + 0.02 * y, -0.05 + 0.003 * (n as f64).sin(), 0.0])
+        })
+        .collect();
+    disp.push((999, [0.01, 0.02, 0.0]));
+    cases.push(("circle".into(), text, disp));
+    for kind in [Solid::Hex, Solid::Tet, Solid::Wedge] {
+        let text = Patch {
+            kind,
+            slave_kind: None,
+            sym: 0,
+            n: 1,
+            nlgeo: false,
+            delta: 0.01,
+            steps: 1,
+            law: Law::Penalty(1e4),
+            slave_n: Some(2),
+            mortar: true,
+        }
+        .input();
+        let model = common::model_from_text(&text).unwrap();
+        let disp: Disp = model
+            .nodes
+            .iter()
+            .filter_map(|n| {
+                let [x, y, z] = n.coords;
+                let k = n.label as f64;
+                // The master block's 2 × 2 × 3 nodes come first.
+                if n.label > 12 {
+                    Some((
+                        n.label,
+                        [0.013 + 0.02 * z, -0.007 + 0.01 * z, -0.01 + 0.003 * k.sin()],
+                    ))
+                } else if z.abs() < 1e-9 {
+                    Some((n.label, [0.004 * k.cos(), 0.002 * x, 0.003 * (k + y).sin()]))
+                } else {
+                    None
+                }
+            })
+            .collect();
+        cases.push((format!("{kind:?}"), text, disp));
+    }
+    for (name, text, disp) in cases {
+        for (mu, stick) in [(5.0, true), (0.05, false)] {
+            let name = format!("mortar friction {name} mu {mu}");
+            let text = text.replace("slavesegment", &format!("friction {mu} slavesegment"));
+            let model = common::model_from_text(&text).unwrap_or_else(|e| panic!("{name}: {e}"));
+            let mut contact = ContactSystem::new(&model).unwrap();
+            let dofs = hertz::solve::number_dofs(&model).unwrap();
+            contact.set_pressure_limit(f64::INFINITY);
+            let u0 = vec![0.0; dofs.n_primary()];
+            let history = contact
+                .evaluate(&model, &dofs, &u0, Search::Fresh)
+                .unwrap()
+                .1;
+            let case = Case {
+                name: name.clone(),
+                text: String::new(),
+                disp: disp.clone(),
+                lambda: 0.0,
+                active: 0,
+            };
+            let u = displaced(&model, &dofs, &case);
+            let (err, states, checked) =
+                fd_error_with_history(&model, &contact, &dofs, &u, Some(&history));
+            let closed: Vec<_> = states.iter().filter_map(|s| s.friction).collect();
+            let (sticking, force) = (
+                closed.iter().filter(|f| f.0).count(),
+                closed.iter().map(|f| f.1).sum::<f64>(),
+            );
+            println!(
+                "{name}: {err:.1e} over {checked} points, {} closed, {sticking} stick",
+                closed.len()
+            );
+            assert!(!closed.is_empty() && force > 0.0, "{name}: friction");
+            assert_eq!(sticking == closed.len(), stick, "{name}: {sticking} stick");
+            assert!(err < 1e-6, "{name}: tangent off by {err:e} (relative)");
+        }
+    }
+}

@@ -185,7 +185,7 @@ pub fn read_segment(
     Ok(seg)
 }
 
-/// `friction μ [pt ε_T]` of a node-to-segment penalty condition (hertz extension; `pt` as in
+/// `friction μ [pt ε_T]` of a node-to-segment or mortar penalty condition (hertz extension; `pt` as in
 /// upstream OOFEM's `structuralpenaltycontactbc`, by default the normal `penalty`).
 fn read_friction(r: &Record, kw: &str, law: ContactLaw) -> Result<Option<Friction>> {
     let Some(mu) = r.opt_float("friction")? else {
@@ -199,14 +199,14 @@ fn read_friction(r: &Record, kw: &str, law: ContactLaw) -> Result<Option<Frictio
     }
     let ContactLaw::Penalty(pn) = law else {
         return Err(r.error(
-            "friction is regularized by a tangential penalty: use n2spenaltycontact \
-             (`friction` with Lagrange multipliers is not supported yet)",
+            "friction is regularized by a tangential penalty: use n2spenaltycontact or \
+             s2spenaltycontact (`friction` with Lagrange multipliers is not supported yet)",
         ));
     };
     if kw.starts_with("n2n") {
         return Err(r.error(
-            "friction is supported on node-to-segment conditions (n2spenaltycontact), \
-             not node-to-node",
+            "friction is supported on node-to-segment and mortar conditions \
+             (n2spenaltycontact, s2spenaltycontact), not node-to-node",
         ));
     }
     let pt = r.opt_float("pt")?.unwrap_or(pn);

@@ -449,3 +449,45 @@ fn blocks_input(
         edges(&el_up[n_up..], 3),
     )
 }
+
+/// `mortar_blocks` under a uniform pressure `p` and shear `tau` (ν = 0): the top of the upper
+/// block carries the traction (τ, −p), the sides of both blocks (0, ∓τ) (left, right), the
+/// bottom is clamped. The exact solution is the uniform stress σ_xx = 0, σ_yy = −p, σ_xy = τ in
+/// both blocks, the interface carrying a uniform pressure p and a uniform friction traction τ
+/// (the upper block held in x by friction alone: τ below μp to stick).
+pub fn sheared_blocks(n_low: usize, n_up: usize, p: f64, tau: f64, condition: &str) -> String {
+    let text = mortar_blocks(n_low, n_up, 0, condition);
+    let lo = 2 * n_low;
+    let side = |col: &dyn Fn(usize, usize) -> usize, edge: usize| {
+        let mut v = Vec::new();
+        for (first, n) in [(0, n_low), (lo, n_up)] {
+            for row in 0..2 {
+                v.push(format!("{} {edge}", first + col(row, n)));
+            }
+        }
+        v.join(" ")
+    };
+    let left = side(&|row, n| row * n + 1, 4);
+    let right = side(&|row, n| row * n + n, 2);
+    text.replace("nbc 4", "nbc 6")
+        .replace("nset 7", "nset 9")
+        .replace("IsoLE 1 d 0 E 1000 n 0.3", "IsoLE 1 d 0 E 1000 n 0")
+        .replace(
+            "BoundaryCondition 1 loadTimeFunction 1 dofs 1 1 values 1 0 set 5",
+            "BoundaryCondition 1 loadTimeFunction 1 dofs 1 1 values 1 0 set 6",
+        )
+        .replace(
+            "components 2 0 -10 set 7",
+            &format!("components 2 {tau} {} set 7", -p),
+        )
+        .replace(
+            "ConstantFunction 1",
+            &format!(
+                "ConstantEdgeLoad 5 loadTimeFunction 1 dofs 2 1 2 components 2 0 {} set 8\n\
+                 ConstantEdgeLoad 6 loadTimeFunction 1 dofs 2 1 2 components 2 0 {tau} set 9\n\
+                 ConstantFunction 1",
+                -tau
+            ),
+        )
+        + &format!("Set 8 elementedges 8 {left}\nSet 9 elementedges 8 {right}\n")
+}

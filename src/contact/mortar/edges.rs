@@ -13,8 +13,8 @@
 //! configuration and only the gap follows the displacements (linear contact); in large
 //! deformation all of it is evaluated at the current state and differentiated.
 
-use super::{nearest_sheet, rigid_node, search_limit, Facing, SlotLaw, Weighted};
-use crate::contact::dual::{self, Dual};
+use super::{nearest_sheet, rigid_node, search_limit, Facing, SlipForm, SlotLaw, Weighted};
+use crate::contact::dual::{self, Dual, Jet};
 use crate::contact::geometry::edges::{shape, EdgeSurface};
 use crate::contact::geometry::rigid;
 use crate::contact::search::broad::BroadPhase;
@@ -55,11 +55,6 @@ impl Mortar {
             span: c.span.clone(),
             msg,
         };
-        if c.friction.is_some() {
-            return Err(err(
-                "friction with mortar contact is not supported yet".into()
-            ));
-        }
         let slave = EdgeSurface::new(model, &[*slave]);
         let master = EdgeSurface::new(model, segments);
         if slave.edges.is_empty() {
@@ -109,6 +104,8 @@ impl Mortar {
                 .sum::<f64>()
                 / edges.len() as f64
         });
+        let nlgeo = slave.edges.iter().any(|e| e.nlgeo);
+        law.check_friction(model, ci, nlgeo)?;
         let nodes = slave
             .edges
             .iter()
@@ -119,7 +116,7 @@ impl Mortar {
             search_limit,
             law,
             rigid_nodes: rigid.iter().filter_map(|&g| rigid_node(model, g)).collect(),
-            nlgeo: slave.edges.iter().any(|e| e.nlgeo),
+            nlgeo,
             slave,
             master,
             rigid,
@@ -277,6 +274,9 @@ struct Integrals {
     area: Dual,
     b: Vec<Dual>,
     partner: Partner,
+    /// Per local node its share w_jn, and ∫ N_j ν (see [`SlipForm`]).
+    shares: Vec<Dual>,
+    normal: [Dual; 2],
 }
 
 impl Mortar {
@@ -324,6 +324,8 @@ impl Mortar {
             area: zero,
             b: vec![zero; m],
             partner: Partner::None,
+            shares: vec![zero; local.nodes.len()],
+            normal: [zero; 2],
         };
         for (k, over) in pairs {
             let e = &self.slave.edges[k];
@@ -358,15 +360,22 @@ impl Mortar {
                     // Slave nodes: ∫ N_j N_k ν; master nodes: −∫ N_j M_l ν.
                     for (kk, &n) in e.nodes.iter().enumerate() {
                         let i = local.index(n);
+                        let share = nj * shape_s[kk] * ds;
+                        w.shares[i] = w.shares[i] + share;
                         for d in 0..2 {
-                            w.b[2 * i + d] = w.b[2 * i + d] + nj * shape_s[kk] * dir[d] * ds;
+                            w.b[2 * i + d] = w.b[2 * i + d] + share * dir[d];
                         }
                     }
                     for (n, ml) in master {
                         let i = local.index(n);
+                        let share = nj * ml * ds;
+                        w.shares[i] = w.shares[i] - share;
                         for d in 0..2 {
-                            w.b[2 * i + d] = w.b[2 * i + d] - nj * ml * dir[d] * ds;
+                            w.b[2 * i + d] = w.b[2 * i + d] - share * dir[d];
                         }
+                    }
+                    for d in 0..2 {
+                        w.normal[d] = w.normal[d] + nj * dir[d] * ds;
                     }
                 }
             };
@@ -531,7 +540,7 @@ impl Formulation for Mortar {
         ctx: &Ctx,
         first_lambda: usize,
         _search: Search,
-        _history: Option<&[SlotState]>,
+        history: Option<&[SlotState]>,
         points: &mut Vec<ContactPoint>,
         states: &mut Vec<SlotState>,
     ) -> Result<f64> {
@@ -544,15 +553,28 @@ impl Formulation for Mortar {
         let searching = start.elapsed().as_secs_f64();
         for j in 0..self.slots.len() {
             let (local, w) = self.integrate(ctx, &overlaps, j)?;
+            // The shares of the reference segmentation (friction: small deformation only).
+            let slip = (!self.nlgeo).then(|| SlipForm {
+                shares: w.shares.iter().map(|s| s.v).enumerate().collect(),
+                normal: [
+                    w.normal[0].into(),
+                    w.normal[1].into(),
+                    Jet::constant(0.0, local.m()),
+                ],
+            });
             let w = Weighted {
                 gap: w.gap.into(),
                 area: w.area.into(),
                 b: w.b.into_iter().map(Into::into).collect(),
                 partner: w.partner,
+                slip,
             };
+            let anchor = history
+                .and_then(|h| h.get(j))
+                .and_then(|s| s.anchor.as_ref());
             let (point, state) =
                 self.law
-                    .evaluate(ctx, first_lambda, j, self.slots[j].0, &local, w)?;
+                    .evaluate(ctx, first_lambda, j, self.slots[j].0, &local, w, anchor)?;
             points.push(point);
             states.push(state);
         }

@@ -15,7 +15,7 @@
 //! coordinates and its integrals are scattered into the constraints of the slave face's nodes.
 
 use super::segment::{dual_basis, overlap, Point};
-use super::{nearest_sheet, search_limit, Facing, SlotLaw, Weighted};
+use super::{nearest_sheet, search_limit, Facing, SlipForm, SlotLaw, Weighted};
 use crate::contact::dual::{DualN, Jet};
 use crate::contact::geometry::faces::{self, cross, dot, face_normal, sub, Face, FaceSurface};
 use crate::contact::search::broad::BroadPhase;
@@ -34,6 +34,9 @@ struct LinearSlot {
     /// (node, c_jn): g̃_j = Σ c_jn·x_n, and B_j.
     coeffs: Vec<(usize, [f64; 3])>,
     partner: Partner,
+    /// (node, w_jn) and ∫ Φ_j ν: the weighted relative position of friction ([`SlipForm`]).
+    shares: Vec<(usize, f64)>,
+    normal: [f64; 3],
 }
 
 pub struct FaceMortar {
@@ -63,9 +66,6 @@ impl FaceMortar {
             span: c.span.clone(),
             msg: msg.into(),
         };
-        if c.friction.is_some() {
-            return Err(err("friction with mortar contact is not supported yet"));
-        }
         if !matches!(model.segments[*slave].kind, SegmentKind::Faces { .. }) {
             return Err(err(
                 "in 3D the slave segment of a mortar condition must be element faces",
@@ -120,6 +120,8 @@ impl FaceMortar {
                 dual_basis(f.kind, &x)
             })
             .collect();
+        let nlgeo = slave.faces.iter().any(|f| f.nlgeo);
+        law.check_friction(model, ci, nlgeo)?;
         let nodes = slave
             .faces
             .iter()
@@ -129,7 +131,7 @@ impl FaceMortar {
             search_limit: search_limit(model, nodes),
             dual,
             law,
-            nlgeo: slave.faces.iter().any(|f| f.nlgeo),
+            nlgeo,
             slave,
             master,
             slots,
@@ -205,6 +207,8 @@ impl FaceMortar {
                 area: 0.0,
                 coeffs: Vec::new(),
                 partner: Partner::None,
+                shares: Vec::new(),
+                normal: [0.0; 3],
             })
             .collect();
         for k in 0..self.slave.faces.len() {
@@ -227,17 +231,22 @@ impl FaceMortar {
                             .iter()
                             .zip(p.slave)
                             .chain(mf.nodes.iter().zip(p.master.map(|v| -v)));
+                        for i in 0..3 {
+                            form.normal[i] += na * p.nu[i];
+                        }
                         for (&n, shape) in pairs {
-                            let c = match form.coeffs.iter_mut().find(|(m, _)| *m == n) {
-                                Some(c) => c,
+                            let k = match form.coeffs.iter().position(|(m, _)| *m == n) {
+                                Some(k) => k,
                                 None => {
                                     form.coeffs.push((n, [0.0; 3]));
-                                    form.coeffs.last_mut().expect("pushed")
+                                    form.shares.push((n, 0.0));
+                                    form.coeffs.len() - 1
                                 }
                             };
                             for i in 0..3 {
-                                c.1[i] += na * shape * p.nu[i];
+                                form.coeffs[k].1[i] += na * shape * p.nu[i];
                             }
+                            form.shares[k].1 += na * shape;
                         }
                     }
                 }
@@ -260,6 +269,14 @@ impl FaceMortar {
             area: Jet::constant(form.area, m),
             b: vec![Jet::constant(0.0, m); m],
             partner: form.partner,
+            slip: Some(SlipForm {
+                shares: form
+                    .shares
+                    .iter()
+                    .map(|&(n, w)| (local.index(n), w))
+                    .collect(),
+                normal: form.normal.map(|v| Jet::constant(v, m)),
+            }),
         };
         for &(n, c) in &form.coeffs {
             let k = local.index(n);
@@ -311,6 +328,7 @@ impl FaceMortar {
                 area: Jet::constant(0.0, m),
                 b: vec![Jet::constant(0.0, m); m],
                 partner: Partner::None,
+                slip: None,
             };
             out.push((local, w));
         }
@@ -503,7 +521,7 @@ impl Formulation for FaceMortar {
         ctx: &Ctx,
         first_lambda: usize,
         _search: Search,
-        _history: Option<&[SlotState]>,
+        history: Option<&[SlotState]>,
         points: &mut Vec<ContactPoint>,
         states: &mut Vec<SlotState>,
     ) -> Result<f64> {
@@ -516,9 +534,12 @@ impl Formulation for FaceMortar {
             (slots, 0.0)
         };
         for (j, (local, w)) in slots.into_iter().enumerate() {
+            let anchor = history
+                .and_then(|h| h.get(j))
+                .and_then(|s| s.anchor.as_ref());
             let (point, state) =
                 self.law
-                    .evaluate(ctx, first_lambda, j, self.slots[j].0, &local, w)?;
+                    .evaluate(ctx, first_lambda, j, self.slots[j].0, &local, w, anchor)?;
             points.push(point);
             states.push(state);
         }

@@ -20,11 +20,12 @@ pub mod edges;
 pub mod faces;
 pub mod segment;
 
-use super::dual::Jet;
-use super::law::{self, Laws, PointKinematics};
-use super::{ContactPoint, Ctx, Formulation, Local, Partner, SlotState};
-use crate::error::Result;
-use crate::model::{ContactLaw, Model, SegmentKind};
+use super::dual::{Dual, Jet};
+use super::law::friction::{self, FrictionPoint};
+use super::law::{self, FrictionKinematics, Laws, PointKinematics};
+use super::{Anchor, ContactPoint, Ctx, Formulation, Local, Partner, SlotState};
+use crate::error::{Error, Result};
+use crate::model::{ContactLaw, Friction, Model, SegmentKind};
 
 /// The formulation of mortar condition `ci`: edges in 2D, faces in 3D.
 pub fn new(model: &Model, ci: usize) -> Result<Box<dyn Formulation + Send + Sync>> {
@@ -108,12 +109,31 @@ struct Weighted {
     /// B_j.
     b: Vec<Jet>,
     partner: Partner,
+    /// The weighted relative position, for friction (small deformation).
+    slip: Option<SlipForm>,
+}
+
+/// A slave node's weighted relative position ŝ_j = Σ_n w_jn·x_n / D_j (small deformation: the
+/// shares w_jn are those of the reference segmentation): w_jn = ∫ Φ_j N_n dA for slave nodes,
+/// −∫ Φ_j M_l dA for master nodes. They sum to zero, so ŝ_j does not move when both bodies
+/// translate together; its change is the mean relative tangential motion of the slave over the
+/// master under node j's weight, and a traction t at the node does the virtual work
+/// D_j t·δŝ_j = Σ_n w_jn t·δx_n.
+#[derive(Debug, Clone)]
+struct SlipForm {
+    /// (local node index, w_jn).
+    shares: Vec<(usize, f64)>,
+    /// ∫ Φ_j ν dA: the direction of the normal (over the local unknowns: against a rigid shape
+    /// ν is the shape's normal at the current point).
+    normal: [Jet; 3],
 }
 
 /// The law of a mortar condition, shared by its slots.
 struct SlotLaw {
     number: usize,
     law: ContactLaw,
+    /// Coulomb friction (penalty law, small deformation).
+    friction: Option<Friction>,
     /// Per slot, the factor of the penalty (from the mesh when the condition gives none).
     scale: Vec<f64>,
 }
@@ -140,8 +160,24 @@ impl SlotLaw {
         SlotLaw {
             number: c.number,
             law: c.law,
+            friction: c.friction,
             scale,
         }
+    }
+
+    /// Refuse friction where it is not implemented: large deformation (the weighted relative
+    /// position of [`SlipForm`] is that of the reference segmentation).
+    fn check_friction(&self, model: &Model, ci: usize, nlgeo: bool) -> Result<()> {
+        if self.friction.is_some() && nlgeo {
+            return Err(Error::Input {
+                span: model.contacts[ci].span.clone(),
+                msg: "friction with mortar contact is implemented in small deformation (nlgeo 0) \
+                      only: in large deformation use node-to-segment contact \
+                      (n2spenaltycontact) with `friction`"
+                    .into(),
+            });
+        }
+        Ok(())
     }
 
     fn n_multipliers(&self, slots: usize) -> usize {
@@ -152,7 +188,9 @@ impl SlotLaw {
         }
     }
 
-    /// The contact point and state of slot `j` (slave node `node`) from its integrals.
+    /// The contact point and state of slot `j` (slave node `node`) from its integrals, with the
+    /// friction anchored at `anchor` (the history), if the condition has friction.
+    #[allow(clippy::too_many_arguments)]
     fn evaluate(
         &self,
         ctx: &Ctx,
@@ -161,6 +199,7 @@ impl SlotLaw {
         node: usize,
         local: &Local,
         w: Weighted,
+        anchor: Option<&Anchor>,
     ) -> Result<(ContactPoint, SlotState)> {
         let m = local.m();
         let mut state = SlotState {
@@ -179,7 +218,7 @@ impl SlotLaw {
         } else {
             (Jet::constant(f64::NAN, m), vec![Jet::constant(0.0, m); m])
         };
-        let kin = PointKinematics {
+        let mut kin = PointKinematics {
             gap,
             weight: Jet::constant(if has { 1.0 } else { 0.0 }, m),
             b,
@@ -196,6 +235,31 @@ impl SlotLaw {
             ContactLaw::Penalty(p) => p * self.scale[j],
             ContactLaw::Multiplier => 0.0,
         };
+        if let (Some(f), Some(slip), true) = (self.friction, &w.slip, has) {
+            let f = Friction {
+                penalty: f.penalty * self.scale[j],
+                ..f
+            };
+            // The penalty's pressure λ = −ε·ḡ.
+            let pn = Jet {
+                v: -penalty * kin.gap.v,
+                d: kin.gap.d.iter().map(|d| -penalty * d).collect(),
+            };
+            let (fk, next) = slot_friction(f, local, slip, w.area.v, &pn, anchor);
+            if kin.gap.v <= 0.0 {
+                state.friction = Some((fk.stick, fk.force * w.area.v));
+            }
+            state.anchor = Some(Anchor {
+                partner: w.partner,
+                xi: [0.0; 2],
+                offset: if kin.gap.v > 0.0 {
+                    slip.position(local, w.area.v)
+                } else {
+                    next
+                },
+            });
+            kin.friction = Some(fk);
+        }
         let point = match self.law {
             ContactLaw::Penalty(_) => law::penalty::evaluate(&laws, penalty, codes, &kin),
             ContactLaw::Multiplier => {
@@ -215,4 +279,86 @@ impl SlotLaw {
         }
         Ok((point, state))
     }
+}
+
+impl SlipForm {
+    /// ŝ_j at the current positions (support `area` = D_j).
+    fn position(&self, local: &Local, area: f64) -> [f64; 3] {
+        let mut s = [0.0; 3];
+        for &(k, w) in &self.shares {
+            for (i, si) in s.iter_mut().enumerate().take(local.dim) {
+                *si += w * local.values()[local.dim * k + i] / area;
+            }
+        }
+        s
+    }
+}
+
+/// Coulomb friction of a slot (see [`law::friction`]): the elastic slip is ŝ_j − a_j tangential
+/// to the slot's normal, a_j its anchor (the history: ŝ_j less the elastic slip at the end of the
+/// last converged step, ŝ_j itself without history), the limit μ·λ_j with the penalty's pressure
+/// `pn`; the traction t acts per unit area, so node n's residual is w_jn·t. Evaluated in duals
+/// over (ŝ_j, λ_j) and chained to the local unknowns: the tangent is exact and unsymmetric.
+/// Returns the friction kinematics and the anchor this state leaves if it converges.
+fn slot_friction(
+    law: Friction,
+    local: &Local,
+    slip: &SlipForm,
+    area: f64,
+    pn: &Jet,
+    anchor: Option<&Anchor>,
+) -> (FrictionKinematics, [f64; 3]) {
+    let dim = local.dim;
+    let m = local.m();
+    // z = (ŝ_j, λ_j, ∫ Φ_j ν).
+    let nz = 2 * dim + 1;
+    let s = slip.position(local, area);
+    let a = anchor.map_or(s, |a| a.offset);
+    let mut xs = [Dual::constant(0.0, nz); 3];
+    let mut xa = [Dual::constant(0.0, nz); 3];
+    let mut nu = [Dual::constant(0.0, nz); 3];
+    for i in 0..dim {
+        xs[i] = Dual::variable(s[i], i, nz);
+        xa[i] = Dual::constant(a[i], nz);
+        nu[i] = Dual::variable(slip.normal[i].v, dim + 1 + i, nz);
+    }
+    let len = (0..dim)
+        .fold(Dual::constant(0.0, nz), |acc, i| acc + nu[i] * nu[i])
+        .sqrt();
+    let n = nu.map(|v| v / len);
+    let t = friction::evaluate(
+        law,
+        &FrictionPoint {
+            xs,
+            xa,
+            n,
+            pn: Dual::variable(pn.v, dim, nz),
+            dim,
+        },
+    );
+    // ∂z/∂q of z = (ŝ_j, λ_j).
+    let mut dz: Vec<Vec<(usize, f64)>> = (0..dim)
+        .map(|i| {
+            slip.shares
+                .iter()
+                .map(|&(k, w)| (dim * k + i, w / area))
+                .collect()
+        })
+        .collect();
+    dz.push(pn.d.iter().copied().enumerate().collect());
+    for i in 0..dim {
+        dz.push(slip.normal[i].d.iter().copied().enumerate().collect());
+    }
+    let traction: Vec<Jet> = (0..dim).map(|i| Jet::chain(&t.vector[i], &dz, m)).collect();
+    let mut residual = vec![Jet::constant(0.0, m); m];
+    for &(k, w) in &slip.shares {
+        for i in 0..dim {
+            let r = &mut residual[dim * k + i];
+            r.v += w * traction[i].v;
+            for (rd, td) in r.d.iter_mut().zip(&traction[i].d) {
+                *rd += w * td;
+            }
+        }
+    }
+    (t.kinematics(residual), t.next_anchor)
 }
