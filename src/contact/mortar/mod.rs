@@ -13,6 +13,10 @@
 //! at every slave node, whose forces Σ_j λ_j B_j are then exactly the consistent nodal forces of p
 //! on both meshes (Σ_j N_j = 1): the patch test holds to round-off.
 //!
+//! Coulomb friction (penalty, small deformation) acts on each slave node's weighted relative
+//! position (`SlipForm`) with the same return map as node-to-segment friction, so that a
+//! uniform shear traction is transferred exactly as well.
+//!
 //! [`edges`]: 2D, straight and quadratic edges, against edges or rigid shapes; [`faces`]: 3D,
 //! triangle and quadrilateral faces, segmented by [`segment`].
 
