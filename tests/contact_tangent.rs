@@ -671,11 +671,102 @@ fn friction_continuation_of_an_open_point_is_jacobian_of_its_closed_branch() {
     }
 }
 
+/// The 2D mortar cases of condition `law` (a record with `slavesegment`): name, input, the
+/// displacements and the expected active slots. Non-matching blocks of straight edges (3/2) and
+/// of curved quadratic ones (the mid-side nodes moved off the chords), and the upper block
+/// against a rigid circle moving with a node (999), each upper block sunk and sheared so that
+/// the overlaps move, the lower block's top nodes moved a little.
+fn mortar2d_cases(nlgeo: u8, law: &str) -> Vec<(String, String, Disp, usize)> {
+    let shear = |n: usize, dy: f64, y: f64| [0.013 + 0.02 * y, dy + 0.003 * (n as f64).sin(), 0.0];
+    let mut cases = Vec::new();
+    // The upper block: nodes after the lower one's 12; the lower block's top nodes 9..12.
+    let text = common::mortar_blocks(3, 2, nlgeo, law);
+    let model = common::model_from_text(&text).unwrap();
+    let mut disp: Disp = (13..=21)
+        .map(|n| (n, shear(n, -0.01, model.nodes[n - 1].coords[1])))
+        .collect();
+    disp.extend((9..=12).map(|n| (n, [0.004 * (n as f64).cos(), 0.002, 0.0])));
+    cases.push(("straight".to_string(), text, disp, 3));
+    let text = common::mortar_blocks(3, 2, nlgeo, law)
+        .replace(
+            "linear2delementedgecontactsegment 2 edgeset 2",
+            "circlecontactsegment 2 centerpoint 2 1.0 -3.0 radius 3.0 node 999",
+        )
+        .replace("ndofman 21 ", "ndofman 22 ")
+        .replace(
+            "\nnode 1 coords",
+            "\nnode 999 coords 2 1.0 -3.0\nnode 1 coords",
+        );
+    let model = common::model_from_text(&text).unwrap();
+    let mut disp: Disp = (13..=21)
+        .map(|n| {
+            let y = model.nodes.iter().find(|x| x.label == n).unwrap().coords[1];
+            (n, shear(n, -0.05, y))
+        })
+        .collect();
+    disp.push((999, [0.01, 0.02, 0.0]));
+    cases.push(("circle".to_string(), text, disp, 1));
+    // Quadratic edges (3 and 2 elements of 8 nodes: the lower block's top row is nodes 23..29,
+    // the upper block is 30..50, its bottom row 30..34).
+    let text = common::mortar_blocks_q8(3, 2, nlgeo, law);
+    let model = common::model_from_text(&text).unwrap();
+    let mut disp: Disp = (30..=50)
+        .map(|n| (n, shear(n, -0.01, model.nodes[n - 1].coords[1])))
+        .collect();
+    disp.extend((23..=29).map(|n| (n, [0.004 * (n as f64).cos(), 0.002 * (n as f64).sin(), 0.0])));
+    cases.push(("q8".to_string(), text, disp, 5));
+    cases
+}
+
+/// The 3D mortar case: the patch of `kind` (1 and 2 elements across) with condition `law`, the
+/// slave block sunk and sheared so that the overlaps move, the master's top nodes moved out of
+/// plane.
+fn mortar3d_case(
+    kind: hertz::bench::mesh::Solid,
+    nlgeo: bool,
+    law: hertz::bench::suite::Law,
+) -> (String, Disp) {
+    let text = hertz::bench::verify::Patch {
+        kind,
+        slave_kind: None,
+        sym: 0,
+        n: 1,
+        nlgeo,
+        delta: 0.01,
+        steps: 1,
+        law,
+        slave_n: Some(2),
+        mortar: true,
+    }
+    .input();
+    let model = common::model_from_text(&text).unwrap();
+    let disp = model
+        .nodes
+        .iter()
+        .filter_map(|n| {
+            let [x, y, z] = n.coords;
+            let k = n.label as f64;
+            // The master block's 2 × 2 × 3 nodes come first.
+            if n.label > 12 {
+                Some((
+                    n.label,
+                    [0.013 + 0.02 * z, -0.007 + 0.01 * z, -0.01 + 0.003 * k.sin()],
+                ))
+            } else if z.abs() < 1e-9 {
+                Some((n.label, [0.004 * k.cos(), 0.002 * x, 0.003 * (k + y).sin()]))
+            } else {
+                None
+            }
+        })
+        .collect();
+    (text, disp)
+}
+
 /// The mortar tangent is the Jacobian of its residual, in small deformation (reference
 /// segmentation and normals, the gap following the nodes) and in large deformation (everything
 /// current: segmentation limits, normals, lengths), for penalty and multipliers, on non-matching
 /// meshes of straight and of curved quadratic edges and against a rigid circle moving with a node,
-/// with both blocks displaced and sheared so that the overlaps move.
+/// with both blocks displaced and sheared so that the overlaps move ([`mortar2d_cases`]).
 #[test]
 fn mortar_tangents_are_jacobians_of_residuals() {
     for nlgeo in [0u8, 1] {
@@ -689,71 +780,15 @@ fn mortar_tangents_are_jacobians_of_residuals() {
                 3.0,
             ),
         ] {
-            let text = common::mortar_blocks(3, 2, nlgeo, law);
-            let model = common::model_from_text(&text).unwrap();
-            // The upper block (nodes after the lower one's 12) sunk by 0.01 and sheared; the
-            // lower block's top nodes (9..12) moved a little.
-            let mut disp: Vec<(usize, [f64; 3])> = (13..=21)
-                .map(|n| {
-                    let y = model.nodes[n - 1].coords[1];
-                    (n, [0.013 + 0.02 * y, -0.01 + 0.003 * (n as f64).sin(), 0.0])
-                })
-                .collect();
-            disp.extend((9..=12).map(|n| (n, [0.004 * (n as f64).cos(), 0.002, 0.0])));
-            check(&Case {
-                name: format!("mortar-nlgeo{nlgeo}-{}", &law[..4]),
-                text,
-                disp,
-                lambda,
-                active: 3,
-            });
-            // Against a rigid circle moving with a node (999) instead of the lower block.
-            let text = common::mortar_blocks(3, 2, nlgeo, law)
-                .replace(
-                    "linear2delementedgecontactsegment 2 edgeset 2",
-                    "circlecontactsegment 2 centerpoint 2 1.0 -3.0 radius 3.0 node 999",
-                )
-                .replace("ndofman 21 ", "ndofman 22 ")
-                .replace(
-                    "\nnode 1 coords",
-                    "\nnode 999 coords 2 1.0 -3.0\nnode 1 coords",
-                );
-            let model = common::model_from_text(&text).unwrap();
-            let mut disp: Vec<(usize, [f64; 3])> = (13..=21)
-                .map(|n| {
-                    let y = model.nodes.iter().find(|x| x.label == n).unwrap().coords[1];
-                    (n, [0.013 + 0.02 * y, -0.05 + 0.003 * (n as f64).sin(), 0.0])
-                })
-                .collect();
-            disp.push((999, [0.01, 0.02, 0.0]));
-            check(&Case {
-                name: format!("mortar-circle-nlgeo{nlgeo}-{}", &law[..4]),
-                text,
-                disp,
-                lambda,
-                active: 1,
-            });
-            // Quadratic edges (3 and 2 elements of 8 nodes: the lower block's top row is nodes
-            // 23..29, the upper block is 30..50, its bottom row 30..34), the mid-side nodes
-            // moved off the chords so the edges curve.
-            let text = common::mortar_blocks_q8(3, 2, nlgeo, law);
-            let model = common::model_from_text(&text).unwrap();
-            let mut disp: Vec<(usize, [f64; 3])> = (30..=50)
-                .map(|n| {
-                    let y = model.nodes[n - 1].coords[1];
-                    (n, [0.013 + 0.02 * y, -0.01 + 0.003 * (n as f64).sin(), 0.0])
-                })
-                .collect();
-            disp.extend(
-                (23..=29).map(|n| (n, [0.004 * (n as f64).cos(), 0.002 * (n as f64).sin(), 0.0])),
-            );
-            check(&Case {
-                name: format!("mortar-q8-nlgeo{nlgeo}-{}", &law[..4]),
-                text,
-                disp,
-                lambda,
-                active: 5,
-            });
+            for (name, text, disp, active) in mortar2d_cases(nlgeo, law) {
+                check(&Case {
+                    name: format!("mortar-{name}-nlgeo{nlgeo}-{}", &law[..4]),
+                    text,
+                    disp,
+                    lambda,
+                    active,
+                });
+            }
         }
     }
 }
@@ -761,50 +796,17 @@ fn mortar_tangents_are_jacobians_of_residuals() {
 /// The 3D mortar tangent is the Jacobian of its residual, in small deformation (reference
 /// segmentation, the gap following the nodes) and in large deformation (the clipping, the plane,
 /// the normals and the weights at the current state), for penalty and multipliers, on
-/// non-matching quadrilateral (hexahedra), triangular (tetrahedra) and mixed (wedges) faces,
-/// with the slave block sunk and sheared so that the overlaps move and the master's top nodes
-/// moved out of plane.
+/// non-matching quadrilateral (hexahedra), triangular (tetrahedra) and mixed (wedges) faces
+/// ([`mortar3d_case`]).
 #[test]
 fn mortar_tangents_in_3d_are_jacobians_of_residuals() {
     use hertz::bench::mesh::Solid;
     use hertz::bench::suite::Law;
-    use hertz::bench::verify::Patch;
     for kind in [Solid::Hex, Solid::Tet, Solid::Wedge] {
         for nlgeo in [false, true] {
             for (law, lambda) in [(Law::Penalty(1e4), 0.0), (Law::Multiplier, 3.0)] {
-                let text = Patch {
-                    kind,
-                    slave_kind: None,
-                    sym: 0,
-                    n: 1,
-                    nlgeo,
-                    delta: 0.01,
-                    steps: 1,
-                    law,
-                    slave_n: Some(2),
-                    mortar: true,
-                }
-                .input();
+                let (text, disp) = mortar3d_case(kind, nlgeo, law);
                 let model = common::model_from_text(&text).unwrap();
-                let disp: Vec<(usize, [f64; 3])> = model
-                    .nodes
-                    .iter()
-                    .filter_map(|n| {
-                        let [x, y, z] = n.coords;
-                        let k = n.label as f64;
-                        // The master block's 2 × 2 × 3 nodes come first.
-                        if n.label > 12 {
-                            Some((
-                                n.label,
-                                [0.013 + 0.02 * z, -0.007 + 0.01 * z, -0.01 + 0.003 * k.sin()],
-                            ))
-                        } else if z.abs() < 1e-9 {
-                            Some((n.label, [0.004 * k.cos(), 0.002 * x, 0.003 * (k + y).sin()]))
-                        } else {
-                            None
-                        }
-                    })
-                    .collect();
                 let name = format!("mortar3d {kind:?} nlgeo {nlgeo} {law:?}");
                 let mut contact = ContactSystem::new(&model).unwrap();
                 let dofs = hertz::solve::number_dofs(&model).unwrap();
@@ -834,84 +836,20 @@ fn mortar_tangents_in_3d_are_jacobians_of_residuals() {
 }
 
 /// Mortar friction's tangent (unsymmetric) is the Jacobian of its residual in stick (μ = 5) and
-/// slip (μ = 0.05), small deformation: 2D straight and quadratic edges and a rigid circle moving
-/// with a node, 3D hexahedra, tetrahedra and wedges; the history is the state at u = 0, the
-/// slave block then sunk and sheared, the master's surface nodes moved a little.
+/// slip (μ = 0.05), small deformation, on the cases of the frictionless mortar tests: 2D straight
+/// and quadratic edges and a rigid circle moving with a node, 3D hexahedra, tetrahedra and
+/// wedges; the history is the state at u = 0.
 #[test]
 fn mortar_friction_tangents_are_jacobians_in_stick_and_slip() {
     use hertz::bench::mesh::Solid;
     use hertz::bench::suite::Law;
-    use hertz::bench::verify::Patch;
     let law = "s2spenaltycontact 4 loadTimeFunction 1 penalty 1e4 slavesegment 1 segmentset 1 2";
-    let shear = |n: usize, y: f64| [0.013 + 0.02 * y, -0.01 + 0.003 * (n as f64).sin(), 0.0];
-    let mut cases: Vec<(String, String, Disp)> = Vec::new();
-    let text = common::mortar_blocks(3, 2, 0, law);
-    let model = common::model_from_text(&text).unwrap();
-    let mut disp: Disp = (13..=21)
-        .map(|n| (n, shear(n, model.nodes[n - 1].coords[1])))
+    let mut cases: Vec<(String, String, Disp)> = mortar2d_cases(0, law)
+        .into_iter()
+        .map(|(name, text, disp, _)| (name, text, disp))
         .collect();
-    disp.extend((9..=12).map(|n| (n, [0.004 * (n as f64).cos(), 0.002, 0.0])));
-    cases.push(("straight".into(), text, disp));
-    let text = common::mortar_blocks_q8(3, 2, 0, law);
-    let model = common::model_from_text(&text).unwrap();
-    let mut disp: Disp = (30..=50)
-        .map(|n| (n, shear(n, model.nodes[n - 1].coords[1])))
-        .collect();
-    disp.extend((23..=29).map(|n| (n, [0.004 * (n as f64).cos(), 0.002 * (n as f64).sin(), 0.0])));
-    cases.push(("quadratic".into(), text, disp));
-    let text = common::mortar_blocks(3, 2, 0, law)
-        .replace(
-            "linear2delementedgecontactsegment 2 edgeset 2",
-            "circlecontactsegment 2 centerpoint 2 1.0 -3.0 radius 3.0 node 999",
-        )
-        .replace("ndofman 21 ", "ndofman 22 ")
-        .replace(
-            "\nnode 1 coords",
-            "\nnode 999 coords 2 1.0 -3.0\nnode 1 coords",
-        );
-    let model = common::model_from_text(&text).unwrap();
-    let mut disp: Disp = (13..=21)
-        .map(|n| {
-            let y = model.nodes.iter().find(|x| x.label == n).unwrap().coords[1];
-            (n, [0.013 + 0.02 * y, -0.05 + 0.003 * (n as f64).sin(), 0.0])
-        })
-        .collect();
-    disp.push((999, [0.01, 0.02, 0.0]));
-    cases.push(("circle".into(), text, disp));
     for kind in [Solid::Hex, Solid::Tet, Solid::Wedge] {
-        let text = Patch {
-            kind,
-            slave_kind: None,
-            sym: 0,
-            n: 1,
-            nlgeo: false,
-            delta: 0.01,
-            steps: 1,
-            law: Law::Penalty(1e4),
-            slave_n: Some(2),
-            mortar: true,
-        }
-        .input();
-        let model = common::model_from_text(&text).unwrap();
-        let disp: Disp = model
-            .nodes
-            .iter()
-            .filter_map(|n| {
-                let [x, y, z] = n.coords;
-                let k = n.label as f64;
-                // The master block's 2 × 2 × 3 nodes come first.
-                if n.label > 12 {
-                    Some((
-                        n.label,
-                        [0.013 + 0.02 * z, -0.007 + 0.01 * z, -0.01 + 0.003 * k.sin()],
-                    ))
-                } else if z.abs() < 1e-9 {
-                    Some((n.label, [0.004 * k.cos(), 0.002 * x, 0.003 * (k + y).sin()]))
-                } else {
-                    None
-                }
-            })
-            .collect();
+        let (text, disp) = mortar3d_case(kind, false, Law::Penalty(1e4));
         cases.push((format!("{kind:?}"), text, disp));
     }
     for (name, text, disp) in cases {
