@@ -569,12 +569,9 @@ impl Formulation for Mortar {
                 partner: w.partner,
                 slip,
             };
-            let anchor = history
-                .and_then(|h| h.get(j))
-                .and_then(|s| s.anchor.as_ref());
             let (point, state) =
                 self.law
-                    .evaluate(ctx, first_lambda, j, self.slots[j].0, &local, w, anchor)?;
+                    .evaluate(ctx, first_lambda, j, self.slots[j].0, &local, w, history)?;
             points.push(point);
             states.push(state);
         }

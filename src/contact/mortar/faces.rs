@@ -534,12 +534,9 @@ impl Formulation for FaceMortar {
             (slots, 0.0)
         };
         for (j, (local, w)) in slots.into_iter().enumerate() {
-            let anchor = history
-                .and_then(|h| h.get(j))
-                .and_then(|s| s.anchor.as_ref());
             let (point, state) =
                 self.law
-                    .evaluate(ctx, first_lambda, j, self.slots[j].0, &local, w, anchor)?;
+                    .evaluate(ctx, first_lambda, j, self.slots[j].0, &local, w, history)?;
             points.push(point);
             states.push(state);
         }

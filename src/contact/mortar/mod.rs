@@ -193,7 +193,8 @@ impl SlotLaw {
     }
 
     /// The contact point and state of slot `j` (slave node `node`) from its integrals, with the
-    /// friction anchored at `anchor` (the history), if the condition has friction.
+    /// friction anchored where `history` (the converged states of the last step) leaves it, if
+    /// the condition has friction.
     #[allow(clippy::too_many_arguments)]
     fn evaluate(
         &self,
@@ -203,8 +204,11 @@ impl SlotLaw {
         node: usize,
         local: &Local,
         w: Weighted,
-        anchor: Option<&Anchor>,
+        history: Option<&[SlotState]>,
     ) -> Result<(ContactPoint, SlotState)> {
+        let anchor = history
+            .and_then(|h| h.get(j))
+            .and_then(|s| s.anchor.as_ref());
         let m = local.m();
         let mut state = SlotState {
             partner: w.partner,
