@@ -21,7 +21,9 @@
 //! internal forces p·w·g·B (penalty) or λ·B with the constraint g = 0 (multipliers) per contact
 //! point, g the gap and B the force direction over the point's unknowns (for mortar contact g is
 //! a slave node's weighted mean gap), and on frictional penalty points the Coulomb return map of
-//! the elastic slip from an anchor, with exact (unsymmetric) tangents.
+//! the elastic slip from an anchor, on frictional multiplier points a friction force λ_T with
+//! Alart and Curnier's complementarity function of the slip from the anchor, with exact
+//! (unsymmetric) tangents.
 //!
 //! # Example
 //! ```

@@ -195,8 +195,15 @@ fn n2s_tangents_are_jacobians_of_residuals_on_straight_and_quadratic_edges() {
 }
 
 /// A frictional case: the history is the state at u = 0, the tangent checked at the displaced
-/// state, where the point must stick or slip as `stick` says.
-fn check_friction(name: String, text: String, disp: Vec<(usize, [f64; 3])>, stick: bool) {
+/// state (multipliers, the normal and the friction force's components, at `lambda`), where the
+/// point must stick or slip as `stick` says.
+fn check_friction(
+    name: String,
+    text: String,
+    disp: Vec<(usize, [f64; 3])>,
+    lambda: f64,
+    stick: bool,
+) {
     let model = common::model_from_text(&text).unwrap_or_else(|e| panic!("{name}: {e}"));
     let mut contact = ContactSystem::new(&model).unwrap();
     let dofs = hertz::solve::number_dofs(&model).unwrap();
@@ -214,7 +221,7 @@ fn check_friction(name: String, text: String, disp: Vec<(usize, [f64; 3])>, stic
         name: name.clone(),
         text,
         disp,
-        lambda: 0.0,
+        lambda,
         active: 1,
     };
     let u = displaced(&model, &dofs, &case);
@@ -235,67 +242,83 @@ fn check_friction(name: String, text: String, disp: Vec<(usize, [f64; 3])>, stic
 /// Jacobian of the residual, against straight and quadratic edges in small and large
 /// deformation and against rigid segments (fixed and moving with a node). The history is the
 /// state at u = 0 (the anchor where the node first touched); at the displaced state the node has
-/// slid along the master and pressed into it (μ = 5: stick, μ = 0.05: slip).
+/// slid along the master and pressed into it (μ = 5: stick, μ = 0.05: slip). With the penalty
+/// law, and with multipliers (the normal force and the friction force's components at 1000:
+/// the tangent over the multipliers too).
 #[test]
 fn friction_tangents_are_jacobians_of_residuals_in_stick_and_slip() {
-    let run = check_friction;
-    for (mu, stick) in [(5.0, true), (0.05, false)] {
-        let law = format!("{PEN} friction {mu}");
-        for kind in ["q4", "q8"] {
-            for nlgeo in [0u8, 1] {
-                for c in edge_cases().into_iter().take(2) {
-                    let text = strip(kind, nlgeo, c.nm, c.pos, None, &law);
-                    let mut disp = c.dm.clone();
-                    disp.push((label_of_slave(&text), c.ds));
-                    run(
-                        format!("{}-{kind}-nlgeo{nlgeo}-mu{mu}", c.name),
-                        text,
-                        disp,
-                        stick,
-                    );
+    for (base, lambda) in [(PEN, 0.0), (LM, 1000.0)] {
+        for (mu, stick) in [(5.0, true), (0.05, false)] {
+            let law = format!("{base} friction {mu}");
+            for kind in ["q4", "q8"] {
+                for nlgeo in [0u8, 1] {
+                    for c in edge_cases().into_iter().take(2) {
+                        let text = strip(kind, nlgeo, c.nm, c.pos, None, &law);
+                        let mut disp = c.dm.clone();
+                        disp.push((label_of_slave(&text), c.ds));
+                        check_friction(
+                            format!("{}-{kind}-nlgeo{nlgeo}-mu{mu}-{}", c.name, &base[..4]),
+                            text,
+                            disp,
+                            lambda,
+                            stick,
+                        );
+                    }
                 }
             }
-        }
-        for seg in [
-            "circlecontactsegment 1 centerpoint 2 0.3 0.2 radius 0.9 node 900",
-            "planecontactsegment 1 point 2 0 1.0 normal 2 0.2 1 node 900",
-            "polynomialcontactsegment 1 coeffs 3 0.4 -0.1 1.0",
-        ] {
-            let text = strip("q4", 0, 1, (0.3, 1.05), Some(seg), &law);
-            let mut disp = vec![(label_of_slave(&text), [0.05, -0.12, 0.0])];
-            if seg.contains("node 900") {
-                disp.push((900, [0.01, 0.03, 0.0]));
+            for seg in [
+                "circlecontactsegment 1 centerpoint 2 0.3 0.2 radius 0.9 node 900",
+                "planecontactsegment 1 point 2 0 1.0 normal 2 0.2 1 node 900",
+                "polynomialcontactsegment 1 coeffs 3 0.4 -0.1 1.0",
+            ] {
+                let text = strip("q4", 0, 1, (0.3, 1.05), Some(seg), &law);
+                let mut disp = vec![(label_of_slave(&text), [0.05, -0.12, 0.0])];
+                if seg.contains("node 900") {
+                    disp.push((900, [0.01, 0.03, 0.0]));
+                }
+                let name = format!("{seg}-mu{mu}-{}", &base[..4]);
+                check_friction(name, text, disp, lambda, stick);
             }
-            run(format!("{seg}-mu{mu}"), text, disp, stick);
         }
     }
 }
 
 /// Friction against faces (hexahedra, tetrahedra, wedges; small and large deformation): stick
 /// and slip, the anchor where the node first met the surface, in the middle of a face and where
-/// the node moves to the neighbouring face (the anchor's corners are unknowns too).
+/// the node moves to the neighbouring face (the anchor's corners are unknowns too). Penalty and
+/// multipliers (at 1000).
 #[test]
 fn friction_tangents_against_faces_are_jacobians_of_residuals() {
-    for (mu, stick) in [(5.0, true), (0.05, false)] {
-        let law = format!("n2spenaltycontact 1 loadTimeFunction 1 penalty 1000 friction {mu}");
-        for kind in [Solid::Hex, Solid::Tet, Solid::Wedge] {
-            for nlgeo in [0u8, 1] {
-                for (name, pos, ds) in [
-                    ("mid-face", [0.3, 0.4, 1.1], [0.05, -0.03, -0.2]),
-                    ("vertex", [0.97, 0.98, 1.1], [0.06, 0.05, -0.15]),
-                ] {
-                    let (text, node) = face_input(kind, 0, nlgeo, pos, &law);
-                    let disp = vec![
-                        (node, ds),
-                        (14, [0.01, -0.02, 0.03]),
-                        (10, [0.0, 0.01, -0.02]),
-                    ];
-                    check_friction(
-                        format!("{name}-{kind:?}-nlgeo{nlgeo}-mu{mu}"),
-                        text,
-                        disp,
-                        stick,
-                    );
+    let laws = [
+        ("n2spenaltycontact 1 loadTimeFunction 1 penalty 1000", 0.0),
+        (
+            "n2slagrangianmultipliercontact 1 loadTimeFunction 1",
+            1000.0,
+        ),
+    ];
+    for (base, lambda) in laws {
+        for (mu, stick) in [(5.0, true), (0.05, false)] {
+            let law = format!("{base} friction {mu}");
+            for kind in [Solid::Hex, Solid::Tet, Solid::Wedge] {
+                for nlgeo in [0u8, 1] {
+                    for (name, pos, ds) in [
+                        ("mid-face", [0.3, 0.4, 1.1], [0.05, -0.03, -0.2]),
+                        ("vertex", [0.97, 0.98, 1.1], [0.06, 0.05, -0.15]),
+                    ] {
+                        let (text, node) = face_input(kind, 0, nlgeo, pos, &law);
+                        let disp = vec![
+                            (node, ds),
+                            (14, [0.01, -0.02, 0.03]),
+                            (10, [0.0, 0.01, -0.02]),
+                        ];
+                        check_friction(
+                            format!("{name}-{kind:?}-nlgeo{nlgeo}-mu{mu}-{}", &base[..4]),
+                            text,
+                            disp,
+                            lambda,
+                            stick,
+                        );
+                    }
                 }
             }
         }

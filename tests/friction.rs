@@ -15,6 +15,33 @@ fn example() -> String {
         .unwrap()
 }
 
+/// How the example's contact is solved.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Method {
+    /// Node-to-segment, penalty (the example as written).
+    Penalty,
+    /// Mortar, penalty.
+    Mortar,
+    /// Node-to-segment with Lagrange multipliers for the normal and the friction force.
+    Multipliers,
+}
+
+const METHODS: [Method; 3] = [Method::Penalty, Method::Mortar, Method::Multipliers];
+
+impl Method {
+    /// The example (or a variant of it) solved with this method.
+    fn form(self, text: &str) -> String {
+        match self {
+            Method::Penalty => text.to_string(),
+            Method::Mortar => as_mortar(text),
+            Method::Multipliers => text.replace(
+                "n2spenaltycontact 5 loadTimeFunction 1 penalty 1e5 friction 0.3 pt 1e5",
+                "n2slagrangianmultipliercontact 5 loadTimeFunction 1 friction 0.3",
+            ),
+        }
+    }
+}
+
 /// The example with mortar contact instead of node-to-segment: the block's bottom edges
 /// (segment 2) against the plane, the same penalties (per unit length instead of per node).
 fn as_mortar(text: &str) -> String {
@@ -93,25 +120,29 @@ fn solve(text: &str, params: &SolveParams) -> hertz::error::Result<Outcome> {
 /// the step fails even after halving.
 /// The same with mortar contact (its penalties per unit length are softer than the per-node ones
 /// here: the corners, where the friction resisting the base's Poisson spread concentrates, slip
-/// in step 1 and the bottom-left node ends at −7.6e-5, inward).
+/// in step 1 and the bottom-left node ends at −7.6e-5, inward). With multipliers there is no
+/// elastic slip: the corner sticks exactly where it started.
 #[test]
 fn block_sticks_below_mu_n_and_slides_above() {
-    for mortar in [false, true] {
-        let form = |t: String| if mortar { as_mortar(&t) } else { t };
-        let below = solve(&form(pushed_by(0.99)), &common::quiet()).unwrap();
+    for method in METHODS {
+        let below = solve(&method.form(&pushed_by(0.99)), &common::quiet()).unwrap();
         let elastic_slip = 0.99 * MU * N / (1e5 * 2.0);
         println!(
-            "mortar {mortar}: T = 0.99 mu N: slide {:.6e} (elastic slip T/(pt L) = \
+            "{method:?}: T = 0.99 mu N: slide {:.6e} (elastic slip T/(pt L) = \
              {elastic_slip:.6e}), {:?} iterations",
             below.slide[1], below.iterations
         );
-        assert!(below.slide[1].abs() < 20.0 * elastic_slip);
+        if method == Method::Multipliers {
+            assert!(below.slide[1].abs() < 1e-14, "{}", below.slide[1]);
+        } else {
+            assert!(below.slide[1].abs() < 20.0 * elastic_slip);
+        }
         assert!(
             below.iterations.iter().all(|&i| i <= 6),
             "{:?}",
             below.iterations
         );
-        let above = solve(&form(pushed_by(1.01)), &common::quiet());
+        let above = solve(&method.form(&pushed_by(1.01)), &common::quiet());
         let err = above.err().expect("no equilibrium above mu N").to_string();
         assert!(err.contains("step 2"), "{err}");
     }
@@ -121,12 +152,12 @@ fn block_sticks_below_mu_n_and_slides_above() {
 /// exactly μN: Σ μ·p_N,i with Σ p_N,i = N.
 #[test]
 fn sliding_block_transmits_mu_n() {
-    for mortar in [false, true] {
-        sliding_block(mortar);
+    for method in METHODS {
+        sliding_block(method);
     }
 }
 
-fn sliding_block(mortar: bool) {
+fn sliding_block(method: Method) {
     let text = example()
         .replace(
             "NodalLoad 3 loadTimeFunction 2 dofs 2 1 2 components 2 0.37125 0.0 set 2",
@@ -136,10 +167,9 @@ fn sliding_block(mortar: bool) {
             "NodalLoad 4 loadTimeFunction 2 dofs 2 1 2 components 2 0.7425 0.0 set 3",
             "BoundaryCondition 4 loadTimeFunction 2 dofs 1 1 values 1 0.05 set 3",
         );
-    let text = if mortar { as_mortar(&text) } else { text };
-    let out = solve(&text, &common::quiet()).unwrap();
+    let out = solve(&method.form(&text), &common::quiet()).unwrap();
     println!(
-        "mortar {mortar}: pushed 0.05: transmitted {:.15} (mu N = {}), {} nodes stick, {:?} iterations",
+        "{method:?}: pushed 0.05: transmitted {:.15} (mu N = {}), {} nodes stick, {:?} iterations",
         -out.reaction_x[1],
         MU * N,
         out.sticking[1],
@@ -163,43 +193,71 @@ fn sliding_block(mortar: bool) {
 /// substeps; the same S increments given as steps of their own (iterations to spare) end in the
 /// same state. Were the history of a failed attempt's converged substeps kept, the anchors
 /// would start ahead of the block and the path-dependent stick state would differ.
-/// With node-to-segment and with mortar contact.
+/// With node-to-segment and mortar penalty contact (mortar: penalties 1e4 and at most 3
+/// iterations, with which the step is cut into 8), and with multipliers on the Cattaneo–Mindlin
+/// problem (at most 4 iterations: 2 substeps). The block with multipliers is piecewise linear
+/// and solved in as many iterations as the stick/slip sets take to settle, the same in the
+/// last substep, which holds the last node's onset of slip, as in the whole step: starved, it
+/// never converges.
 #[test]
 fn a_cut_back_step_restarts_from_the_converged_friction_history() {
-    for mortar in [false, true] {
-        cut_back(mortar);
+    for method in [Method::Penalty, Method::Mortar] {
+        let form = |t: String| {
+            let t = method.form(&t);
+            if method == Method::Mortar {
+                t.replace(
+                    "penalty 1e5 friction 0.3 pt 1e5",
+                    "penalty 1e4 friction 0.3 pt 1e4",
+                )
+            } else {
+                t
+            }
+        };
+        let maxiter = if method == Method::Mortar {
+            "maxiter 3"
+        } else {
+            "maxiter 2"
+        };
+        let text = form(pushed_by(0.99));
+        cut_back(
+            &format!("{method:?}"),
+            &text.replace("maxiter 30", maxiter),
+            &text,
+            1e-12,
+        );
     }
+    let text = cattaneo_mindlin(Method::Multipliers);
+    cut_back(
+        "Multipliers",
+        &text.replace("maxiter 30", "maxiter 4"),
+        &text,
+        1e-9,
+    );
 }
 
-/// (Mortar: penalties 1e4 and at most 3 iterations, with which the step is cut into 8.)
-fn cut_back(mortar: bool) {
-    let form = |t: String| {
-        if mortar {
-            as_mortar(&t).replace(
-                "penalty 1e5 friction 0.3 pt 1e5",
-                "penalty 1e4 friction 0.3 pt 1e4",
-            )
-        } else {
-            t
-        }
-    };
-    let maxiter = if mortar { "maxiter 3" } else { "maxiter 2" };
-    let starved = form(pushed_by(0.99).replace("maxiter 30", maxiter));
+/// Run `starved` (step 2 cut back) and `text` with step 2's substeps as steps; compare the
+/// first node's horizontal displacement and the contact nodes' (to `tol` relative) and the
+/// contact states.
+fn cut_back(label: &str, starved: &str, text: &str, tol: f64) {
     let mut substeps = 0;
-    let model = common::model_from_text(&starved).unwrap();
+    let model = common::model_from_text(starved).unwrap();
     let mut slide_cut = f64::NAN;
     let mut states_cut = Vec::new();
     run_analysis(&model, &common::quiet(), |r| {
         if r.step == 2 {
             substeps = r.info.substeps;
             slide_cut = r.displacement(0, 1).unwrap();
-            states_cut = r.contact.iter().map(|s| (s.force, s.friction)).collect();
+            states_cut = r
+                .contact
+                .iter()
+                .map(|s| (s.force, s.friction, s.x[0]))
+                .collect();
         }
         Ok(())
     })
     .unwrap();
     assert!(substeps > 1, "step 2 was cut back ({substeps} substeps)");
-    let stepped = form(pushed_by(0.99))
+    let stepped = text
         .replace("nsteps 2", &format!("nsteps {}", 1 + substeps))
         .replace(
             "PiecewiseLinFunction 2 npoints 2 t 2 1 2 f(t) 2 0 1",
@@ -211,28 +269,56 @@ fn cut_back(mortar: bool) {
     let model = common::model_from_text(&stepped).unwrap();
     let mut slide = f64::NAN;
     let mut states = Vec::new();
+    let mut slips: Vec<f64> = Vec::new();
     run_analysis(&model, &common::quiet(), |r| {
         slide = r.displacement(0, 1).unwrap();
-        states = r.contact.iter().map(|s| (s.force, s.friction)).collect();
+        states = r
+            .contact
+            .iter()
+            .map(|s| (s.force, s.friction, s.x[0]))
+            .collect();
+        slips = r
+            .contact
+            .iter()
+            .map(|s| s.x[0] - model.nodes[s.node].coords[0])
+            .collect();
         Ok(())
     })
     .unwrap();
-    println!("mortar {mortar}: cut back into {substeps} substeps: slide {slide_cut:.15e}; as steps: {slide:.15e}");
+    println!("{label}: cut back into {substeps} substeps: slide {slide_cut:.15e}; as steps: {slide:.15e}");
     assert!(
-        (slide_cut - slide).abs() <= 1e-12 * slide.abs(),
+        (slide_cut - slide).abs() <= tol * slide.abs(),
         "{slide_cut} vs {slide}"
     );
+    let scale = states.iter().map(|s| s.0).fold(0.0, f64::max);
+    let motion = slips.iter().map(|u| u.abs()).fold(0.0, f64::max);
+    assert!(motion > 0.0);
     for (a, b) in states_cut.iter().zip(&states) {
-        assert!(
-            (a.0 - b.0).abs() <= 1e-9 * a.0.abs().max(1.0),
-            "{a:?} vs {b:?}"
-        );
-        let (fa, fb) = (a.1.unwrap(), b.1.unwrap());
-        assert_eq!(fa.0, fb.0, "stick state");
-        assert!(
-            (fa.1 - fb.1).abs() <= 1e-9 * fb.1.max(1.0),
-            "{a:?} vs {b:?}"
-        );
+        assert!((a.0 - b.0).abs() <= tol.max(1e-9) * scale, "{a:?} vs {b:?}");
+        assert!((a.2 - b.2).abs() <= tol * motion, "{a:?} vs {b:?}");
+        match (a.1, b.1) {
+            (Some(fa), Some(fb)) => {
+                assert_eq!(fa.0, fb.0, "stick state");
+                assert!(
+                    (fa.1 - fb.1).abs() <= tol.max(1e-9) * scale,
+                    "{a:?} vs {b:?}"
+                );
+            }
+            (fa, fb) => assert_eq!(fa.is_some(), fb.is_some(), "{a:?} vs {b:?}"),
+        }
+    }
+}
+
+/// examples/cattaneo_mindlin.in solved with `method` (node-to-segment: penalty or multipliers).
+fn cattaneo_mindlin(method: Method) -> String {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/cattaneo_mindlin.in");
+    let text = std::fs::read_to_string(path).unwrap();
+    match method {
+        Method::Multipliers => text.replace(
+            "n2spenaltycontact 4 loadTimeFunction 1 penalty 1e+07 friction 0.3",
+            "n2slagrangianmultipliercontact 4 loadTimeFunction 1 friction 0.3",
+        ),
+        _ => text,
     }
 }
 
@@ -243,9 +329,14 @@ fn cut_back(mortar: bool) {
 /// 4 % of μp0 (away from the cusp at ±c, where it changes over one element).
 #[test]
 fn cattaneo_mindlin_stick_zone_and_traction() {
+    for method in [Method::Penalty, Method::Multipliers] {
+        cattaneo_mindlin_check(method);
+    }
+}
+
+fn cattaneo_mindlin_check(method: Method) {
     const H: f64 = 0.02;
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/cattaneo_mindlin.in");
-    let model = hertz::input::read_model(&path).unwrap().model;
+    let model = common::model_from_text(&cattaneo_mindlin(method)).unwrap();
     let mut last = (0.0, 0.0, Vec::new());
     let mut iterations = Vec::new();
     run_analysis(&model, &common::quiet(), |r| {
@@ -293,7 +384,7 @@ fn cattaneo_mindlin_stick_zone_and_traction() {
         worst = worst.max((traction - exact).abs() / (MU * p0));
     }
     println!(
-        "Cattaneo-Mindlin: P {p:.5}, Q {q:.5} (Q/muP {:.3}), a {a:.4}, c {c:.4}, stick zone [{lo:.4}, {hi:.4}] \
+        "Cattaneo-Mindlin, {method:?}: P {p:.5}, Q {q:.5} (Q/muP {:.3}), a {a:.4}, c {c:.4}, stick zone [{lo:.4}, {hi:.4}] \
          half-width {c_fe:.4}; traction off by {:.2} % of mu p0; iterations {iterations:?}",
         q / (MU * p),
         100.0 * worst
@@ -389,5 +480,96 @@ fn mortar_friction_passes_the_shear_patch_test() {
         println!("{n_low}/{n_up} node-to-segment: shear stress {stress:.1e}, {its} iterations");
         assert!(stress > 1e-2, "node-to-segment: {stress:e}");
         assert!(its <= 5, "node-to-segment: {its} iterations");
+    }
+}
+
+/// A brick block (2 × 2 × 1 hexahedra, E = 1000, ν = 0: no Poisson spread) on a rigid plane,
+/// pressed down by a prescribed displacement of its top, then pushed along (0.6, 0.8) by 0.05,
+/// far beyond the stick limit: every base node slides, its friction force μ times its normal
+/// force to round-off (the isotropic Coulomb cone), and the horizontal reaction is μ times the
+/// vertical one along the push, to 1e-5 (the couple of the push at the top and the friction at
+/// the base tilts the block: the normal forces, and the nodes' slip directions, differ a
+/// little). Node-to-face contact, with the penalty law and with multipliers.
+#[test]
+fn brick_pushed_obliquely_transmits_mu_n_along_the_push() {
+    use hertz::bench::mesh::{uniform, Input};
+    for law in [
+        "n2spenaltycontact 3 loadTimeFunction 1 penalty 1e4 friction 0.3",
+        "n2slagrangianmultipliercontact 3 loadTimeFunction 1 friction 0.3",
+    ] {
+        let mut inp = Input::default();
+        let g = uniform(0.0, 2.0, 2);
+        let block = inp.block3d(&g, &g, &uniform(0.0, 1.0, 1), "mat 1 crossSect 1");
+        inp.sections.push("SimpleCS 1".into());
+        inp.materials.push("IsoLE 1 d 0 E 1000 n 0 tAlpha 0".into());
+        inp.segments
+            .push("planecontactsegment 1 point 3 0 0 0 normal 3 0 0 1".into());
+        let top = inp.node_set(&block.top);
+        let bottom: Vec<String> = block.bottom.iter().map(|n| n.to_string()).collect();
+        inp.bcs.push(format!(
+            "BoundaryCondition 1 loadTimeFunction 1 dofs 1 3 values 1 -0.01 set {top}"
+        ));
+        inp.bcs.push(format!(
+            "BoundaryCondition 2 loadTimeFunction 2 dofs 2 1 2 values 2 0.03 0.04 set {top}"
+        ));
+        inp.bcs.push(format!(
+            "{law} nodeset {} {} segmentset 1 1",
+            bottom.len(),
+            bottom.join(" ")
+        ));
+        inp.functions.push("ConstantFunction 1 f(t) 1.0".into());
+        inp.functions
+            .push("PiecewiseLinFunction 2 npoints 2 t 2 1 2 f(t) 2 0 1".into());
+        let text = inp.render(
+            "brick",
+            "StaticStructural nsteps 2 rtolf 1e-10 maxiter 30",
+            "3d",
+        );
+        let model = common::model_from_text(&text).unwrap();
+        let mut reaction = [0.0; 3];
+        let mut sliding = 0;
+        let mut worst_node = 0.0f64;
+        let mut iterations = Vec::new();
+        run_analysis(&model, &common::quiet(), |r| {
+            reaction = [0.0; 3];
+            for ((_, d, _), &f) in r.dofs.prescribed.iter().zip(r.reactions) {
+                reaction[usize::from(*d) - 1] += f;
+            }
+            sliding = r
+                .contact
+                .iter()
+                .filter(|s| s.friction.is_some_and(|f| !f.0))
+                .count();
+            // A sliding node's friction force is μ times its normal force.
+            worst_node = r
+                .contact
+                .iter()
+                .filter_map(|s| s.friction.filter(|f| !f.0).map(|f| (f.1, s.force)))
+                .map(|(f, p)| (f - MU * p).abs() / (MU * p))
+                .fold(0.0, f64::max);
+            iterations.push(r.info.iterations);
+            Ok(())
+        })
+        .unwrap();
+        let n = -reaction[2];
+        let t = [reaction[0], reaction[1]];
+        let along = 0.6 * t[0] + 0.8 * t[1];
+        let across = -0.8 * t[0] + 0.6 * t[1];
+        println!(
+            "{}: N {n:.12}, T along the push {along:.15} (mu N = {:.15}), across {across:.1e}, \
+             {sliding} nodes slide, |f| = mu p to {worst_node:.1e}, iterations {iterations:?}",
+            &law[..30],
+            MU * n
+        );
+        assert!(n > 0.0);
+        assert_eq!(sliding, block.bottom.len(), "every base node slides");
+        assert!(worst_node <= 1e-12, "{worst_node}");
+        assert!(
+            (along - MU * n).abs() <= 1e-5 * MU * n,
+            "{along} vs {}",
+            MU * n
+        );
+        assert!(across.abs() <= 1e-5 * MU * n, "{across}");
+        assert!(iterations.iter().all(|&i| i <= 4), "{iterations:?}");
     }
 }

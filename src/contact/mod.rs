@@ -5,8 +5,9 @@
 //! local contributions (one per contact point) for the assembler. Every formulation has the same
 //! inside: [`geometry`] (surfaces, projection, normals), [`search`] (which partner a node meets),
 //! kinematics in [`dual`] arithmetic (gap, weight, force direction and their derivatives) and a
-//! [`law`] (penalty or multiplier, and Coulomb friction on penalty points) that turns them into a
-//! residual and tangent. Formulations: [`n2n`] (node-to-node), [`n2s`] (node-to-segment),
+//! [`law`] (penalty or multiplier, and Coulomb friction: a return map on penalty points, friction
+//! multipliers on node-to-segment multiplier points) that turns them into a residual and
+//! tangent. Formulations: [`n2n`] (node-to-node), [`n2s`] (node-to-segment),
 //! [`mortar`] (segment-to-segment, 2D edges and 3D faces). The friction history is the anchors
 //! of the converged contact states ([`Anchor`]): the solver restores them with the states when
 //! it cuts a step.
@@ -646,29 +647,38 @@ pub fn law_area(tributary: f64, model: &Model) -> f64 {
 }
 
 /// Apply a condition's law to the kinematics of one contact point and complete its state.
+/// `lambda_eqs`: the equations of the point's multipliers (the friction force's components, if
+/// any, then the normal force).
 pub fn apply_law(
     ctx: &Ctx,
     law: ContactLaw,
-    lambda_eq: Option<usize>,
+    lambda_eqs: Option<std::ops::Range<usize>>,
     local: &Local,
     kin: &law::PointKinematics,
     area: f64,
     state: &mut SlotState,
 ) -> ContactPoint {
-    let mut codes = local.codes.clone();
-    let (point, penalty) = match (law, lambda_eq) {
+    let codes = local.codes.clone();
+    let multipliers = lambda_eqs.is_some();
+    let (point, penalty) = match (law, lambda_eqs) {
         (ContactLaw::Penalty(p), _) => (law::penalty::evaluate(ctx.laws, p, codes, kin), p),
-        (ContactLaw::Multiplier, Some(eq)) => {
-            codes.push(eq);
-            (
-                law::multiplier::evaluate(ctx.laws, ctx.u[eq], codes, kin),
-                0.0,
-            )
+        (ContactLaw::Multiplier, Some(eqs)) => {
+            let (point, friction) =
+                law::multiplier::evaluate(ctx.laws, &ctx.u[eqs.clone()], codes, eqs, kin);
+            if kin.slip.is_some() {
+                state.friction = friction;
+                // A sticking node keeps its anchor; a sliding or open one is anchored where it
+                // is now (the state's anchor from the kinematics).
+                if let (Some((true, _)), Some(s)) = (friction, &kin.slip) {
+                    state.anchor = Some(s.kept);
+                }
+            }
+            (point, 0.0)
         }
-        (ContactLaw::Multiplier, None) => unreachable!("multiplier points have an equation"),
+        (ContactLaw::Multiplier, None) => unreachable!("multiplier points have equations"),
     };
     state.force = law::normal_force(&point, kin, penalty);
-    state.active = point.closed && (lambda_eq.is_some() || kin.gap.v < 0.0);
+    state.active = point.closed && (multipliers || kin.gap.v < 0.0);
     state.pressure = if area > 0.0 {
         state.force / area
     } else {

@@ -128,7 +128,8 @@ impl Formulation for NodeToNode {
                 ),
                 super::law_area(p.area, ctx.model),
             );
-            let lambda_eq = (self.law == ContactLaw::Multiplier).then_some(first_lambda + k);
+            let lambda_eqs = (self.law == ContactLaw::Multiplier)
+                .then_some(first_lambda + k..first_lambda + k + 1);
             let mut state = SlotState {
                 partner: Partner::Node(p.master),
                 xi: [0.0; 2],
@@ -136,7 +137,7 @@ impl Formulation for NodeToNode {
                 ..SlotState::unpaired(self.number, p.slave, ctx.position(p.slave)?.0)
             };
             points.push(apply_law(
-                ctx, self.law, lambda_eq, &local, &kin, p.area, &mut state,
+                ctx, self.law, lambda_eqs, &local, &kin, p.area, &mut state,
             ));
             states.push(state);
         }

@@ -17,14 +17,21 @@ use crate::assembly::Contribution;
 pub enum PointLaw {
     /// Closed while g ≤ 0.
     Penalty,
-    /// Active while λ − c·g > −c·tol; the multiplier is the last code, with value `lambda`.
-    Multiplier { lambda: f64, c: f64, tol: f64 },
+    /// Active while λ − c·g > −c·tol; the normal multiplier is the last code, with value
+    /// `lambda`, after the `tangential` friction multipliers with values `lambda_t`.
+    Multiplier {
+        lambda: f64,
+        lambda_t: [f64; 3],
+        tangential: usize,
+        c: f64,
+        tol: f64,
+    },
 }
 
 #[derive(Debug, Clone)]
 pub struct ContactPoint {
-    /// Location codes of the local displacement unknowns, then (multipliers) the multiplier's
-    /// equation.
+    /// Location codes of the local displacement unknowns, then (multipliers) the equations of
+    /// the friction multipliers, if any, and of the normal multiplier.
     pub codes: Vec<usize>,
     pub law: PointLaw,
     /// Residual and row-major tangent of the closed/active branch, over `codes`. Empty when the
@@ -52,19 +59,28 @@ impl ContactPoint {
     }
 
     /// Residual and tangent of a branch. The open branch is zero for the penalty and λ = 0 (the
-    /// row r_λ = λ, K_λλ = 1) for a multiplier.
+    /// rows r_λ = λ, K_λλ = 1, friction multipliers too) for multipliers.
     pub fn branch(&self, closed: bool) -> (Vec<f64>, Vec<f64>) {
         if closed && self.can_close() {
             return (self.closed_fe.clone(), self.closed_ke.clone());
         }
         match self.law {
             PointLaw::Penalty => (Vec::new(), Vec::new()),
-            PointLaw::Multiplier { lambda, .. } => {
+            PointLaw::Multiplier {
+                lambda,
+                lambda_t,
+                tangential,
+                ..
+            } => {
                 let mm = self.codes.len();
                 let mut fe = vec![0.0; mm];
                 let mut ke = vec![0.0; mm * mm];
+                let first = mm - 1 - tangential;
+                fe[first..mm - 1].copy_from_slice(&lambda_t[..tangential]);
                 fe[mm - 1] = lambda;
-                ke[mm * mm - 1] = 1.0;
+                for k in first..mm {
+                    ke[k * mm + k] = 1.0;
+                }
                 (fe, ke)
             }
         }
@@ -110,7 +126,7 @@ impl ContactPoint {
                 .sum::<f64>();
         match self.law {
             PointLaw::Penalty => g <= 0.0,
-            PointLaw::Multiplier { lambda, c, tol } => {
+            PointLaw::Multiplier { lambda, c, tol, .. } => {
                 let l = lambda + dq[self.codes.len() - 1];
                 l - c * g > -c * tol
             }

@@ -186,7 +186,9 @@ pub fn read_segment(
 }
 
 /// `friction μ [pt ε_T]` of a node-to-segment or mortar penalty condition (hertz extension; `pt` as in
-/// upstream OOFEM's `structuralpenaltycontactbc`, by default the normal `penalty`).
+/// upstream OOFEM's `structuralpenaltycontactbc`, by default the normal `penalty`), or `friction μ`
+/// of a node-to-segment condition with Lagrange multipliers (no penalty: the friction force is a
+/// multiplier too).
 fn read_friction(r: &Record, kw: &str, law: ContactLaw) -> Result<Option<Friction>> {
     let Some(mu) = r.opt_float("friction")? else {
         if r.opt_float("pt")?.is_some() {
@@ -197,18 +199,27 @@ fn read_friction(r: &Record, kw: &str, law: ContactLaw) -> Result<Option<Frictio
     if !(mu >= 0.0 && mu.is_finite()) {
         return Err(r.error(format!("`friction` must be a coefficient >= 0, found {mu}")));
     }
-    let ContactLaw::Penalty(pn) = law else {
-        return Err(r.error(
-            "friction is regularized by a tangential penalty: use n2spenaltycontact or \
-             s2spenaltycontact (`friction` with Lagrange multipliers is not supported yet)",
-        ));
-    };
     if kw.starts_with("n2n") {
         return Err(r.error(
             "friction is supported on node-to-segment and mortar conditions \
-             (n2spenaltycontact, s2spenaltycontact), not node-to-node",
+             (n2spenaltycontact, n2slagrangianmultipliercontact, s2spenaltycontact), not node-to-node",
         ));
     }
+    let ContactLaw::Penalty(pn) = law else {
+        if kw.starts_with("s2s") {
+            return Err(r.error(
+                "friction with mortar contact is regularized by a tangential penalty: use \
+                 s2spenaltycontact, or n2slagrangianmultipliercontact for friction without a penalty",
+            ));
+        }
+        if r.opt_float("pt")?.is_some() {
+            return Err(r.error(
+                "`pt` is a tangential penalty: friction with Lagrange multipliers has none \
+                 (the friction force is a multiplier); drop `pt`, or use n2spenaltycontact",
+            ));
+        }
+        return Ok(Some(Friction { mu, penalty: 0.0 }));
+    };
     let pt = r.opt_float("pt")?.unwrap_or(pn);
     if !(pt > 0.0 && pt.is_finite()) {
         return Err(r.error(format!("`pt` must be positive, found {pt}")));

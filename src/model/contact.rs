@@ -61,12 +61,14 @@ pub enum Pairing {
     Mortar { slave: usize, segments: Vec<usize> },
 }
 
-/// Coulomb friction of a condition, regularized by a tangential penalty (the stick stiffness).
+/// Coulomb friction of a condition: regularized by a tangential penalty (the stick stiffness), or
+/// (Lagrange multipliers) exact, with the friction force a multiplier too.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Friction {
     /// Coefficient of friction μ ≥ 0.
     pub mu: f64,
-    /// Tangential penalty ε_T (force per length of elastic slip, like `penalty`).
+    /// Tangential penalty ε_T (force per length of elastic slip, like `penalty`); 0 with
+    /// multipliers.
     pub penalty: f64,
 }
 
@@ -75,7 +77,8 @@ pub struct ContactCondition {
     /// BC record number.
     pub number: usize,
     pub law: ContactLaw,
-    /// Coulomb friction (node-to-segment penalty conditions).
+    /// Coulomb friction (node-to-segment and mortar penalty conditions, node-to-segment
+    /// multiplier conditions).
     pub friction: Option<Friction>,
     pub pairing: Pairing,
     /// Prescribed unit normal (N2N: instead of the initial master-to-slave direction; N2S:

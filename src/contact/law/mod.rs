@@ -28,6 +28,27 @@ pub struct PointKinematics {
     pub area: f64,
     /// Friction of the closed point (penalty conditions with `friction`).
     pub friction: Option<FrictionKinematics>,
+    /// Slip of the point (multiplier conditions with `friction`: the law's friction multipliers
+    /// act on it).
+    pub slip: Option<SlipKinematics>,
+}
+
+/// What the friction of a point with Lagrange multipliers needs from its kinematics.
+pub struct SlipKinematics {
+    /// x_s − x_a, the node's motion relative to its anchor (dim entries, over the local unknowns).
+    pub slip: Vec<Jet>,
+    /// The normal n of the contact force (dim entries).
+    pub normal: Vec<Jet>,
+    /// `share[k]`: the residual over the local unknowns of a unit internal force on the node
+    /// along axis k (the node's own entries, and its negative spread over the master).
+    pub share: Vec<Vec<Jet>>,
+    /// Friction coefficient.
+    pub mu: f64,
+    /// c_T of the friction law's complementarity function, a stiffness (E·A/h of the elements
+    /// under the node): it sets the Newton path, not the solution.
+    pub stiffness: f64,
+    /// The anchor the node keeps if it sticks (else it is anchored where it is).
+    pub kept: crate::contact::Anchor,
 }
 
 /// The friction part of a closed contact point: its residual contribution and state.
@@ -47,6 +68,7 @@ impl PointKinematics {
             b: b.iter().map(|&v| v.into()).collect(),
             area,
             friction: None,
+            slip: None,
         }
     }
 }

@@ -6,37 +6,154 @@
 //!
 //! The weight w only switches the constraint: in the limit of an infinite penalty, the penalty law
 //! holds g = 0 wherever w > 0.
+//!
+//! Coulomb friction without a penalty: the friction force λ_T (a vector in Cartesian components,
+//! the internal force on the node; its equations hold n·λ_T = 0) is a multiplier too, spread like
+//! the normal force ([`SlipKinematics::share`]), with the complementarity function of Alart and
+//! Curnier solved by a semismooth Newton method:
+//!   C_T = (λ_T − proj_{|·| ≤ μ⟨λ⟩}(P λ_T + c_T g_T)) / c_T = 0,   g_T = P (x_s − x_a),
+//! P = I − n ⊗ n, x_a the anchor: the master's material point the node was at when the last step
+//! converged. Stick (|P λ_T + c_T g_T| ≤ μλ) makes it g_T = 0 and n·λ_T = 0; slip makes λ_T =
+//! μλ·v/|v| (v = P λ_T + c_T g_T), along the slip, with |λ_T| = μλ. The branch is taken from the
+//! current iterate (a generalized Jacobian of the kink); c_T only sets the Newton path. Divided
+//! by c_T, each row is a length, as the gap rows are. Inactive points hold λ_T = 0.
 
-use super::{point, Laws, PointKinematics};
+use super::{point, Laws, PointKinematics, SlipKinematics};
+use crate::contact::dual::{Dual, Jet};
 use crate::contact::point::{ContactPoint, PointLaw};
 
-/// `codes`: the displacement codes, then the multiplier's equation.
-pub fn evaluate(laws: &Laws, lambda: f64, codes: Vec<usize>, k: &PointKinematics) -> ContactPoint {
+/// `codes`: the displacement codes, then the equations of the multipliers `lambdas`: the
+/// friction force's components (if any) and last the normal force. Returns the point and, for
+/// an active point with friction, whether it sticks and the friction force's magnitude.
+pub fn evaluate(
+    laws: &Laws,
+    lambdas: &[f64],
+    mut codes: Vec<usize>,
+    eqs: std::ops::Range<usize>,
+    k: &PointKinematics,
+) -> (ContactPoint, Option<(bool, f64)>) {
     let m = k.b.len();
-    let mm = m + 1;
+    let nt = eqs.len() - 1;
+    codes.extend(eqs);
+    let mm = codes.len();
+    let lambda = lambdas[nt];
+    let mut lambda_t = [0.0; 3];
+    lambda_t[..nt].copy_from_slice(&lambdas[..nt]);
     let g = &k.gap;
     let law = PointLaw::Multiplier {
         lambda,
+        lambda_t,
+        tangential: nt,
         c: laws.c,
         tol: laws.gap_tol,
     };
     if !(k.weight.v > 0.0) || g.v.is_nan() {
-        return point(codes, law, k, None, false);
+        return (point(codes, law, k, None, false), None);
     }
     let geometric = laws.geometric_allowed(lambda, k.area);
     let mut fe = vec![0.0; mm];
     let mut ke = vec![0.0; mm * mm];
     for i in 0..m {
         fe[i] = -lambda * k.b[i].v;
-        ke[i * mm + m] = -k.b[i].v;
-        ke[m * mm + i] = -g.d[i];
+        ke[i * mm + mm - 1] = -k.b[i].v;
+        ke[(mm - 1) * mm + i] = -g.d[i];
         if geometric {
             for j in 0..m {
                 ke[i * mm + j] = -lambda * k.b[i].d[j];
             }
         }
     }
-    fe[m] = -g.v;
+    fe[mm - 1] = -g.v;
+    let mut friction = None;
+    match &k.slip {
+        Some(s) if nt > 0 => {
+            // The friction force's work: r_u += Σ_k λ_T,k share_k.
+            for (t, share) in lambda_t.iter().zip(&s.share) {
+                for i in 0..m {
+                    fe[i] += t * share[i].v;
+                    if geometric {
+                        for j in 0..m {
+                            ke[i * mm + j] += t * share[i].d[j];
+                        }
+                    }
+                }
+            }
+            for (c, share) in s.share.iter().enumerate() {
+                for i in 0..m {
+                    ke[i * mm + m + c] = share[i].v;
+                }
+            }
+            let (rows, stick, force) = coulomb(s, lambda, &lambda_t[..nt], m);
+            for (c, row) in rows.iter().enumerate() {
+                fe[m + c] = row.v;
+                ke[(m + c) * mm..(m + c + 1) * mm].copy_from_slice(&row.d);
+            }
+            friction = Some((stick, force));
+        }
+        // No anchor yet (no history): the friction force is held at zero.
+        _ => {
+            for c in 0..nt {
+                fe[m + c] = lambda_t[c];
+                ke[(m + c) * mm + m + c] = 1.0;
+            }
+        }
+    }
     let active = lambda - laws.c * g.v > -laws.c * laws.gap_tol;
-    point(codes, law, k, Some((fe, ke)), active)
+    let friction = friction.filter(|_| active);
+    (point(codes, law, k, Some((fe, ke)), active), friction)
+}
+
+/// The rows C_T of the friction multipliers over (q, λ_T, λ) (m + nt + 1 unknowns), whether the
+/// point sticks, and |P λ_T|. Evaluated in duals over z = (x_s − x_a, n, λ, λ_T) and chained.
+fn coulomb(s: &SlipKinematics, lambda: f64, lambda_t: &[f64], m: usize) -> (Vec<Jet>, bool, f64) {
+    let dim = lambda_t.len();
+    let nz = 3 * dim + 1;
+    let zero = Dual::constant(0.0, nz);
+    let d: Vec<Dual> = (0..dim)
+        .map(|i| Dual::variable(s.slip[i].v, i, nz))
+        .collect();
+    let nu: Vec<Dual> = (0..dim)
+        .map(|i| Dual::variable(s.normal[i].v, dim + i, nz))
+        .collect();
+    let ln = Dual::variable(lambda, 2 * dim, nz);
+    let lt: Vec<Dual> = (0..dim)
+        .map(|i| Dual::variable(lambda_t[i], 2 * dim + 1 + i, nz))
+        .collect();
+    let len = nu.iter().fold(zero, |a, &v| a + v * v).sqrt();
+    let n: Vec<Dual> = nu.iter().map(|&v| v / len).collect();
+    let tangential = |x: &[Dual]| -> Vec<Dual> {
+        let xn = (0..dim).fold(zero, |a, i| a + x[i] * n[i]);
+        (0..dim).map(|i| x[i] - n[i] * xn).collect()
+    };
+    let gt = tangential(&d);
+    let pt = tangential(&lt);
+    let c = s.stiffness;
+    let v: Vec<Dual> = (0..dim).map(|i| pt[i] + gt[i] * c).collect();
+    let norm = v.iter().fold(zero, |a, &x| a + x * x).sqrt();
+    // The slip limit μ⟨λ⟩ (its derivative taken on the λ ≥ 0 side at λ = 0).
+    let limit = if ln.v >= 0.0 { ln * s.mu } else { zero };
+    let stick = norm.v <= limit.v;
+    let proj: Vec<Dual> = if stick {
+        v
+    } else {
+        let scale = limit / norm;
+        v.iter().map(|&x| x * scale).collect()
+    };
+    let rows: Vec<Dual> = (0..dim).map(|i| (lt[i] - proj[i]) * (1.0 / c)).collect();
+    // ∂z/∂(q, λ_T, λ): the codes are the m displacements, λ_T, then λ.
+    let mm = m + dim + 1;
+    let mut dz: Vec<Vec<(usize, f64)>> = Vec::with_capacity(nz);
+    for jets in [&s.slip, &s.normal] {
+        for j in jets.iter().take(dim) {
+            dz.push(j.d.iter().copied().enumerate().collect());
+        }
+    }
+    dz.push(vec![(mm - 1, 1.0)]);
+    dz.extend((0..dim).map(|i| vec![(m + i, 1.0)]));
+    let force = pt.iter().map(|x| x.v * x.v).sum::<f64>().sqrt();
+    (
+        rows.iter().map(|r| Jet::chain(r, &dz, mm)).collect(),
+        stick,
+        force,
+    )
 }

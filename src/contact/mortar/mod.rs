@@ -232,13 +232,14 @@ impl SlotLaw {
             b,
             area: 1.0,
             friction: None,
+            slip: None,
         };
         // The multipliers' active-set rule compares a pressure with c·ḡ: c per unit area.
         let laws = Laws {
             c: ctx.laws.c / w.area.v.max(1e-300),
             ..*ctx.laws
         };
-        let mut codes = local.codes.clone();
+        let codes = local.codes.clone();
         let penalty = match self.law {
             ContactLaw::Penalty(p) => p * self.scale[j],
             ContactLaw::Multiplier => 0.0,
@@ -272,8 +273,7 @@ impl SlotLaw {
             ContactLaw::Penalty(_) => law::penalty::evaluate(&laws, penalty, codes, &kin),
             ContactLaw::Multiplier => {
                 let eq = first_lambda + j;
-                codes.push(eq);
-                law::multiplier::evaluate(&laws, ctx.u[eq], codes, &kin)
+                law::multiplier::evaluate(&laws, &ctx.u[eq..eq + 1], codes, eq..eq + 1, &kin).0
             }
         };
         if has {

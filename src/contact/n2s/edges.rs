@@ -257,7 +257,7 @@ impl NodeToSegment {
                     x: geom.x.iter().map(|v| [v[0].v, v[1].v]).collect(),
                     open: geom.open,
                 };
-                let (t, after) = self.point_friction(
+                next = Some(self.point_friction(
                     slot,
                     law,
                     [xs3, xa3, dir],
@@ -269,10 +269,16 @@ impl NodeToSegment {
                             ..at_point
                         })
                     },
-                );
-                next = Some(after);
-                let residual = local.distribute(&coeffs, &t.vector);
-                kin.friction = Some(t.kinematics(residual.iter().map(|&v| v.into()).collect()));
+                    |v| {
+                        local
+                            .distribute(&coeffs, v)
+                            .into_iter()
+                            .map(crate::contact::dual::Jet::from)
+                            .collect()
+                    },
+                    |&d| d.into(),
+                    &mut kin,
+                ));
             }
         }
         Ok((local, kin, next))

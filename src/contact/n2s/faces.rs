@@ -261,6 +261,7 @@ impl NodeToSegment {
             b: bj,
             area: crate::contact::law_area(slot.area, ctx.model),
             friction: None,
+            slip: None,
         };
         let mut next = None;
         if let Some(law) = friction_law {
@@ -296,7 +297,7 @@ impl NodeToSegment {
                         xa[i] = xa[i] + ca[a] * y[i];
                     }
                 }
-                let (t, after) = self.point_friction(
+                next = Some(self.point_friction(
                     slot,
                     law,
                     [xs, xa, dir],
@@ -310,16 +311,20 @@ impl NodeToSegment {
                                 ..at_point
                             })
                     },
-                );
-                next = Some(after);
-                // Distributed like the normal force: the node, and −c_a on the face's corners.
-                let mut r: Vec<Dual> = t.vector.to_vec();
-                for ca in c.iter().take(nc) {
-                    r.extend(t.vector.iter().map(|&d| -(*ca * d)));
-                }
-                let mut residual: Vec<Jet> = r.iter().map(chain).collect();
-                residual.resize(m, Jet::constant(0.0, m));
-                kin.friction = Some(t.kinematics(residual));
+                    // Distributed like the normal force: the node, and −c_a on the face's
+                    // corners.
+                    |v| {
+                        let mut r: Vec<Dual> = v.to_vec();
+                        for ca in c.iter().take(nc) {
+                            r.extend(v.iter().map(|&d| -(*ca * d)));
+                        }
+                        let mut residual: Vec<Jet> = r.iter().map(chain).collect();
+                        residual.resize(m, Jet::constant(0.0, m));
+                        residual
+                    },
+                    chain,
+                    &mut kin,
+                ));
             }
         }
         Ok((local, kin, next))

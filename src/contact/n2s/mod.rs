@@ -22,12 +22,12 @@ mod edges;
 mod faces;
 mod rigid;
 
-use super::dual::{DVec, Dual};
+use super::dual::{DVec, Dual, Jet};
 use super::geometry::edges::EdgeSurface;
 use super::geometry::faces::{FaceSurface, NodalNormal};
 use super::geometry::scalar::Scalar;
-use super::law::friction::{self, FrictionPoint, Tangential};
-use super::law::PointKinematics;
+use super::law::friction::{self, FrictionPoint};
+use super::law::{PointKinematics, SlipKinematics};
 use super::search::broad::BroadPhase;
 use super::search::{self, Candidate};
 use super::Anchor;
@@ -62,6 +62,9 @@ struct Slot {
     reach: f64,
     /// Factor of the penalties at this node (upstream OOFEM input: its number of slave elements).
     scale: f64,
+    /// E·A/h of the elements under the node (E their Young's modulus, A its tributary area, h
+    /// the distance to its neighbours).
+    stiffness: f64,
 }
 
 impl Slot {
@@ -120,11 +123,24 @@ struct Current {
 }
 
 impl NodeToSegment {
+    /// Multipliers per contact node: the normal force's, and with friction the friction force's
+    /// components.
+    fn multipliers_per_node(&self) -> usize {
+        1 + if self.friction.is_some() { self.dim } else { 0 }
+    }
+
     /// The friction of a point with gap `gap`, weight `weight` and force direction `dir`,
-    /// anchored at `xa` (`anchor`): its tangential part and the anchor it leaves for the next
-    /// step — the contact point `at_point` while open, the same anchor while it sticks, `slid` of
-    /// the point it is dragged to when it slides. Open points get the friction too: the closed
-    /// branch the solver may predict for them is then the continuation of the closed point's.
+    /// anchored at `xa` (`anchor`), into `kin`; returns the anchor it leaves for the next step.
+    /// `spread` distributes a force on the node over the local unknowns (the node, and its
+    /// negative over the master), `jet` takes the kinematics' duals to the local unknowns.
+    ///
+    /// With the penalty law: the tangential force, and the anchor is the contact point `at_point`
+    /// while open, the same anchor while it sticks, `slid` of the point it is dragged to when it
+    /// slides. Open points get the friction too: the closed branch the solver may predict for
+    /// them is then the continuation of the closed point's. With multipliers: the slip the
+    /// friction multipliers act on, and the anchor is `at_point` unless the law finds the point
+    /// sticking (see [`super::apply_law`]).
+    #[allow(clippy::too_many_arguments)]
     fn point_friction(
         &self,
         slot: &Slot,
@@ -133,11 +149,29 @@ impl NodeToSegment {
         (gap, weight): (Dual, Dual),
         (anchor, at_point): (&Anchor, Anchor),
         slid: impl FnOnce([f64; 3]) -> Anchor,
-    ) -> (Tangential, Anchor) {
-        let ContactLaw::Penalty(p) = slot.law(self.law) else {
-            unreachable!("friction with the penalty law only")
-        };
+        spread: impl Fn(&DVec) -> Vec<Jet>,
+        jet: impl Fn(&Dual) -> Jet,
+        kin: &mut PointKinematics,
+    ) -> Anchor {
         let [xs, xa, n] = point;
+        let dim = self.dim;
+        let ContactLaw::Penalty(p) = slot.law(self.law) else {
+            let nv = xs[0].n;
+            kin.slip = Some(SlipKinematics {
+                slip: (0..dim).map(|i| jet(&(xs[i] - xa[i]))).collect(),
+                normal: (0..dim).map(|i| jet(&n[i])).collect(),
+                share: (0..dim)
+                    .map(|k| {
+                        let unit = std::array::from_fn(|i| Dual::constant(f64::from(i == k), nv));
+                        spread(&unit)
+                    })
+                    .collect(),
+                mu: law.mu,
+                stiffness: slot.stiffness,
+                kept: *anchor,
+            });
+            return at_point;
+        };
         let t = friction::evaluate(
             law,
             &FrictionPoint {
@@ -145,7 +179,7 @@ impl NodeToSegment {
                 xa,
                 n,
                 pn: -(weight * gap * p),
-                dim: self.dim,
+                dim,
             },
         );
         let next = if gap.v > 0.0 {
@@ -155,7 +189,8 @@ impl NodeToSegment {
         } else {
             slid(t.next_anchor)
         };
-        (t, next)
+        kin.friction = Some(t.kinematics(spread(&t.vector)));
+        next
     }
 }
 
@@ -232,11 +267,8 @@ impl NodeToSegment {
         edges::check_support(model, &edges)?;
 
         let tribs = super::tributary::tributaries(model, nodes);
-        let young = if c.penalty_from_mesh {
-            super::stiffest_young(model)
-        } else {
-            HashMap::new()
-        };
+        let young = super::stiffest_young(model);
+        let stiffest = young.values().copied().fold(0.0, f64::max);
         let slots = nodes
             .iter()
             .zip(tribs)
@@ -252,22 +284,24 @@ impl NodeToSegment {
                     .iter()
                     .map(|y| 0.5 * (0..3).map(|i| (y[i] - x[i]).powi(2)).sum::<f64>().sqrt())
                     .fold(0.0, f64::max);
+                let h = if t.neighbors.is_empty() {
+                    0.1 * super::model_size(model)
+                } else {
+                    t.neighbors
+                        .iter()
+                        .map(|&m| {
+                            let y = model.nodes[m].coords;
+                            (0..3).map(|i| (y[i] - x[i]).powi(2)).sum::<f64>().sqrt()
+                        })
+                        .sum::<f64>()
+                        / t.neighbors.len() as f64
+                };
+                // A node on no element (a rigid body's) gets the model's stiffest modulus.
+                let e = young.get(&node).copied().unwrap_or(stiffest);
+                let stiffness = e * super::law_area(t.measure, model) / h;
                 let mut scale = c.node_weights.as_ref().map_or(1.0, |w| w[k]);
                 if c.penalty_from_mesh {
-                    let h = if t.neighbors.is_empty() {
-                        0.1 * super::model_size(model)
-                    } else {
-                        t.neighbors
-                            .iter()
-                            .map(|&m| {
-                                let y = model.nodes[m].coords;
-                                (0..3).map(|i| (y[i] - x[i]).powi(2)).sum::<f64>().sqrt()
-                            })
-                            .sum::<f64>()
-                            / t.neighbors.len() as f64
-                    };
-                    let e = young.get(&node).copied().unwrap_or(0.0);
-                    scale *= DEFAULT_PENALTY_FACTOR * e * super::law_area(t.measure, model) / h;
+                    scale *= DEFAULT_PENALTY_FACTOR * stiffness;
                 }
                 Slot {
                     node,
@@ -275,6 +309,7 @@ impl NodeToSegment {
                     neighbors,
                     reach,
                     scale,
+                    stiffness,
                 }
             })
             .collect();
@@ -423,7 +458,7 @@ impl Formulation for NodeToSegment {
 
     fn n_multipliers(&self) -> usize {
         if self.law == ContactLaw::Multiplier {
-            self.slots.len()
+            self.slots.len() * self.multipliers_per_node()
         } else {
             0
         }
@@ -511,7 +546,9 @@ impl Formulation for NodeToSegment {
         }
         let searching = start.elapsed().as_secs_f64();
         for (k, (slot, chosen)) in self.slots.iter().zip(chosen).enumerate() {
-            let lambda_eq = (self.law == ContactLaw::Multiplier).then_some(first_lambda + k);
+            let per = self.multipliers_per_node();
+            let lambda_eqs = (self.law == ContactLaw::Multiplier)
+                .then_some(first_lambda + per * k..first_lambda + per * (k + 1));
             let mut state = SlotState::unpaired(self.number, slot.node, ctx.position(slot.node)?.0);
             let anchor = history
                 .and_then(|h| h.get(k))
@@ -559,7 +596,7 @@ impl Formulation for NodeToSegment {
             points.push(apply_law(
                 ctx,
                 slot.law(self.law),
-                lambda_eq,
+                lambda_eqs,
                 &local,
                 &kin,
                 slot.area,

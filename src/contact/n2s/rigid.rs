@@ -209,7 +209,7 @@ impl NodeToSegment {
                 };
                 let o = origin(g, &q);
                 let xa3: DVec = std::array::from_fn(|i| o[i] + offset[i]);
-                let (t, after) = self.point_friction(
+                next = Some(self.point_friction(
                     slot,
                     law,
                     [xs3, xa3, dir],
@@ -219,10 +219,16 @@ impl NodeToSegment {
                         offset: std::array::from_fn(|i| p[i] - here[i].v),
                         ..at_point
                     },
-                );
-                next = Some(after);
-                let residual = local.distribute(&coeffs, &t.vector);
-                kin.friction = Some(t.kinematics(residual.iter().map(|&v| v.into()).collect()));
+                    |v| {
+                        local
+                            .distribute(&coeffs, v)
+                            .into_iter()
+                            .map(crate::contact::dual::Jet::from)
+                            .collect()
+                    },
+                    |&d| d.into(),
+                    &mut kin,
+                ));
             }
         }
         Ok((local, kin, next))
