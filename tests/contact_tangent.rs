@@ -861,55 +861,70 @@ fn mortar_tangents_in_3d_are_jacobians_of_residuals() {
 /// Mortar friction's tangent (unsymmetric) is the Jacobian of its residual in stick (μ = 5) and
 /// slip (μ = 0.05), small deformation, on the cases of the frictionless mortar tests: 2D straight
 /// and quadratic edges and a rigid circle moving with a node, 3D hexahedra, tetrahedra and
-/// wedges; the history is the state at u = 0.
+/// wedges; the history is the state at u = 0. Penalty, and multipliers (the pressures and the
+/// friction tractions' components at 1000: the tangent over the multipliers too).
 #[test]
 fn mortar_friction_tangents_are_jacobians_in_stick_and_slip() {
     use hertz::bench::mesh::Solid;
     use hertz::bench::suite::Law;
-    let law = "s2spenaltycontact 4 loadTimeFunction 1 penalty 1e4 slavesegment 1 segmentset 1 2";
-    let mut cases: Vec<(String, String, Disp)> = mortar2d_cases(0, law)
-        .into_iter()
-        .map(|(name, text, disp, _)| (name, text, disp))
-        .collect();
-    for kind in [Solid::Hex, Solid::Tet, Solid::Wedge] {
-        let (text, disp) = mortar3d_case(kind, false, Law::Penalty(1e4));
-        cases.push((format!("{kind:?}"), text, disp));
-    }
-    for (name, text, disp) in cases {
-        for (mu, stick) in [(5.0, true), (0.05, false)] {
-            let name = format!("mortar friction {name} mu {mu}");
-            let text = text.replace("slavesegment", &format!("friction {mu} slavesegment"));
-            let model = common::model_from_text(&text).unwrap_or_else(|e| panic!("{name}: {e}"));
-            let mut contact = ContactSystem::new(&model).unwrap();
-            let dofs = hertz::solve::number_dofs(&model).unwrap();
-            contact.set_pressure_limit(f64::INFINITY);
-            let u0 = vec![0.0; dofs.n_primary()];
-            let history = contact
-                .evaluate(&model, &dofs, &u0, Search::Fresh)
-                .unwrap()
-                .1;
-            let case = Case {
-                name: name.clone(),
-                text: String::new(),
-                disp: disp.clone(),
-                lambda: 0.0,
-                active: 0,
-            };
-            let u = displaced(&model, &dofs, &case);
-            let (err, states, checked) =
-                fd_error_with_history(&model, &contact, &dofs, &u, Some(&history));
-            let closed: Vec<_> = states.iter().filter_map(|s| s.friction).collect();
-            let (sticking, force) = (
-                closed.iter().filter(|f| f.0).count(),
-                closed.iter().map(|f| f.1).sum::<f64>(),
-            );
-            println!(
-                "{name}: {err:.1e} over {checked} points, {} closed, {sticking} stick",
-                closed.len()
-            );
-            assert!(!closed.is_empty() && force > 0.0, "{name}: friction");
-            assert_eq!(sticking == closed.len(), stick, "{name}: {sticking} stick");
-            assert!(err < 1e-6, "{name}: tangent off by {err:e} (relative)");
+    let laws = [
+        (
+            "s2spenaltycontact 4 loadTimeFunction 1 penalty 1e4 slavesegment 1 segmentset 1 2",
+            Law::Penalty(1e4),
+            0.0,
+        ),
+        (
+            "s2slagrangianmultipliercontact 4 loadTimeFunction 1 slavesegment 1 segmentset 1 2",
+            Law::Multiplier,
+            1000.0,
+        ),
+    ];
+    for (law, law3d, lambda) in laws {
+        let mut cases: Vec<(String, String, Disp)> = mortar2d_cases(0, law)
+            .into_iter()
+            .map(|(name, text, disp, _)| (name, text, disp))
+            .collect();
+        for kind in [Solid::Hex, Solid::Tet, Solid::Wedge] {
+            let (text, disp) = mortar3d_case(kind, false, law3d);
+            cases.push((format!("{kind:?}"), text, disp));
+        }
+        for (name, text, disp) in cases {
+            for (mu, stick) in [(5.0, true), (0.05, false)] {
+                let name = format!("mortar friction {name} mu {mu} {}", &law[..4]);
+                let text = text.replace("slavesegment", &format!("friction {mu} slavesegment"));
+                let model =
+                    common::model_from_text(&text).unwrap_or_else(|e| panic!("{name}: {e}"));
+                let mut contact = ContactSystem::new(&model).unwrap();
+                let dofs = hertz::solve::number_dofs(&model).unwrap();
+                contact.set_pressure_limit(f64::INFINITY);
+                let u0 = vec![0.0; dofs.n_primary()];
+                let history = contact
+                    .evaluate(&model, &dofs, &u0, Search::Fresh)
+                    .unwrap()
+                    .1;
+                let case = Case {
+                    name: name.clone(),
+                    text: String::new(),
+                    disp: disp.clone(),
+                    lambda,
+                    active: 0,
+                };
+                let u = displaced(&model, &dofs, &case);
+                let (err, states, checked) =
+                    fd_error_with_history(&model, &contact, &dofs, &u, Some(&history));
+                let closed: Vec<_> = states.iter().filter_map(|s| s.friction).collect();
+                let (sticking, force) = (
+                    closed.iter().filter(|f| f.0).count(),
+                    closed.iter().map(|f| f.1).sum::<f64>(),
+                );
+                println!(
+                    "{name}: {err:.1e} over {checked} points, {} closed, {sticking} stick",
+                    closed.len()
+                );
+                assert!(!closed.is_empty() && force > 0.0, "{name}: friction");
+                assert_eq!(sticking == closed.len(), stick, "{name}: {sticking} stick");
+                assert!(err < 1e-6, "{name}: tangent off by {err:e} (relative)");
+            }
         }
     }
 }

@@ -24,9 +24,16 @@ enum Method {
     Mortar,
     /// Node-to-segment with Lagrange multipliers for the normal and the friction force.
     Multipliers,
+    /// Mortar with Lagrange multipliers for the pressure and the friction traction.
+    MortarMultipliers,
 }
 
-const METHODS: [Method; 3] = [Method::Penalty, Method::Mortar, Method::Multipliers];
+const METHODS: [Method; 4] = [
+    Method::Penalty,
+    Method::Mortar,
+    Method::Multipliers,
+    Method::MortarMultipliers,
+];
 
 impl Method {
     /// The example (or a variant of it) solved with this method.
@@ -37,6 +44,10 @@ impl Method {
             Method::Multipliers => text.replace(
                 "n2spenaltycontact 5 loadTimeFunction 1 penalty 1e5 friction 0.3 pt 1e5",
                 "n2slagrangianmultipliercontact 5 loadTimeFunction 1 friction 0.3",
+            ),
+            Method::MortarMultipliers => as_mortar(text).replace(
+                "s2spenaltycontact 5 loadTimeFunction 1 penalty 1e5 friction 0.3 pt 1e5",
+                "s2slagrangianmultipliercontact 5 loadTimeFunction 1 friction 0.3",
             ),
         }
     }
@@ -120,8 +131,9 @@ fn solve(text: &str, params: &SolveParams) -> hertz::error::Result<Outcome> {
 /// the step fails even after halving.
 /// The same with mortar contact (its penalties per unit length are softer than the per-node ones
 /// here: the corners, where the friction resisting the base's Poisson spread concentrates, slip
-/// in step 1 and the bottom-left node ends at −7.6e-5, inward). With multipliers there is no
-/// elastic slip: the corner sticks exactly where it started.
+/// in step 1 and the bottom-left node ends at −7.6e-5, inward; with mortar multipliers at
+/// −8.7e-5). With node-to-segment multipliers there is no elastic slip and the corner sticks
+/// exactly where it started.
 #[test]
 fn block_sticks_below_mu_n_and_slides_above() {
     for method in METHODS {
@@ -439,7 +451,7 @@ fn shear_patch_errors(text: &str) -> (f64, f64, usize) {
 /// The frictional contact patch test: two blocks with non-matching meshes pressed by p and
 /// sheared by τ < μp stick with the uniform stress (0, −p, τ) at every integration point and the
 /// friction traction τ at every slave node, to round-off, with mortar contact (a penalty given
-/// or from the mesh); node-to-segment friction on the same meshes misses it by percent (and
+/// or from the mesh, or multipliers); node-to-segment friction on the same meshes misses it by percent (and
 /// converges in a few iterations: on 10/7 its first step once went astray, a node anchored at a
 /// parameter that does not round-trip exactly taking a round-off slip for a slip at zero
 /// pressure).
@@ -449,6 +461,7 @@ fn mortar_friction_passes_the_shear_patch_test() {
         for law in [
             "s2spenaltycontact 4 loadTimeFunction 1 penalty 1e6 friction 0.3 slavesegment 1 segmentset 1 2",
             "s2spenaltycontact 4 loadTimeFunction 1 friction 0.3 slavesegment 1 segmentset 1 2",
+            "s2slagrangianmultipliercontact 4 loadTimeFunction 1 friction 0.3 slavesegment 1 segmentset 1 2",
         ] {
             let text = common::sheared_blocks(n_low, n_up, PATCH_P, PATCH_TAU, law);
             let (s, t, its) = shear_patch_errors(&text);

@@ -187,8 +187,7 @@ pub fn read_segment(
 
 /// `friction μ [pt ε_T]` of a node-to-segment or mortar penalty condition (hertz extension; `pt` as in
 /// upstream OOFEM's `structuralpenaltycontactbc`, by default the normal `penalty`), or `friction μ`
-/// of a node-to-segment condition with Lagrange multipliers (no penalty: the friction force is a
-/// multiplier too).
+/// of a condition with Lagrange multipliers (no penalty: the friction force is a multiplier too).
 fn read_friction(r: &Record, kw: &str, law: ContactLaw) -> Result<Option<Friction>> {
     let Some(mu) = r.opt_float("friction")? else {
         if r.opt_float("pt")?.is_some() {
@@ -202,20 +201,14 @@ fn read_friction(r: &Record, kw: &str, law: ContactLaw) -> Result<Option<Frictio
     if kw.starts_with("n2n") {
         return Err(r.error(
             "friction is supported on node-to-segment and mortar conditions \
-             (n2spenaltycontact, n2slagrangianmultipliercontact, s2spenaltycontact), not node-to-node",
+             (n2s... and s2s... conditions), not node-to-node",
         ));
     }
     let ContactLaw::Penalty(pn) = law else {
-        if kw.starts_with("s2s") {
-            return Err(r.error(
-                "friction with mortar contact is regularized by a tangential penalty: use \
-                 s2spenaltycontact, or n2slagrangianmultipliercontact for friction without a penalty",
-            ));
-        }
         if r.opt_float("pt")?.is_some() {
             return Err(r.error(
                 "`pt` is a tangential penalty: friction with Lagrange multipliers has none \
-                 (the friction force is a multiplier); drop `pt`, or use n2spenaltycontact",
+                 (the friction force is a multiplier); drop `pt`, or use a penalty condition",
             ));
         }
         return Ok(Some(Friction { mu, penalty: 0.0 }));

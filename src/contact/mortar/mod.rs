@@ -13,9 +13,10 @@
 //! at every slave node, whose forces Σ_j λ_j B_j are then exactly the consistent nodal forces of p
 //! on both meshes (Σ_j N_j = 1): the patch test holds to round-off.
 //!
-//! Coulomb friction (penalty, small deformation) acts on each slave node's weighted relative
-//! position (`SlipForm`) with the same return map as node-to-segment friction, so that a
-//! uniform shear traction is transferred exactly as well.
+//! Coulomb friction (small deformation) acts on each slave node's weighted relative position
+//! (`SlipForm`), with the penalty law's return map or the friction multipliers of
+//! [`law::multiplier`], as node-to-segment friction does, so that a uniform shear traction is
+//! transferred exactly as well.
 //!
 //! [`edges`]: 2D, straight and quadratic edges, against edges or rigid shapes; [`faces`]: 3D,
 //! triangle and quadrilateral faces, segmented by [`segment`].
@@ -26,7 +27,7 @@ pub mod segment;
 
 use super::dual::{Dual, Jet};
 use super::law::friction::{self, FrictionPoint};
-use super::law::{self, FrictionKinematics, Laws, PointKinematics};
+use super::law::{self, FrictionKinematics, Laws, PointKinematics, SlipKinematics};
 use super::{Anchor, ContactPoint, Ctx, Formulation, Local, Partner, SlotState};
 use crate::error::{Error, Result};
 use crate::model::{ContactLaw, Friction, Model, SegmentKind};
@@ -136,10 +137,14 @@ struct SlipForm {
 struct SlotLaw {
     number: usize,
     law: ContactLaw,
-    /// Coulomb friction (penalty law, small deformation).
+    /// Coulomb friction (small deformation).
     friction: Option<Friction>,
     /// Per slot, the factor of the penalty (from the mesh when the condition gives none).
     scale: Vec<f64>,
+    /// Per slot, E/h (E of the stiffest element at the node, h the size of its slave facets):
+    /// the friction multipliers' c_T, per unit area.
+    stiffness: Vec<f64>,
+    dim: usize,
 }
 
 impl SlotLaw {
@@ -147,18 +152,19 @@ impl SlotLaw {
     /// element at the node and h (`size`) the size of its slave facets.
     fn new(model: &Model, ci: usize, slots: &[usize], size: impl Fn(usize) -> f64) -> SlotLaw {
         let c = &model.contacts[ci];
-        let young = if c.penalty_from_mesh {
-            super::stiffest_young(model)
-        } else {
-            Default::default()
-        };
-        let scale = (0..slots.len())
-            .map(|j| {
-                if !c.penalty_from_mesh {
-                    return 1.0;
+        let young = super::stiffest_young(model);
+        let stiffest = young.values().copied().fold(0.0, f64::max);
+        let stiffness: Vec<f64> = (0..slots.len())
+            .map(|j| young.get(&slots[j]).copied().unwrap_or(stiffest) / size(j))
+            .collect();
+        let scale = stiffness
+            .iter()
+            .map(|k| {
+                if c.penalty_from_mesh {
+                    super::n2s::DEFAULT_PENALTY_FACTOR * k
+                } else {
+                    1.0
                 }
-                let e = young.get(&slots[j]).copied().unwrap_or(0.0);
-                super::n2s::DEFAULT_PENALTY_FACTOR * e / size(j)
             })
             .collect();
         SlotLaw {
@@ -166,6 +172,8 @@ impl SlotLaw {
             law: c.law,
             friction: c.friction,
             scale,
+            stiffness,
+            dim: model.domain.nsd(),
         }
     }
 
@@ -186,10 +194,16 @@ impl SlotLaw {
 
     fn n_multipliers(&self, slots: usize) -> usize {
         if self.law == ContactLaw::Multiplier {
-            slots
+            slots * self.multipliers_per_slot()
         } else {
             0
         }
+    }
+
+    /// Multipliers per slave node: the pressure's, and with friction the friction traction's
+    /// components.
+    fn multipliers_per_slot(&self) -> usize {
+        1 + if self.friction.is_some() { self.dim } else { 0 }
     }
 
     /// The contact point and state of slot `j` (slave node `node`) from its integrals, with the
@@ -244,7 +258,23 @@ impl SlotLaw {
             ContactLaw::Penalty(p) => p * self.scale[j],
             ContactLaw::Multiplier => 0.0,
         };
-        if let (Some(f), Some(slip), true) = (self.friction, &w.slip, has) {
+        let multipliers = self.law == ContactLaw::Multiplier;
+        let at_point = |slip: &SlipForm| Anchor {
+            partner: w.partner,
+            xi: [0.0; 2],
+            offset: slip.position(local, w.area.v),
+        };
+        if let (Some(f), Some(slip), true, true) = (self.friction, &w.slip, has, multipliers) {
+            let kept = anchor.map_or_else(
+                || at_point(slip),
+                |a| Anchor {
+                    partner: w.partner,
+                    ..*a
+                },
+            );
+            kin.slip = Some(slip.kinematics(local, w.area.v, kept, f.mu, self.stiffness[j]));
+            state.anchor = Some(at_point(slip));
+        } else if let (Some(f), Some(slip), true) = (self.friction, &w.slip, has) {
             let f = Friction {
                 penalty: f.penalty * self.scale[j],
                 ..f
@@ -258,22 +288,31 @@ impl SlotLaw {
             if kin.gap.v <= 0.0 {
                 state.friction = Some((fk.stick, fk.force * w.area.v));
             }
-            state.anchor = Some(Anchor {
-                partner: w.partner,
-                xi: [0.0; 2],
-                offset: if kin.gap.v > 0.0 {
-                    slip.position(local, w.area.v)
-                } else {
-                    next
-                },
+            state.anchor = Some(if kin.gap.v > 0.0 {
+                at_point(slip)
+            } else {
+                Anchor {
+                    offset: next,
+                    ..at_point(slip)
+                }
             });
             kin.friction = Some(fk);
         }
         let point = match self.law {
             ContactLaw::Penalty(_) => law::penalty::evaluate(&laws, penalty, codes, &kin),
             ContactLaw::Multiplier => {
-                let eq = first_lambda + j;
-                law::multiplier::evaluate(&laws, &ctx.u[eq..eq + 1], codes, eq..eq + 1, &kin).0
+                let per = self.multipliers_per_slot();
+                let eqs = first_lambda + per * j..first_lambda + per * (j + 1);
+                let (point, friction) =
+                    law::multiplier::evaluate(&laws, &ctx.u[eqs.clone()], codes, eqs, &kin);
+                if let Some(s) = &kin.slip {
+                    // Traction per unit area: the node's force is its times D_j.
+                    state.friction = friction.map(|(stick, t)| (stick, t * w.area.v));
+                    if friction.is_some_and(|f| f.0) {
+                        state.anchor = Some(s.kept);
+                    }
+                }
+                point
             }
         };
         if has {
@@ -290,6 +329,39 @@ impl SlotLaw {
 }
 
 impl SlipForm {
+    /// What the friction multipliers of the slot need (see [`law::multiplier`]): ŝ_j − a_j, a_j
+    /// the anchor `kept`'s position; the normal ∫ Φ_j ν; a unit traction's residual, w_jn on node
+    /// n's component.
+    fn kinematics(
+        &self,
+        local: &Local,
+        area: f64,
+        kept: Anchor,
+        mu: f64,
+        stiffness: f64,
+    ) -> SlipKinematics {
+        let (dim, m) = (local.dim, local.m());
+        let s = self.position(local, area);
+        let mut slip: Vec<Jet> = (0..dim)
+            .map(|i| Jet::constant(s[i] - kept.offset[i], m))
+            .collect();
+        let mut share = vec![vec![Jet::constant(0.0, m); m]; dim];
+        for &(k, w) in &self.shares {
+            for i in 0..dim {
+                slip[i].d[dim * k + i] += w / area;
+                share[i][dim * k + i].v += w;
+            }
+        }
+        SlipKinematics {
+            slip,
+            normal: self.normal[..dim].to_vec(),
+            share,
+            mu,
+            stiffness,
+            kept,
+        }
+    }
+
     /// ŝ_j at the current positions (support `area` = D_j).
     fn position(&self, local: &Local, area: f64) -> [f64; 3] {
         let mut s = [0.0; 3];
