@@ -858,10 +858,68 @@ fn mortar_tangents_in_3d_are_jacobians_of_residuals() {
     }
 }
 
+/// The 3D mortar tangent against rigid shapes is the Jacobian of its residual: the patch's slave
+/// block ([`mortar3d_case`], sunk and sheared) on a rigid sphere moving with a node and on a
+/// tilted plane, hexahedra, tetrahedra and wedges, small and large deformation, penalty and
+/// multipliers.
+#[test]
+fn mortar_tangents_against_rigid_shapes_in_3d_are_jacobians_of_residuals() {
+    use hertz::bench::mesh::Solid;
+    use hertz::bench::suite::Law;
+    for kind in [Solid::Hex, Solid::Tet, Solid::Wedge] {
+        for nlgeo in [false, true] {
+            for (law, lambda) in [(Law::Penalty(1e4), 0.0), (Law::Multiplier, 3.0)] {
+                for (shape, record) in [
+                    (
+                        "sphere",
+                        "circlecontactsegment 1 centerpoint 3 0.5 0.5 -3.0 radius 3.0 node 999",
+                    ),
+                    (
+                        "plane",
+                        "planecontactsegment 1 point 3 0.5 0.5 0.08 normal 3 0.1 -0.05 1",
+                    ),
+                ] {
+                    let (text, mut disp) = mortar3d_case(kind, nlgeo, law);
+                    let text = common::with_rigid_master(&text, record, [0.5, 0.5, -3.0]);
+                    disp.push((999, [0.01, -0.02, 0.1]));
+                    let model = common::model_from_text(&text).unwrap();
+                    let name = format!("mortar3d {shape} {kind:?} nlgeo {nlgeo} {law:?}");
+                    let mut contact = ContactSystem::new(&model).unwrap();
+                    let dofs = hertz::solve::number_dofs(&model).unwrap();
+                    contact.set_pressure_limit(f64::INFINITY);
+                    if !record.contains("node 999") {
+                        disp.retain(|d| d.0 != 999);
+                    }
+                    let u = displaced(
+                        &model,
+                        &dofs,
+                        &Case {
+                            name: name.clone(),
+                            text: String::new(),
+                            disp,
+                            lambda,
+                            active: 0,
+                        },
+                    );
+                    let (err, states, checked) = fd_error(&model, &contact, &dofs, &u);
+                    let active = states.iter().filter(|s| s.active).count();
+                    println!("{name}: {err:.1e} over {checked} points, {active} active");
+                    assert!(
+                        active >= 9 && checked >= 9,
+                        "{name}: {active} active, {checked} checked"
+                    );
+                    assert!(err < 1e-6, "{name}: tangent off by {err:e} (relative)");
+                }
+            }
+        }
+    }
+}
+
 /// Mortar friction's tangent (unsymmetric) is the Jacobian of its residual in stick (μ = 5) and
 /// slip (μ = 0.05), small deformation, on the cases of the frictionless mortar tests: 2D straight
 /// and quadratic edges and a rigid circle moving with a node, 3D hexahedra, tetrahedra and
-/// wedges; the history is the state at u = 0. Penalty, and multipliers (the pressures and the
+/// wedges against faces and against a rigid sphere moving with a node; the history is the state
+/// at u = 0. Penalty, and multipliers (the pressures and the
 /// friction tractions' components at 1000: the tangent over the multipliers too).
 #[test]
 fn mortar_friction_tangents_are_jacobians_in_stick_and_slip() {
@@ -886,7 +944,13 @@ fn mortar_friction_tangents_are_jacobians_in_stick_and_slip() {
             .collect();
         for kind in [Solid::Hex, Solid::Tet, Solid::Wedge] {
             let (text, disp) = mortar3d_case(kind, false, law3d);
-            cases.push((format!("{kind:?}"), text, disp));
+            cases.push((format!("{kind:?}"), text.clone(), disp.clone()));
+            // Against a rigid sphere moving with a node.
+            let sphere = "circlecontactsegment 1 centerpoint 3 0.5 0.5 -3.0 radius 3.0 node 999";
+            let text = common::with_rigid_master(&text, sphere, [0.5, 0.5, -3.0]);
+            let mut disp = disp;
+            disp.push((999, [0.01, -0.02, 0.1]));
+            cases.push((format!("{kind:?} sphere"), text, disp));
         }
         for (name, text, disp) in cases {
             for (mu, stick) in [(5.0, true), (0.05, false)] {

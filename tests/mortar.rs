@@ -217,6 +217,79 @@ fn mortar_passes_the_contact_patch_test_in_3d() {
     }
 }
 
+/// The contact patch test against a rigid plane in 3D: the slave block of the 3D patch (3, 5 and
+/// 7 elements across; hexahedra, tetrahedra, wedges) pressed onto a rigid plane by its top moved
+/// down by δ. Every slave node's pressure and σ_zz at every integration point of the block are
+/// the exact δ/(h/E + 1/ε) to round-off, with multipliers and with a penalty, in one iteration.
+#[test]
+fn mortar_against_a_rigid_plane_passes_the_patch_test_in_3d() {
+    for slave_n in [3, 5, 7] {
+        for kind in [Solid::Hex, Solid::Tet, Solid::Wedge] {
+            for law in [Law::Multiplier, Law::Penalty(1e7)] {
+                let delta = 0.01;
+                let text = Patch {
+                    kind,
+                    slave_kind: None,
+                    sym: 0,
+                    n: 2,
+                    nlgeo: false,
+                    delta,
+                    steps: 1,
+                    law,
+                    slave_n: Some(slave_n),
+                    mortar: true,
+                }
+                .input();
+                let text = common::with_rigid_master(
+                    &text,
+                    "planecontactsegment 1 point 3 0 0 0 normal 3 0 0 1",
+                    [0.0; 3],
+                );
+                let compliance = match law {
+                    Law::Penalty(eps) => 1.0 / eps,
+                    Law::Multiplier => 0.0,
+                };
+                let p = delta / (PATCH_H / E + compliance);
+                let model = common::model_from_text(&text).unwrap();
+                let slave: Vec<bool> = model
+                    .elements
+                    .iter()
+                    .map(|e| e.nodes.iter().all(|&n| model.nodes[n].coords[2] > -1e-12))
+                    .collect();
+                let (mut stress, mut pressure, mut its, mut active) = (f64::NAN, f64::NAN, 0, 0);
+                run_analysis(&model, &common::quiet(), |r| {
+                    stress = r
+                        .states
+                        .iter()
+                        .zip(&slave)
+                        .filter(|(_, &s)| s)
+                        .flat_map(|(g, _)| g.iter())
+                        .map(|g| (g.stress[2] + p).abs() / p)
+                        .fold(0.0, f64::max);
+                    let closed: Vec<_> = r.contact.iter().filter(|s| s.active).collect();
+                    active = closed.len();
+                    pressure = closed
+                        .iter()
+                        .map(|s| (s.pressure - p).abs() / p)
+                        .fold(0.0, f64::max);
+                    its = r.info.iterations;
+                    Ok(())
+                })
+                .unwrap();
+                println!(
+                    "{slave_n} {kind:?} {law:?}: stress {stress:.1e}, pressure {pressure:.1e}, \
+                     {active} active, {its} iterations"
+                );
+                assert_eq!(active, (slave_n + 1) * (slave_n + 1));
+                assert!(
+                    stress < 1e-11 && pressure < 1e-11 && its == 1,
+                    "{slave_n} {kind:?} {law:?}: {stress:e} {pressure:e}, {its} iterations"
+                );
+            }
+        }
+    }
+}
+
 /// Hertz in 3D with mortar: the elastic sphere on the elastic block of
 /// `hertz::bench::verify::HertzSphere` (quarter model, mortar between the cap's bottom faces and
 /// the block's top), multipliers and the penalty from the mesh: p0 (the pressure of the node on
@@ -277,6 +350,100 @@ fn hertz_sphere_with_mortar_meets_hertz() {
                 "{kind:?} {law:?}: peak {peak}"
             );
             assert_eq!(its, 1, "{kind:?} {law:?}");
+        }
+    }
+}
+
+/// Hertz in 3D with mortar against a rigid sphere (R = 10, moving with a node pushed down by
+/// δ = 0.1) on an elastic block (quarter model, bricks and wedges graded from h = 0.2 and 0.15,
+/// E = 1000, ν = 0.3; the block's top faces the slave): p0 and a within 2 % of Hertz
+/// (E* = E/(1 − ν²)) for the computed force (p0 on wedges within 3 %: the node on the axis is a
+/// corner of triangles, as in the elastic sphere's test), no pressure above p0 by more than 1 %, with multipliers (2 iterations: the
+/// distance to a sphere is not linear in the displacements) and the penalty from the mesh (4:
+/// the first step closes the contact on the linearized distance, which under a convex tool is
+/// below the true one by more than the stiff penalty's penetration, so the points open again
+/// before they settle).
+#[test]
+fn rigid_sphere_with_mortar_meets_hertz() {
+    use hertz::analytic::{compare_hertz_sphere, contact_modulus};
+    use hertz::bench::mesh::{graded, Input};
+    use hertz::bench::verify::NU;
+    const R: f64 = 10.0;
+    for (kind, h, p0_bound) in [(Solid::Hex, 0.2, 0.02), (Solid::Wedge, 0.15, 0.03)] {
+        for law in [
+            "s2slagrangianmultipliercontact 4 loadTimeFunction 1",
+            "s2spenaltycontact 4 loadTimeFunction 1",
+        ] {
+            let mut inp = Input::default();
+            let xs = graded(6.0, h, 1.5, 1.2);
+            let zs: Vec<f64> = graded(6.0, h, 0.75, 1.2).iter().rev().map(|d| -d).collect();
+            let block = inp.solid3d(kind, &xs, &xs, &zs, "mat 1 crossSect 1", 0);
+            let reference = inp.node(0.0, 0.0, R);
+            inp.sections.push("SimpleCS 1".into());
+            inp.materials
+                .push(format!("IsoLE 1 d 0 E {E} n {NU} tAlpha 0"));
+            let top = inp.faces_where(&block, &|p| p[2].abs() < 1e-12);
+            let top = inp.boundary_set(&top);
+            inp.segments.push(format!(
+                "circlecontactsegment 1 centerpoint 3 0 0 {R} radius {R} node {reference}"
+            ));
+            inp.segments.push(format!(
+                "linear3delementsurfacecontactsegment 2 boundaryset {top}"
+            ));
+            let x0 = inp.nodes_where(&|p| p[0].abs() < 1e-12 && p[2] < R - 1.0);
+            let y0 = inp.nodes_where(&|p| p[1].abs() < 1e-12 && p[2] < R - 1.0);
+            let x0 = inp.node_set(&x0);
+            let y0 = inp.node_set(&y0);
+            let bottom = inp.node_set(&block.bottom);
+            let tool = inp.node_set(&[reference]);
+            for (k, (dof, set)) in [(1, x0), (2, y0), (3, bottom)].iter().enumerate() {
+                inp.bcs.push(format!(
+                    "BoundaryCondition {} loadTimeFunction 1 dofs 1 {dof} values 1 0 set {set}",
+                    k + 1
+                ));
+            }
+            inp.bcs.push(format!("{law} slavesegment 2 segmentset 1 1"));
+            inp.bcs.push(format!(
+                "BoundaryCondition 5 loadTimeFunction 1 dofs 3 1 2 3 values 3 0 0 -0.1 set {tool}"
+            ));
+            inp.functions.push("ConstantFunction 1 f(t) 1.0".into());
+            let text = inp.render(
+                "rigid_sphere",
+                "StaticStructural nsteps 1 deltat 1 rtolf 1e-8 maxiter 25",
+                "3d",
+            );
+            let model = common::model_from_text(&text).unwrap();
+            let (mut states, mut its) = (Vec::new(), 0);
+            run_analysis(&model, &common::quiet(), |r| {
+                states = r.contact.to_vec();
+                its = r.info.iterations;
+                Ok(())
+            })
+            .unwrap();
+            let c = compare_hertz_sphere(
+                &model,
+                &states,
+                R,
+                contact_modulus(E, NU, f64::INFINITY, 0.0),
+            )
+            .expect("a contact zone");
+            let peak = states.iter().map(|s| s.pressure).fold(0.0, f64::max);
+            println!(
+                "{kind:?} {}: F {:.4}, p0 {:+.2} %, a {:+.2} %, peak/p0 {:.4}, {its} iterations",
+                &law[..5],
+                c.force,
+                100.0 * c.p0_error(),
+                100.0 * c.a_error(),
+                peak / c.p0_ref
+            );
+            assert!(
+                c.p0_error().abs() < p0_bound && c.a_error().abs() < 0.02,
+                "{kind:?} {law}: p0 {:+e}, a {:+e}",
+                c.p0_error(),
+                c.a_error()
+            );
+            assert!(peak / c.p0_ref < 1.01, "{kind:?} {law}: peak {peak}");
+            assert!(its <= 4, "{kind:?} {law}: {its} iterations");
         }
     }
 }

@@ -491,3 +491,29 @@ pub fn sheared_blocks(n_low: usize, n_up: usize, p: f64, tau: f64, condition: &s
         )
         + &format!("Set 8 elementedges 8 {left}\nSet 9 elementedges 8 {right}\n")
 }
+
+/// A 3D patch input (`hertz::bench::verify::Patch`) with its master faces (segment 1) replaced
+/// by the rigid shape `record` (segment 1 as well); a shape moving with `node 999` gets that
+/// node at `reference`.
+pub fn with_rigid_master(text: &str, record: &str, reference: [f64; 3]) -> String {
+    let mut out = String::new();
+    let mut nodes = 0;
+    for line in text.lines() {
+        if line.starts_with("linear3delementsurfacecontactsegment 1 ") {
+            out.push_str(record);
+        } else if let Some(rest) = line.strip_prefix("ndofman ") {
+            let (n, tail) = rest.split_once(' ').unwrap();
+            nodes = n.parse::<usize>().unwrap();
+            let extra = usize::from(record.contains("node 999"));
+            out.push_str(&format!("ndofman {} {tail}", nodes + extra));
+        } else {
+            out.push_str(line);
+        }
+        out.push('\n');
+        if line.starts_with(&format!("node {nodes} coords")) && record.contains("node 999") {
+            let [x, y, z] = reference;
+            out.push_str(&format!("node 999 coords 3 {x} {y} {z}\n"));
+        }
+    }
+    out
+}

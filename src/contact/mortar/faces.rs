@@ -1,5 +1,7 @@
 //! Mortar contact in 3D: triangle and quadrilateral slave faces against master faces, segmented
-//! pair by pair on the slave face's auxiliary plane ([`super::segment`]).
+//! pair by pair on the slave face's auxiliary plane ([`super::segment`]), and against rigid
+//! planes and spheres, integrated over each whole slave face ([`super::segment::face_rule`]) with
+//! the gap of each point its signed distance to the shape and ν the shape's normal there.
 //!
 //! The weighted gap and the force direction are weighted by the slave nodes' dual shape functions
 //! Φ_j (biorthogonal to N_j on each slave face, [`super::segment::dual_basis`], from the reference
@@ -14,10 +16,13 @@
 //! each overlapping pair is segmented at the current state in duals over its two faces'
 //! coordinates and its integrals are scattered into the constraints of the slave face's nodes.
 
-use super::segment::{dual_basis, overlap, Point};
-use super::{nearest_sheet, search_limit, Facing, SlipForm, SlotLaw, Weighted};
+use super::segment::{dual_basis, face_rule, overlap, Point};
+use super::{nearest_sheet, rigid_node, search_limit, Facing, SlipForm, SlotLaw, Weighted};
 use crate::contact::dual::{DualN, Jet};
-use crate::contact::geometry::faces::{self, cross, dot, face_normal, sub, Face, FaceSurface};
+use crate::contact::geometry::faces::{
+    self, cross, dot, face_normal, shape, sub, Face, FaceSurface,
+};
+use crate::contact::geometry::rigid;
 use crate::contact::search::broad::BroadPhase;
 use crate::contact::{ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState};
 use crate::error::{Error, Result};
@@ -52,6 +57,9 @@ pub struct FaceMortar {
     linear: Vec<LinearSlot>,
     /// Per slave face, the coefficients of its dual basis (reference configuration).
     dual: Vec<[[f64; 4]; 4]>,
+    /// Rigid master shapes (planes, spheres; model segment indices) and the nodes they move with.
+    rigid: Vec<usize>,
+    rigid_nodes: Vec<usize>,
     /// How far the search for master faces goes.
     search_limit: f64,
 }
@@ -71,19 +79,43 @@ impl FaceMortar {
                 "in 3D the slave segment of a mortar condition must be element faces",
             ));
         }
-        if segments
-            .iter()
-            .any(|&g| !matches!(model.segments[g].kind, SegmentKind::Faces { .. }))
-        {
+        if segments.iter().any(|&g| {
+            matches!(
+                model.segments[g].kind,
+                SegmentKind::Polynomial { .. } | SegmentKind::Edges { .. }
+            )
+        }) {
             return Err(err(
-                "mortar contact in 3D meets element faces only (rigid master shapes: use \
-                 node-to-segment contact)",
+                "mortar contact in 3D meets element faces, rigid planes and spheres (a polynomial \
+                 curve or element edges are 2D masters)",
             ));
         }
+        let rigid: Vec<usize> = segments
+            .iter()
+            .copied()
+            .filter(|&g| !matches!(model.segments[g].kind, SegmentKind::Faces { .. }))
+            .collect();
+        let face_segments: Vec<usize> = segments
+            .iter()
+            .copied()
+            .filter(|g| !rigid.contains(g))
+            .collect();
         let slave = FaceSurface::new(model, &[*slave]);
-        let master = FaceSurface::new(model, segments);
-        if slave.faces.is_empty() || master.faces.is_empty() {
+        let master = FaceSurface::new(model, &face_segments);
+        if slave.faces.is_empty() || (master.faces.is_empty() && rigid.is_empty()) {
             return Err(err("the slave or master segment has no element faces"));
+        }
+        if !master.faces.is_empty() && !rigid.is_empty() {
+            return Err(err(
+                "a 3D mortar condition meets element faces or rigid shapes, not both: give \
+                 each its own condition",
+            ));
+        }
+        let rigid_nodes: Vec<usize> = rigid.iter().filter_map(|&g| rigid_node(model, g)).collect();
+        if rigid_nodes.len() > 4 {
+            return Err(err(
+                "a 3D mortar condition meets at most 4 rigid shapes that move with nodes",
+            ));
         }
         if slave.at_node.keys().any(|n| master.at_node.contains_key(n)) {
             return Err(err(
@@ -137,6 +169,8 @@ impl FaceMortar {
             slots,
             slot_of,
             linear: Vec::new(),
+            rigid,
+            rigid_nodes,
         };
         if !mortar.nlgeo {
             mortar.linear = mortar.reference_forms(model);
@@ -263,6 +297,14 @@ impl FaceMortar {
         for &(n, _) in &form.coeffs {
             local.add(ctx, n)?;
         }
+        for &k in &self.slots[j].1 {
+            for &n in self.rigid_face_nodes(k) {
+                local.add(ctx, n)?;
+            }
+        }
+        for &n in &self.rigid_nodes {
+            local.add(ctx, n)?;
+        }
         let m = local.m();
         let mut w = Weighted {
             gap: Jet::constant(0.0, m),
@@ -286,7 +328,172 @@ impl FaceMortar {
                 w.b[3 * k + i].v = c[i];
             }
         }
+        self.add_rigid(ctx, j, &local, &mut w)?;
         Ok((local, w))
+    }
+
+    /// The nodes of slave face `k` and the rigid shapes' nodes, when the condition has rigid
+    /// shapes (none otherwise).
+    fn rigid_face_nodes(&self, k: usize) -> &[usize] {
+        if self.rigid.is_empty() {
+            &[]
+        } else {
+            &self.slave.faces[k].nodes
+        }
+    }
+
+    /// Add slot `j`'s integrals against the rigid shapes over its whole slave faces to `w` (over
+    /// the unknowns of `local`): at each point of a face's rule the gap is the smallest signed
+    /// distance to a shape, ν its normal there, and a shape moving with a node gives that node
+    /// the reaction. Geometry (the area element) of the reference configuration in small
+    /// deformation, current in large.
+    fn add_rigid(&self, ctx: &Ctx, j: usize, local: &Local, w: &mut Weighted) -> Result<()> {
+        if self.rigid.is_empty() {
+            return Ok(());
+        }
+        let node = self.slots[j].0;
+        for &k in &self.slots[j].1 {
+            let face = &self.slave.faces[k];
+            let a = face
+                .nodes
+                .iter()
+                .position(|&n| n == node)
+                .expect("the slot's node");
+            let nodes: Vec<usize> = face
+                .nodes
+                .iter()
+                .chain(&self.rigid_nodes)
+                .copied()
+                .collect();
+            let nv = 3 * nodes.len();
+            let mut x: Vec<[PairDual; 3]> = Vec::with_capacity(nodes.len());
+            for (b, &n) in nodes.iter().enumerate() {
+                let p = ctx.position(n)?.0;
+                x.push(std::array::from_fn(|i| {
+                    PairDual::variable(p[i], 3 * b + i, nv)
+                }));
+            }
+            let geometry: Vec<[PairDual; 3]> = face
+                .nodes
+                .iter()
+                .enumerate()
+                .map(|(b, &n)| {
+                    if self.nlgeo {
+                        x[b]
+                    } else {
+                        ctx.model.nodes[n].coords.map(|v| PairDual::constant(v, nv))
+                    }
+                })
+                .collect();
+            let map: Vec<usize> = nodes
+                .iter()
+                .flat_map(|&n| {
+                    let i = local.index(n);
+                    [3 * i, 3 * i + 1, 3 * i + 2]
+                })
+                .collect();
+            let nf = face.nodes.len();
+            for (xi, eta, wq) in face_rule(face.kind) {
+                let (n, dxi, deta) = shape(face.kind, xi, eta);
+                let mut t1 = [PairDual::constant(0.0, nv); 3];
+                let mut t2 = t1;
+                let mut xp = t1;
+                for b in 0..nf {
+                    for i in 0..3 {
+                        t1[i] = t1[i] + geometry[b][i] * dxi[b];
+                        t2[i] = t2[i] + geometry[b][i] * deta[b];
+                        xp[i] = xp[i] + x[b][i] * n[b];
+                    }
+                }
+                let c = cross(&t1, &t2);
+                let da = dot(&c, &c).sqrt() * wq;
+                let (g, nu, moving, shape) = self.rigid_gap(ctx, &nodes, &x, &xp);
+                let phi: f64 = (0..4).map(|b| self.dual[k][a][b] * n[b]).sum();
+                let na = da * phi;
+                let add = |jet: &mut Jet, v: PairDual| {
+                    jet.v += v.v;
+                    for (i, &t) in map.iter().enumerate() {
+                        jet.d[t] += v.d[i];
+                    }
+                };
+                add(&mut w.gap, na * g);
+                add(&mut w.area, da * n[a]);
+                for b in 0..nf {
+                    for i in 0..3 {
+                        add(&mut w.b[map[3 * b + i]], na * n[b] * nu[i]);
+                    }
+                }
+                if let Some(r) = moving {
+                    for i in 0..3 {
+                        add(&mut w.b[map[3 * r + i]], -(na * nu[i]));
+                    }
+                }
+                if w.partner == Partner::None {
+                    w.partner = Partner::Rigid(shape);
+                }
+                if let Some(slip) = &mut w.slip {
+                    // Small deformation: the shares are constants of the reference geometry.
+                    let mut share = |n: usize, v: f64| {
+                        let i = local.index(n);
+                        match slip.shares.iter_mut().find(|s| s.0 == i) {
+                            Some(s) => s.1 += v,
+                            None => slip.shares.push((i, v)),
+                        }
+                    };
+                    for b in 0..nf {
+                        share(nodes[b], na.v * n[b]);
+                    }
+                    if let Some(r) = moving {
+                        share(nodes[r], -na.v);
+                    }
+                    for i in 0..3 {
+                        add(&mut slip.normal[i], na * nu[i]);
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The smallest signed distance from `xp` to the rigid shapes, their outward normal there,
+    /// the position in `nodes` of the node the nearest shape moves with, if any (`x` the
+    /// positions of `nodes`), and that shape (a model segment index).
+    fn rigid_gap(
+        &self,
+        ctx: &Ctx,
+        nodes: &[usize],
+        x: &[[PairDual; 3]],
+        xp: &[PairDual; 3],
+    ) -> (PairDual, [PairDual; 3], Option<usize>, usize) {
+        let nv = xp[0].n;
+        let mut best: Option<(PairDual, [PairDual; 3], Option<usize>, usize)> = None;
+        for &g in &self.rigid {
+            let node = rigid_node(ctx.model, g);
+            let r = node.map(|n| nodes.iter().position(|&m| m == n).expect("a rigid node"));
+            // A reference point moved with the shape's node.
+            let origin = |p: [f64; 3]| -> [PairDual; 3] {
+                std::array::from_fn(|i| match (node, r) {
+                    (Some(n), Some(r)) => x[r][i] + (p[i] - ctx.model.nodes[n].coords[i]),
+                    _ => PairDual::constant(p[i], nv),
+                })
+            };
+            let (gap, n) = match &ctx.model.segments[g].kind {
+                SegmentKind::Circle {
+                    center,
+                    radius,
+                    cavity,
+                    ..
+                } => rigid::circle(&xp[..], &origin(*center), *radius, *cavity),
+                SegmentKind::Plane { point, normal, .. } => {
+                    rigid::plane(&xp[..], &origin(*point), &normal[..])
+                }
+                _ => unreachable!("rigid planes and spheres"),
+            };
+            if best.as_ref().is_none_or(|b| gap.v < b.0.v) {
+                best = Some((gap, [n[0], n[1], n[2]], r, g));
+            }
+        }
+        best.expect("a rigid shape")
     }
 
     /// Every slot in large deformation: the current segmentation of each slave face against its
@@ -321,6 +528,12 @@ impl FaceMortar {
                         local.add(ctx, n)?;
                     }
                 }
+                for &n in self.rigid_face_nodes(k) {
+                    local.add(ctx, n)?;
+                }
+            }
+            for &n in &self.rigid_nodes {
+                local.add(ctx, n)?;
             }
             let m = local.m();
             let w = Weighted {
@@ -368,6 +581,9 @@ impl FaceMortar {
                     }
                 }
             }
+        }
+        for (j, (local, w)) in out.iter_mut().enumerate() {
+            self.add_rigid(ctx, j, local, w)?;
         }
         Ok((out, searching))
     }
@@ -488,7 +704,9 @@ impl Formulation for FaceMortar {
     }
 
     fn nodes_needing_dofs(&self) -> Vec<usize> {
-        self.slots.iter().map(|s| s.0).collect()
+        let mut out: Vec<usize> = self.slots.iter().map(|s| s.0).collect();
+        out.extend(&self.rigid_nodes);
+        out
     }
 
     fn candidate_nodes(&self, _ctx: &Ctx) -> Result<Vec<usize>> {
@@ -505,8 +723,8 @@ impl Formulation for FaceMortar {
     }
 
     fn symmetric(&self) -> bool {
-        // B = ∇g̃ in small deformation.
-        !self.nlgeo
+        // B = ∇g̃ in small deformation against faces.
+        !self.nlgeo && self.rigid.is_empty()
     }
 
     fn partner_nodes(&self, partner: Partner) -> &[usize] {

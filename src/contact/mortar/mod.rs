@@ -19,7 +19,8 @@
 //! transferred exactly as well.
 //!
 //! [`edges`]: 2D, straight and quadratic edges, against edges or rigid shapes; [`faces`]: 3D,
-//! triangle and quadrilateral faces, segmented by [`segment`].
+//! triangle and quadrilateral faces against faces (segmented by [`segment`]) or rigid planes and
+//! spheres.
 
 pub mod edges;
 pub mod faces;

@@ -245,6 +245,27 @@ pub fn overlap<T: Scalar>(
     out
 }
 
+/// A quadrature rule over a whole face in its parameters: (ξ, η, weight), the weights summing to
+/// the parametric area (a triangle's 7 points of degree 5, a quadrilateral's 3 × 3 Gauss points).
+pub fn face_rule(kind: FaceKind) -> Vec<(f64, f64, f64)> {
+    match kind {
+        FaceKind::Tri => triangle_rule()
+            .into_iter()
+            .map(|(l, w)| (l[1], l[2], 0.5 * w))
+            .collect(),
+        FaceKind::Quad => {
+            let g = [
+                (-(0.6f64).sqrt(), 5.0 / 9.0),
+                (0.0, 8.0 / 9.0),
+                ((0.6f64).sqrt(), 5.0 / 9.0),
+            ];
+            g.iter()
+                .flat_map(|&(xi, wx)| g.iter().map(move |&(eta, we)| (xi, eta, wx * we)))
+                .collect()
+        }
+    }
+}
+
 /// The dual (biorthogonal) basis of a slave face at positions `x`: Φ_a = Σ_b A_ab N_b with
 /// ∫ Φ_a N_b dA = δ_ab ∫ N_b dA over the face, A = D M⁻¹ (D = diag ∫ N_a, M = [∫ N_a N_b]).
 /// Σ_a Φ_a = 1, so a uniform pressure still gives the consistent forces; a slave node's force
@@ -270,24 +291,8 @@ pub fn dual_basis(kind: FaceKind, x: &[[f64; 3]]) -> [[f64; 4]; 4] {
             }
         }
     };
-    match kind {
-        FaceKind::Tri => {
-            for (l, w) in triangle_rule() {
-                add(l[1], l[2], 0.5 * w);
-            }
-        }
-        FaceKind::Quad => {
-            let g = [
-                (-(0.6f64).sqrt(), 5.0 / 9.0),
-                (0.0, 8.0 / 9.0),
-                ((0.6f64).sqrt(), 5.0 / 9.0),
-            ];
-            for (xi, wx) in g {
-                for (eta, we) in g {
-                    add(xi, eta, wx * we);
-                }
-            }
-        }
+    for (xi, eta, w) in face_rule(kind) {
+        add(xi, eta, w);
     }
     // A = D M⁻¹: solve Mᵀ Aᵀ = D (M symmetric) by Gauss–Jordan on [M | D].
     let mut aug = [[0.0; 8]; 4];
