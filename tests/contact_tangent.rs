@@ -12,7 +12,7 @@ mod common;
 use common::{face_input, label_of_slave, strip, LM, PEN};
 
 use hertz::bench::mesh::Solid;
-use hertz::contact::{ContactSystem, Search};
+use hertz::contact::{ContactSystem, History, Search};
 use hertz::fem::shape::HEXA8_CORNERS;
 
 struct Case {
@@ -36,7 +36,7 @@ fn fd_error(
     fd_error_with_history(model, contact, dofs, u, None)
 }
 
-/// [`fd_error`] with a friction history (the converged states of a last step).
+/// [`fd_error`] with a friction history (the converged states of a last step at u = 0).
 fn fd_error_with_history(
     model: &hertz::model::Model,
     contact: &ContactSystem,
@@ -44,6 +44,8 @@ fn fd_error_with_history(
     u: &[f64],
     history: Option<&[hertz::contact::SlotState]>,
 ) -> (f64, Vec<hertz::contact::SlotState>, usize) {
+    let zero = vec![0.0; u.len()];
+    let history = history.map(|states| History { states, u: &zero });
     let (points, states) = contact
         .evaluate_with_history(model, dofs, u, Search::Fresh, history)
         .unwrap();
@@ -636,8 +638,13 @@ fn friction_continuation_of_an_open_point_is_jacobian_of_its_closed_branch() {
             active: 0,
         };
         let u = displaced(&mf, &dofs, &case);
+        let zero = vec![0.0; u.len()];
+        let at_rest = History {
+            states: &history,
+            u: &zero,
+        };
         let (_, states) = cf
-            .evaluate_with_history(&mf, &dofs, &u, Search::Fresh, Some(&history))
+            .evaluate_with_history(&mf, &dofs, &u, Search::Fresh, Some(at_rest))
             .unwrap();
         assert!(states[0].gap > 0.0 && !states[0].active, "{states:?}");
         assert!(
@@ -647,7 +654,7 @@ fn friction_continuation_of_an_open_point_is_jacobian_of_its_closed_branch() {
         // The friction part of the closed branch at u: (fe, ke) with friction less without.
         let part = |u: &[f64]| {
             let pf = cf
-                .evaluate_with_history(&mf, &dofs, u, Search::Frozen(&states), Some(&history))
+                .evaluate_with_history(&mf, &dofs, u, Search::Frozen(&states), Some(at_rest))
                 .unwrap()
                 .0
                 .remove(0);
@@ -916,7 +923,8 @@ fn mortar_tangents_against_rigid_shapes_in_3d_are_jacobians_of_residuals() {
 }
 
 /// Mortar friction's tangent (unsymmetric) is the Jacobian of its residual in stick (μ = 5) and
-/// slip (μ = 0.05), small deformation, on the cases of the frictionless mortar tests: 2D straight
+/// slip (μ = 0.05), small and large deformation (the shares of the current segmentation
+/// differentiated too), on the cases of the frictionless mortar tests: 2D straight
 /// and quadratic edges and a rigid circle moving with a node, 3D hexahedra, tetrahedra and
 /// wedges against faces and against a rigid sphere moving with a node; the history is the state
 /// at u = 0. Penalty, and multipliers (the pressures and the
@@ -938,19 +946,27 @@ fn mortar_friction_tangents_are_jacobians_in_stick_and_slip() {
         ),
     ];
     for (law, law3d, lambda) in laws {
-        let mut cases: Vec<(String, String, Disp)> = mortar2d_cases(0, law)
+        let mut cases: Vec<(String, String, Disp)> = Vec::new();
+        for nlgeo in [0u8, 1] {
+            cases.extend(
+                mortar2d_cases(nlgeo, law)
+                    .into_iter()
+                    .map(|(name, text, disp, _)| (format!("{name} nlgeo {nlgeo}"), text, disp)),
+            );
+        }
+        for (kind, nlgeo) in [Solid::Hex, Solid::Tet, Solid::Wedge]
             .into_iter()
-            .map(|(name, text, disp, _)| (name, text, disp))
-            .collect();
-        for kind in [Solid::Hex, Solid::Tet, Solid::Wedge] {
-            let (text, disp) = mortar3d_case(kind, false, law3d);
-            cases.push((format!("{kind:?}"), text.clone(), disp.clone()));
+            .flat_map(|k| [(k, false), (k, true)])
+        {
+            let (text, disp) = mortar3d_case(kind, nlgeo, law3d);
+            let kind = format!("{kind:?} nlgeo {}", u8::from(nlgeo));
+            cases.push((kind.clone(), text.clone(), disp.clone()));
             // Against a rigid sphere moving with a node.
             let sphere = "circlecontactsegment 1 centerpoint 3 0.5 0.5 -3.0 radius 3.0 node 999";
             let text = common::with_rigid_master(&text, sphere, [0.5, 0.5, -3.0]);
             let mut disp = disp;
             disp.push((999, [0.01, -0.02, 0.1]));
-            cases.push((format!("{kind:?} sphere"), text, disp));
+            cases.push((format!("{kind} sphere"), text, disp));
         }
         for (name, text, disp) in cases {
             for (mu, stick) in [(5.0, true), (0.05, false)] {

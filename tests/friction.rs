@@ -161,15 +161,23 @@ fn block_sticks_below_mu_n_and_slides_above() {
 }
 
 /// Pushed by a prescribed displacement of its top, once every node slides the block transmits
-/// exactly μN: Σ μ·p_N,i with Σ p_N,i = N.
+/// exactly μN: Σ μ·p_N,i with Σ p_N,i = N. Also in large deformation with mortar contact (its
+/// slip measured on the current segmentation): 4 iterations with the penalty, 7 with
+/// multipliers. (A step starts with every node sticking, the slip being zero; the linearized
+/// stick problem under a push 20 times the stick limit tilts the block about its front corner,
+/// and in large deformation that rotation is a geometric error the next iterations undo. Open
+/// and closed are decided on the linearized problem, stick and slip only at the iterate.)
 #[test]
 fn sliding_block_transmits_mu_n() {
     for method in METHODS {
-        sliding_block(method);
+        sliding_block(method, false);
+    }
+    for method in [Method::Mortar, Method::MortarMultipliers] {
+        sliding_block(method, true);
     }
 }
 
-fn sliding_block(method: Method) {
+fn sliding_block(method: Method, nlgeo: bool) {
     let text = example()
         .replace(
             "NodalLoad 3 loadTimeFunction 2 dofs 2 1 2 components 2 0.37125 0.0 set 2",
@@ -179,9 +187,13 @@ fn sliding_block(method: Method) {
             "NodalLoad 4 loadTimeFunction 2 dofs 2 1 2 components 2 0.7425 0.0 set 3",
             "BoundaryCondition 4 loadTimeFunction 2 dofs 1 1 values 1 0.05 set 3",
         );
-    let out = solve(&method.form(&text), &common::quiet()).unwrap();
+    let mut text = method.form(&text);
+    if nlgeo {
+        text = text.replace("crossSect 1 mat 1", "crossSect 1 mat 1 nlgeo 1");
+    }
+    let out = solve(&text, &common::quiet()).unwrap();
     println!(
-        "{method:?}: pushed 0.05: transmitted {:.15} (mu N = {}), {} nodes stick, {:?} iterations",
+        "{method:?} nlgeo {nlgeo}: pushed 0.05: transmitted {:.15} (mu N = {}), {} nodes stick, {:?} iterations",
         -out.reaction_x[1],
         MU * N,
         out.sticking[1],
@@ -193,8 +205,9 @@ fn sliding_block(method: Method) {
         "{}",
         out.reaction_x[1]
     );
+    let most = if nlgeo { 8 } else { 6 };
     assert!(
-        out.iterations.iter().all(|&i| i <= 6),
+        out.iterations.iter().all(|&i| i <= most),
         "{:?}",
         out.iterations
     );

@@ -154,9 +154,31 @@ pub struct Ctx<'a> {
     pub u: &'a [f64],
     pub dim: usize,
     pub laws: &'a Laws,
+    /// The primary state of the last converged step (the friction history's), if given.
+    pub start: Option<&'a [f64]>,
+}
+
+/// The friction history: the contact states of the last converged step and its primary state.
+#[derive(Debug, Clone, Copy)]
+pub struct History<'a> {
+    pub states: &'a [SlotState],
+    pub u: &'a [f64],
 }
 
 impl Ctx<'_> {
+    /// A node's position at the last converged step (its reference position without one).
+    pub fn start_position(&self, n: usize) -> [f64; 3] {
+        let mut x = self.model.nodes[n].coords;
+        if let Some(u) = self.start {
+            for (d, xd) in x.iter_mut().enumerate().take(self.dim) {
+                if let Some(code) = self.dofs.code(n, d as u8 + 1) {
+                    *xd += self.dofs.value(u, code);
+                }
+            }
+        }
+        x
+    }
+
     /// Current position of a node and the location codes of its displacement DOFs.
     pub fn position(&self, n: usize) -> Result<([f64; 3], [usize; 3])> {
         let mut x = self.model.nodes[n].coords;
@@ -379,6 +401,7 @@ impl ContactSystem {
             u,
             dim: self.dim,
             laws: &self.laws,
+            start: None,
         };
         let mut nodes = Vec::new();
         for f in &self.formulations {
@@ -422,15 +445,15 @@ impl ContactSystem {
         self.evaluate_with_history(model, dofs, u, search, None)
     }
 
-    /// [`ContactSystem::evaluate`] with the converged states of the last step, whose anchors
-    /// are the friction history.
+    /// [`ContactSystem::evaluate`] with the friction history: the converged states of the last
+    /// step (their anchors) and its primary state.
     pub fn evaluate_with_history(
         &self,
         model: &Model,
         dofs: &DofMap,
         u: &[f64],
         search: Search,
-        history: Option<&[SlotState]>,
+        history: Option<History>,
     ) -> Result<(Vec<ContactPoint>, Vec<SlotState>)> {
         let ctx = Ctx {
             model,
@@ -438,7 +461,9 @@ impl ContactSystem {
             u,
             dim: self.dim,
             laws: &self.laws,
+            start: history.map(|h| h.u),
         };
+        let history = history.map(|h| h.states);
         let start = std::time::Instant::now();
         let mut points = Vec::new();
         let mut states = Vec::new();

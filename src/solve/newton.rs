@@ -19,7 +19,7 @@ use super::linear::LinearSolver;
 use super::stepping::PhaseTimes;
 use super::stepping::StepInfo;
 use crate::assembly::{Assembler, Contribution, DofMap, Evaluation};
-use crate::contact::{ContactPoint, ContactSystem, PointLaw, Search, SlotState};
+use crate::contact::{ContactPoint, ContactSystem, History, PointLaw, Search, SlotState};
 use crate::error::{Error, Result};
 use crate::model::Analysis;
 use crate::output::number::sci;
@@ -66,9 +66,10 @@ pub(super) struct NewtonContext<'a> {
     pub converged_states: Option<Vec<SlotState>>,
     /// Contact states at u = 0: the friction history of the first step.
     pub initial_states: Vec<SlotState>,
-    /// The friction history of the current (sub)step: the converged states it started from
-    /// (still the history when the converged state is evaluated again for output).
-    pub history: Option<Vec<SlotState>>,
+    /// The friction history of the current (sub)step: the converged states it started from and
+    /// their primary state (still the history when the converged state is evaluated again for
+    /// output).
+    pub history: Option<(Vec<SlotState>, Vec<f64>)>,
     /// Per contact node: how often in the current attempt its partner and branch went back to
     /// what they were two iterations before (A → B → A: chattering, not sliding on).
     pub flips: Vec<usize>,
@@ -120,7 +121,17 @@ impl NewtonContext<'_> {
         u: &[f64],
         search: Search,
     ) -> Result<(Vec<crate::contact::ContactPoint>, Vec<SlotState>)> {
-        let history = self.history.as_deref().unwrap_or(&self.initial_states);
+        let zero;
+        let history = match &self.history {
+            Some((states, u)) => History { states, u },
+            None => {
+                zero = vec![0.0; u.len()];
+                History {
+                    states: &self.initial_states,
+                    u: &zero,
+                }
+            }
+        };
         self.contact
             .evaluate_with_history(self.asm.model, self.dofs, u, search, Some(history))
     }
@@ -362,7 +373,10 @@ impl NewtonContext<'_> {
     ) -> Result<bool> {
         let nf = self.dofs.n_free;
         if self.contact.has_friction() {
-            self.history.clone_from(&self.converged_states);
+            self.history = self
+                .converged_states
+                .clone()
+                .map(|states| (states, u.to_vec()));
         }
         if nf == 0 {
             u[nf..].copy_from_slice(up);

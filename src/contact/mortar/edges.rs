@@ -105,7 +105,6 @@ impl Mortar {
                 / edges.len() as f64
         });
         let nlgeo = slave.edges.iter().any(|e| e.nlgeo);
-        law.check_friction(model, ci, nlgeo)?;
         let nodes = slave
             .edges
             .iter()
@@ -553,9 +552,9 @@ impl Formulation for Mortar {
         let searching = start.elapsed().as_secs_f64();
         for j in 0..self.slots.len() {
             let (local, w) = self.integrate(ctx, &overlaps, j)?;
-            // The shares of the reference segmentation (friction: small deformation only).
-            let slip = (!self.nlgeo).then(|| SlipForm {
-                shares: w.shares.iter().map(|s| s.v).enumerate().collect(),
+            // The shares of the reference (small deformation) or current segmentation.
+            let slip = Some(SlipForm {
+                shares: w.shares.iter().map(|&s| s.into()).enumerate().collect(),
                 normal: [
                     w.normal[0].into(),
                     w.normal[1].into(),

@@ -153,7 +153,6 @@ impl FaceMortar {
             })
             .collect();
         let nlgeo = slave.faces.iter().any(|f| f.nlgeo);
-        law.check_friction(model, ci, nlgeo)?;
         let nodes = slave
             .faces
             .iter()
@@ -315,7 +314,7 @@ impl FaceMortar {
                 shares: form
                     .shares
                     .iter()
-                    .map(|&(n, w)| (local.index(n), w))
+                    .map(|&(n, w)| (local.index(n), Jet::constant(w, m)))
                     .collect(),
                 normal: form.normal.map(|v| Jet::constant(v, m)),
             }),
@@ -432,19 +431,11 @@ impl FaceMortar {
                     w.partner = Partner::Rigid(shape);
                 }
                 if let Some(slip) = &mut w.slip {
-                    // Small deformation: the shares are constants of the reference geometry.
-                    let mut share = |n: usize, v: f64| {
-                        let i = local.index(n);
-                        match slip.shares.iter_mut().find(|s| s.0 == i) {
-                            Some(s) => s.1 += v,
-                            None => slip.shares.push((i, v)),
-                        }
-                    };
                     for b in 0..nf {
-                        share(nodes[b], na.v * n[b]);
+                        add_share(slip, local.index(nodes[b]), &map, na * n[b]);
                     }
                     if let Some(r) = moving {
-                        share(nodes[r], -na.v);
+                        add_share(slip, local.index(nodes[r]), &map, -na);
                     }
                     for i in 0..3 {
                         add(&mut slip.normal[i], na * nu[i]);
@@ -541,7 +532,10 @@ impl FaceMortar {
                 area: Jet::constant(0.0, m),
                 b: vec![Jet::constant(0.0, m); m],
                 partner: Partner::None,
-                slip: None,
+                slip: Some(SlipForm {
+                    shares: Vec::new(),
+                    normal: std::array::from_fn(|_| Jet::constant(0.0, m)),
+                }),
             };
             out.push((local, w));
         }
@@ -589,6 +583,24 @@ impl FaceMortar {
     }
 }
 
+/// Add `v` (over a pair's unknowns, pair unknown i being the slot's `map[i]`) to the share of
+/// local node `k` in `slip`.
+fn add_share(slip: &mut SlipForm, k: usize, map: &[usize], v: PairDual) {
+    let at = match slip.shares.iter().position(|s| s.0 == k) {
+        Some(at) => at,
+        None => {
+            let m = slip.normal[0].d.len();
+            slip.shares.push((k, Jet::constant(0.0, m)));
+            slip.shares.len() - 1
+        }
+    };
+    let jet = &mut slip.shares[at].1;
+    jet.v += v.v;
+    for (i, &t) in map.iter().enumerate() {
+        jet.d[t] += v.d[i];
+    }
+}
+
 /// Add point `p`'s share of the integrals of slave face node `a` to `w`: the weighted gap and
 /// the force direction weighted by its dual shape function Φ = Σ_b `dual`_b N_b, the support
 /// by N_a (pair unknown i is `w`'s unknown `map[i]`; the slave face's nodes come first).
@@ -632,6 +644,14 @@ fn accumulate(
     for (b, s) in shapes.enumerate() {
         for i in 0..3 {
             add(&mut w.b[map[3 * b + i]], na * s * p.nu[i]);
+        }
+        if let Some(slip) = &mut w.slip {
+            add_share(slip, map[3 * b] / 3, map, na * s);
+        }
+    }
+    if let Some(slip) = &mut w.slip {
+        for i in 0..3 {
+            add(&mut slip.normal[i], na * p.nu[i]);
         }
     }
 }

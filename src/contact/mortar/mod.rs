@@ -13,8 +13,8 @@
 //! at every slave node, whose forces Σ_j λ_j B_j are then exactly the consistent nodal forces of p
 //! on both meshes (Σ_j N_j = 1): the patch test holds to round-off.
 //!
-//! Coulomb friction (small deformation) acts on each slave node's weighted relative position
-//! (`SlipForm`), with the penalty law's return map or the friction multipliers of
+//! Coulomb friction acts on each slave node's weighted slip in a step (`SlipForm`; the shares of
+//! the reference segmentation in small deformation, of the current one in large), with the penalty law's return map or the friction multipliers of
 //! [`law::multiplier`], as node-to-segment friction does, so that a uniform shear traction is
 //! transferred exactly as well.
 //!
@@ -30,7 +30,7 @@ use super::dual::{Dual, Jet};
 use super::law::friction::{self, FrictionPoint};
 use super::law::{self, FrictionKinematics, Laws, PointKinematics, SlipKinematics};
 use super::{Anchor, ContactPoint, Ctx, Formulation, Local, Partner, SlotState};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::model::{ContactLaw, Friction, Model, SegmentKind};
 
 /// The formulation of mortar condition `ci`: edges in 2D, faces in 3D.
@@ -115,20 +115,20 @@ struct Weighted {
     /// B_j.
     b: Vec<Jet>,
     partner: Partner,
-    /// The weighted relative position, for friction (small deformation).
+    /// The shares of the weighted slip, for friction.
     slip: Option<SlipForm>,
 }
 
-/// A slave node's weighted relative position ŝ_j = Σ_n w_jn·x_n / D_j (small deformation: the
-/// shares w_jn are those of the reference segmentation): w_jn = ∫ Φ_j N_n dA for slave nodes,
-/// −∫ Φ_j M_l dA for master nodes. They sum to zero, so ŝ_j does not move when both bodies
-/// translate together; its change is the mean relative tangential motion of the slave over the
-/// master under node j's weight, and a traction t at the node does the virtual work
-/// D_j t·δŝ_j = Σ_n w_jn t·δx_n.
+/// A slave node's weighted slip in a step, ũ_j = Σ_n w_jn·(x_n − x⁰_n) / D_j, x⁰ the positions
+/// of the last converged step, with the shares w_jn = ∫ Φ_j N_n dA for slave nodes and
+/// −∫ Φ_j M_l dA for master nodes (of the reference segmentation in small deformation, of the
+/// current one in large). They sum to zero, so ũ_j vanishes when both bodies translate
+/// together: it is the mean relative motion of the slave over the master under node j's weight
+/// in the step, and a traction t at the node does the virtual work Σ_n w_jn t·δx_n.
 #[derive(Debug, Clone)]
 struct SlipForm {
-    /// (local node index, w_jn).
-    shares: Vec<(usize, f64)>,
+    /// (local node index, w_jn over the local unknowns).
+    shares: Vec<(usize, Jet)>,
     /// ∫ Φ_j ν dA: the direction of the normal (over the local unknowns: against a rigid shape
     /// ν is the shape's normal at the current point).
     normal: [Jet; 3],
@@ -138,7 +138,7 @@ struct SlipForm {
 struct SlotLaw {
     number: usize,
     law: ContactLaw,
-    /// Coulomb friction (small deformation).
+    /// Coulomb friction.
     friction: Option<Friction>,
     /// Per slot, the factor of the penalty (from the mesh when the condition gives none).
     scale: Vec<f64>,
@@ -176,21 +176,6 @@ impl SlotLaw {
             stiffness,
             dim: model.domain.nsd(),
         }
-    }
-
-    /// Refuse friction where it is not implemented: large deformation (the weighted relative
-    /// position of [`SlipForm`] is that of the reference segmentation).
-    fn check_friction(&self, model: &Model, ci: usize, nlgeo: bool) -> Result<()> {
-        if self.friction.is_some() && nlgeo {
-            return Err(Error::Input {
-                span: model.contacts[ci].span.clone(),
-                msg: "friction with mortar contact is implemented in small deformation (nlgeo 0) \
-                      only: in large deformation use node-to-segment contact \
-                      (n2spenaltycontact) with `friction`"
-                    .into(),
-            });
-        }
-        Ok(())
     }
 
     fn n_multipliers(&self, slots: usize) -> usize {
@@ -260,21 +245,17 @@ impl SlotLaw {
             ContactLaw::Multiplier => 0.0,
         };
         let multipliers = self.law == ContactLaw::Multiplier;
-        let at_point = |slip: &SlipForm| Anchor {
+        // Anchors keep the elastic slip of the last converged step (none with multipliers).
+        let anchored = |elastic: [f64; 3]| Anchor {
             partner: w.partner,
             xi: [0.0; 2],
-            offset: slip.position(local, w.area.v),
+            offset: elastic,
         };
         if let (Some(f), Some(slip), true, true) = (self.friction, &w.slip, has, multipliers) {
-            let kept = anchor.map_or_else(
-                || at_point(slip),
-                |a| Anchor {
-                    partner: w.partner,
-                    ..*a
-                },
-            );
-            kin.slip = Some(slip.kinematics(local, w.area.v, kept, f.mu, self.stiffness[j]));
-            state.anchor = Some(at_point(slip));
+            let u = slip.slip(ctx, local, &w.area, [0.0; 3]);
+            let kept = anchored([0.0; 3]);
+            kin.slip = Some(slip.kinematics(local, u, kept, f.mu, self.stiffness[j]));
+            state.anchor = Some(kept);
         } else if let (Some(f), Some(slip), true) = (self.friction, &w.slip, has) {
             let f = Friction {
                 penalty: f.penalty * self.scale[j],
@@ -285,19 +266,22 @@ impl SlotLaw {
                 v: -penalty * kin.gap.v,
                 d: kin.gap.d.iter().map(|d| -penalty * d).collect(),
             };
-            let (fk, next) = slot_friction(f, local, slip, w.area.v, &pn, anchor);
+            let elastic = anchor.map_or([0.0; 3], |a| a.offset);
+            let u = slip.slip(ctx, local, &w.area, elastic);
+            let (fk, next) = slot_friction(f, local, slip, &u, &pn);
+
             if kin.gap.v <= 0.0 {
                 state.friction = Some((fk.stick, fk.force * w.area.v));
             }
-            state.anchor = Some(if kin.gap.v > 0.0 {
-                at_point(slip)
-            } else {
-                Anchor {
-                    offset: next,
-                    ..at_point(slip)
-                }
-            });
-            kin.friction = Some(fk);
+            state.anchor = Some(anchored(if kin.gap.v > 0.0 { [0.0; 3] } else { next }));
+            // An open slot has no friction, not even in the closed branch the solver may predict
+            // for it: continued from the open state, its penalty pressure −ε·ḡ is a pull as large
+            // as the opening, and μ times it a tangential force that has nothing to do with the
+            // friction the slot will carry once closed (in large deformation, where a step's
+            // first iterate can lift a whole side off, it sent the Newton iteration astray).
+            if kin.gap.v <= 0.0 {
+                kin.friction = Some(fk);
+            }
         }
         let point = match self.law {
             ContactLaw::Penalty(_) => law::penalty::evaluate(&laws, penalty, codes, &kin),
@@ -330,27 +314,42 @@ impl SlotLaw {
 }
 
 impl SlipForm {
-    /// What the friction multipliers of the slot need (see [`law::multiplier`]): ŝ_j − a_j, a_j
-    /// the anchor `kept`'s position; the normal ∫ Φ_j ν; a unit traction's residual, w_jn on node
-    /// n's component.
+    /// `elastic` (the elastic slip the last converged step left) plus the step's slip ũ_j, over
+    /// the local unknowns (D_j = `area`).
+    fn slip(&self, ctx: &Ctx, local: &Local, area: &Jet, elastic: [f64; 3]) -> Vec<Jet> {
+        let (dim, m) = (local.dim, local.m());
+        let mut out: Vec<Jet> = (0..dim).map(|i| Jet::constant(elastic[i], m)).collect();
+        let d = area.v;
+        for (k, w) in &self.shares {
+            let x0 = ctx.start_position(local.nodes[*k]);
+            for (i, s) in out.iter_mut().enumerate() {
+                let du = local.values()[dim * k + i] - x0[i];
+                s.v += w.v * du / d;
+                // ∂(w du / D) = du (∂w/D − w ∂D/D²) + w/D ∂du.
+                for ((sd, wd), ad) in s.d.iter_mut().zip(&w.d).zip(&area.d) {
+                    *sd += du * (wd / d - w.v * ad / (d * d));
+                }
+                s.d[dim * k + i] += w.v / d;
+            }
+        }
+        out
+    }
+
+    /// What the friction multipliers of the slot need (see [`law::multiplier`]): the step's slip
+    /// `slip`, the normal ∫ Φ_j ν, a unit traction's residual (w_jn on node n's component).
     fn kinematics(
         &self,
         local: &Local,
-        area: f64,
+        slip: Vec<Jet>,
         kept: Anchor,
         mu: f64,
         stiffness: f64,
     ) -> SlipKinematics {
         let (dim, m) = (local.dim, local.m());
-        let s = self.position(local, area);
-        let mut slip: Vec<Jet> = (0..dim)
-            .map(|i| Jet::constant(s[i] - kept.offset[i], m))
-            .collect();
         let mut share = vec![vec![Jet::constant(0.0, m); m]; dim];
-        for &(k, w) in &self.shares {
-            for i in 0..dim {
-                slip[i].d[dim * k + i] += w / area;
-                share[i][dim * k + i].v += w;
+        for (k, w) in &self.shares {
+            for (i, row) in share.iter_mut().enumerate() {
+                row[dim * k + i] = w.clone();
             }
         }
         SlipKinematics {
@@ -362,46 +361,31 @@ impl SlipForm {
             kept,
         }
     }
-
-    /// ŝ_j at the current positions (support `area` = D_j).
-    fn position(&self, local: &Local, area: f64) -> [f64; 3] {
-        let mut s = [0.0; 3];
-        for &(k, w) in &self.shares {
-            for (i, si) in s.iter_mut().enumerate().take(local.dim) {
-                *si += w * local.values()[local.dim * k + i] / area;
-            }
-        }
-        s
-    }
 }
 
-/// Coulomb friction of a slot (see [`law::friction`]): the elastic slip is ŝ_j − a_j tangential
-/// to the slot's normal, a_j its anchor (the history: ŝ_j less the elastic slip at the end of the
-/// last converged step, ŝ_j itself without history), the limit μ·λ_j with the penalty's pressure
-/// `pn`; the traction t acts per unit area, so node n's residual is w_jn·t. Evaluated in duals
-/// over (ŝ_j, λ_j) and chained to the local unknowns: the tangent is exact and unsymmetric.
-/// Returns the friction kinematics and the anchor this state leaves if it converges.
+/// Coulomb friction of a slot (see [`law::friction`]): the trial elastic slip is `slip` (the
+/// last step's elastic slip plus the step's ũ_j) tangential to the slot's normal, the limit μ·λ_j
+/// with the penalty's pressure `pn`; the traction t acts per unit area, so node n's residual is
+/// w_jn·t. Evaluated in duals over (slip, λ_j, ∫ Φ_j ν) and chained to the local unknowns: the
+/// tangent is exact and unsymmetric. Returns the friction kinematics and the elastic slip this
+/// state leaves if it converges.
 fn slot_friction(
     law: Friction,
     local: &Local,
-    slip: &SlipForm,
-    area: f64,
+    form: &SlipForm,
+    slip: &[Jet],
     pn: &Jet,
-    anchor: Option<&Anchor>,
 ) -> (FrictionKinematics, [f64; 3]) {
     let dim = local.dim;
     let m = local.m();
-    // z = (ŝ_j, λ_j, ∫ Φ_j ν).
+    // z = (slip, λ_j, ∫ Φ_j ν).
     let nz = 2 * dim + 1;
-    let s = slip.position(local, area);
-    let a = anchor.map_or(s, |a| a.offset);
     let mut xs = [Dual::constant(0.0, nz); 3];
-    let mut xa = [Dual::constant(0.0, nz); 3];
+    let xa = [Dual::constant(0.0, nz); 3];
     let mut nu = [Dual::constant(0.0, nz); 3];
     for i in 0..dim {
-        xs[i] = Dual::variable(s[i], i, nz);
-        xa[i] = Dual::constant(a[i], nz);
-        nu[i] = Dual::variable(slip.normal[i].v, dim + 1 + i, nz);
+        xs[i] = Dual::variable(slip[i].v, i, nz);
+        nu[i] = Dual::variable(form.normal[i].v, dim + 1 + i, nz);
     }
     let len = (0..dim)
         .fold(Dual::constant(0.0, nz), |acc, i| acc + nu[i] * nu[i])
@@ -417,29 +401,32 @@ fn slot_friction(
             dim,
         },
     );
-    // ∂z/∂q of z = (ŝ_j, λ_j).
-    let mut dz: Vec<Vec<(usize, f64)>> = (0..dim)
-        .map(|i| {
-            slip.shares
-                .iter()
-                .map(|&(k, w)| (dim * k + i, w / area))
-                .collect()
-        })
-        .collect();
-    dz.push(pn.d.iter().copied().enumerate().collect());
+    let nonzero = |j: &Jet| -> Vec<(usize, f64)> {
+        j.d.iter()
+            .copied()
+            .enumerate()
+            .filter(|(_, v)| *v != 0.0)
+            .collect()
+    };
+    let mut dz: Vec<Vec<(usize, f64)>> = slip.iter().map(nonzero).collect();
+    dz.push(nonzero(pn));
     for i in 0..dim {
-        dz.push(slip.normal[i].d.iter().copied().enumerate().collect());
+        dz.push(nonzero(&form.normal[i]));
     }
     let traction: Vec<Jet> = (0..dim).map(|i| Jet::chain(&t.vector[i], &dz, m)).collect();
     let mut residual = vec![Jet::constant(0.0, m); m];
-    for &(k, w) in &slip.shares {
+    for (k, w) in &form.shares {
         for i in 0..dim {
-            let r = &mut residual[dim * k + i];
-            r.v += w * traction[i].v;
-            for (rd, td) in r.d.iter_mut().zip(&traction[i].d) {
-                *rd += w * td;
-            }
+            residual[dim * k + i] = w.product(&traction[i]);
         }
     }
-    (t.kinematics(residual), t.next_anchor)
+    // The elastic slip left: the traction over the tangential penalty (stick: all of the slip).
+    let elastic = std::array::from_fn(|i| {
+        if i < dim {
+            t.vector[i].v / law.penalty
+        } else {
+            0.0
+        }
+    });
+    (t.kinematics(residual), elastic)
 }
