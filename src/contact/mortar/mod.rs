@@ -269,18 +269,17 @@ impl SlotLaw {
             let elastic = anchor.map_or([0.0; 3], |a| a.offset);
             let u = slip.slip(ctx, local, &w.area, elastic);
             let (fk, next) = slot_friction(f, local, slip, &u, &pn);
-
-            if kin.gap.v <= 0.0 {
-                state.friction = Some((fk.stick, fk.force * w.area.v));
-            }
-            state.anchor = Some(anchored(if kin.gap.v > 0.0 { [0.0; 3] } else { next }));
             // An open slot has no friction, not even in the closed branch the solver may predict
             // for it: continued from the open state, its penalty pressure −ε·ḡ is a pull as large
             // as the opening, and μ times it a tangential force that has nothing to do with the
             // friction the slot will carry once closed (in large deformation, where a step's
             // first iterate can lift a whole side off, it sent the Newton iteration astray).
             if kin.gap.v <= 0.0 {
+                state.friction = Some((fk.stick, fk.force * w.area.v));
+                state.anchor = Some(anchored(next));
                 kin.friction = Some(fk);
+            } else {
+                state.anchor = Some(anchored([0.0; 3]));
             }
         }
         let point = match self.law {
@@ -290,12 +289,9 @@ impl SlotLaw {
                 let eqs = first_lambda + per * j..first_lambda + per * (j + 1);
                 let (point, friction) =
                     law::multiplier::evaluate(&laws, &ctx.u[eqs.clone()], codes, eqs, &kin);
-                if let Some(s) = &kin.slip {
+                if kin.slip.is_some() {
                     // Traction per unit area: the node's force is its times D_j.
                     state.friction = friction.map(|(stick, t)| (stick, t * w.area.v));
-                    if friction.is_some_and(|f| f.0) {
-                        state.anchor = Some(s.kept);
-                    }
                 }
                 point
             }
