@@ -354,6 +354,28 @@ fn hertz_sphere_with_mortar_meets_hertz() {
     }
 }
 
+/// The rigid sphere of `text` (radius `r`, centre (0, 0, r)) sunk into the block by 0.01: the
+/// initial-state warning names the nodes inside it.
+fn sunk_sphere_warns(text: &str, r: f64) {
+    let sunk = text.replace(
+        &format!("centerpoint 3 0 0 {r} radius"),
+        &format!("centerpoint 3 0 0 {} radius", r - 0.01),
+    );
+    let model = common::model_from_text(&sunk).unwrap();
+    let mut warnings = Vec::new();
+    run_analysis(&model, &common::quiet(), |r| {
+        warnings.extend(r.info.warnings.iter().cloned());
+        Ok(())
+    })
+    .unwrap();
+    assert!(
+        warnings
+            .iter()
+            .any(|w| w.contains("start inside rigid segment 1 (by up to 1.000e-2)")),
+        "{warnings:?}"
+    );
+}
+
 /// Hertz in 3D with mortar against a rigid sphere (R = 10, moving with a node pushed down by
 /// δ = 0.1) on an elastic block (quarter model, bricks and wedges graded from h = 0.2 and 0.15,
 /// E = 1000, ν = 0.3; the block's top faces the slave): p0 and a within 2 % of Hertz
@@ -362,7 +384,8 @@ fn hertz_sphere_with_mortar_meets_hertz() {
 /// distance to a sphere is not linear in the displacements) and the penalty from the mesh (4:
 /// the first step closes the contact on the linearized distance, which under a convex tool is
 /// below the true one by more than the stiff penalty's penetration, so the points open again
-/// before they settle).
+/// before they settle). No node starts inside the touching sphere (the initial-state warning
+/// looks at the nodes' own distances, not at the weighted gaps); a sunk sphere is reported.
 #[test]
 fn rigid_sphere_with_mortar_meets_hertz() {
     use hertz::analytic::{compare_hertz_sphere, contact_modulus};
@@ -413,13 +436,21 @@ fn rigid_sphere_with_mortar_meets_hertz() {
                 "3d",
             );
             let model = common::model_from_text(&text).unwrap();
-            let (mut states, mut its) = (Vec::new(), 0);
+            let (mut states, mut its, mut warnings) = (Vec::new(), 0, Vec::new());
             run_analysis(&model, &common::quiet(), |r| {
                 states = r.contact.to_vec();
                 its = r.info.iterations;
+                warnings.extend(r.info.warnings.iter().cloned());
                 Ok(())
             })
             .unwrap();
+            // The sphere touches the block at one point: no node starts inside it (the weighted
+            // gap of the node on the axis is negative there, by 6.7e-4).
+            assert!(warnings.is_empty(), "{warnings:?}");
+            // A sphere sunk into the block by 0.01 does start inside it.
+            if kind == Solid::Hex && law.contains("multiplier") {
+                sunk_sphere_warns(&text, R);
+            }
             let c = compare_hertz_sphere(
                 &model,
                 &states,

@@ -609,10 +609,14 @@ pub fn initial_warnings(model: &Model, states: &[SlotState]) -> Vec<String> {
     let mut inside: BTreeMap<(usize, usize), (usize, f64)> = BTreeMap::new();
     for s in states {
         if let Partner::Rigid(g) = s.partner {
-            if s.gap < -tol {
+            // The node's own distance to the shape, not the state's gap: a mortar slot's is a
+            // weighted mean over its faces, which the dual basis can make negative where a
+            // convex tool first touches the surface without any node inside it.
+            let gap = rigid_distance(model, g, s.x).unwrap_or(s.gap);
+            if gap < -tol {
                 let e = inside.entry((s.condition, g)).or_insert((0, 0.0));
                 e.0 += 1;
-                e.1 = e.1.max(-s.gap);
+                e.1 = e.1.max(-gap);
             }
         }
     }
@@ -632,6 +636,30 @@ pub fn initial_warnings(model: &Model, states: &[SlotState]) -> Vec<String> {
             )
         })
         .collect()
+}
+
+/// The signed distance of the point `x` to rigid segment `g` in its reference position (< 0:
+/// inside its body), if `x` projects onto it.
+fn rigid_distance(model: &Model, g: usize, x: [f64; 3]) -> Option<f64> {
+    use geometry::rigid;
+    let dim = model.domain.nsd();
+    let x = &x[..dim];
+    Some(match &model.segments[g].kind {
+        SegmentKind::Circle {
+            center,
+            radius,
+            cavity,
+            ..
+        } => rigid::circle(x, &center[..dim], *radius, *cavity).0,
+        SegmentKind::Plane { point, normal, .. } => {
+            rigid::plane(x, &point[..dim], &normal[..dim]).0
+        }
+        SegmentKind::Polynomial { coeffs, body_above } => {
+            let t = rigid::project_on_poly(coeffs, [x[0], x[1]])?;
+            rigid::polynomial(coeffs, x, t, *body_above).0
+        }
+        _ => return None,
+    })
 }
 
 /// Diagonal of the model's bounding box (a length scale for tolerances).
