@@ -43,6 +43,8 @@ pub struct Mortar {
     rigid_nodes: Vec<usize>,
     /// How far the search for master edges goes.
     search_limit: f64,
+    /// Per slave edge, the coefficients of its dual basis (reference configuration).
+    dual: Vec<[[f64; 4]; 4]>,
 }
 
 impl Mortar {
@@ -111,7 +113,16 @@ impl Mortar {
             .chain(&master.edges)
             .flat_map(|e| e.nodes.iter().copied());
         let search_limit = search_limit(model, nodes);
+        let dual = slave
+            .edges
+            .iter()
+            .map(|e| {
+                let x: Vec<[f64; 3]> = e.nodes.iter().map(|&n| model.nodes[n].coords).collect();
+                edge_dual_basis(&x)
+            })
+            .collect();
         Ok(Mortar {
+            dual,
             search_limit,
             law,
             rigid_nodes: rigid.iter().filter_map(|&g| rigid_node(model, g)).collect(),
@@ -267,13 +278,33 @@ fn solve(s0: f64, m: usize, linear: bool, f: impl Fn(Dual) -> (Dual, Dual)) -> D
     c - v / d
 }
 
+/// The dual basis of a slave edge (straight or quadratic) at reference positions `x`
+/// (see [`super::segment::dual_basis`]).
+fn edge_dual_basis(x: &[[f64; 3]]) -> [[f64; 4]; 4] {
+    let k = x.len();
+    let (mut m, mut d) = ([[0.0; 4]; 4], [0.0; 4]);
+    for &(z, wz) in &GAUSS5 {
+        let s = 0.5 * (1.0 + z);
+        let (n, dn) = shape(k, s);
+        let t: [f64; 2] = std::array::from_fn(|i| (0..k).map(|a| dn[a] * x[a][i]).sum());
+        let ds = 0.5 * wz * (t[0] * t[0] + t[1] * t[1]).sqrt();
+        for a in 0..k {
+            d[a] += n[a] * ds;
+            for b in 0..k {
+                m[a][b] += n[a] * n[b] * ds;
+            }
+        }
+    }
+    super::segment::biorthogonal(&m, &d, k)
+}
+
 /// What one slave node's constraint integrates to, in duals.
 struct Integrals {
     gap: Dual,
     area: Dual,
     b: Vec<Dual>,
     partner: Partner,
-    /// Per local node its share w_jn, and ∫ N_j ν (see [`SlipForm`]).
+    /// Per local node its share w_jn, and ∫ Φ_j ν (see [`SlipForm`]).
     shares: Vec<Dual>,
     normal: [Dual; 2],
 }
@@ -354,12 +385,14 @@ impl Mortar {
                     let (g, master, dir, jac) = gap_at(xi);
                     let ds = half * jac * wz;
                     let nj = shape_s[jloc];
-                    w.gap = w.gap + nj * g * ds;
+                    let phi =
+                        (0..xg.len()).fold(zero, |acc, b| acc + shape_s[b] * self.dual[k][jloc][b]);
+                    w.gap = w.gap + phi * g * ds;
                     w.area = w.area + nj * ds;
-                    // Slave nodes: ∫ N_j N_k ν; master nodes: −∫ N_j M_l ν.
+                    // Slave nodes: ∫ Φ_j N_k ν; master nodes: −∫ Φ_j M_l ν.
                     for (kk, &n) in e.nodes.iter().enumerate() {
                         let i = local.index(n);
-                        let share = nj * shape_s[kk] * ds;
+                        let share = phi * shape_s[kk] * ds;
                         w.shares[i] = w.shares[i] + share;
                         for d in 0..2 {
                             w.b[2 * i + d] = w.b[2 * i + d] + share * dir[d];
@@ -367,14 +400,14 @@ impl Mortar {
                     }
                     for (n, ml) in master {
                         let i = local.index(n);
-                        let share = nj * ml * ds;
+                        let share = phi * ml * ds;
                         w.shares[i] = w.shares[i] - share;
                         for d in 0..2 {
                             w.b[2 * i + d] = w.b[2 * i + d] - share * dir[d];
                         }
                     }
                     for d in 0..2 {
-                        w.normal[d] = w.normal[d] + nj * dir[d] * ds;
+                        w.normal[d] = w.normal[d] + phi * dir[d] * ds;
                     }
                 }
             };

@@ -2,20 +2,23 @@
 //! along the slave surface, one constraint per slave node, so that a contact pressure is
 //! transferred between non-matching meshes exactly (the contact patch test).
 //!
-//! Glossary (one slave node j with shape function N_j on the slave surface):
-//! * weighted gap g̃_j = ∫ N_j g dA, support D_j = ∫ N_j dA over the parts of the slave surface
+//! Glossary (one slave node j with shape function N_j on the slave surface and dual shape
+//! function Φ_j, biorthogonal to the N_k on each slave edge or face of the reference
+//! configuration: ∫ Φ_j N_k = δ_jk ∫ N_k, Σ_j Φ_j = 1):
+//! * weighted gap g̃_j = ∫ Φ_j g dA, support D_j = ∫ N_j dA over the parts of the slave surface
 //!   that overlap the master, mean gap ḡ_j = g̃_j / D_j (g < 0: penetration);
-//! * force direction B_j: the slave node k gets ∫ N_j N_k ν dA, the master node l −∫ N_j M_l ν dA
+//! * force direction B_j: the slave node k gets ∫ Φ_j N_k ν dA, the master node l −∫ Φ_j M_l ν dA
 //!   (ν towards the slave body; the variation of g̃_j at fixed segmentation and normal).
 //!
 //! The laws act on ḡ_j along B_j with a pressure λ_j: the penalty λ_j = −ε ḡ_j (ε a penalty per
 //! unit area), the multipliers λ_j with ḡ_j = 0 while active. A uniform pressure p gives λ_j = p
 //! at every slave node, whose forces Σ_j λ_j B_j are then exactly the consistent nodal forces of p
-//! on both meshes (Σ_j N_j = 1): the patch test holds to round-off.
+//! on both meshes (Σ_j Φ_j = 1): the patch test holds to round-off. With the dual basis a slave
+//! node's force is its own multiplier times its support, not spread over its neighbours.
 //!
-//! Coulomb friction acts on each slave node's weighted slip in a step (`SlipForm`; the shares of
-//! the reference segmentation in small deformation, of the current one in large), with the penalty law's return map or the friction multipliers of
-//! [`law::multiplier`], as node-to-segment friction does, so that a uniform shear traction is
+//! Coulomb friction acts on each slave node's weighted slip in a step (`SlipForm`; the shares
+//! of the reference segmentation in small deformation, of the current one in large), with the
+//! penalty law's return map or the friction multipliers of [`law::multiplier`], as node-to-segment friction does, so that a uniform shear traction is
 //! transferred exactly as well.
 //!
 //! [`edges`]: 2D, straight and quadratic edges, against edges or rigid shapes; [`faces`]: 3D,

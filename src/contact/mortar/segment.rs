@@ -294,7 +294,13 @@ pub fn dual_basis(kind: FaceKind, x: &[[f64; 3]]) -> [[f64; 4]; 4] {
     for (xi, eta, w) in face_rule(kind) {
         add(xi, eta, w);
     }
-    // A = D M⁻¹: solve Mᵀ Aᵀ = D (M symmetric) by Gauss–Jordan on [M | D].
+    biorthogonal(&m, &d, k)
+}
+
+/// A = D M⁻¹ of a slave facet with k ≤ 4 nodes from its M = [∫ N_a N_b] and D = [∫ N_a]: the
+/// coefficients of its dual basis Φ_a = Σ_b A_ab N_b.
+pub fn biorthogonal(m: &[[f64; 4]; 4], d: &[f64; 4], k: usize) -> [[f64; 4]; 4] {
+    // Solve Mᵀ Aᵀ = D (M symmetric) by Gauss–Jordan on [M | D].
     let mut aug = [[0.0; 8]; 4];
     for a in 0..k {
         aug[a][..k].copy_from_slice(&m[a][..k]);
