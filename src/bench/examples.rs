@@ -58,6 +58,16 @@ pub fn all() -> Vec<Example> {
         crate::material::hyperelastic::Hyperelastic::MooneyRivlin { c1, k, .. } => (c1, k),
         _ => unreachable!("neo-Hookean is Mooney-Rivlin with c2 = 0"),
     };
+    // The Hertz sphere of examples/hertz_sphere.in (node-to-face) and hertz_sphere_mortar.in.
+    let sphere = HertzSphere {
+        kind: Solid::Hex,
+        sym: 0,
+        h: SPHERE_H,
+        delta: 0.15,
+        nlgeo: false,
+        law: Law::Multiplier,
+        mortar: false,
+    };
     vec![
         Example {
             file: "patch3d.in",
@@ -105,16 +115,7 @@ hertz: p0 +0.05 %, a -0.87 % of Hertz for the computed F (bounds 3 % and 5 %, in
 orientation of the bricks: tests/contact3d.rs).
 Run:  cargo run --release -- run examples/hertz_sphere.in"
             ),
-            input: HertzSphere {
-                kind: Solid::Hex,
-                sym: 0,
-                h: SPHERE_H,
-                delta: 0.15,
-                nlgeo: false,
-                law: Law::Multiplier,
-                mortar: false,
-            }
-            .input(),
+            input: sphere.input(),
         },
         Example {
             file: "hertz_sphere_mortar.in",
@@ -131,13 +132,8 @@ hertz: p0 +0.87 %, a -0.83 % of Hertz for the computed F, no pressure above p0 b
 Run:  cargo run --release -- run examples/hertz_sphere_mortar.in"
             ),
             input: HertzSphere {
-                kind: Solid::Hex,
-                sym: 0,
-                h: SPHERE_H,
-                delta: 0.15,
-                nlgeo: false,
-                law: Law::Multiplier,
                 mortar: true,
+                ..sphere
             }
             .input(),
         },

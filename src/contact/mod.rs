@@ -270,6 +270,14 @@ impl Local {
         }
         b
     }
+
+    /// [`Local::distribute`] as jets over the local unknowns.
+    pub fn distribute_jets(&self, coeffs: &[(usize, Dual)], n: &DVec) -> Vec<dual::Jet> {
+        self.distribute(coeffs, n)
+            .into_iter()
+            .map(dual::Jet::from)
+            .collect()
+    }
 }
 
 /// A contact formulation (one condition of the input).

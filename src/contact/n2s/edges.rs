@@ -269,13 +269,7 @@ impl NodeToSegment {
                             ..at_point
                         })
                     },
-                    |v| {
-                        local
-                            .distribute(&coeffs, v)
-                            .into_iter()
-                            .map(crate::contact::dual::Jet::from)
-                            .collect()
-                    },
+                    |v| local.distribute_jets(&coeffs, v),
                     |&d| d.into(),
                     &mut kin,
                 ));

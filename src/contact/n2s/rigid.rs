@@ -219,13 +219,7 @@ impl NodeToSegment {
                         offset: std::array::from_fn(|i| p[i] - here[i].v),
                         ..at_point
                     },
-                    |v| {
-                        local
-                            .distribute(&coeffs, v)
-                            .into_iter()
-                            .map(crate::contact::dual::Jet::from)
-                            .collect()
-                    },
+                    |v| local.distribute_jets(&coeffs, v),
                     |&d| d.into(),
                     &mut kin,
                 ));
