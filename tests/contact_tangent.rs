@@ -836,30 +836,8 @@ fn mortar_tangents_in_3d_are_jacobians_of_residuals() {
         for nlgeo in [false, true] {
             for (law, lambda) in [(Law::Penalty(1e4), 0.0), (Law::Multiplier, 3.0)] {
                 let (text, disp) = mortar3d_case(kind, nlgeo, law);
-                let model = common::model_from_text(&text).unwrap();
                 let name = format!("mortar3d {kind:?} nlgeo {nlgeo} {law:?}");
-                let mut contact = ContactSystem::new(&model).unwrap();
-                let dofs = hertz::solve::number_dofs(&model).unwrap();
-                contact.set_pressure_limit(f64::INFINITY);
-                let u = displaced(
-                    &model,
-                    &dofs,
-                    &Case {
-                        name: name.clone(),
-                        text: String::new(),
-                        disp,
-                        lambda,
-                        active: 0,
-                    },
-                );
-                let (err, states, checked) = fd_error(&model, &contact, &dofs, &u);
-                let active = states.iter().filter(|s| s.active).count();
-                println!("{name}: {err:.1e} over {checked} points, {active} active");
-                assert!(
-                    active >= 9 && checked >= 9,
-                    "{name}: {active} active, {checked} checked"
-                );
-                assert!(err < 1e-6, "{name}: tangent off by {err:e} (relative)");
+                check_mortar3d(&name, &text, disp, lambda);
             }
         }
     }
@@ -876,50 +854,63 @@ fn mortar_tangents_against_rigid_shapes_in_3d_are_jacobians_of_residuals() {
     for kind in [Solid::Hex, Solid::Tet, Solid::Wedge] {
         for nlgeo in [false, true] {
             for (law, lambda) in [(Law::Penalty(1e4), 0.0), (Law::Multiplier, 3.0)] {
-                for (shape, record) in [
-                    (
-                        "sphere",
-                        "circlecontactsegment 1 centerpoint 3 0.5 0.5 -3.0 radius 3.0 node 999",
-                    ),
-                    (
-                        "plane",
-                        "planecontactsegment 1 point 3 0.5 0.5 0.08 normal 3 0.1 -0.05 1",
-                    ),
-                ] {
-                    let (text, mut disp) = mortar3d_case(kind, nlgeo, law);
-                    let text = common::with_rigid_master(&text, record, [0.5, 0.5, -3.0]);
-                    disp.push((999, [0.01, -0.02, 0.1]));
-                    let model = common::model_from_text(&text).unwrap();
-                    let name = format!("mortar3d {shape} {kind:?} nlgeo {nlgeo} {law:?}");
-                    let mut contact = ContactSystem::new(&model).unwrap();
-                    let dofs = hertz::solve::number_dofs(&model).unwrap();
-                    contact.set_pressure_limit(f64::INFINITY);
-                    if !record.contains("node 999") {
-                        disp.retain(|d| d.0 != 999);
-                    }
-                    let u = displaced(
-                        &model,
-                        &dofs,
-                        &Case {
-                            name: name.clone(),
-                            text: String::new(),
-                            disp,
-                            lambda,
-                            active: 0,
-                        },
-                    );
-                    let (err, states, checked) = fd_error(&model, &contact, &dofs, &u);
-                    let active = states.iter().filter(|s| s.active).count();
-                    println!("{name}: {err:.1e} over {checked} points, {active} active");
-                    assert!(
-                        active >= 9 && checked >= 9,
-                        "{name}: {active} active, {checked} checked"
-                    );
-                    assert!(err < 1e-6, "{name}: tangent off by {err:e} (relative)");
-                }
+                let (text, disp) = mortar3d_case(kind, nlgeo, law);
+                let name = format!("{kind:?} nlgeo {nlgeo} {law:?}");
+                let (sphere, on_sphere) = on_rigid_sphere(&text, disp.clone());
+                check_mortar3d(
+                    &format!("mortar3d sphere {name}"),
+                    &sphere,
+                    on_sphere,
+                    lambda,
+                );
+                let plane = common::with_rigid_master(
+                    &text,
+                    "planecontactsegment 1 point 3 0.5 0.5 0.08 normal 3 0.1 -0.05 1",
+                    [0.0; 3],
+                );
+                check_mortar3d(&format!("mortar3d plane {name}"), &plane, disp, lambda);
             }
         }
     }
+}
+
+/// A 3D mortar case ([`mortar3d_case`]) with its master faces replaced by a rigid sphere moving
+/// with node 999 (itself displaced), which the sunk slave block penetrates everywhere.
+fn on_rigid_sphere(text: &str, mut disp: Disp) -> (String, Disp) {
+    let sphere = "circlecontactsegment 1 centerpoint 3 0.5 0.5 -3.0 radius 3.0 node 999";
+    disp.push((999, [0.01, -0.02, 0.1]));
+    (
+        common::with_rigid_master(text, sphere, [0.5, 0.5, -3.0]),
+        disp,
+    )
+}
+
+/// The FD check of a 3D mortar case displaced by `disp`, multipliers at `lambda`: every one of
+/// its 9 slave nodes active and checked, the tangent within 1e-6 of the differences.
+fn check_mortar3d(name: &str, text: &str, disp: Disp, lambda: f64) {
+    let model = common::model_from_text(text).unwrap();
+    let mut contact = ContactSystem::new(&model).unwrap();
+    let dofs = hertz::solve::number_dofs(&model).unwrap();
+    contact.set_pressure_limit(f64::INFINITY);
+    let u = displaced(
+        &model,
+        &dofs,
+        &Case {
+            name: name.to_string(),
+            text: String::new(),
+            disp,
+            lambda,
+            active: 0,
+        },
+    );
+    let (err, states, checked) = fd_error(&model, &contact, &dofs, &u);
+    let active = states.iter().filter(|s| s.active).count();
+    println!("{name}: {err:.1e} over {checked} points, {active} active");
+    assert!(
+        active >= 9 && checked >= 9,
+        "{name}: {active} active, {checked} checked"
+    );
+    assert!(err < 1e-6, "{name}: tangent off by {err:e} (relative)");
 }
 
 /// Mortar friction's tangent (unsymmetric) is the Jacobian of its residual in stick (μ = 5) and
@@ -960,13 +951,10 @@ fn mortar_friction_tangents_are_jacobians_in_stick_and_slip() {
         {
             let (text, disp) = mortar3d_case(kind, nlgeo, law3d);
             let kind = format!("{kind:?} nlgeo {}", u8::from(nlgeo));
-            cases.push((kind.clone(), text.clone(), disp.clone()));
-            // Against a rigid sphere moving with a node.
-            let sphere = "circlecontactsegment 1 centerpoint 3 0.5 0.5 -3.0 radius 3.0 node 999";
-            let text = common::with_rigid_master(&text, sphere, [0.5, 0.5, -3.0]);
-            let mut disp = disp;
-            disp.push((999, [0.01, -0.02, 0.1]));
-            cases.push((format!("{kind} sphere"), text, disp));
+            // Against faces, and against a rigid sphere moving with a node.
+            let (sphere, on_sphere) = on_rigid_sphere(&text, disp.clone());
+            cases.push((kind.clone(), text, disp));
+            cases.push((format!("{kind} sphere"), sphere, on_sphere));
         }
         for (name, text, disp) in cases {
             for (mu, stick) in [(5.0, true), (0.01, false)] {
