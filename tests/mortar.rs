@@ -536,3 +536,57 @@ fn mortar_passes_the_contact_patch_test_in_large_deformation_3d() {
         }
     }
 }
+
+/// The last step's contact pressures, Newton iterations per step and (eliminated, kept)
+/// multipliers of `path`, solved with the condensed contact solve or with full tangents.
+fn pressures(path: &str, condensed: bool) -> (Vec<f64>, Vec<usize>, (usize, usize)) {
+    let model = hertz::input::read_model(std::path::Path::new(path))
+        .unwrap()
+        .model;
+    let params = hertz::solve::SolveParams {
+        condensed_contact: condensed,
+        ..common::quiet()
+    };
+    let mut out = (Vec::new(), Vec::new(), (0, 0));
+    hertz::solve::run_analysis(&model, &params, |r| {
+        out.0 = r.contact.iter().map(|s| s.pressure).collect();
+        out.1.push(r.info.iterations);
+        out.2 = r.info.multipliers_eliminated;
+        Ok(())
+    })
+    .unwrap();
+    out
+}
+
+/// Mortar multipliers with full tangents (as beyond the condensed solve's candidate limit): every
+/// multiplier is eliminated through its slave node's rows — the dual basis gives each slave node
+/// its own multiplier alone — and the solution is the condensed solve's, in as many iterations.
+/// (2D against a rigid cylinder and an elastic one, 3D patch test and rigid-sphere Hertz.)
+#[test]
+fn mortar_multipliers_condense_out_of_full_tangents() {
+    for (file, all) in [
+        ("examples/hertz_mortar.in", true),
+        ("examples/hertz_cylinder_mortar.in", true),
+        ("examples/patch3d.in", true),
+        ("examples/hertz_sphere_mortar.in", false),
+    ] {
+        let (want, its_want, _) = pressures(file, true);
+        let (got, its, (eliminated, kept)) = pressures(file, false);
+        let scale = want.iter().fold(0.0f64, |m, p| m.max(p.abs()));
+        let worst = want
+            .iter()
+            .zip(&got)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        eprintln!("{file}: {eliminated} eliminated, {kept} kept; |Δp| {worst:.2e} of {scale:.3e}");
+        assert!(
+            worst <= 1e-8 * scale,
+            "{file}: pressures differ by {worst:e}"
+        );
+        assert_eq!(its, its_want, "{file}");
+        assert!(
+            eliminated > 0 && (kept == 0 || !all),
+            "{file}: {eliminated}, {kept}"
+        );
+        assert!(kept * 20 <= eliminated + kept, "{file}: {kept} kept");
+    }
+}

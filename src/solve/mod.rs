@@ -4,6 +4,7 @@ pub mod branches;
 pub mod condensed;
 pub mod krylov;
 pub mod linear;
+pub mod multipliers;
 pub mod newton;
 pub mod ordering;
 pub mod stepping;

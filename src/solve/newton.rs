@@ -16,6 +16,7 @@
 use super::branches::BranchSearch;
 use super::condensed::CondensedContact;
 use super::linear::LinearSolver;
+use super::multipliers::{Group, MultiplierElimination};
 use super::stepping::PhaseTimes;
 use super::stepping::StepInfo;
 use crate::assembly::{Assembler, Contribution, DofMap, Evaluation};
@@ -84,6 +85,8 @@ pub(super) struct NewtonContext<'a> {
     pub times: PhaseTimes,
     /// How often the condensed solve was set up again with more candidates.
     pub regrowths: usize,
+    /// The full tangent's solve with the multipliers eliminated (see [`super::multipliers`]).
+    pub eliminate: MultiplierElimination,
 }
 
 /// Seconds since `t`.
@@ -281,9 +284,34 @@ impl NewtonContext<'_> {
             .collect()
     }
 
+    /// Every multiplier point's multipliers and its slave node's free displacement equations.
+    fn multiplier_groups(&self, points: &[ContactPoint]) -> Vec<Group> {
+        let dofs = self.dofs;
+        let n_disp = dofs.n_free - dofs.n_lambda;
+        points
+            .iter()
+            .zip(&self.slot_nodes)
+            .filter_map(|(p, &node)| {
+                let PointLaw::Multiplier { tangential, .. } = p.law else {
+                    return None;
+                };
+                let lambdas: Vec<usize> = p.codes[p.codes.len() - 1 - tangential..]
+                    .iter()
+                    .flat_map(|&c| dofs.entries(c).map(|(e, _)| e))
+                    .collect();
+                let slave: Vec<usize> = dofs.node_dofs[node]
+                    .iter()
+                    .map(|&(_, c)| c)
+                    .filter(|&c| c < n_disp)
+                    .collect();
+                Some(Group { slave, lambdas })
+            })
+            .collect()
+    }
+
     /// Give up condensing for the rest of the analysis: full tangents, on a pattern with both
     /// triangles if a contact tangent is not symmetric.
-    fn condense_off(&mut self) {
+    pub(super) fn condense_off(&mut self) {
         self.condensed = Condensed::Off;
         self.asm.set_symmetric(self.contact.symmetric());
         self.solver.reset();
@@ -308,6 +336,7 @@ impl NewtonContext<'_> {
         self.times.assembly += since(t);
         let mut closed: Vec<bool> = guess.to_vec();
         let mut search = BranchSearch::new(MAX_FULL_UPDATES);
+        let groups = self.multiplier_groups(points);
         loop {
             let mut kv = ks.k_values.clone().expect("requested");
             let mut step = rhs.clone();
@@ -333,10 +362,29 @@ impl NewtonContext<'_> {
                 })
                 .collect();
             self.asm.add_tangents(&mut kv, &contribs);
-            self.factorize(&kv)?;
-            let t = Instant::now();
-            self.solver.solve_in_place(&mut step)?;
-            self.times.solve += since(t);
+            // Above the Krylov threshold the saddle-point tangent's GMRES, preconditioned with
+            // the LDLᵀ of its symmetric part, serves better: the reduced system's symmetric part
+            // (gap rows in place of slave rows) is no preconditioner for it.
+            if groups.is_empty() || nf >= self.solver.krylov_min {
+                self.factorize(&kv)?;
+                let t = Instant::now();
+                self.solver.solve_in_place(&mut step)?;
+                self.times.solve += since(t);
+            } else {
+                let (model, dofs) = (self.asm.model, self.dofs);
+                let describe = |eq: usize| describe_eq(model, dofs, eq);
+                let t = Instant::now();
+                self.eliminate
+                    .solve(&self.asm.pattern, &kv, &mut step, &groups, &describe)?;
+                self.times.factor += since(t);
+                if self.verbose && search.updates == 0 {
+                    eprintln!(
+                        "      multipliers eliminated through the slave rows: {} of {}",
+                        self.eliminate.eliminated,
+                        self.eliminate.eliminated + self.eliminate.kept
+                    );
+                }
+            }
             let predicted: Vec<bool> = points
                 .iter()
                 .map(|p| {

@@ -8,6 +8,7 @@
 //! interpolated linearly); after `max_cutbacks` halvings the run stops with an error.
 
 use super::linear::{LinearSolver, SolverStats};
+use super::multipliers::MultiplierElimination;
 use super::newton::{Condensed, NewtonContext};
 use crate::assembly::{Assembler, DofMap};
 use crate::contact::{ContactSystem, Search, SlotState};
@@ -31,6 +32,10 @@ pub struct SolveParams {
     /// Unknowns from which a non-symmetric tangent is solved by GMRES preconditioned with its
     /// symmetric part instead of a sparse LU (see [`super::krylov`]).
     pub krylov_min_unknowns: usize,
+    /// Decide contact branches on the dense condensed system when the candidates allow it (see
+    /// [`super::condensed`]); false: full tangents, the multipliers eliminated through their
+    /// slave nodes' rows (see [`super::multipliers`]), as beyond the candidates' limit.
+    pub condensed_contact: bool,
 }
 
 impl Default for SolveParams {
@@ -40,6 +45,7 @@ impl Default for SolveParams {
             log_steps: true,
             log_iterations: false,
             krylov_min_unknowns: super::linear::KRYLOV_MIN_UNKNOWNS,
+            condensed_contact: true,
         }
     }
 }
@@ -72,6 +78,9 @@ pub struct StepInfo {
     pub solver: SolverStats,
     /// Things the user should know (e.g. a penalty beyond double precision).
     pub warnings: Vec<String>,
+    /// Multipliers eliminated through their slave rows and kept, in the step's last solve with
+    /// full tangents (see [`super::multipliers`]; none when the condensed solve served).
+    pub multipliers_eliminated: (usize, usize),
 }
 
 /// The converged state after a step.
@@ -153,7 +162,7 @@ pub fn run_analysis(
     let small_strain = !model.elements.iter().any(|e| e.nlgeo);
     let linear = small_strain && contact.is_empty();
     // Contact: Newton systems condensed on the contact equations (see `condensed`).
-    let condensed = if contact.is_empty() {
+    let condensed = if contact.is_empty() || !params.condensed_contact {
         Condensed::Off
     } else {
         Condensed::Pending(contact.candidate_equations(model, &dofs, &vec![0.0; np])?)
@@ -187,7 +196,11 @@ pub fn run_analysis(
         floor_warned: false,
         times: PhaseTimes::default(),
         regrowths: 0,
+        eliminate: MultiplierElimination::new(params.krylov_min_unknowns),
     };
+    if !ctx.contact.is_empty() && !params.condensed_contact {
+        ctx.condense_off();
+    }
     let mut u = vec![0.0; np];
     let mut applied = vec![0.0; np];
     let times = model.step_times();
@@ -291,7 +304,12 @@ pub fn run_analysis(
             .map(|i| ev.f_int[nf + i] - applied[nf + i])
             .collect();
         info.wall_seconds = clock.elapsed().as_secs_f64();
-        info.solver = ctx.solver.stats.clone();
+        info.multipliers_eliminated = (ctx.eliminate.eliminated, ctx.eliminate.kept);
+        info.solver = if ctx.eliminate.eliminated + ctx.eliminate.kept > 0 {
+            ctx.eliminate.stats().clone()
+        } else {
+            ctx.solver.stats.clone()
+        };
         let (searching, contact) = ctx.contact.take_times();
         info.times = PhaseTimes {
             search: searching,

@@ -557,7 +557,7 @@ impl Formulation for Mortar {
 
     fn symmetric(&self) -> bool {
         // B = ∇g̃ in small deformation; the tangent is then symmetric (material part only).
-        !self.nlgeo
+        !self.nlgeo && self.law.symmetric()
     }
 
     fn partner_nodes(&self, partner: Partner) -> &[usize] {

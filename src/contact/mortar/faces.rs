@@ -744,7 +744,7 @@ impl Formulation for FaceMortar {
 
     fn symmetric(&self) -> bool {
         // B = ∇g̃ in small deformation against faces.
-        !self.nlgeo && self.rigid.is_empty()
+        !self.nlgeo && self.rigid.is_empty() && self.law.symmetric()
     }
 
     fn partner_nodes(&self, partner: Partner) -> &[usize] {

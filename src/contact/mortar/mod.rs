@@ -8,7 +8,9 @@
 //! * weighted gap g̃_j = ∫ Φ_j g dA, support D_j = ∫ N_j dA over the parts of the slave surface
 //!   that overlap the master, mean gap ḡ_j = g̃_j / D_j (g < 0: penetration);
 //! * force direction B_j: the slave node k gets ∫ Φ_j N_k ν dA, the master node l −∫ Φ_j M_l ν dA
-//!   (ν towards the slave body; the variation of g̃_j at fixed segmentation and normal).
+//!   (ν towards the slave body; the variation of g̃_j at fixed segmentation and normal) for the
+//!   penalty; for multipliers w_jn n̂_j along the node's normal (`SlipForm::along_normal`), so
+//!   that each slave node carries its own multiplier alone and the multipliers condense out.
 //!
 //! The laws act on ḡ_j along B_j with a pressure λ_j: the penalty λ_j = −ε ḡ_j (ε a penalty per
 //! unit area), the multipliers λ_j with ḡ_j = 0 while active. A uniform pressure p gives λ_j = p
@@ -181,6 +183,14 @@ impl SlotLaw {
         }
     }
 
+    /// Whether the law keeps a tangent with B = ∇g̃ symmetric: the penalty's ε B ⊗ ∇ḡ is
+    /// ε B ⊗ B / D_j; a multiplier's row is ḡ_j = g̃_j / D_j while its force is λ_j B_j, so
+    /// K_λu = K_uλᵀ / D_j (the full tangent stored as one triangle lost the other: mortar
+    /// multipliers solved with full tangents diverged).
+    fn symmetric(&self) -> bool {
+        self.law != ContactLaw::Multiplier
+    }
+
     fn n_multipliers(&self, slots: usize) -> usize {
         if self.law == ContactLaw::Multiplier {
             slots * self.multipliers_per_slot()
@@ -225,7 +235,13 @@ impl SlotLaw {
             let d = (w.gap.d.iter().zip(&w.area.d))
                 .map(|(a, b)| (a - q * b) / w.area.v)
                 .collect();
-            (Jet { v: q, d }, w.b)
+            // With multipliers the force acts along the node's normal (see
+            // `SlipForm::along_normal`), so that it condenses out exactly.
+            let b = match (&w.slip, self.law) {
+                (Some(slip), ContactLaw::Multiplier) => slip.along_normal(local),
+                _ => w.b,
+            };
+            (Jet { v: q, d }, b)
         } else {
             (Jet::constant(f64::NAN, m), vec![Jet::constant(0.0, m); m])
         };
@@ -313,6 +329,43 @@ impl SlotLaw {
 }
 
 impl SlipForm {
+    /// The force direction of a multiplier: node n gets w_jn n̂_j, n̂_j = ∫ Φ_j ν / |∫ Φ_j ν| (over
+    /// the local unknowns). With the dual basis w_jk = δ_jk D_j among the slave nodes wherever the
+    /// master covers the slave facets, so a slave node carries its own multiplier alone and the
+    /// multipliers are eliminated through the slave rows (`solve::multipliers`) even where ν
+    /// varies over a facet (quadratic edges, rigid shapes), where ∫ Φ_j N_k ν would reach the
+    /// neighbours. A uniform pressure still gives the consistent nodal forces on a flat surface.
+    fn along_normal(&self, local: &Local) -> Vec<Jet> {
+        let (dim, m) = (local.dim, local.m());
+        let len = (0..dim)
+            .map(|i| self.normal[i].v * self.normal[i].v)
+            .sum::<f64>()
+            .sqrt();
+        // n̂ with ∂n̂ = (∂ν − n̂ (n̂·∂ν)) / |ν|.
+        let unit: Vec<Jet> = (0..dim)
+            .map(|i| {
+                let v = self.normal[i].v / len;
+                let d = (0..m)
+                    .map(|t| {
+                        let proj: f64 = (0..dim)
+                            .map(|k| self.normal[k].v * self.normal[k].d[t])
+                            .sum::<f64>()
+                            / len;
+                        (self.normal[i].d[t] - v * proj) / len
+                    })
+                    .collect();
+                Jet { v, d }
+            })
+            .collect();
+        let mut b = vec![Jet::constant(0.0, m); m];
+        for (k, w) in &self.shares {
+            for (i, u) in unit.iter().enumerate() {
+                b[dim * k + i] = w.product(u);
+            }
+        }
+        b
+    }
+
     /// `elastic` (the elastic slip the last converged step left) plus the step's slip ũ_j, over
     /// the local unknowns (D_j = `area`).
     fn slip(&self, ctx: &Ctx, local: &Local, area: &Jet, elastic: [f64; 3]) -> Vec<Jet> {

@@ -1,0 +1,624 @@
+//! Newton systems with Lagrange multipliers solved for the displacements alone: each contact
+//! point's multipliers are eliminated through its slave node's equilibrium rows.
+//!
+//! A multiplier that acts on its slave node alone among the slave nodes — node-to-node and
+//! node-to-segment multipliers, and mortar multipliers weighted with the dual basis, whose force
+//! on slave node j is D_j times its own multiplier (∫ Φ_j N_k = δ_jk D_j) — enters the tangent
+//! as
+//!   rows S (the slave node's free equations):  K_S x + C λ = b_S,   C = Q [R; 0] (QR, r × p),
+//!   other rows i:                              K_i x + T_iλ λ = b_i,
+//! so that λ = R⁻¹ Q₁ᵀ (b_S − K_S x) and, with E = R⁻¹ Q₁ᵀ,
+//!   (K_i − T_iλ E K_S) x = b_i − T_iλ E b_S   (the constraint rows among them),
+//!   Q₂ᵀ K_S x = Q₂ᵀ b_S                      (the slave node's rows with no multiplier),
+//! a square system in the displacements (and the multipliers that could not be eliminated) with
+//! the fill of the slave rows in the master and constraint rows. The elimination is exact: a
+//! multiplier is eliminated only where the slave rows of the other eliminated points carry none of
+//! it (up to round-off, 1e-12 of its own coupling) and C has full column rank; the others stay
+//! unknowns of the reduced system.
+
+use super::linear::LinearSolver;
+use crate::assembly::Pattern;
+use crate::error::Result;
+
+/// One contact point's multipliers and its slave node's free equations.
+#[derive(Debug, Clone)]
+pub struct Group {
+    pub slave: Vec<usize>,
+    pub lambdas: Vec<usize>,
+}
+
+/// Entries of other slave rows in an eliminated multiplier's column below this fraction of its
+/// own coupling are round-off of the dual basis' biorthogonality and are dropped.
+const COUPLING_TOL: f64 = 1e-12;
+
+/// The reduced system's solver, kept while its pattern stays the same.
+#[derive(Default)]
+pub struct MultiplierElimination {
+    solver: LinearSolver,
+    pattern: Option<Pattern>,
+    /// Multipliers eliminated and kept in the last solve.
+    pub eliminated: usize,
+    pub kept: usize,
+}
+
+/// An eliminated group: its rows, multipliers, Q (r × r, row-major) and E = R⁻¹Q₁ᵀ (p × r).
+struct Eliminated {
+    slave: Vec<usize>,
+    lambdas: Vec<usize>,
+    q: Vec<f64>,
+    e: Vec<f64>,
+}
+
+/// A sparse matrix in compressed rows.
+struct Rows {
+    ptr: Vec<usize>,
+    col: Vec<usize>,
+    val: Vec<f64>,
+}
+
+impl Rows {
+    /// Both triangles of the matrix `values` on `pattern`, by rows.
+    fn new(pattern: &Pattern, values: &[f64]) -> Rows {
+        let n = pattern.n;
+        let mut count = vec![0usize; n + 1];
+        for c in 0..n {
+            for k in pattern.col_ptr[c]..pattern.col_ptr[c + 1] {
+                let r = pattern.row_idx[k];
+                count[r + 1] += 1;
+                if pattern.symmetric && r != c {
+                    count[c + 1] += 1;
+                }
+            }
+        }
+        for i in 0..n {
+            count[i + 1] += count[i];
+        }
+        let mut next = count.clone();
+        let nnz = count[n];
+        let (mut col, mut val) = (vec![0; nnz], vec![0.0; nnz]);
+        let mut put = |r: usize, c: usize, v: f64| {
+            col[next[r]] = c;
+            val[next[r]] = v;
+            next[r] += 1;
+        };
+        for c in 0..n {
+            for k in pattern.col_ptr[c]..pattern.col_ptr[c + 1] {
+                let r = pattern.row_idx[k];
+                put(r, c, values[k]);
+                if pattern.symmetric && r != c {
+                    put(c, r, values[k]);
+                }
+            }
+        }
+        Rows {
+            ptr: count,
+            col,
+            val,
+        }
+    }
+
+    fn row(&self, i: usize) -> impl Iterator<Item = (usize, f64)> + '_ {
+        (self.ptr[i]..self.ptr[i + 1]).map(|k| (self.col[k], self.val[k]))
+    }
+}
+
+/// Householder QR of the r × p matrix `c` (row-major), r ≥ p: Q (r × r, row-major) and R
+/// (p × p, row-major, upper).
+fn qr(c: &[f64], r: usize, p: usize) -> (Vec<f64>, Vec<f64>) {
+    let mut a = c.to_vec();
+    let mut q = vec![0.0; r * r];
+    for i in 0..r {
+        q[i * r + i] = 1.0;
+    }
+    for k in 0..p {
+        let norm = (k..r).map(|i| a[i * p + k].powi(2)).sum::<f64>().sqrt();
+        if norm == 0.0 {
+            continue;
+        }
+        let alpha = if a[k * p + k] > 0.0 { -norm } else { norm };
+        let mut v: Vec<f64> = (0..r)
+            .map(|i| if i < k { 0.0 } else { a[i * p + k] })
+            .collect();
+        v[k] -= alpha;
+        let vv: f64 = v.iter().map(|x| x * x).sum();
+        if vv == 0.0 {
+            continue;
+        }
+        // A ← (I − 2vvᵀ/vᵀv) A, Q ← Q (I − 2vvᵀ/vᵀv).
+        for j in 0..p {
+            let s: f64 = (0..r).map(|i| v[i] * a[i * p + j]).sum::<f64>() * 2.0 / vv;
+            for i in 0..r {
+                a[i * p + j] -= s * v[i];
+            }
+        }
+        for i in 0..r {
+            let s: f64 = (0..r).map(|l| q[i * r + l] * v[l]).sum::<f64>() * 2.0 / vv;
+            for l in 0..r {
+                q[i * r + l] -= s * v[l];
+            }
+        }
+    }
+    let rm = (0..p * p)
+        .map(|ij| {
+            let (i, j) = (ij / p, ij % p);
+            if j >= i {
+                a[i * p + j]
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    (q, rm)
+}
+
+impl MultiplierElimination {
+    /// Reduced systems of `krylov_min` unknowns and more are solved by GMRES (see
+    /// [`LinearSolver`]).
+    pub fn new(krylov_min: usize) -> MultiplierElimination {
+        let mut solver = LinearSolver::default();
+        solver.krylov_min = krylov_min;
+        MultiplierElimination {
+            solver,
+            ..Default::default()
+        }
+    }
+
+    /// The reduced system's last factorization and solve.
+    pub fn stats(&self) -> &super::linear::SolverStats {
+        &self.solver.stats
+    }
+
+    /// Solve T x = `rhs` in place (T: `values` on `pattern`, displacements and multipliers),
+    /// eliminating the multipliers of `groups` where that is exact (see the module doc).
+    pub fn solve(
+        &mut self,
+        pattern: &Pattern,
+        values: &[f64],
+        rhs: &mut [f64],
+        groups: &[Group],
+        describe: &dyn Fn(usize) -> String,
+    ) -> Result<()> {
+        let n = pattern.n;
+        let rows = Rows::new(pattern, values);
+        let (eliminated, decoupled) = eliminable(&rows, n, groups);
+        // Unknowns kept, and where each row goes in the reduced system.
+        let mut gone = vec![false; n];
+        let mut slave_of = vec![usize::MAX; n];
+        // Eliminated multiplier l is multiplier a of group g: place[l] = (g, a).
+        let mut place = vec![(usize::MAX, 0); n];
+        for (g, el) in eliminated.iter().enumerate() {
+            for (a, &l) in el.lambdas.iter().enumerate() {
+                gone[l] = true;
+                place[l] = (g, a);
+            }
+            for &s in &el.slave {
+                slave_of[s] = g;
+            }
+        }
+        // A decoupled group's rows and columns leave the system; its multipliers are solved
+        // from its own rows afterwards.
+        let mut own = vec![false; n];
+        for &g in &decoupled {
+            for &l in &groups[g].lambdas {
+                gone[l] = true;
+                own[l] = true;
+            }
+        }
+        let kept: Vec<usize> = (0..n).filter(|&i| !gone[i]).collect();
+        let mut pos = vec![usize::MAX; n];
+        for (k, &i) in kept.iter().enumerate() {
+            pos[i] = k;
+        }
+        let nk = kept.len();
+        // Row i of T goes to reduced row `target[i]`; the slave rows' places are taken by their
+        // group's constraint rows (the first p) and Q₂ᵀ rows (the rest).
+        let mut target = pos.clone();
+        for el in &eliminated {
+            for (a, &l) in el.lambdas.iter().enumerate() {
+                target[l] = pos[el.slave[a]];
+            }
+        }
+        let mut triplets: Vec<(usize, usize, f64)> = Vec::new();
+        let mut b = vec![0.0; nk];
+        // Row i minus Σ_g T_iλ E_g (K_S, b_S) of the groups whose multipliers it holds.
+        for i in 0..n {
+            if slave_of[i] != usize::MAX || own[i] {
+                continue;
+            }
+            let t = target[i];
+            b[t] += rhs[i];
+            let mut z: Vec<(usize, Vec<f64>)> = Vec::new();
+            for (c, v) in rows.row(i) {
+                if !gone[c] {
+                    triplets.push((t, pos[c], v));
+                    continue;
+                }
+                let (g, a) = place[c];
+                if g == usize::MAX {
+                    // A decoupled multiplier: zero outside its own rows.
+                    continue;
+                }
+                let el = &eliminated[g];
+                let r = el.slave.len();
+                let at = match z.iter().position(|e| e.0 == g) {
+                    Some(at) => at,
+                    None => {
+                        z.push((g, vec![0.0; r]));
+                        z.len() - 1
+                    }
+                };
+                for (s, zs) in z[at].1.iter_mut().enumerate() {
+                    *zs += v * el.e[a * r + s];
+                }
+            }
+            for (g, zg) in z {
+                let el = &eliminated[g];
+                for (s, &zs) in el.slave.iter().zip(&zg) {
+                    b[t] -= zs * rhs[*s];
+                    for (c, v) in rows.row(*s) {
+                        if !gone[c] {
+                            triplets.push((t, pos[c], -zs * v));
+                        }
+                    }
+                }
+            }
+        }
+        // The slave rows with no multiplier: Q₂ᵀ K_S x = Q₂ᵀ b_S.
+        for el in &eliminated {
+            let (r, p) = (el.slave.len(), el.lambdas.len());
+            for col in p..r {
+                let t = pos[el.slave[col]];
+                for (a, &s) in el.slave.iter().enumerate() {
+                    let w = el.q[a * r + col];
+                    b[t] += w * rhs[s];
+                    for (c, v) in rows.row(s) {
+                        if !gone[c] {
+                            triplets.push((t, pos[c], w * v));
+                        }
+                    }
+                }
+            }
+        }
+        let (reduced, vals) = compress(nk, triplets);
+        if self
+            .pattern
+            .as_ref()
+            .is_none_or(|p| p.col_ptr != reduced.col_ptr || p.row_idx != reduced.row_idx)
+        {
+            self.solver.reset();
+            self.pattern = Some(reduced);
+        }
+        let reduced = self.pattern.as_ref().expect("set above");
+        let describe_kept = |k: usize| describe(kept[k]);
+        self.solver
+            .factorize(reduced, &vals, false, &describe_kept)?;
+        self.solver.solve_in_place(&mut b)?;
+        // x, then each group's multipliers λ = E (b_S − K_S x).
+        let mut x = vec![0.0; n];
+        for (k, &i) in kept.iter().enumerate() {
+            x[i] = b[k];
+        }
+        for el in &eliminated {
+            let r = el.slave.len();
+            let res: Vec<f64> = el
+                .slave
+                .iter()
+                .map(|&s| {
+                    rhs[s]
+                        - rows
+                            .row(s)
+                            .filter(|(c, _)| !gone[*c])
+                            .map(|(c, v)| v * x[c])
+                            .sum::<f64>()
+                })
+                .collect();
+            for (a, &l) in el.lambdas.iter().enumerate() {
+                x[l] = (0..r).map(|s| el.e[a * r + s] * res[s]).sum();
+            }
+        }
+        for &g in &decoupled {
+            let l = &groups[g].lambdas;
+            let p = l.len();
+            // T_LL λ = b_L − T_LK x, a p × p system.
+            let mut a = vec![0.0; p * p];
+            let mut f: Vec<f64> = l.iter().map(|&i| rhs[i]).collect();
+            for (ai, &i) in l.iter().enumerate() {
+                for (c, v) in rows.row(i) {
+                    match l.iter().position(|&x| x == c) {
+                        Some(b) => a[ai * p + b] += v,
+                        None if !gone[c] => f[ai] -= v * x[c],
+                        None => {}
+                    }
+                }
+            }
+            let lambda = solve_small(&mut a, &mut f, p).ok_or_else(|| {
+                crate::error::Error::Singular(format!(
+                    "the tangent matrix is singular at {}",
+                    describe(l[0])
+                ))
+            })?;
+            for (&i, v) in l.iter().zip(lambda) {
+                x[i] = v;
+            }
+        }
+        rhs.copy_from_slice(&x);
+        self.eliminated = eliminated.iter().map(|e| e.lambdas.len()).sum::<usize>()
+            + decoupled
+                .iter()
+                .map(|&g| groups[g].lambdas.len())
+                .sum::<usize>();
+        self.kept = groups.iter().map(|g| g.lambdas.len()).sum::<usize>() - self.eliminated;
+        Ok(())
+    }
+}
+
+/// The groups whose multipliers can be eliminated exactly, with their QR, and those whose
+/// multipliers touch no row but their own (an open point's λ = 0).
+fn eliminable(rows: &Rows, n: usize, groups: &[Group]) -> (Vec<Eliminated>, Vec<usize>) {
+    // A slave row claimed by two groups (a node slave of two conditions) serves neither.
+    let mut owner = vec![usize::MAX; n];
+    let mut shared = vec![false; groups.len()];
+    for (g, gr) in groups.iter().enumerate() {
+        for &s in &gr.slave {
+            if owner[s] == usize::MAX {
+                owner[s] = g;
+            } else {
+                shared[g] = true;
+                shared[owner[s]] = true;
+            }
+        }
+    }
+    // Columns of the multipliers, by rows: T[i, l] for the slave rows i.
+    let mut lambda_of = vec![usize::MAX; n];
+    for (g, gr) in groups.iter().enumerate() {
+        for &l in &gr.lambdas {
+            lambda_of[l] = g;
+        }
+    }
+    let mut coupling: Vec<Vec<f64>> = groups
+        .iter()
+        .map(|gr| vec![0.0; gr.slave.len() * gr.lambdas.len()])
+        .collect();
+    // Groups whose columns hold a nonzero outside their own rows.
+    let mut touched = vec![false; groups.len()];
+    for i in 0..n {
+        for (c, v) in rows.row(i) {
+            let g = lambda_of[c];
+            if g != usize::MAX && v != 0.0 && !groups[g].lambdas.contains(&i) {
+                touched[g] = true;
+            }
+        }
+    }
+    // Largest entry of each group's columns in other groups' slave rows.
+    let mut stray = vec![0.0f64; groups.len()];
+    for (s, &g_row) in owner.iter().enumerate() {
+        if g_row == usize::MAX {
+            continue;
+        }
+        for (c, v) in rows.row(s) {
+            let g = lambda_of[c];
+            if g == usize::MAX {
+                continue;
+            }
+            if g == g_row {
+                let gr = &groups[g];
+                let a = gr.slave.iter().position(|&x| x == s).expect("own row");
+                let b = gr
+                    .lambdas
+                    .iter()
+                    .position(|&x| x == c)
+                    .expect("own multiplier");
+                coupling[g][a * gr.lambdas.len() + b] = v;
+            } else {
+                stray[g] = stray[g].max(v.abs());
+            }
+        }
+    }
+    let mut out = Vec::new();
+    let mut decoupled = Vec::new();
+    for (g, gr) in groups.iter().enumerate() {
+        let (r, p) = (gr.slave.len(), gr.lambdas.len());
+        if !touched[g] && p > 0 {
+            decoupled.push(g);
+            continue;
+        }
+        if shared[g] || p == 0 || p > r {
+            continue;
+        }
+        let c = &coupling[g];
+        let size = c.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        if !(size > 0.0) || stray[g] > COUPLING_TOL * size {
+            continue;
+        }
+        let (q, rm) = qr(c, r, p);
+        if (0..p).any(|i| rm[i * p + i].abs() <= 1e-10 * size) {
+            continue;
+        }
+        // E = R⁻¹ Q₁ᵀ by back substitution, column by column of Q₁ᵀ.
+        let mut e = vec![0.0; p * r];
+        for s in 0..r {
+            for i in (0..p).rev() {
+                let mut v = q[s * r + i];
+                for k in i + 1..p {
+                    v -= rm[i * p + k] * e[k * r + s];
+                }
+                e[i * r + s] = v / rm[i * p + i];
+            }
+        }
+        out.push(Eliminated {
+            slave: gr.slave.clone(),
+            lambdas: gr.lambdas.clone(),
+            q,
+            e,
+        });
+    }
+    (out, decoupled)
+}
+
+/// The solution of the dense p × p system `a` x = `f` (Gaussian elimination with partial
+/// pivoting), None if singular.
+fn solve_small(a: &mut [f64], f: &mut [f64], p: usize) -> Option<Vec<f64>> {
+    for k in 0..p {
+        let piv = (k..p).max_by(|&i, &j| a[i * p + k].abs().total_cmp(&a[j * p + k].abs()))?;
+        if a[piv * p + k] == 0.0 {
+            return None;
+        }
+        for j in 0..p {
+            a.swap(k * p + j, piv * p + j);
+        }
+        f.swap(k, piv);
+        for i in k + 1..p {
+            let m = a[i * p + k] / a[k * p + k];
+            for j in k..p {
+                a[i * p + j] -= m * a[k * p + j];
+            }
+            f[i] -= m * f[k];
+        }
+    }
+    let mut x = vec![0.0; p];
+    for i in (0..p).rev() {
+        let s: f64 = (i + 1..p).map(|j| a[i * p + j] * x[j]).sum();
+        x[i] = (f[i] - s) / a[i * p + i];
+    }
+    Some(x)
+}
+
+/// A general, structurally symmetric pattern (diagonal always present; the Krylov solver's
+/// preconditioner takes the symmetric part on it) and its values from triplets (duplicates
+/// summed).
+fn compress(n: usize, mut t: Vec<(usize, usize, f64)>) -> (Pattern, Vec<f64>) {
+    let transposed: Vec<(usize, usize, f64)> = t.iter().map(|&(r, c, _)| (c, r, 0.0)).collect();
+    t.extend(transposed);
+    t.extend((0..n).map(|i| (i, i, 0.0)));
+    t.sort_unstable_by_key(|e| (e.1, e.0));
+    let mut col_ptr = vec![0usize; n + 1];
+    let (mut row_idx, mut vals): (Vec<usize>, Vec<f64>) = (Vec::new(), Vec::new());
+    let mut last: Option<(usize, usize)> = None;
+    for (r, c, v) in t {
+        if last == Some((r, c)) {
+            *vals.last_mut().expect("an entry") += v;
+            continue;
+        }
+        last = Some((r, c));
+        row_idx.push(r);
+        vals.push(v);
+        col_ptr[c + 1] = row_idx.len();
+    }
+    for c in 0..n {
+        col_ptr[c + 1] = col_ptr[c + 1].max(col_ptr[c]);
+    }
+    (
+        Pattern {
+            n,
+            col_ptr,
+            row_idx,
+            symmetric: false,
+        },
+        vals,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A dense matrix's general pattern and values.
+    fn dense(a: &[Vec<f64>]) -> (Pattern, Vec<f64>) {
+        let n = a.len();
+        let mut t = Vec::new();
+        for (i, row) in a.iter().enumerate() {
+            for (j, &v) in row.iter().enumerate() {
+                if v != 0.0 {
+                    t.push((i, j, v));
+                }
+            }
+        }
+        compress(n, t)
+    }
+
+    #[test]
+    fn qr_reproduces_the_matrix() {
+        let c = [3.0, -1.0, 2.0, 0.5, -4.0, 1.5];
+        let (q, r) = qr(&c, 3, 2);
+        for i in 0..3 {
+            for j in 0..2 {
+                let v: f64 = (0..2).map(|k| q[i * 3 + k] * r[k * 2 + j]).sum();
+                assert!((v - c[i * 2 + j]).abs() < 1e-14, "{v} vs {}", c[i * 2 + j]);
+            }
+            for k in 0..3 {
+                let o: f64 = (0..3).map(|l| q[l * 3 + i] * q[l * 3 + k]).sum();
+                assert!((o - f64::from(u8::from(i == k))).abs() < 1e-14);
+            }
+        }
+    }
+
+    /// Two springs in series, the middle node held against a wall by a multiplier acting on it
+    /// alone (slave rows 1, 2; multiplier 4 ties u_1 + u_2 (a rotated direction) to 0.01), and a
+    /// master node 3 the multiplier also loads: the reduced solve gives the full solve's x.
+    #[test]
+    fn elimination_matches_the_full_solve() {
+        let a = vec![
+            vec![4.0, -1.0, 0.0, 0.0, 0.0],
+            vec![-1.0, 3.0, 0.5, -1.0, 0.6],
+            vec![0.0, 0.5, 2.0, 0.0, 0.8],
+            vec![0.0, -1.0, 0.0, 2.0, -1.0],
+            vec![0.0, 0.6, 0.8, -1.0, 0.0],
+        ];
+        let rhs = vec![1.0, 0.0, -0.5, 0.25, 0.01];
+        let (pattern, values) = dense(&a);
+        let mut full = LinearSolver::default();
+        full.factorize(&pattern, &values, false, &|i| format!("{i}"))
+            .unwrap();
+        let mut want = rhs.clone();
+        full.solve_in_place(&mut want).unwrap();
+        let mut got = rhs.clone();
+        let mut el = MultiplierElimination::default();
+        let groups = [Group {
+            slave: vec![1, 2],
+            lambdas: vec![4],
+        }];
+        el.solve(&pattern, &values, &mut got, &groups, &|i| format!("{i}"))
+            .unwrap();
+        assert_eq!((el.eliminated, el.kept), (1, 0));
+        for (g, w) in got.iter().zip(&want) {
+            assert!((g - w).abs() < 1e-13, "{got:?} vs {want:?}");
+        }
+    }
+
+    /// A multiplier that also loads another group's slave row is kept, and the solve is still
+    /// the full one.
+    #[test]
+    fn a_multiplier_on_two_slave_nodes_is_kept() {
+        let a = vec![
+            vec![2.0, -1.0, 1.0, 0.3],
+            vec![-1.0, 2.0, 0.2, 1.0],
+            vec![1.0, 0.2, 0.0, 0.0],
+            vec![0.3, 1.0, 0.0, 0.0],
+        ];
+        let rhs = vec![0.5, -0.5, 0.1, 0.2];
+        let (pattern, values) = dense(&a);
+        let mut full = LinearSolver::default();
+        full.factorize(&pattern, &values, false, &|i| format!("{i}"))
+            .unwrap();
+        let mut want = rhs.clone();
+        full.solve_in_place(&mut want).unwrap();
+        let groups = [
+            Group {
+                slave: vec![0],
+                lambdas: vec![2],
+            },
+            Group {
+                slave: vec![1],
+                lambdas: vec![3],
+            },
+        ];
+        let mut got = rhs.clone();
+        let mut el = MultiplierElimination::default();
+        el.solve(&pattern, &values, &mut got, &groups, &|i| format!("{i}"))
+            .unwrap();
+        assert_eq!((el.eliminated, el.kept), (0, 2));
+        for (g, w) in got.iter().zip(&want) {
+            assert!((g - w).abs() < 1e-13, "{got:?} vs {want:?}");
+        }
+    }
+}
