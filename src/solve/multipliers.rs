@@ -183,7 +183,9 @@ impl MultiplierElimination {
         let (eliminated, decoupled) = eliminable(&rows, n, groups);
         // Unknowns kept, and where each row goes in the reduced system.
         let mut gone = vec![false; n];
-        let mut slave_of = vec![usize::MAX; n];
+        // Rows not carried over as they are: the eliminated groups' slave rows and the decoupled
+        // groups' own rows.
+        let mut replaced = vec![false; n];
         // Eliminated multiplier l is multiplier a of group g: place[l] = (g, a).
         let mut place = vec![(usize::MAX, 0); n];
         for (g, el) in eliminated.iter().enumerate() {
@@ -192,16 +194,15 @@ impl MultiplierElimination {
                 place[l] = (g, a);
             }
             for &s in &el.slave {
-                slave_of[s] = g;
+                replaced[s] = true;
             }
         }
         // A decoupled group's rows and columns leave the system; its multipliers are solved
         // from its own rows afterwards.
-        let mut own = vec![false; n];
         for &g in &decoupled {
             for &l in &groups[g].lambdas {
                 gone[l] = true;
-                own[l] = true;
+                replaced[l] = true;
             }
         }
         let kept: Vec<usize> = (0..n).filter(|&i| !gone[i]).collect();
@@ -220,17 +221,25 @@ impl MultiplierElimination {
         }
         let mut triplets: Vec<(usize, usize, f64)> = Vec::new();
         let mut b = vec![0.0; nk];
+        // Reduced row t += w × (row s of T on the kept unknowns, b_s).
+        let mut add_row = |t: usize, s: usize, w: f64| {
+            b[t] += w * rhs[s];
+            for (c, v) in rows.row(s) {
+                if !gone[c] {
+                    triplets.push((t, pos[c], w * v));
+                }
+            }
+        };
         // Row i minus Σ_g T_iλ E_g (K_S, b_S) of the groups whose multipliers it holds.
         for i in 0..n {
-            if slave_of[i] != usize::MAX || own[i] {
+            if replaced[i] {
                 continue;
             }
             let t = target[i];
-            b[t] += rhs[i];
+            add_row(t, i, 1.0);
             let mut z: Vec<(usize, Vec<f64>)> = Vec::new();
             for (c, v) in rows.row(i) {
                 if !gone[c] {
-                    triplets.push((t, pos[c], v));
                     continue;
                 }
                 let (g, a) = place[c];
@@ -253,13 +262,8 @@ impl MultiplierElimination {
             }
             for (g, zg) in z {
                 let el = &eliminated[g];
-                for (s, &zs) in el.slave.iter().zip(&zg) {
-                    b[t] -= zs * rhs[*s];
-                    for (c, v) in rows.row(*s) {
-                        if !gone[c] {
-                            triplets.push((t, pos[c], -zs * v));
-                        }
-                    }
+                for (&s, &zs) in el.slave.iter().zip(&zg) {
+                    add_row(t, s, -zs);
                 }
             }
         }
@@ -269,13 +273,7 @@ impl MultiplierElimination {
             for col in p..r {
                 let t = pos[el.slave[col]];
                 for (a, &s) in el.slave.iter().enumerate() {
-                    let w = el.q[a * r + col];
-                    b[t] += w * rhs[s];
-                    for (c, v) in rows.row(s) {
-                        if !gone[c] {
-                            triplets.push((t, pos[c], w * v));
-                        }
-                    }
+                    add_row(t, s, el.q[a * r + col]);
                 }
             }
         }
@@ -536,6 +534,25 @@ mod tests {
         compress(n, t)
     }
 
+    /// Solve `a` x = `rhs` with the multipliers of `groups` eliminated, assert that x is the full
+    /// LU solve's to 1e-13, and return the (eliminated, kept) multipliers.
+    fn against_full_solve(a: &[Vec<f64>], rhs: &[f64], groups: &[Group]) -> (usize, usize) {
+        let (pattern, values) = dense(a);
+        let mut full = LinearSolver::default();
+        full.factorize(&pattern, &values, false, &|i| format!("{i}"))
+            .unwrap();
+        let mut want = rhs.to_vec();
+        full.solve_in_place(&mut want).unwrap();
+        let mut got = rhs.to_vec();
+        let mut el = MultiplierElimination::default();
+        el.solve(&pattern, &values, &mut got, groups, &|i| format!("{i}"))
+            .unwrap();
+        for (g, w) in got.iter().zip(&want) {
+            assert!((g - w).abs() < 1e-13, "{got:?} vs {want:?}");
+        }
+        (el.eliminated, el.kept)
+    }
+
     #[test]
     fn qr_reproduces_the_matrix() {
         let c = [3.0, -1.0, 2.0, 0.5, -4.0, 1.5];
@@ -564,25 +581,12 @@ mod tests {
             vec![0.0, -1.0, 0.0, 2.0, -1.0],
             vec![0.0, 0.6, 0.8, -1.0, 0.0],
         ];
-        let rhs = vec![1.0, 0.0, -0.5, 0.25, 0.01];
-        let (pattern, values) = dense(&a);
-        let mut full = LinearSolver::default();
-        full.factorize(&pattern, &values, false, &|i| format!("{i}"))
-            .unwrap();
-        let mut want = rhs.clone();
-        full.solve_in_place(&mut want).unwrap();
-        let mut got = rhs.clone();
-        let mut el = MultiplierElimination::default();
+        let rhs = [1.0, 0.0, -0.5, 0.25, 0.01];
         let groups = [Group {
             slave: vec![1, 2],
             lambdas: vec![4],
         }];
-        el.solve(&pattern, &values, &mut got, &groups, &|i| format!("{i}"))
-            .unwrap();
-        assert_eq!((el.eliminated, el.kept), (1, 0));
-        for (g, w) in got.iter().zip(&want) {
-            assert!((g - w).abs() < 1e-13, "{got:?} vs {want:?}");
-        }
+        assert_eq!(against_full_solve(&a, &rhs, &groups), (1, 0));
     }
 
     /// A multiplier that also loads another group's slave row is kept, and the solve is still
@@ -595,13 +599,7 @@ mod tests {
             vec![1.0, 0.2, 0.0, 0.0],
             vec![0.3, 1.0, 0.0, 0.0],
         ];
-        let rhs = vec![0.5, -0.5, 0.1, 0.2];
-        let (pattern, values) = dense(&a);
-        let mut full = LinearSolver::default();
-        full.factorize(&pattern, &values, false, &|i| format!("{i}"))
-            .unwrap();
-        let mut want = rhs.clone();
-        full.solve_in_place(&mut want).unwrap();
+        let rhs = [0.5, -0.5, 0.1, 0.2];
         let groups = [
             Group {
                 slave: vec![0],
@@ -612,13 +610,6 @@ mod tests {
                 lambdas: vec![3],
             },
         ];
-        let mut got = rhs.clone();
-        let mut el = MultiplierElimination::default();
-        el.solve(&pattern, &values, &mut got, &groups, &|i| format!("{i}"))
-            .unwrap();
-        assert_eq!((el.eliminated, el.kept), (0, 2));
-        for (g, w) in got.iter().zip(&want) {
-            assert!((g - w).abs() < 1e-13, "{got:?} vs {want:?}");
-        }
+        assert_eq!(against_full_solve(&a, &rhs, &groups), (0, 2));
     }
 }

@@ -336,7 +336,15 @@ impl NewtonContext<'_> {
         self.times.assembly += since(t);
         let mut closed: Vec<bool> = guess.to_vec();
         let mut search = BranchSearch::new(MAX_FULL_UPDATES);
-        let groups = self.multiplier_groups(points);
+        // Multipliers eliminated through their slave rows below the Krylov threshold; above it
+        // the saddle-point tangent's GMRES, preconditioned with the LDLᵀ of its symmetric part,
+        // serves better: the reduced system's symmetric part (gap rows in place of slave rows)
+        // is no preconditioner for it.
+        let groups = if nf < self.solver.krylov_min {
+            self.multiplier_groups(points)
+        } else {
+            Vec::new()
+        };
         loop {
             let mut kv = ks.k_values.clone().expect("requested");
             let mut step = rhs.clone();
@@ -362,10 +370,7 @@ impl NewtonContext<'_> {
                 })
                 .collect();
             self.asm.add_tangents(&mut kv, &contribs);
-            // Above the Krylov threshold the saddle-point tangent's GMRES, preconditioned with
-            // the LDLᵀ of its symmetric part, serves better: the reduced system's symmetric part
-            // (gap rows in place of slave rows) is no preconditioner for it.
-            if groups.is_empty() || nf >= self.solver.krylov_min {
+            if groups.is_empty() {
                 self.factorize(&kv)?;
                 let t = Instant::now();
                 self.solver.solve_in_place(&mut step)?;
