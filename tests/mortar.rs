@@ -590,3 +590,90 @@ fn mortar_multipliers_condense_out_of_full_tangents() {
         assert!(kept * 20 <= eliminated + kept, "{file}: {kept} kept");
     }
 }
+
+/// A slave block hanging over the master's end, tilted above it: the gap along the slave's normal
+/// is linear along the slave surface, g(x) = (0.05 + 0.02 (x − 1.3))·√(1 + 0.02²) (the height
+/// over the master divided by the normal's cosine), and the dual basis of each slave edge, adapted to
+/// the part of it over the master, gives every slave node that reaches the master its own gap
+/// g(x_j) exactly — also the node beyond the master's end (x = 2.3 > 2), whose edge overlaps the
+/// master over 40 % of its length. None touches. (With the whole edge's dual basis, 3ξ − 1 for
+/// that node and negative over most of the overlap, its mean gap came out about −2 g: a false
+/// penetration that no state satisfies with the slave held, and the Newton iteration failed.)
+#[test]
+fn mortar_gap_is_exact_on_slave_edges_past_the_master_end() {
+    let height = |x: f64| 0.05 + 0.02 * (x - 1.3);
+    let g = |x: f64| height(x) * (1.0f64 + 0.02 * 0.02).sqrt();
+    let xs = [1.3, 1.8, 2.3, 2.8];
+    for nlgeo in [0, 1] {
+        for law in [
+            "s2slagrangianmultipliercontact 3 loadTimeFunction 1",
+            "s2spenaltycontact 3 loadTimeFunction 1 penalty 1e4",
+        ] {
+            let mut nodes = Vec::new();
+            for (k, x) in [0.0, 2.0 / 3.0, 4.0 / 3.0, 2.0].iter().enumerate() {
+                nodes.push(format!("node {} coords 2 {x} -1", k + 1));
+                nodes.push(format!("node {} coords 2 {x} 0", k + 5));
+            }
+            for (k, &x) in xs.iter().enumerate() {
+                nodes.push(format!("node {} coords 2 {x} {}", k + 9, height(x)));
+                nodes.push(format!("node {} coords 2 {x} {}", k + 13, height(x) + 0.5));
+            }
+            let mut elems = Vec::new();
+            for i in 0..3 {
+                let (a, b) = (i + 1, i + 9);
+                for (e, n) in [(i + 1, a), (i + 4, b)] {
+                    elems.push(format!(
+                        "PlaneStress2d {e} nodes 4 {} {} {} {} crossSect 1 mat 1 nlgeo {nlgeo}",
+                        n,
+                        n + 1,
+                        n + 5,
+                        n + 4
+                    ));
+                }
+            }
+            let text = format!(
+                "overhang.out\nslave block over the master's end\n\
+                 StaticStructural nsteps 1 rtolf 1e-10 maxiter 10\ndomain 2dPlaneStress\n\
+                 OutputManager\nndofman 16 nelem 6 ncrosssect 1 nmat 1 nbc 3 nic 0 nltf 1 nset 4 \
+                 ncontactseg 2\n{}\n{}\n\
+                 linear2delementedgecontactsegment 1 edgeset 1\n\
+                 linear2delementedgecontactsegment 2 edgeset 2\n\
+                 SimpleCS 1 thick 1.0\nIsoLE 1 d 0 E 1000 n 0.3 tAlpha 0\n\
+                 BoundaryCondition 1 loadTimeFunction 1 dofs 2 1 2 values 2 0 0 set 3\n\
+                 BoundaryCondition 2 loadTimeFunction 1 dofs 2 1 2 values 2 0 0 set 4\n\
+                 {law} slavesegment 1 segmentset 1 2\n\
+                 ConstantFunction 1 f(t) 1.0\n\
+                 Set 1 elementboundaries 6 4 1 5 1 6 1\n\
+                 Set 2 elementboundaries 6 1 3 2 3 3 3\n\
+                 Set 3 nodes 4 1 2 3 4\nSet 4 nodes 8 9 10 11 12 13 14 15 16\n",
+                nodes.join("\n"),
+                elems.join("\n")
+            );
+            let model = common::model_from_text(&text).unwrap();
+            let mut states = Vec::new();
+            run_analysis(&model, &common::quiet(), |r| {
+                states = r.contact.to_vec();
+                Ok(())
+            })
+            .unwrap();
+            let mut checked = 0;
+            for s in &states {
+                let x = model.nodes[s.node].coords[0];
+                if x > 2.5 {
+                    // Its only edge lies beyond the master: no partner.
+                    assert!(s.gap.is_nan() || !s.active, "node at x = {x}");
+                    continue;
+                }
+                assert!(!s.active, "node at x = {x}: no contact");
+                assert!(
+                    (s.gap - g(x)).abs() < 1e-13,
+                    "nlgeo {nlgeo}, {law}: node at x = {x}: mean gap {} for {}",
+                    s.gap,
+                    g(x)
+                );
+                checked += 1;
+            }
+            assert_eq!(checked, 3, "{nlgeo} {law}");
+        }
+    }
+}

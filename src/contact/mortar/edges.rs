@@ -7,7 +7,10 @@
 //!   parameters of its ends' closest points (clipped to [0, 1]); a Gauss point ξ meets the
 //!   master where the line x(ξ) + t ν(ξ) crosses it, at η(ξ) (both by Newton, then one Newton
 //!   step in duals for the exact derivative);
-//! * gap g(ξ) = (x(ξ) − y(η(ξ)))·ν (< 0: penetration), against a rigid shape its signed distance.
+//! * gap g(ξ) = (x(ξ) − y(η(ξ)))·ν (< 0: penetration), against a rigid shape its signed distance;
+//! * Φ_j: the dual basis biorthogonal over the overlapped part of the slave edge (the union of
+//!   the segments), so that ḡ_j is exact for a linear gap field also on an edge that reaches
+//!   past the master's end.
 //!
 //! In small deformation the segmentation, the normals and the weights are those of the reference
 //! configuration and only the gap follows the displacements (linear contact); in large
@@ -43,7 +46,9 @@ pub struct Mortar {
     rigid_nodes: Vec<usize>,
     /// How far the search for master edges goes.
     search_limit: f64,
-    /// Per slave edge, the coefficients of its dual basis (reference configuration).
+    /// Per slave edge, the coefficients of its dual basis (reference configuration), for rigid
+    /// shapes, which face the whole edge; against master edges the basis is adapted to the
+    /// overlap ([`overlap_dual_row`]).
     dual: Vec<[[f64; 4]; 4]>,
 }
 
@@ -298,6 +303,62 @@ fn edge_dual_basis(x: &[[f64; 3]]) -> [[f64; 4]; 4] {
     super::segment::biorthogonal(&m, &d, k)
 }
 
+/// Row `j` of the dual basis of a slave edge (reference positions `x`) adapted to the parts
+/// `spans` = [ξ_lo, ξ_hi] of it that overlap the master (Popp et al. 2013): Φ_j = Σ_b A_jb N_b
+/// with ∫ Φ_j N_k = δ_jk ∫ N_k over the spans, A = D M⁻¹ of M and D integrated over them, in
+/// duals (the spans move with the unknowns in large deformation). Over the whole edge it is
+/// [`edge_dual_basis`]; over a part, ḡ_j is the gap at node j of the gap field's linear (or
+/// quadratic) fit over the overlap, so its sign is the gap's.
+fn overlap_dual_row(x: &[[f64; 3]], spans: &[(Dual, Dual)], j: usize) -> Vec<Dual> {
+    let k = x.len();
+    let zero = spans[0].0 * 0.0;
+    let (mut mm, mut d) = ([[zero; 3]; 3], [zero; 3]);
+    for &(lo, hi) in spans {
+        let half = (hi - lo) * 0.5;
+        for &(z, wz) in &GAUSS5 {
+            let s = lo + half * (1.0 + z);
+            let (n, dn) = shape(k, s);
+            let t: [Dual; 2] =
+                std::array::from_fn(|i| (0..k).fold(zero, |acc, a| acc + dn[a] * x[a][i]));
+            let ds = half * wz * (t[0] * t[0] + t[1] * t[1]).sqrt();
+            for a in 0..k {
+                d[a] = d[a] + n[a] * ds;
+                for b in 0..k {
+                    mm[a][b] = mm[a][b] + n[a] * n[b] * ds;
+                }
+            }
+        }
+    }
+    // Row j of M⁻¹ (M symmetric): solve M y = e_j by Gauss–Jordan with partial pivoting.
+    let mut aug: Vec<Vec<Dual>> = (0..k)
+        .map(|a| {
+            let mut row = mm[a][..k].to_vec();
+            row.push(if a == j { zero + 1.0 } else { zero });
+            row
+        })
+        .collect();
+    for c in 0..k {
+        let piv = (c..k)
+            .max_by(|&p, &q| aug[p][c].v.abs().total_cmp(&aug[q][c].v.abs()))
+            .expect("rows");
+        aug.swap(c, piv);
+        let p = aug[c][c];
+        for v in aug[c].iter_mut() {
+            *v = *v / p;
+        }
+        for r in 0..k {
+            if r != c {
+                let f = aug[r][c];
+                let row = aug[c].clone();
+                for (v, w) in aug[r].iter_mut().zip(row) {
+                    *v = *v - f * w;
+                }
+            }
+        }
+    }
+    (0..k).map(|b| d[j] * aug[b][k]).collect()
+}
+
 /// What one slave node's constraint integrates to, in duals.
 struct Integrals {
     gap: Dual,
@@ -377,7 +438,8 @@ impl Mortar {
                 let nu = [-(t[1] * e.side) / jac, t[0] * e.side / jac];
                 (x, t, nu, jac, curve(&xc, xi).0)
             };
-            let add = |w: &mut Integrals, lo: Dual, hi: Dual, gap_at: GapAt| {
+            // Φ_j = Σ_b coef[b] N_b over [lo, hi].
+            let add = |w: &mut Integrals, coef: &[Dual], lo: Dual, hi: Dual, gap_at: GapAt| {
                 let half = (hi - lo) * 0.5;
                 for &(z, wz) in gauss {
                     let xi = lo + half * (1.0 + z);
@@ -385,8 +447,7 @@ impl Mortar {
                     let (g, master, dir, jac) = gap_at(xi);
                     let ds = half * jac * wz;
                     let nj = shape_s[jloc];
-                    let phi =
-                        (0..xg.len()).fold(zero, |acc, b| acc + shape_s[b] * self.dual[k][jloc][b]);
+                    let phi = (0..xg.len()).fold(zero, |acc, b| acc + shape_s[b] * coef[b]);
                     w.gap = w.gap + phi * g * ds;
                     w.area = w.area + nj * ds;
                     // Slave nodes: ∫ Φ_j N_k ν; master nodes: −∫ Φ_j M_l ν.
@@ -411,10 +472,11 @@ impl Mortar {
                     }
                 }
             };
+            // The overlaps [ξ_lo, ξ_hi] of the master edges with the slave edge.
+            let mut pieces: Vec<(usize, Dual, Dual)> = Vec::new();
             for &mi in over {
                 let me = &self.master.edges[mi];
                 let yg: Vec<[Dual; 2]> = me.nodes.iter().map(|&n| geo(n)).collect();
-                let yc: Vec<[Dual; 2]> = me.nodes.iter().map(|&n| cur(n)).collect();
                 // The master's ends projected on the slave edge: (y − x(ξ))·x'(ξ) = 0.
                 let project = |y: [Dual; 2]| {
                     let chord = [xg[1][0] - xg[0][0], xg[1][1] - xg[0][1]];
@@ -438,13 +500,30 @@ impl Mortar {
                 if hi.v > 1.0 {
                     hi = Dual::constant(1.0, m);
                 }
-                if hi.v - lo.v <= 1e-12 {
-                    continue;
+                if hi.v - lo.v > 1e-12 {
+                    pieces.push((mi, lo, hi));
                 }
+            }
+            // The dual basis biorthogonal over the overlap alone: on a slave edge that overlaps
+            // the master only in part (at the master's ends), the whole edge's basis can be
+            // negative over the overlap and turn the sign of the weighted gap (a node beyond the
+            // master's end then "penetrates" it).
+            let coef = if pieces.is_empty() {
+                Vec::new()
+            } else {
+                let xref: Vec<[f64; 3]> =
+                    e.nodes.iter().map(|&n| ctx.model.nodes[n].coords).collect();
+                let spans: Vec<(Dual, Dual)> = pieces.iter().map(|p| (p.1, p.2)).collect();
+                overlap_dual_row(&xref, &spans, jloc)
+            };
+            for (mi, lo, hi) in pieces {
+                let me = &self.master.edges[mi];
+                let yg: Vec<[Dual; 2]> = me.nodes.iter().map(|&n| geo(n)).collect();
+                let yc: Vec<[Dual; 2]> = me.nodes.iter().map(|&n| cur(n)).collect();
                 if w.partner == Partner::None {
                     w.partner = Partner::Edge(mi);
                 }
-                add(&mut w, lo, hi, &|xi: Dual| {
+                add(&mut w, &coef, lo, hi, &|xi: Dual| {
                     let (x, t, nu, jac, xcur) = at(xi);
                     // η where x(ξ) + s ν crosses the master: (y(η) − x(ξ))·x'(ξ) = 0.
                     let eta = solve(0.5, m, yg.len() == 2, |eta| {
@@ -469,7 +548,8 @@ impl Mortar {
             if !self.rigid.is_empty() {
                 let one = Dual::constant(1.0, m);
                 w.partner = Partner::Rigid(self.rigid[0]);
-                add(&mut w, zero, one, &|xi: Dual| {
+                let coef = self.dual[k][jloc].map(|a| Dual::constant(a, m));
+                add(&mut w, &coef, zero, one, &|xi: Dual| {
                     let (_, _, _, jac, xcur) = at(xi);
                     let (g, n, node) = self.rigid_gap(ctx, &local, &q, &xcur);
                     // A rigid segment moving with a node: the node takes the reaction.

@@ -3,8 +3,9 @@
 //! transferred between non-matching meshes exactly (the contact patch test).
 //!
 //! Glossary (one slave node j with shape function N_j on the slave surface and dual shape
-//! function Φ_j, biorthogonal to the N_k on each slave edge or face of the reference
-//! configuration: ∫ Φ_j N_k = δ_jk ∫ N_k, Σ_j Φ_j = 1):
+//! function Φ_j, biorthogonal to the N_k on each slave face of the reference configuration, in
+//! 2D on the part of each slave edge that overlaps the master: ∫ Φ_j N_k = δ_jk ∫ N_k,
+//! Σ_j Φ_j = 1):
 //! * weighted gap g̃_j = ∫ Φ_j g dA, support D_j = ∫ N_j dA over the parts of the slave surface
 //!   that overlap the master, mean gap ḡ_j = g̃_j / D_j (g < 0: penetration);
 //! * force direction B_j: the slave node k gets ∫ Φ_j N_k ν dA, the master node l −∫ Φ_j M_l ν dA
