@@ -56,6 +56,10 @@ pub struct PlotArgs {
     /// Step of the pressure chart (default: the last)
     #[arg(long)]
     pub step: Option<usize>,
+    /// Load chart over time: each driven boundary condition's reaction against time (force
+    /// histories), not against its prescribed value
+    #[arg(long)]
+    pub time: bool,
     /// Coordinate along the contact surface
     #[arg(long, value_enum, default_value = "x")]
     pub along: Along,
@@ -373,8 +377,9 @@ pub fn pressure_figure(
 }
 
 /// The load–displacement chart from a steps CSV: each boundary condition's summed reaction
-/// against its prescribed value, for those whose value changes; against time if none does.
-pub fn load_figure(path: &Path) -> Result<Figure> {
+/// against its prescribed value (or against time, `over_time`: force histories), for those whose
+/// value changes; against time if none does.
+pub fn load_figure(path: &Path, over_time: bool) -> Result<Figure> {
     let t = Table::read(path)?;
     let ct = need(&t, path, "time")?;
     let mut series = Vec::new();
@@ -394,7 +399,8 @@ pub fn load_figure(path: &Path) -> Result<Figure> {
             continue;
         };
         let driven = t.rows.iter().any(|r| r[ju] != 0.0);
-        let pts: Vec<(f64, f64)> = t.rows.iter().map(|r| (r[ju], r[j])).collect();
+        let along = if over_time { ct } else { ju };
+        let pts: Vec<(f64, f64)> = t.rows.iter().map(|r| (r[along], r[j])).collect();
         let label = format!("{bc}, DOF {dof}");
         if driven {
             series.push(Series {
@@ -412,6 +418,8 @@ pub fn load_figure(path: &Path) -> Result<Figure> {
     }
     let (x_label, series) = if series.is_empty() {
         ("time", by_time)
+    } else if over_time {
+        ("time", series)
     } else {
         ("prescribed displacement (mean over the set)", series)
     };
@@ -513,7 +521,7 @@ pub fn plot_files(args: &PlotArgs) -> Result<Vec<PathBuf>> {
                 pressure_figure(&input("contact.csv"), args.step, args.along, args.hertz)?,
                 "pressure",
             ),
-            Chart::Load => (load_figure(&input("steps.csv"))?, "load"),
+            Chart::Load => (load_figure(&input("steps.csv"), args.time)?, "load"),
             Chart::Residuals => (residual_figure(&input("newton.csv"))?, "residuals"),
         };
         let out = dir.join(format!("{base}.{name}.{ext}"));
@@ -554,6 +562,36 @@ mod tests {
         }
         assert_eq!(radii[0], radii[1]);
         assert_eq!(radii[0], vec![(0.0, 9.0), (0.5, 7.0), (1.3, 3.0)]);
+        std::fs::remove_dir_all(dir).ok();
+    }
+
+    /// The load chart of a press-then-slide run: each driven reaction against its prescribed
+    /// value, or with `over_time` against time (the force histories), from the origin.
+    #[test]
+    fn load_chart_over_time_holds_the_force_histories() {
+        let dir = std::env::temp_dir().join(format!("hertz-plot-t-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("run.steps.csv");
+        std::fs::write(
+            &path,
+            "step,time,iterations,substeps,residual,bc2.u2,bc2.r2,bc3.u1,bc3.r1\n\
+             1,0.5,2,1,0,-1,4,0,0.5\n\
+             2,1.5,2,1,0,-1,5,2,1.5\n",
+        )
+        .unwrap();
+        let points = |over_time| {
+            let fig = super::load_figure(&path, over_time).unwrap();
+            let pts: Vec<Vec<(f64, f64)>> = fig.series.iter().map(|s| s.points.clone()).collect();
+            (fig.x_label, pts)
+        };
+        let (label, by_value) = points(false);
+        assert!(label.starts_with("prescribed"));
+        assert_eq!(by_value[0], vec![(0.0, 0.0), (-1.0, 4.0), (-1.0, 5.0)]);
+        assert_eq!(by_value[1], vec![(0.0, 0.0), (0.0, 0.5), (2.0, 1.5)]);
+        let (label, by_time) = points(true);
+        assert_eq!(label, "time");
+        assert_eq!(by_time[0], vec![(0.0, 0.0), (0.5, 4.0), (1.5, 5.0)]);
+        assert_eq!(by_time[1], vec![(0.0, 0.0), (0.5, 0.5), (1.5, 1.5)]);
         std::fs::remove_dir_all(dir).ok();
     }
 }

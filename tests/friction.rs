@@ -579,3 +579,71 @@ fn brick_pushed_obliquely_transmits_mu_n_along_the_push() {
         assert!(iterations.iter().all(|&i| i <= 4), "{iterations:?}");
     }
 }
+
+/// examples/ironing.in: a stiff half-ring die pressed 1.4 into a soft neo-Hookean slab, then
+/// dragged 4 along it (mortar contact with multipliers, μ = 0.3, large deformation). No closed
+/// form; checked: every step converges without a cut-back in a few Newton iterations (the slab
+/// nodes passing the die's ends made it chatter and fail before the dual basis was adapted to
+/// the overlap), the die's reaction balances the slab's, every slipping slave node's friction
+/// force is μ times its normal force (to the Newton tolerance, 1e-8 of the die's force), and in
+/// sliding the horizontal force exceeds μ times the
+/// vertical one (friction plus the slab pushed ahead of the die).
+#[test]
+fn ironing_converges_and_slides_on_the_coulomb_cone() {
+    let model = hertz::input::read_model(Path::new("examples/ironing.in"))
+        .unwrap()
+        .model;
+    let mut iterations = Vec::new();
+    let mut slipping = 0;
+    let mut ratio = Vec::new();
+    run_analysis(&model, &common::quiet(), |r| {
+        iterations.push(r.info.iterations);
+        assert_eq!(r.info.substeps, 1, "step {}: cut back", r.step);
+        // Summed reactions of the die's ends (BCs 2 and 3) and of the slab's bottom (BC 1).
+        let (mut die, mut slab) = ([0.0; 2], [0.0; 2]);
+        for (&(_, d, bc), &f) in r.dofs.prescribed.iter().zip(r.reactions) {
+            let k = usize::from(d) - 1;
+            if model.dirichlet[bc].number == 1 {
+                slab[k] += f;
+            } else {
+                die[k] += f;
+            }
+        }
+        for k in 0..2 {
+            assert!(
+                (die[k] + slab[k]).abs() <= 1e-7 * die[1].abs(),
+                "step {}: die {die:?}, slab {slab:?}",
+                r.step
+            );
+        }
+        for s in r.contact.iter().filter(|s| s.active) {
+            if let Some((false, f)) = s.friction {
+                slipping += 1;
+                assert!(
+                    (f - MU * s.force).abs() <= 1e-8 * die[1].abs(),
+                    "step {}: node {}: friction {f} for normal force {} (relative {:e})",
+                    r.step,
+                    s.node,
+                    s.force,
+                    (f - MU * s.force) / s.force
+                );
+            }
+        }
+        if r.time > 2.0 + 1e-9 {
+            ratio.push(die[0].abs() / die[1].abs());
+        }
+        Ok(())
+    })
+    .unwrap();
+    let total: usize = iterations.iter().sum();
+    println!(
+        "ironing: iterations per step {iterations:?} (total {total}), {slipping} slipping node-steps, \
+         Fx/Fy in sliding {:.4}..{:.4}",
+        ratio.iter().copied().fold(f64::INFINITY, f64::min),
+        ratio.iter().copied().fold(0.0, f64::max)
+    );
+    assert!(iterations.iter().all(|&i| i <= 10), "{iterations:?}");
+    assert!(2 * total <= 7 * iterations.len(), "{total} iterations");
+    assert!(slipping > 0);
+    assert!(ratio.iter().all(|&q| q > MU), "{ratio:?}");
+}

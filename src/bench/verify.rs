@@ -11,8 +11,13 @@ pub const NU: f64 = 0.3;
 
 /// The neo-Hookean record with the small-strain moduli E, ν (μ = 2 c1, K = k).
 pub fn neo_hookean(number: usize) -> String {
-    let mu = E / (2.0 * (1.0 + NU));
-    let k = E / (3.0 * (1.0 - 2.0 * NU));
+    neo_hookean_with(number, E, NU)
+}
+
+/// The neo-Hookean record with the small-strain moduli `e`, `nu`.
+pub fn neo_hookean_with(number: usize, e: f64, nu: f64) -> String {
+    let mu = e / (2.0 * (1.0 + nu));
+    let k = e / (3.0 * (1.0 - 2.0 * nu));
     format!(
         "mooneyrivlincompressiblemat {number} d 0 c1 {} c2 0 k {k}",
         0.5 * mu
@@ -554,5 +559,107 @@ impl LargeSliding {
         inp.functions.push(history(&steps));
         inp.functions.push("ConstantFunction 2 f(t) 1.0".into());
         inp.render("large_sliding", &analysis(self.steps), "PlaneStrain")
+    }
+}
+
+/// Ironing in 2D (the plane-strain section of Puso and Laursen's 3D ironing, 2004): a stiff
+/// half-ring die (radii 2.8 and 3.0, E = 1000) above a soft slab 9 × 3 (E = 1), both
+/// neo-Hookean (ν = 0.3), the die's lowest point 0.03 above the slab at x = −2.7, its two ends
+/// pressed down by 1.4 over t ∈ [0, 1] and then moved along x by `slide` over t ∈ [1, 5];
+/// mortar contact with multipliers, the slab's top the slave side, Coulomb friction `mu`.
+#[derive(Debug, Clone, Copy)]
+pub struct Ironing {
+    /// Elements along the die's half circle and along the slab, and through the slab.
+    pub n_die: usize,
+    pub nx: usize,
+    pub ny: usize,
+    /// Steps of the press (of length 1/`press_steps`, the slide's too).
+    pub press_steps: usize,
+    pub slide: f64,
+    pub mu: f64,
+}
+
+/// The die's press depth, inner and outer radii, and centre of [`Ironing`].
+const IRONING_DEPTH: f64 = 1.4;
+const IRONING_RADII: (f64, f64) = (2.8, 3.0);
+const IRONING_CENTRE: [f64; 2] = [-2.7, 3.03];
+
+impl Ironing {
+    pub fn input(&self) -> String {
+        use super::mesh::Kind;
+        use crate::fem::shape::Shape;
+        let mut inp = Input::default();
+        let (ri, ro) = IRONING_RADII;
+        let [xc, yc] = IRONING_CENTRE;
+        // The die: one element through its thickness, lower half circle from θ = π to 2π.
+        let ring: Vec<[usize; 2]> = (0..=self.n_die)
+            .map(|i| {
+                let th = std::f64::consts::PI * (1.0 + i as f64 / self.n_die as f64);
+                let (c, s) = (th.cos(), th.sin());
+                [
+                    inp.node(xc + ri * c, yc + ri * s, 0.0),
+                    inp.node(xc + ro * c, yc + ro * s, 0.0),
+                ]
+            })
+            .collect();
+        let mut die_edges = Vec::new();
+        for i in 0..self.n_die {
+            // Counter-clockwise, edge 1 (nodes 1–2) on the outer circle.
+            let n = [ring[i][1], ring[i + 1][1], ring[i + 1][0], ring[i][0]];
+            let e = inp.elements.len() + 1;
+            inp.elements.push(format!(
+                "Quad1PlaneStrain {e} nodes 4 {} {} {} {} mat 1 crossSect 1 nlgeo 1",
+                n[0], n[1], n[2], n[3]
+            ));
+            inp.cells.push((Shape::Quad4, n.to_vec()));
+            die_edges.push((e, 1));
+        }
+        let ends = [ring[0], ring[self.n_die]].concat();
+        let xs = uniform(-4.5, 4.5, self.nx);
+        let slab = inp.block2d(
+            Kind::Q4,
+            &xs,
+            &|_| uniform(-3.0, 0.0, self.ny),
+            "mat 2 crossSect 1 nlgeo 1",
+        );
+        let master = inp.boundary_set(&die_edges);
+        let slave = inp.boundary_set(&slab.top_edges);
+        inp.segments.push(format!(
+            "linear2delementedgecontactsegment 1 edgeset {master}"
+        ));
+        inp.segments.push(format!(
+            "linear2delementedgecontactsegment 2 edgeset {slave}"
+        ));
+        inp.sections.push("SimpleCS 1 thick 1.0".into());
+        inp.materials.push(neo_hookean_with(1, 1000.0, 0.3));
+        inp.materials.push(neo_hookean_with(2, 1.0, 0.3));
+        let bottom = inp.node_set(&slab.bottom);
+        let die = inp.node_set(&ends);
+        inp.bcs.push(format!(
+            "BoundaryCondition 1 loadTimeFunction 1 dofs 2 1 2 values 2 0 0 set {bottom}"
+        ));
+        inp.bcs.push(format!(
+            "BoundaryCondition 2 loadTimeFunction 2 dofs 1 2 values 1 -{IRONING_DEPTH} set {die}"
+        ));
+        inp.bcs.push(format!(
+            "BoundaryCondition 3 loadTimeFunction 3 dofs 1 1 values 1 {} set {die}",
+            self.slide
+        ));
+        inp.bcs.push(format!(
+            "s2slagrangianmultipliercontact 4 loadTimeFunction 1 slavesegment 2 segmentset 1 1 \
+             friction {}",
+            self.mu
+        ));
+        inp.functions.push("ConstantFunction 1 f(t) 1.0".into());
+        inp.functions
+            .push("PiecewiseLinFunction 2 npoints 3 t 3 0 1 5 f(t) 3 0 1 1".into());
+        inp.functions
+            .push("PiecewiseLinFunction 3 npoints 3 t 3 0 1 5 f(t) 3 0 0 1".into());
+        let n = 5 * self.press_steps;
+        let analysis = format!(
+            "StaticStructural nsteps {n} deltat {} rtolf 1e-8 maxiter 25",
+            1.0 / self.press_steps as f64
+        );
+        inp.render("ironing", &analysis, "PlaneStrain")
     }
 }
