@@ -20,6 +20,7 @@ use super::{nearest_sheet, rigid_node, search_limit, Facing, SlipForm, SlotLaw, 
 use crate::contact::dual::{self, Dual, Jet};
 use crate::contact::geometry::edges::{shape, EdgeSurface};
 use crate::contact::geometry::rigid;
+use crate::contact::geometry::scalar::Scalar;
 use crate::contact::search::broad::BroadPhase;
 use crate::contact::{ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState};
 use crate::error::{Error, Result};
@@ -48,7 +49,7 @@ pub struct Mortar {
     search_limit: f64,
     /// Per slave edge, the coefficients of its dual basis (reference configuration), for rigid
     /// shapes, which face the whole edge; against master edges the basis is adapted to the
-    /// overlap ([`overlap_dual_row`]).
+    /// overlap ([`dual_basis_over`]).
     dual: Vec<[[f64; 4]; 4]>,
 }
 
@@ -286,77 +287,37 @@ fn solve(s0: f64, m: usize, linear: bool, f: impl Fn(Dual) -> (Dual, Dual)) -> D
 /// The dual basis of a slave edge (straight or quadratic) at reference positions `x`
 /// (see [`super::segment::dual_basis`]).
 fn edge_dual_basis(x: &[[f64; 3]]) -> [[f64; 4]; 4] {
-    let k = x.len();
-    let (mut m, mut d) = ([[0.0; 4]; 4], [0.0; 4]);
-    for &(z, wz) in &GAUSS5 {
-        let s = 0.5 * (1.0 + z);
-        let (n, dn) = shape(k, s);
-        let t: [f64; 2] = std::array::from_fn(|i| (0..k).map(|a| dn[a] * x[a][i]).sum());
-        let ds = 0.5 * wz * (t[0] * t[0] + t[1] * t[1]).sqrt();
-        for a in 0..k {
-            d[a] += n[a] * ds;
-            for b in 0..k {
-                m[a][b] += n[a] * n[b] * ds;
-            }
-        }
-    }
-    super::segment::biorthogonal(&m, &d, k)
+    dual_basis_over(x, &[(0.0, 1.0)])
 }
 
-/// Row `j` of the dual basis of a slave edge (reference positions `x`) adapted to the parts
-/// `spans` = [ξ_lo, ξ_hi] of it that overlap the master (Popp et al. 2013): Φ_j = Σ_b A_jb N_b
-/// with ∫ Φ_j N_k = δ_jk ∫ N_k over the spans, A = D M⁻¹ of M and D integrated over them, in
-/// duals (the spans move with the unknowns in large deformation). Over the whole edge it is
-/// [`edge_dual_basis`]; over a part, ḡ_j is the gap at node j of the gap field's linear (or
-/// quadratic) fit over the overlap, so its sign is the gap's.
-fn overlap_dual_row(x: &[[f64; 3]], spans: &[(Dual, Dual)], j: usize) -> Vec<Dual> {
+/// The dual basis of a slave edge (reference positions `x`) biorthogonal over the parts
+/// `spans` = [ξ_lo, ξ_hi] of it (Popp et al. 2013): Φ_j = Σ_b A_jb N_b with ∫ Φ_j N_k =
+/// δ_jk ∫ N_k over the spans, A = D M⁻¹ of M and D integrated over them; in duals where the
+/// spans move with the unknowns (the overlap with the master in large deformation). Over the
+/// whole edge it is [`edge_dual_basis`]; over the part that overlaps the master, ḡ_j is the gap
+/// at node j of the gap field's linear (or quadratic) fit over the overlap, so its sign is the
+/// gap's.
+fn dual_basis_over<T: Scalar>(x: &[[f64; 3]], spans: &[(T, T)]) -> [[T; 4]; 4] {
     let k = x.len();
-    let zero = spans[0].0 * 0.0;
-    let (mut mm, mut d) = ([[zero; 3]; 3], [zero; 3]);
+    let zero = spans[0].0.cst(0.0);
+    let (mut m, mut d) = ([[zero; 4]; 4], [zero; 4]);
     for &(lo, hi) in spans {
         let half = (hi - lo) * 0.5;
         for &(z, wz) in &GAUSS5 {
             let s = lo + half * (1.0 + z);
             let (n, dn) = shape(k, s);
-            let t: [Dual; 2] =
+            let t: [T; 2] =
                 std::array::from_fn(|i| (0..k).fold(zero, |acc, a| acc + dn[a] * x[a][i]));
             let ds = half * wz * (t[0] * t[0] + t[1] * t[1]).sqrt();
             for a in 0..k {
                 d[a] = d[a] + n[a] * ds;
                 for b in 0..k {
-                    mm[a][b] = mm[a][b] + n[a] * n[b] * ds;
+                    m[a][b] = m[a][b] + n[a] * n[b] * ds;
                 }
             }
         }
     }
-    // Row j of M⁻¹ (M symmetric): solve M y = e_j by Gauss–Jordan with partial pivoting.
-    let mut aug: Vec<Vec<Dual>> = (0..k)
-        .map(|a| {
-            let mut row = mm[a][..k].to_vec();
-            row.push(if a == j { zero + 1.0 } else { zero });
-            row
-        })
-        .collect();
-    for c in 0..k {
-        let piv = (c..k)
-            .max_by(|&p, &q| aug[p][c].v.abs().total_cmp(&aug[q][c].v.abs()))
-            .expect("rows");
-        aug.swap(c, piv);
-        let p = aug[c][c];
-        for v in aug[c].iter_mut() {
-            *v = *v / p;
-        }
-        for r in 0..k {
-            if r != c {
-                let f = aug[r][c];
-                let row = aug[c].clone();
-                for (v, w) in aug[r].iter_mut().zip(row) {
-                    *v = *v - f * w;
-                }
-            }
-        }
-    }
-    (0..k).map(|b| d[j] * aug[b][k]).collect()
+    super::segment::biorthogonal(&m, &d, k)
 }
 
 /// What one slave node's constraint integrates to, in duals.
@@ -472,8 +433,9 @@ impl Mortar {
                     }
                 }
             };
-            // The overlaps [ξ_lo, ξ_hi] of the master edges with the slave edge.
-            let mut pieces: Vec<(usize, Dual, Dual)> = Vec::new();
+            // The overlaps [ξ_lo, ξ_hi] of the master edges (at `geo` positions) with the slave
+            // edge.
+            let mut pieces: Vec<(usize, Vec<[Dual; 2]>, Dual, Dual)> = Vec::new();
             for &mi in over {
                 let me = &self.master.edges[mi];
                 let yg: Vec<[Dual; 2]> = me.nodes.iter().map(|&n| geo(n)).collect();
@@ -501,7 +463,7 @@ impl Mortar {
                     hi = Dual::constant(1.0, m);
                 }
                 if hi.v - lo.v > 1e-12 {
-                    pieces.push((mi, lo, hi));
+                    pieces.push((mi, yg, lo, hi));
                 }
             }
             // The dual basis biorthogonal over the overlap alone: on a slave edge that overlaps
@@ -509,16 +471,15 @@ impl Mortar {
             // negative over the overlap and turn the sign of the weighted gap (a node beyond the
             // master's end then "penetrates" it).
             let coef = if pieces.is_empty() {
-                Vec::new()
+                [zero; 4]
             } else {
                 let xref: Vec<[f64; 3]> =
                     e.nodes.iter().map(|&n| ctx.model.nodes[n].coords).collect();
-                let spans: Vec<(Dual, Dual)> = pieces.iter().map(|p| (p.1, p.2)).collect();
-                overlap_dual_row(&xref, &spans, jloc)
+                let spans: Vec<(Dual, Dual)> = pieces.iter().map(|p| (p.2, p.3)).collect();
+                dual_basis_over(&xref, &spans)[jloc]
             };
-            for (mi, lo, hi) in pieces {
+            for (mi, yg, lo, hi) in pieces {
                 let me = &self.master.edges[mi];
-                let yg: Vec<[Dual; 2]> = me.nodes.iter().map(|&n| geo(n)).collect();
                 let yc: Vec<[Dual; 2]> = me.nodes.iter().map(|&n| cur(n)).collect();
                 if w.partner == Partner::None {
                     w.partner = Partner::Edge(mi);

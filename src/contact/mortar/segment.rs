@@ -298,35 +298,37 @@ pub fn dual_basis(kind: FaceKind, x: &[[f64; 3]]) -> [[f64; 4]; 4] {
 }
 
 /// A = D M⁻¹ of a slave facet with k ≤ 4 nodes from its M = [∫ N_a N_b] and D = [∫ N_a]: the
-/// coefficients of its dual basis Φ_a = Σ_b A_ab N_b.
-pub fn biorthogonal(m: &[[f64; 4]; 4], d: &[f64; 4], k: usize) -> [[f64; 4]; 4] {
+/// coefficients of its dual basis Φ_a = Σ_b A_ab N_b (in `f64`, or in duals where M and D
+/// follow the unknowns).
+pub fn biorthogonal<T: Scalar>(m: &[[T; 4]; 4], d: &[T; 4], k: usize) -> [[T; 4]; 4] {
     // Solve Mᵀ Aᵀ = D (M symmetric) by Gauss–Jordan on [M | D].
-    let mut aug = [[0.0; 8]; 4];
+    let zero = d[0].cst(0.0);
+    let mut aug = [[zero; 8]; 4];
     for a in 0..k {
         aug[a][..k].copy_from_slice(&m[a][..k]);
         aug[a][4 + a] = d[a];
     }
     for c in 0..k {
         let piv = (c..k)
-            .max_by(|&i, &j| aug[i][c].abs().total_cmp(&aug[j][c].abs()))
+            .max_by(|&i, &j| aug[i][c].val().abs().total_cmp(&aug[j][c].val().abs()))
             .expect("rows");
         aug.swap(c, piv);
         let p = aug[c][c];
         for v in aug[c].iter_mut() {
-            *v /= p;
+            *v = *v / p;
         }
         for r in 0..k {
             if r != c {
                 let f = aug[r][c];
                 let row = aug[c];
                 for (v, w) in aug[r].iter_mut().zip(row) {
-                    *v -= f * w;
+                    *v = *v - f * w;
                 }
             }
         }
     }
     // aug's right half is M⁻¹ D = (D M⁻¹)ᵀ.
-    let mut out = [[0.0; 4]; 4];
+    let mut out = [[zero; 4]; 4];
     for a in 0..k {
         for b in 0..k {
             out[a][b] = aug[b][4 + a];
