@@ -106,7 +106,9 @@ pub enum Hyperelastic {
 }
 
 impl Hyperelastic {
-    /// Small-strain shear and bulk moduli (G, K).
+    /// Small-strain shear and bulk moduli (G, K): the tangent at F = I. Simo–Pister's `k`
+    /// multiplies ½(ln J)² without an isochoric split, so it is Lamé's λ there and the bulk
+    /// modulus is k + 2G/3 (upstream's note E = 9KG/(3K + G) with K = k is only approximate).
     pub fn moduli(&self) -> (f64, f64) {
         match self {
             Hyperelastic::MooneyRivlin { c1, c2, k } => (2.0 * (c1 + c2), *k),
@@ -114,7 +116,7 @@ impl Hyperelastic {
                 0.5 * alpha.iter().zip(mu).map(|(a, m)| a * m).sum::<f64>(),
                 *k,
             ),
-            Hyperelastic::SimoPister { g, k } => (*g, *k),
+            Hyperelastic::SimoPister { g, k } => (*g, k + 2.0 * g / 3.0),
         }
     }
 
@@ -351,6 +353,34 @@ mod tests {
                                     a[i][j][k][l]
                                 );
                             }
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// The small-strain moduli are the tangent at F = I: A = λ δij δkl + G (δik δjl + δil δjk)
+    /// with λ = K − 2G/3.
+    #[test]
+    fn small_strain_moduli_are_the_tangent_at_the_identity() {
+        let id = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        for law in laws() {
+            let (g, k) = law.moduli();
+            let lambda = k - 2.0 * g / 3.0;
+            let (_, a) = law.pk1(&id).unwrap();
+            let d = |i: usize, j: usize| if i == j { 1.0 } else { 0.0 };
+            for i in 0..3 {
+                for j in 0..3 {
+                    for m in 0..3 {
+                        for n in 0..3 {
+                            let want = lambda * d(i, j) * d(m, n)
+                                + g * (d(i, m) * d(j, n) + d(i, n) * d(j, m));
+                            assert!(
+                                (a[i][j][m][n] - want).abs() < 1e-12,
+                                "{law:?}: A[{i}][{j}][{m}][{n}] {} vs {want}",
+                                a[i][j][m][n]
+                            );
                         }
                     }
                 }
