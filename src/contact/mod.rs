@@ -684,6 +684,36 @@ pub fn model_size(model: &Model) -> f64 {
     d2.sqrt().max(1e-300)
 }
 
+/// Young's modulus of the stiffest element on the master segments `segments` (infinite when one
+/// is rigid): with the slave's, the modulus of the friction law's c_T.
+pub fn master_young(model: &Model, segments: &[usize]) -> f64 {
+    let mut young = 0.0f64;
+    for &g in segments {
+        match &model.segments[g].kind {
+            SegmentKind::Edges { edges: sides } | SegmentKind::Faces { faces: sides } => {
+                for &(e, _) in sides {
+                    young = young.max(model.materials[model.elements[e].material].young());
+                }
+            }
+            _ => return f64::INFINITY,
+        }
+    }
+    young
+}
+
+/// The modulus of friction's c_T at a slave node of modulus `slave` against a master of modulus
+/// `master`: the two in series, E_s E_m / (E_s + E_m), as the tangential compliance of the
+/// contact is the sum of the two bodies'. With the slave's alone, c_T of a stiff slave on a
+/// soft master (the shallow ironing's die, ten times the block's E) is ten times the contact's
+/// stiffness, and the stick/slip iteration cycled at nodes on the stick–slip boundary.
+pub fn friction_modulus(slave: f64, master: f64) -> f64 {
+    if master.is_infinite() || !(master > 0.0) {
+        slave
+    } else {
+        slave * master / (slave + master)
+    }
+}
+
 /// Young's modulus of the stiffest element at each node (penalties chosen from the mesh).
 pub fn stiffest_young(model: &Model) -> std::collections::HashMap<usize, f64> {
     let mut young = std::collections::HashMap::new();

@@ -531,6 +531,23 @@ impl NewtonContext<'_> {
                         if !opened.is_empty() {
                             line += &format!("; opened {}", list(&opened));
                         }
+                        // Friction: the slipping nodes, and those that changed between stick
+                        // and slip.
+                        let slips = |s: &SlotState| s.friction.map(|(stick, _)| !stick);
+                        let slipping = states.iter().filter(|s| slips(s) == Some(true)).count();
+                        let switched: Vec<_> = states
+                            .iter()
+                            .zip(p)
+                            .filter(|(s, q)| {
+                                slips(s).is_some() && slips(q).is_some() && slips(s) != slips(q)
+                            })
+                            .collect();
+                        if states.iter().any(|s| s.friction.is_some()) {
+                            line += &format!("; slipping {slipping}");
+                        }
+                        if !switched.is_empty() {
+                            line += &format!(" (stick/slip changed: {})", list(&switched));
+                        }
                     }
                 }
                 eprintln!("{line}");

@@ -148,8 +148,9 @@ struct SlotLaw {
     friction: Option<Friction>,
     /// Per slot, the factor of the penalty (from the mesh when the condition gives none).
     scale: Vec<f64>,
-    /// Per slot, E/h (E of the stiffest element at the node, h the size of its slave facets):
-    /// the friction multipliers' c_T, per unit area.
+    /// Per slot, E/h (E of the stiffest element at the node and the master's in series, see
+    /// [`super::friction_modulus`]; h the size of its slave facets): the friction multipliers'
+    /// c_T, per unit area.
     stiffness: Vec<f64>,
     dim: usize,
 }
@@ -161,18 +162,26 @@ impl SlotLaw {
         let c = &model.contacts[ci];
         let young = super::stiffest_young(model);
         let stiffest = young.values().copied().fold(0.0, f64::max);
-        let stiffness: Vec<f64> = (0..slots.len())
-            .map(|j| young.get(&slots[j]).copied().unwrap_or(stiffest) / size(j))
-            .collect();
-        let scale = stiffness
+        // The slave's modulus at each slot, and the master's (friction's c_T has both).
+        let slave: Vec<f64> = slots
             .iter()
-            .map(|k| {
+            .map(|n| young.get(n).copied().unwrap_or(stiffest))
+            .collect();
+        let master = match &c.pairing {
+            crate::model::Pairing::Mortar { segments, .. } => super::master_young(model, segments),
+            _ => f64::INFINITY,
+        };
+        let scale = (0..slots.len())
+            .map(|j| {
                 if c.penalty_from_mesh {
-                    super::n2s::DEFAULT_PENALTY_FACTOR * k
+                    super::n2s::DEFAULT_PENALTY_FACTOR * slave[j] / size(j)
                 } else {
                     1.0
                 }
             })
+            .collect();
+        let stiffness = (0..slots.len())
+            .map(|j| super::friction_modulus(slave[j], master) / size(j))
             .collect();
         SlotLaw {
             number: c.number,

@@ -62,8 +62,9 @@ struct Slot {
     reach: f64,
     /// Factor of the penalties at this node (upstream OOFEM input: its number of slave elements).
     scale: f64,
-    /// E·A/h of the elements under the node (E their Young's modulus, A its tributary area, h
-    /// the distance to its neighbours).
+    /// E·A/h of the elements under the node with the master's E in series (E their Young's
+    /// modulus, see [`super::friction_modulus`]; A its tributary area, h the distance to its
+    /// neighbours): c_T of the friction multipliers.
     stiffness: f64,
 }
 
@@ -269,6 +270,7 @@ impl NodeToSegment {
         let tribs = super::tributary::tributaries(model, nodes);
         let young = super::stiffest_young(model);
         let stiffest = young.values().copied().fold(0.0, f64::max);
+        let master = super::master_young(model, segments);
         let slots = nodes
             .iter()
             .zip(tribs)
@@ -298,11 +300,12 @@ impl NodeToSegment {
                 };
                 // A node on no element (a rigid body's) gets the model's stiffest modulus.
                 let e = young.get(&node).copied().unwrap_or(stiffest);
-                let stiffness = e * super::law_area(t.measure, model) / h;
+                let per_modulus = super::law_area(t.measure, model) / h;
                 let mut scale = c.node_weights.as_ref().map_or(1.0, |w| w[k]);
                 if c.penalty_from_mesh {
-                    scale *= DEFAULT_PENALTY_FACTOR * stiffness;
+                    scale *= DEFAULT_PENALTY_FACTOR * e * per_modulus;
                 }
+                let stiffness = super::friction_modulus(e, master) * per_modulus;
                 Slot {
                     node,
                     area: t.measure,
