@@ -647,3 +647,62 @@ fn ironing_converges_and_slides_on_the_coulomb_cone() {
     assert!(slipping > 0);
     assert!(ratio.iter().all(|&q| q > MU), "{ratio:?}");
 }
+
+/// The shallow ironing benchmark (examples/shallow_ironing.in up to t = 1.5): the published
+/// vertical force at the end of the press, 268–332 N, and the ratio Fx/Fy at t = 1.5 (the die
+/// slid 5), 0.30–0.53 (Yang, Laursen and Meng 2005 and those after them); the die's reaction
+/// balances the block's; every step converges without a cut-back in at most 6 iterations.
+/// With c_T of the friction multipliers from the die's E alone (ten times the block's) the
+/// press cycled between stick and slip at one node and needed 8 and 16 substeps.
+#[test]
+fn shallow_ironing_gives_the_published_forces() {
+    use hertz::bench::examples::SHALLOW_IRONING;
+    use hertz::bench::verify::ShallowIroning;
+    let text = ShallowIroning {
+        end: 1.5,
+        ..SHALLOW_IRONING
+    }
+    .input();
+    let model = common::model_from_text(&text).unwrap();
+    let mut iterations = Vec::new();
+    let at = |t: f64, time: f64| (time - t).abs() < 1e-9;
+    let (mut fy_press, mut ratio) = (None, None);
+    run_analysis(&model, &common::quiet(), |r| {
+        iterations.push(r.info.iterations);
+        assert_eq!(r.info.substeps, 1, "step {}: cut back", r.step);
+        // The die's top (BCs 2, 3) and the block's bottom (BC 1).
+        let (mut die, mut block) = ([0.0; 2], [0.0; 2]);
+        for (&(_, d, bc), &f) in r.dofs.prescribed.iter().zip(r.reactions) {
+            let k = usize::from(d) - 1;
+            if model.dirichlet[bc].number == 1 {
+                block[k] += f;
+            } else {
+                die[k] += f;
+            }
+        }
+        for k in 0..2 {
+            assert!(
+                (die[k] + block[k]).abs() <= 1e-7 * die[1].abs().max(1.0),
+                "step {}: die {die:?}, block {block:?}",
+                r.step
+            );
+        }
+        if at(1.0, r.time) {
+            fy_press = Some(-die[1]);
+        }
+        if at(1.5, r.time) {
+            ratio = Some(die[0] / -die[1]);
+        }
+        Ok(())
+    })
+    .unwrap();
+    let (fy, ratio) = (fy_press.unwrap(), ratio.unwrap());
+    let total: usize = iterations.iter().sum();
+    println!(
+        "shallow ironing: Fy(1) = {fy:.2} N, Fx/Fy(1.5) = {ratio:.4}, iterations per step \
+         {iterations:?} (total {total})"
+    );
+    assert!((268.0..=332.0).contains(&fy), "Fy(1) = {fy}");
+    assert!((0.30..=0.53).contains(&ratio), "Fx/Fy(1.5) = {ratio}");
+    assert!(iterations.iter().all(|&i| i <= 6), "{iterations:?}");
+}

@@ -7,7 +7,7 @@ use super::mesh::Solid;
 use super::suite::{cylinder_on_block, Law};
 use super::verify::{
     neo_hookean_law, uniaxial_stress, ExtrudedCylinder, HertzSphere, Ironing, LargeSliding, Patch,
-    TwoBeams, WedgeOnBrick, E, NU, PATCH_H,
+    ShallowIroning, TwoBeams, WedgeOnBrick, E, NU, PATCH_H,
 };
 use crate::error::{Error, Result};
 use std::path::{Path, PathBuf};
@@ -56,6 +56,18 @@ pub const IRONING: Ironing = Ironing {
     ny: 6,
     press_steps: 10,
     slide: 4.0,
+    mu: 0.3,
+};
+
+/// The shallow ironing example's mesh and loading (the published path: press 1 in ten steps,
+/// slide 10; slide steps of 0.1).
+pub const SHALLOW_IRONING: ShallowIroning = ShallowIroning {
+    nx: 120,
+    ny: 20,
+    n_arc: 12,
+    n_die: 4,
+    slide_dt: 0.01,
+    end: 2.0,
     mu: 0.3,
 };
 
@@ -276,6 +288,33 @@ Run:  cargo run --release -- run examples/ironing.in",
                 ny = IRONING.ny
             ),
             input: IRONING.input(),
+        },
+        Example {
+            file: "shallow_ironing.in",
+            title: "Shallow ironing (Yang, Laursen and Meng): published force range, with friction",
+            header: format!(
+                "The 2D shallow ironing benchmark (Yang, Laursen and Meng 2005; Fischer and Wriggers 2006;
+Poulios and Renard 2015; Kratos' validation case), plane strain, mm and N/mm^2: a block
+12 x 4 (E = 689.6), bottom held, and a die (E = 6896) whose lower face is an arc of radius
+0.75 (chord 1.2, lowest point 0.2 above the block) under a rectangle; both neo-Hookean
+(nu = 0.32, simopistermat with k = Lame's lambda: W = G/2 (I1 - 3) - G ln J + lambda/2 (ln J)^2).
+The die's top pressed down by 1 over t in [0, 1] (10 steps), then moved along x by 10 (t - 1)
+({slides} steps). Mortar contact with multipliers, the die's arc the slave side, mu = {mu}.
+{nx} x {ny} block elements, {na} x {nd} die elements.
+Published: vertical force at t = 1 in 268-332 N, Fx/Fy at t = 1.5 in 0.30-0.53.
+hertz: Fy = 316.2 N at t = 1 (frictionless 309.6), Fx/Fy = 0.325 at t = 1.5 (block 80 x 14:
+317.4 and 0.327; 60 x 10 with slide steps of 0.05: 318.6 and 0.324); 1-5 Newton iterations
+per step up to t = 1.9, then 4-7 and one cut-back (t = 1.94) as the die nears the block's end. Checked in
+tests/friction.rs. Force histories: hertz plot shallow_ironing.steps.csv --chart load --time
+Run:  cargo run --release -- run examples/shallow_ironing.in",
+                slides = ((SHALLOW_IRONING.end - 1.0) / SHALLOW_IRONING.slide_dt).round(),
+                mu = SHALLOW_IRONING.mu,
+                nx = SHALLOW_IRONING.nx,
+                ny = SHALLOW_IRONING.ny,
+                na = SHALLOW_IRONING.n_arc,
+                nd = SHALLOW_IRONING.n_die
+            ),
+            input: SHALLOW_IRONING.input(),
         },
     ]
 }

@@ -663,3 +663,125 @@ impl Ironing {
         inp.render("ironing", &analysis, "PlaneStrain")
     }
 }
+
+/// The shallow ironing benchmark in 2D (Yang, Laursen and Meng 2005; also Fischer and Wriggers
+/// 2006, Poulios and Renard 2015, Kratos' `shallow_ironing` validation), plane strain, lengths
+/// in mm and moduli in N/mm² (forces in N per mm of thickness): a block 12 × 4 (E = 689.6) with
+/// its bottom held, and a die (E = 6896) whose lower face is a circular arc of radius 0.75
+/// (chord 1.2 from x = 0.2 to 1.4, its lowest point at x = 0.8, 0.2 above the block) under a
+/// rectangle up to 1.2 above the arc's ends; both neo-Hookean (ν = 0.32, Simo–Pister's
+/// compressible form with G and Lamé's λ: W = G/2 (I₁ − 3) − G ln J + λ/2 (ln J)², Kratos'
+/// `HyperElastic3DLaw`). The die's top is moved down by 1 over t ∈ [0, 1] in ten steps, then
+/// along x by 10 (t − 1); mortar contact with multipliers, the die's arc the slave side.
+#[derive(Debug, Clone, Copy)]
+pub struct ShallowIroning {
+    /// Block elements along x and through y; die elements along the arc and through the die.
+    pub nx: usize,
+    pub ny: usize,
+    pub n_arc: usize,
+    pub n_die: usize,
+    /// Time step of the slide (the press is ten steps of 0.1), and the last time.
+    pub slide_dt: f64,
+    pub end: f64,
+    pub mu: f64,
+}
+
+impl ShallowIroning {
+    /// The die's arc: radius, centre (x, y of its lowest point before the gap) and half chord.
+    pub const RADIUS: f64 = 0.75;
+    pub const CENTRE_X: f64 = 0.8;
+    pub const HALF_CHORD: f64 = 0.6;
+    /// The block's length and height, the die's initial gap, press depth and slide per unit t.
+    pub const LENGTH: f64 = 12.0;
+    pub const HEIGHT: f64 = 4.0;
+    pub const GAP: f64 = 0.2;
+    pub const DEPTH: f64 = 1.0;
+    pub const SPEED: f64 = 10.0;
+
+    /// The times of the steps: the press in ten steps, then the slide in steps of `slide_dt`.
+    pub fn times(&self) -> Vec<f64> {
+        let mut t: Vec<f64> = (1..=10).map(|k| k as f64 / 10.0).collect();
+        let n = ((self.end - 1.0) / self.slide_dt).round() as usize;
+        // Rounded to 1e-9 so that the file reads 1.14, not 1.1400000000000001.
+        t.extend((1..=n).map(|k| ((1.0 + k as f64 * self.slide_dt) * 1e9).round() / 1e9));
+        t
+    }
+
+    pub fn input(&self) -> String {
+        use super::mesh::Kind;
+        let mut inp = Input::default();
+        let (r, xc) = (Self::RADIUS, Self::CENTRE_X);
+        let bottom_y = Self::HEIGHT + Self::GAP;
+        let (yc, top) = (bottom_y + r, bottom_y + r + 0.45);
+        let half_angle = (Self::HALF_CHORD / r).asin();
+        // Die columns at equal angles along the arc, each from the arc up to the die's top.
+        let angles = uniform(-half_angle, half_angle, self.n_arc);
+        let xs: Vec<f64> = angles.iter().map(|a| xc + r * a.sin()).collect();
+        let die = inp.block2d(
+            Kind::Q4,
+            &xs,
+            &|i| uniform(yc - r * angles[i].cos(), top, self.n_die),
+            "mat 1 crossSect 1 nlgeo 1",
+        );
+        let block = inp.block2d(
+            Kind::Q4,
+            &uniform(0.0, Self::LENGTH, self.nx),
+            &|_| uniform(0.0, Self::HEIGHT, self.ny),
+            "mat 2 crossSect 1 nlgeo 1",
+        );
+        let slave = inp.boundary_set(&die.bottom_edges);
+        let master = inp.boundary_set(&block.top_edges);
+        inp.segments.push(format!(
+            "linear2delementedgecontactsegment 1 edgeset {master}"
+        ));
+        inp.segments.push(format!(
+            "linear2delementedgecontactsegment 2 edgeset {slave}"
+        ));
+        inp.sections.push("SimpleCS 1 thick 1.0".into());
+        inp.materials.push(simo_pister_with(1, 6896.0, 0.32));
+        inp.materials.push(simo_pister_with(2, 689.6, 0.32));
+        let held = inp.node_set(&block.bottom);
+        let driven = inp.node_set(&die.top);
+        inp.bcs.push(format!(
+            "BoundaryCondition 1 loadTimeFunction 1 dofs 2 1 2 values 2 0 0 set {held}"
+        ));
+        inp.bcs.push(format!(
+            "BoundaryCondition 2 loadTimeFunction 2 dofs 1 2 values 1 -{} set {driven}",
+            Self::DEPTH
+        ));
+        inp.bcs.push(format!(
+            "BoundaryCondition 3 loadTimeFunction 3 dofs 1 1 values 1 {} set {driven}",
+            Self::SPEED
+        ));
+        inp.bcs.push(format!(
+            "s2slagrangianmultipliercontact 4 loadTimeFunction 1 slavesegment 2 segmentset 1 1 \
+             friction {}",
+            self.mu
+        ));
+        let end = self.end.max(2.0);
+        inp.functions.push("ConstantFunction 1 f(t) 1.0".into());
+        inp.functions.push(format!(
+            "PiecewiseLinFunction 2 npoints 3 t 3 0 1 {end} f(t) 3 0 1 1"
+        ));
+        inp.functions.push(format!(
+            "PiecewiseLinFunction 3 npoints 3 t 3 0 1 {end} f(t) 3 0 0 {}",
+            end - 1.0
+        ));
+        let times: Vec<String> = self.times().iter().map(|t| format!("{t}")).collect();
+        let analysis = format!(
+            "StaticStructural nsteps {} prescribedTimes {} {} rtolf 1e-8 maxiter 25",
+            times.len(),
+            times.len(),
+            times.join(" ")
+        );
+        inp.render("shallow_ironing", &analysis, "PlaneStrain")
+    }
+}
+
+/// The Simo–Pister record with the small-strain moduli `e`, `nu` (g = G, k = Lamé's λ: the
+/// compressible neo-Hookean W = G/2 (I₁ − 3) − G ln J + λ/2 (ln J)²).
+pub fn simo_pister_with(number: usize, e: f64, nu: f64) -> String {
+    let g = e / (2.0 * (1.0 + nu));
+    let lambda = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+    format!("simopistermat {number} d 0 g {g} k {lambda}")
+}
