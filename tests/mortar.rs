@@ -677,3 +677,88 @@ fn mortar_gap_is_exact_on_slave_edges_past_the_master_end() {
         }
     }
 }
+
+/// The 3D form of the test above: a held slave block 2 × 2 bricks over x ∈ [1.3, 2.3] hanging
+/// over the master's end (x = 2), its bottom a tilted plane z = h(x, y) above the master's top
+/// z = 0, h = 0.05 + 0.02 (x − 1.3) + 0.01 y: the gap along the slave's normal is
+/// h·√(1 + 0.02² + 0.01²), linear over the slave faces, and the dual basis of each slave face
+/// adapted to the part of it over the master gives every slave node its own gap exactly — also
+/// the nodes at x = 2.3, whose faces overlap the master over 40 % of their width. None touches.
+/// Small deformation (large deformation: each face's basis is still the whole face's).
+#[test]
+fn mortar_gap_is_exact_on_slave_faces_past_the_master_end() {
+    use hertz::bench::mesh::{uniform, Input};
+    let height = |x: f64, y: f64| 0.05 + 0.02 * (x - 1.3) + 0.01 * y;
+    let stretch = (1.0f64 + 0.02 * 0.02 + 0.01 * 0.01).sqrt();
+    for law in [
+        "s2slagrangianmultipliercontact 3 loadTimeFunction 1",
+        "s2spenaltycontact 3 loadTimeFunction 1 penalty 1e4",
+    ] {
+        let mut inp = Input::default();
+        let extra = "mat 1 crossSect 1 nlgeo 0";
+        let master = inp.block3d(
+            &uniform(0.0, 2.0, 3),
+            &uniform(0.0, 2.0, 3),
+            &uniform(-1.0, 0.0, 1),
+            extra,
+        );
+        let slave = inp.block3d(
+            &uniform(1.3, 2.3, 2),
+            &uniform(0.2, 1.2, 2),
+            &uniform(0.0, 0.5, 1),
+            extra,
+        );
+        for n in slave.nodes.0..=slave.nodes.1 {
+            let p = &mut inp.nodes[n - 1];
+            p[2] += height(p[0], p[1]);
+        }
+        let mf = inp.faces_where(&master, &|p| p[2].abs() < 1e-12);
+        let sf = inp.faces_where(&slave, &|p| (p[2] - height(p[0], p[1])).abs() < 1e-12);
+        assert_eq!((mf.len(), sf.len()), (9, 4));
+        let (ms, ss) = (inp.boundary_set(&mf), inp.boundary_set(&sf));
+        inp.segments.push(format!(
+            "linear3delementsurfacecontactsegment 1 boundaryset {ms}"
+        ));
+        inp.segments.push(format!(
+            "linear3delementsurfacecontactsegment 2 boundaryset {ss}"
+        ));
+        inp.sections.push("SimpleCS 1".into());
+        inp.materials
+            .push("IsoLE 1 d 0 E 1000 n 0.3 tAlpha 0".into());
+        let held_master = inp.node_set(&master.bottom);
+        let held_slave: Vec<usize> = (slave.nodes.0..=slave.nodes.1).collect();
+        let held_slave = inp.node_set(&held_slave);
+        inp.bcs.push(format!(
+            "BoundaryCondition 1 loadTimeFunction 1 dofs 3 1 2 3 values 3 0 0 0 set {held_master}"
+        ));
+        inp.bcs.push(format!(
+            "BoundaryCondition 2 loadTimeFunction 1 dofs 3 1 2 3 values 3 0 0 0 set {held_slave}"
+        ));
+        inp.bcs.push(format!("{law} slavesegment 2 segmentset 1 1"));
+        inp.functions.push("ConstantFunction 1 f(t) 1.0".into());
+        let text = inp.render(
+            "overhang3d",
+            "StaticStructural nsteps 1 rtolf 1e-10 maxiter 10",
+            "3d",
+        );
+        let model = common::model_from_text(&text).unwrap();
+        let mut states = Vec::new();
+        run_analysis(&model, &common::quiet(), |r| {
+            states = r.contact.to_vec();
+            Ok(())
+        })
+        .unwrap();
+        assert_eq!(states.len(), 9);
+        for s in &states {
+            let [x, y, z] = model.nodes[s.node].coords;
+            assert!(!s.active, "{law}: node at ({x}, {y}): no contact");
+            // The node's own height (its coordinates as read, 12 decimals).
+            let g = z * stretch;
+            assert!(
+                (s.gap - g).abs() < 1e-10,
+                "{law}: node at ({x}, {y}): mean gap {} for {g}",
+                s.gap
+            );
+        }
+    }
+}

@@ -247,16 +247,26 @@ impl FaceMortar {
         for k in 0..self.slave.faces.len() {
             let sf = &self.slave.faces[k];
             let xs: Vec<[f64; 3]> = sf.nodes.iter().map(|&n| pos(n)).collect();
-            for mi in self.candidates(&masters, k, &pos) {
+            let pieces: Vec<(usize, Vec<Point<f64>>)> = self
+                .candidates(&masters, k, &pos)
+                .into_iter()
+                .map(|mi| {
+                    let mf = &self.master.faces[mi];
+                    let xm: Vec<[f64; 3]> = mf.nodes.iter().map(|&n| pos(n)).collect();
+                    (mi, overlap(sf.kind, &xs, sf.side, mf.kind, &xm))
+                })
+                .filter(|(_, points)| !points.is_empty())
+                .collect();
+            let dual = overlap_dual_basis(sf.nodes.len(), pieces.iter().flat_map(|p| &p.1));
+            for (mi, points) in pieces {
                 let mf = &self.master.faces[mi];
-                let xm: Vec<[f64; 3]> = mf.nodes.iter().map(|&n| pos(n)).collect();
-                for p in overlap(sf.kind, &xs, sf.side, mf.kind, &xm) {
+                for p in points {
                     for (a, &node) in sf.nodes.iter().enumerate() {
                         let form = &mut forms[self.slot_of[&node]];
                         if form.partner == Partner::None {
                             form.partner = Partner::Face(mi);
                         }
-                        let phi: f64 = (0..4).map(|b| self.dual[k][a][b] * p.slave[b]).sum();
+                        let phi: f64 = (0..4).map(|b| dual[a][b] * p.slave[b]).sum();
                         let na = phi * p.weight;
                         form.area += p.slave[a] * p.weight;
                         let pairs = sf
@@ -581,6 +591,25 @@ impl FaceMortar {
         }
         Ok((out, searching))
     }
+}
+
+/// The dual basis of a slave face with `k` nodes biorthogonal over the integration points
+/// `points` of its overlaps with the master (Popp et al. 2013): A = D M⁻¹ of M = Σ N_a N_b w and
+/// D = Σ N_a w over them. Where the master covers the whole face it is the face's own basis
+/// ([`super::segment::dual_basis`]); over a part of it, Φ_j still integrates a linear gap field
+/// to its value at node j times ∫ N_j, where the whole face's basis can be negative over the
+/// overlap and gives a node beside a master's end a false penetration.
+fn overlap_dual_basis<'a>(k: usize, points: impl Iterator<Item = &'a Point<f64>>) -> [[f64; 4]; 4] {
+    let (mut m, mut d) = ([[0.0; 4]; 4], [0.0; 4]);
+    for p in points {
+        for a in 0..k {
+            d[a] += p.slave[a] * p.weight;
+            for b in 0..k {
+                m[a][b] += p.slave[a] * p.slave[b] * p.weight;
+            }
+        }
+    }
+    super::segment::biorthogonal(&m, &d, k)
 }
 
 /// Add `v` (over a pair's unknowns, pair unknown i being the slot's `map[i]`) to the share of
