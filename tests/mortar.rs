@@ -684,18 +684,22 @@ fn mortar_gap_is_exact_on_slave_edges_past_the_master_end() {
 /// h·√(1 + 0.02² + 0.01²), linear over the slave faces, and the dual basis of each slave face
 /// adapted to the part of it over the master gives every slave node its own gap exactly — also
 /// the nodes at x = 2.3, whose faces overlap the master over 40 % of their width. None touches.
-/// Small deformation (large deformation: each face's basis is still the whole face's).
+/// Small and large deformation.
 #[test]
 fn mortar_gap_is_exact_on_slave_faces_past_the_master_end() {
     use hertz::bench::mesh::{uniform, Input};
     let height = |x: f64, y: f64| 0.05 + 0.02 * (x - 1.3) + 0.01 * y;
     let stretch = (1.0f64 + 0.02 * 0.02 + 0.01 * 0.01).sqrt();
-    for law in [
-        "s2slagrangianmultipliercontact 3 loadTimeFunction 1",
-        "s2spenaltycontact 3 loadTimeFunction 1 penalty 1e4",
-    ] {
+    for (nlgeo, law) in [0, 1].into_iter().flat_map(|g| {
+        [
+            "s2slagrangianmultipliercontact 3 loadTimeFunction 1",
+            "s2spenaltycontact 3 loadTimeFunction 1 penalty 1e4",
+        ]
+        .map(move |l| (g, l))
+    }) {
         let mut inp = Input::default();
-        let extra = "mat 1 crossSect 1 nlgeo 0";
+        let extra = format!("mat 1 crossSect 1 nlgeo {nlgeo}");
+        let extra = extra.as_str();
         let master = inp.block3d(
             &uniform(0.0, 2.0, 3),
             &uniform(0.0, 2.0, 3),
@@ -751,12 +755,15 @@ fn mortar_gap_is_exact_on_slave_faces_past_the_master_end() {
         assert_eq!(states.len(), 9);
         for s in &states {
             let [x, y, z] = model.nodes[s.node].coords;
-            assert!(!s.active, "{law}: node at ({x}, {y}): no contact");
+            assert!(
+                !s.active,
+                "nlgeo {nlgeo}, {law}: node at ({x}, {y}): no contact"
+            );
             // The node's own height (its coordinates as read, 12 decimals).
             let g = z * stretch;
             assert!(
                 (s.gap - g).abs() < 1e-10,
-                "{law}: node at ({x}, {y}): mean gap {} for {g}",
+                "nlgeo {nlgeo}, {law}: node at ({x}, {y}): mean gap {} for {g}",
                 s.gap
             );
         }

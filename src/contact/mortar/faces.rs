@@ -4,11 +4,15 @@
 //! the gap of each point its signed distance to the shape and ν the shape's normal there.
 //!
 //! The weighted gap and the force direction are weighted by the slave nodes' dual shape functions
-//! Φ_j (biorthogonal to N_j on each slave face, [`super::segment::dual_basis`], from the reference
-//! configuration): a slave node's force is then its own multiplier times its support, not spread
-//! over its neighbours, so the pressure does not oscillate from node to node. The support D_j
-//! stays ∫ N_j dA over the overlaps (positive where ∫ Φ_j need not be: on a slave face that the
-//! master covers only in part).
+//! Φ_j: a slave node's force is then its own multiplier times its support, not spread over its
+//! neighbours, so the pressure does not oscillate from node to node. Against master faces Φ_j is
+//! biorthogonal to N_j over the part of each slave face that the master covers (Popp et al.
+//! 2013; [`overlap_dual_basis`], and [`Moments`] in large deformation, where it moves with the
+//! master faces and its derivative is in the tangent): over a whole face it is the face's own
+//! basis, over a part of it a linear gap field still gives each node its own gap, where the
+//! whole face's basis turns negative and gave nodes beside a master's end a false penetration.
+//! Against rigid shapes, integrated over the whole face, it is the whole face's
+//! ([`super::segment::dual_basis`]). The support D_j is ∫ N_j dA over the overlaps.
 //!
 //! Small deformation: the segmentation, ν and the weights are those of the reference
 //! configuration, so each slave node's weighted gap is a fixed linear form of the current
@@ -55,7 +59,8 @@ pub struct FaceMortar {
     nlgeo: bool,
     /// Small deformation: the slots' linear forms, from the reference segmentation.
     linear: Vec<LinearSlot>,
-    /// Per slave face, the coefficients of its dual basis (reference configuration).
+    /// Per slave face, the coefficients of its whole (reference) face's dual basis: against
+    /// rigid shapes.
     dual: Vec<[[f64; 4]; 4]>,
     /// Rigid master shapes (planes, spheres; model segment indices) and the nodes they move with.
     rigid: Vec<usize>,
@@ -550,6 +555,10 @@ impl FaceMortar {
             out.push((local, w));
         }
         for (k, sf) in self.slave.faces.iter().enumerate() {
+            let kn = sf.nodes.len();
+            // Per node of the face, in its slot's unknowns: the integrals weighted by each N_b
+            // and the face's M and D over the overlaps (the dual basis adapted to them).
+            let mut moments: Vec<Option<Moments>> = (0..kn).map(|_| None).collect();
             for &mi in &candidates[k] {
                 let mf = &self.master.faces[mi];
                 let nodes: Vec<usize> = sf.nodes.iter().chain(&mf.nodes).copied().collect();
@@ -562,7 +571,7 @@ impl FaceMortar {
                         std::array::from_fn(|i| PairDual::variable(p[i], 3 * b + i, nv))
                     })
                     .collect();
-                let (xs, xm) = x.split_at(sf.nodes.len());
+                let (xs, xm) = x.split_at(kn);
                 let points = overlap(sf.kind, xs, sf.side, mf.kind, xm);
                 if points.is_empty() {
                     continue;
@@ -580,9 +589,15 @@ impl FaceMortar {
                             [3 * k, 3 * k + 1, 3 * k + 2]
                         })
                         .collect();
+                    let mo = moments[a].get_or_insert_with(|| Moments::new(kn, local.m()));
                     for p in &points {
-                        accumulate(w, &map, (a, &self.dual[k][a]), xs, xm, p);
+                        mo.add(&map, a, xs, xm, p);
                     }
+                }
+            }
+            for (a, &node) in sf.nodes.iter().enumerate() {
+                if let Some(mo) = moments[a].take() {
+                    mo.weigh(a, &mut out[self.slot_of[&node]].1);
                 }
             }
         }
@@ -610,6 +625,128 @@ fn overlap_dual_basis<'a>(k: usize, points: impl Iterator<Item = &'a Point<f64>>
         }
     }
     super::segment::biorthogonal(&m, &d, k)
+}
+
+/// One slave node's integrals over one slave face in large deformation, before the face's dual
+/// basis is known: `by[b]` weighted by N_b instead of Φ, and the face's M = ∫ N_b N_c and
+/// D = ∫ N_b over its overlaps with the master — all over the slot's unknowns, since the basis
+/// adapted to the overlaps moves with every master face under the slave face.
+struct Moments {
+    by: Vec<Weighted>,
+    m: Vec<Vec<Jet>>,
+    d: Vec<Jet>,
+}
+
+impl Moments {
+    fn new(kn: usize, m: usize) -> Moments {
+        let zero = || Jet::constant(0.0, m);
+        let weighted = || Weighted {
+            gap: zero(),
+            area: zero(),
+            b: vec![zero(); m],
+            partner: Partner::None,
+            slip: Some(SlipForm {
+                shares: Vec::new(),
+                normal: std::array::from_fn(|_| zero()),
+            }),
+        };
+        Moments {
+            by: (0..kn).map(|_| weighted()).collect(),
+            m: (0..kn).map(|_| (0..kn).map(|_| zero()).collect()).collect(),
+            d: (0..kn).map(|_| zero()).collect(),
+        }
+    }
+
+    /// Point `p` of an overlap, for slave face node `a`.
+    fn add(
+        &mut self,
+        map: &[usize],
+        a: usize,
+        xs: &[[PairDual; 3]],
+        xm: &[[PairDual; 3]],
+        p: &Point<PairDual>,
+    ) {
+        let kn = self.d.len();
+        for b in 0..kn {
+            let mut unit = [0.0; 4];
+            unit[b] = 1.0;
+            accumulate(&mut self.by[b], map, (a, &unit), xs, xm, p);
+            add_pair(&mut self.d[b], map, p.slave[b] * p.weight);
+            for c in 0..kn {
+                add_pair(&mut self.m[b][c], map, p.slave[b] * p.slave[c] * p.weight);
+            }
+        }
+    }
+
+    /// Add node `a`'s integrals weighted by its adapted dual function Φ_a = Σ_b A_ab N_b,
+    /// A = D M⁻¹ with its derivative dA = (dD − A dM) M⁻¹, to `w`.
+    fn weigh(self, a: usize, w: &mut Weighted) {
+        let kn = self.d.len();
+        let nu = w.gap.d.len();
+        let mut m0 = [[0.0; 4]; 4];
+        for b in 0..kn {
+            for c in 0..kn {
+                m0[b][c] = self.m[b][c].v;
+            }
+        }
+        // M⁻¹ (symmetric): the biorthogonal coefficients of D = I.
+        let inv = super::segment::biorthogonal(&m0, &[1.0; 4], kn);
+        let row: Vec<f64> = (0..kn).map(|c| self.d[a].v * inv[a][c]).collect();
+        let coeffs: Vec<Jet> = (0..kn)
+            .map(|c| {
+                let d = (0..nu)
+                    .map(|t| {
+                        (0..kn)
+                            .map(|e| {
+                                let r = if e == a { self.d[a].d[t] } else { 0.0 }
+                                    - (0..kn).map(|f| row[f] * self.m[f][e].d[t]).sum::<f64>();
+                                r * inv[e][c]
+                            })
+                            .sum()
+                    })
+                    .collect();
+                Jet { v: row[c], d }
+            })
+            .collect();
+        let add = |acc: &mut Jet, x: Jet| {
+            acc.v += x.v;
+            for (s, t) in acc.d.iter_mut().zip(&x.d) {
+                *s += t;
+            }
+        };
+        // D_j is ∫ N_a over the overlaps (the same in every by[b]).
+        add(&mut w.area, self.by[0].area.clone());
+        for (c, by) in self.by.into_iter().enumerate() {
+            let coeff = &coeffs[c];
+            add(&mut w.gap, coeff.product(&by.gap));
+            for (wb, bb) in w.b.iter_mut().zip(&by.b) {
+                add(wb, coeff.product(bb));
+            }
+            if let (Some(slip), Some(from)) = (&mut w.slip, by.slip) {
+                for (i, n) in from.normal.iter().enumerate() {
+                    add(&mut slip.normal[i], coeff.product(n));
+                }
+                for (k, share) in &from.shares {
+                    let at = match slip.shares.iter().position(|s| s.0 == *k) {
+                        Some(at) => at,
+                        None => {
+                            slip.shares.push((*k, Jet::constant(0.0, nu)));
+                            slip.shares.len() - 1
+                        }
+                    };
+                    add(&mut slip.shares[at].1, coeff.product(share));
+                }
+            }
+        }
+    }
+}
+
+/// Add `v` (over a pair's unknowns, pair unknown i being `map[i]`) to `jet`.
+fn add_pair(jet: &mut Jet, map: &[usize], v: PairDual) {
+    jet.v += v.v;
+    for (i, &t) in map.iter().enumerate() {
+        jet.d[t] += v.d[i];
+    }
 }
 
 /// Add `v` (over a pair's unknowns, pair unknown i being the slot's `map[i]`) to the share of
