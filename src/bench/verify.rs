@@ -668,8 +668,8 @@ impl Ironing {
 /// 2006, Poulios and Renard 2015, Kratos' `shallow_ironing` validation), plane strain, lengths
 /// in mm and moduli in N/mm² (forces in N per mm of thickness): a block 12 × 4 (E = 689.6) with
 /// its bottom held, and a die (E = 6896) whose lower face is a circular arc of radius 0.75
-/// (chord 1.2 from x = 0.2 to 1.4, its lowest point at x = 0.8, 0.2 above the block) under a
-/// rectangle up to 1.2 above the arc's ends; both neo-Hookean (ν = 0.32, Simo–Pister's
+/// (chord 1.2 from x = 0.2 to 1.4, its lowest point at x = 0.8, 0.2 above the block), its flat
+/// top 1.2 above that lowest point; both neo-Hookean (ν = 0.32, Simo–Pister's
 /// compressible form with G and Lamé's λ: W = G/2 (I₁ − 3) − G ln J + λ/2 (ln J)², Kratos'
 /// `HyperElastic3DLaw`). The die's top is moved down by 1 over t ∈ [0, 1] in ten steps, then
 /// along x by 10 (t − 1); mortar contact with multipliers, the die's arc the slave side.
@@ -687,10 +687,12 @@ pub struct ShallowIroning {
 }
 
 impl ShallowIroning {
-    /// The die's arc: radius, centre (x, y of its lowest point before the gap) and half chord.
+    /// The die's arc: radius, the x of its centre and lowest point, and half its chord; the
+    /// die's height from that lowest point to its top.
     pub const RADIUS: f64 = 0.75;
     pub const CENTRE_X: f64 = 0.8;
     pub const HALF_CHORD: f64 = 0.6;
+    pub const DIE_HEIGHT: f64 = 1.2;
     /// The block's length and height, the die's initial gap, press depth and slide per unit t.
     pub const LENGTH: f64 = 12.0;
     pub const HEIGHT: f64 = 4.0;
@@ -712,7 +714,7 @@ impl ShallowIroning {
         let mut inp = Input::default();
         let (r, xc) = (Self::RADIUS, Self::CENTRE_X);
         let bottom_y = Self::HEIGHT + Self::GAP;
-        let (yc, top) = (bottom_y + r, bottom_y + r + 0.45);
+        let (yc, top) = (bottom_y + r, bottom_y + Self::DIE_HEIGHT);
         let half_angle = (Self::HALF_CHORD / r).asin();
         // Die columns at equal angles along the arc, each from the arc up to the die's top.
         let angles = uniform(-half_angle, half_angle, self.n_arc);
