@@ -650,12 +650,7 @@ fn mortar_gap_is_exact_on_slave_edges_past_the_master_end() {
                 elems.join("\n")
             );
             let model = common::model_from_text(&text).unwrap();
-            let mut states = Vec::new();
-            run_analysis(&model, &common::quiet(), |r| {
-                states = r.contact.to_vec();
-                Ok(())
-            })
-            .unwrap();
+            let (states, _) = common::solve_model(&model);
             let mut checked = 0;
             for s in &states {
                 let x = model.nodes[s.node].coords[0];
@@ -746,12 +741,7 @@ fn mortar_gap_is_exact_on_slave_faces_past_the_master_end() {
             "3d",
         );
         let model = common::model_from_text(&text).unwrap();
-        let mut states = Vec::new();
-        run_analysis(&model, &common::quiet(), |r| {
-            states = r.contact.to_vec();
-            Ok(())
-        })
-        .unwrap();
+        let (states, _) = common::solve_model(&model);
         assert_eq!(states.len(), 9);
         for s in &states {
             let [x, y, z] = model.nodes[s.node].coords;

@@ -622,39 +622,21 @@ impl Ironing {
             &|_| uniform(-3.0, 0.0, self.ny),
             "mat 2 crossSect 1 nlgeo 1",
         );
-        let master = inp.boundary_set(&die_edges);
-        let slave = inp.boundary_set(&slab.top_edges);
-        inp.segments.push(format!(
-            "linear2delementedgecontactsegment 1 edgeset {master}"
-        ));
-        inp.segments.push(format!(
-            "linear2delementedgecontactsegment 2 edgeset {slave}"
-        ));
-        inp.sections.push("SimpleCS 1 thick 1.0".into());
-        inp.materials.push(neo_hookean_with(1, 1000.0, 0.3));
-        inp.materials.push(neo_hookean_with(2, 1.0, 0.3));
-        let bottom = inp.node_set(&slab.bottom);
-        let die = inp.node_set(&ends);
-        inp.bcs.push(format!(
-            "BoundaryCondition 1 loadTimeFunction 1 dofs 2 1 2 values 2 0 0 set {bottom}"
-        ));
-        inp.bcs.push(format!(
-            "BoundaryCondition 2 loadTimeFunction 2 dofs 1 2 values 1 -{IRONING_DEPTH} set {die}"
-        ));
-        inp.bcs.push(format!(
-            "BoundaryCondition 3 loadTimeFunction 3 dofs 1 1 values 1 {} set {die}",
-            self.slide
-        ));
-        inp.bcs.push(format!(
-            "s2slagrangianmultipliercontact 4 loadTimeFunction 1 slavesegment 2 segmentset 1 1 \
-             friction {}",
-            self.mu
-        ));
-        inp.functions.push("ConstantFunction 1 f(t) 1.0".into());
-        inp.functions
-            .push("PiecewiseLinFunction 2 npoints 3 t 3 0 1 5 f(t) 3 0 1 1".into());
-        inp.functions
-            .push("PiecewiseLinFunction 3 npoints 3 t 3 0 1 5 f(t) 3 0 0 1".into());
+        PressAndSlide {
+            master: &die_edges,
+            slave: &slab.top_edges,
+            materials: [
+                neo_hookean_with(1, 1000.0, 0.3),
+                neo_hookean_with(2, 1.0, 0.3),
+            ],
+            held: &slab.bottom,
+            driven: &ends,
+            depth: IRONING_DEPTH,
+            slide: self.slide,
+            slide_end: 5.0,
+            mu: self.mu,
+        }
+        .write(&mut inp);
         let n = 5 * self.press_steps;
         let analysis = format!(
             "StaticStructural nsteps {n} deltat {} rtolf 1e-8 maxiter 25",
@@ -731,44 +713,23 @@ impl ShallowIroning {
             &|_| uniform(0.0, Self::HEIGHT, self.ny),
             "mat 2 crossSect 1 nlgeo 1",
         );
-        let slave = inp.boundary_set(&die.bottom_edges);
-        let master = inp.boundary_set(&block.top_edges);
-        inp.segments.push(format!(
-            "linear2delementedgecontactsegment 1 edgeset {master}"
-        ));
-        inp.segments.push(format!(
-            "linear2delementedgecontactsegment 2 edgeset {slave}"
-        ));
-        inp.sections.push("SimpleCS 1 thick 1.0".into());
-        inp.materials.push(simo_pister_with(1, 6896.0, 0.32));
-        inp.materials.push(simo_pister_with(2, 689.6, 0.32));
-        let held = inp.node_set(&block.bottom);
-        let driven = inp.node_set(&die.top);
-        inp.bcs.push(format!(
-            "BoundaryCondition 1 loadTimeFunction 1 dofs 2 1 2 values 2 0 0 set {held}"
-        ));
-        inp.bcs.push(format!(
-            "BoundaryCondition 2 loadTimeFunction 2 dofs 1 2 values 1 -{} set {driven}",
-            Self::DEPTH
-        ));
-        inp.bcs.push(format!(
-            "BoundaryCondition 3 loadTimeFunction 3 dofs 1 1 values 1 {} set {driven}",
-            Self::SPEED
-        ));
-        inp.bcs.push(format!(
-            "s2slagrangianmultipliercontact 4 loadTimeFunction 1 slavesegment 2 segmentset 1 1 \
-             friction {}",
-            self.mu
-        ));
+        // The slide x = SPEED (t − 1) from t = 1 to the end (at least 2).
         let end = self.end.max(2.0);
-        inp.functions.push("ConstantFunction 1 f(t) 1.0".into());
-        inp.functions.push(format!(
-            "PiecewiseLinFunction 2 npoints 3 t 3 0 1 {end} f(t) 3 0 1 1"
-        ));
-        inp.functions.push(format!(
-            "PiecewiseLinFunction 3 npoints 3 t 3 0 1 {end} f(t) 3 0 0 {}",
-            end - 1.0
-        ));
+        PressAndSlide {
+            master: &block.top_edges,
+            slave: &die.bottom_edges,
+            materials: [
+                simo_pister_with(1, 6896.0, 0.32),
+                simo_pister_with(2, 689.6, 0.32),
+            ],
+            held: &block.bottom,
+            driven: &die.top,
+            depth: Self::DEPTH,
+            slide: Self::SPEED * (end - 1.0),
+            slide_end: end,
+            mu: self.mu,
+        }
+        .write(&mut inp);
         let times: Vec<String> = self.times().iter().map(|t| format!("{t}")).collect();
         let analysis = format!(
             "StaticStructural nsteps {} prescribedTimes {} {} rtolf 1e-8 maxiter 25",
@@ -777,6 +738,64 @@ impl ShallowIroning {
             times.join(" ")
         );
         inp.render("shallow_ironing", &analysis, "PlaneStrain")
+    }
+}
+
+/// A die pressed into a body and slid along it, as [`Ironing`] and [`ShallowIroning`] write it:
+/// edge segments 1 (`master`) and 2 (`slave`), materials 1 and 2, the body's `held` nodes fixed
+/// (BC 1), the die's `driven` nodes moved down by `depth` over t ∈ [0, 1] (BC 2) and along x by
+/// `slide` over t ∈ [1, `slide_end`] (BC 3), mortar multipliers with friction `mu` (BC 4), and
+/// the three time functions.
+struct PressAndSlide<'a> {
+    master: &'a [(usize, usize)],
+    slave: &'a [(usize, usize)],
+    materials: [String; 2],
+    held: &'a [usize],
+    driven: &'a [usize],
+    depth: f64,
+    slide: f64,
+    slide_end: f64,
+    mu: f64,
+}
+
+impl PressAndSlide<'_> {
+    fn write(self, inp: &mut Input) {
+        let master = inp.boundary_set(self.master);
+        let slave = inp.boundary_set(self.slave);
+        inp.segments.push(format!(
+            "linear2delementedgecontactsegment 1 edgeset {master}"
+        ));
+        inp.segments.push(format!(
+            "linear2delementedgecontactsegment 2 edgeset {slave}"
+        ));
+        inp.sections.push("SimpleCS 1 thick 1.0".into());
+        inp.materials.extend(self.materials);
+        let held = inp.node_set(self.held);
+        let driven = inp.node_set(self.driven);
+        inp.bcs.push(format!(
+            "BoundaryCondition 1 loadTimeFunction 1 dofs 2 1 2 values 2 0 0 set {held}"
+        ));
+        inp.bcs.push(format!(
+            "BoundaryCondition 2 loadTimeFunction 2 dofs 1 2 values 1 -{} set {driven}",
+            self.depth
+        ));
+        inp.bcs.push(format!(
+            "BoundaryCondition 3 loadTimeFunction 3 dofs 1 1 values 1 {} set {driven}",
+            self.slide
+        ));
+        inp.bcs.push(format!(
+            "s2slagrangianmultipliercontact 4 loadTimeFunction 1 slavesegment 2 segmentset 1 1 \
+             friction {}",
+            self.mu
+        ));
+        let end = self.slide_end;
+        inp.functions.push("ConstantFunction 1 f(t) 1.0".into());
+        inp.functions.push(format!(
+            "PiecewiseLinFunction 2 npoints 3 t 3 0 1 {end} f(t) 3 0 1 1"
+        ));
+        inp.functions.push(format!(
+            "PiecewiseLinFunction 3 npoints 3 t 3 0 1 {end} f(t) 3 0 0 1"
+        ));
     }
 }
 

@@ -27,13 +27,19 @@ pub fn quiet() -> hertz::solve::SolveParams {
 /// history (iteration 0 first).
 pub fn solve_contact(path: &std::path::Path) -> (Model, Vec<hertz::contact::SlotState>, Vec<f64>) {
     let model = hertz::input::read_model(path).unwrap().model;
+    let (states, history) = solve_model(&model);
+    (model, states, history)
+}
+
+/// Solve `model` quietly; return the last step's contact states and residual history.
+pub fn solve_model(model: &Model) -> (Vec<hertz::contact::SlotState>, Vec<f64>) {
     let mut out = (Vec::new(), Vec::new());
-    hertz::solve::run_analysis(&model, &quiet(), |r| {
+    hertz::solve::run_analysis(model, &quiet(), |r| {
         out = (r.contact.to_vec(), r.info.residual_history.clone());
         Ok(())
     })
     .unwrap();
-    (model, out.0, out.1)
+    out
 }
 
 /// A strip of `nm` unit elements (Q4 or Q8) side by side whose top edges form the master segment,
