@@ -5,6 +5,7 @@
 use hertz::assembly::{Assembler, Contribution};
 use hertz::contact::{ContactSystem, Search};
 use hertz::input::read_model;
+use hertz::solve::branches::OnCycle;
 use hertz::solve::condensed::CondensedContact;
 use hertz::solve::linear::LinearSolver;
 
@@ -52,7 +53,7 @@ fn compare(multipliers: bool) {
     .expect("supernodal with trailing candidates");
     let guess: Vec<bool> = points.iter().map(|p| p.closed).collect();
     let step = cc
-        .step(&rhs, &points, &guess, &dofs)
+        .step(&rhs, &points, &guess, &dofs, OnCycle::FewestMisses)
         .unwrap()
         .expect("all points on candidates");
 

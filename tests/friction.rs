@@ -659,27 +659,23 @@ fn die_reaction_balanced(
     die
 }
 
-/// The shallow ironing benchmark (examples/shallow_ironing.in up to t = 1.5): the published
-/// vertical force at the end of the press, 268–332 N, and the ratio Fx/Fy at t = 1.5 (the die
-/// slid 5), 0.30–0.53 (Yang, Laursen and Meng 2005 and those after them); the die's reaction
-/// balances the block's; every step converges without a cut-back in at most 6 iterations.
+/// The shallow ironing benchmark (examples/shallow_ironing.in): the published vertical force at
+/// the end of the press, 268–332 N, and the ratio Fx/Fy at t = 1.5 (the die slid 5), 0.30–0.53
+/// (Yang, Laursen and Meng 2005 and those after them); the die's reaction balances the block's;
+/// every step converges without a cut-back, in at most 6 iterations up to t = 1.5 and 7 after.
 /// With c_T of the friction multipliers from the die's E alone (ten times the block's) the
-/// press cycled between stick and slip at one node and needed 8 and 16 substeps.
+/// press cycled between stick and slip at one node and needed 8 and 16 substeps; with the last
+/// guess of a branch search that comes back to a guess (see `solve::branches`), step t = 1.94
+/// inverted an element at the die's trailing corner and was cut back.
 #[test]
 fn shallow_ironing_gives_the_published_forces() {
     use hertz::bench::examples::SHALLOW_IRONING;
-    use hertz::bench::verify::ShallowIroning;
-    let text = ShallowIroning {
-        end: 1.5,
-        ..SHALLOW_IRONING
-    }
-    .input();
-    let model = common::model_from_text(&text).unwrap();
+    let model = common::model_from_text(&SHALLOW_IRONING.input()).unwrap();
     let mut iterations = Vec::new();
     let at = |t: f64, time: f64| (time - t).abs() < 1e-9;
     let (mut fy_press, mut ratio) = (None, None);
     run_analysis(&model, &common::quiet(), |r| {
-        iterations.push(r.info.iterations);
+        iterations.push((r.time, r.info.iterations));
         assert_eq!(r.info.substeps, 1, "step {}: cut back", r.step);
         // The die's top (BCs 2, 3) against the block's bottom (BC 1).
         let die = die_reaction_balanced(&model, r, 1.0);
@@ -693,12 +689,18 @@ fn shallow_ironing_gives_the_published_forces() {
     })
     .unwrap();
     let (fy, ratio) = (fy_press.unwrap(), ratio.unwrap());
-    let total: usize = iterations.iter().sum();
+    let total: usize = iterations.iter().map(|(_, i)| i).sum();
     println!(
         "shallow ironing: Fy(1) = {fy:.2} N, Fx/Fy(1.5) = {ratio:.4}, iterations per step \
          {iterations:?} (total {total})"
     );
     assert!((268.0..=332.0).contains(&fy), "Fy(1) = {fy}");
     assert!((0.30..=0.53).contains(&ratio), "Fx/Fy(1.5) = {ratio}");
-    assert!(iterations.iter().all(|&i| i <= 6), "{iterations:?}");
+    assert_eq!(iterations.len(), 110);
+    assert!(
+        iterations
+            .iter()
+            .all(|&(t, i)| i <= if t <= 1.5 + 1e-9 { 6 } else { 7 }),
+        "{iterations:?}"
+    );
 }

@@ -21,7 +21,7 @@
 //! prediction and the dense system solved again, until prediction and choice agree (a
 //! primal-dual active-set search on the linear model: see `contact::point`).
 
-use super::branches::BranchSearch;
+use super::branches::{BranchSearch, ContactStep, OnCycle};
 use super::linear::LinearSolver;
 use crate::assembly::{DofMap, Pattern};
 use crate::contact::ContactPoint;
@@ -49,17 +49,6 @@ pub struct CondensedContact {
     m: Mat<f64>,
     /// Diagonal shift of every candidate (1 for multipliers, α or 0 for displacements).
     shift: Vec<f64>,
-}
-
-/// The result of one condensed Newton step.
-pub struct CondensedStep {
-    pub du: Vec<f64>,
-    /// Branch of every point the step was solved with.
-    pub closed: Vec<bool>,
-    /// Number of times the branches were updated.
-    pub updates: usize,
-    /// The branch search revisited a choice instead of settling.
-    pub cycled: bool,
 }
 
 impl CondensedContact {
@@ -171,15 +160,16 @@ impl CondensedContact {
 
     /// One Newton step for the residual `r` (free equations) with the contact `points` at the
     /// current state: the branches are searched on the linearized problem (see the module docs),
-    /// from the first guess `guess`. Ok(None) if a point touches an equation outside the
-    /// candidates.
+    /// from the first guess `guess`; `cycle` says which guess's step a search that comes back to
+    /// a guess returns. Ok(None) if a point touches an equation outside the candidates.
     pub fn step(
         &mut self,
         r: &[f64],
         points: &[ContactPoint],
         guess: &[bool],
         dofs: &DofMap,
-    ) -> Result<Option<CondensedStep>> {
+        cycle: OnCycle,
+    ) -> Result<Option<ContactStep>> {
         let nf = dofs.n_free;
         // Candidate positions and weights of every point's local codes.
         let mut locs: Vec<Vec<Vec<(usize, f64)>>> = Vec::with_capacity(points.len());
@@ -212,6 +202,9 @@ impl CondensedContact {
             .collect();
         let mut closed: Vec<bool> = guess.to_vec();
         let mut search = BranchSearch::new(MAX_BRANCH_UPDATES);
+        // The guess with the fewest points predicted otherwise (the latest of equals), its
+        // δ − Pᵀ f_A: the step if the search comes back to a guess.
+        let mut best: Option<(usize, Vec<f64>, Vec<bool>)> = None;
         loop {
             // Equations of the dense system: those of closed points and the shifted ones.
             let mut in_a = vec![usize::MAX; mdim];
@@ -340,12 +333,23 @@ impl CondensedContact {
                     p.predicts_closed(&dq)
                 })
                 .collect();
-            let settled = predicted == closed;
-            if let Some(next) = search.next(&closed, &predicted) {
+            let misses = closed
+                .iter()
+                .zip(&predicted)
+                .filter(|(a, b)| a != b)
+                .count();
+            let ended = search.next(&closed, &predicted);
+            if cycle == OnCycle::FewestMisses && best.as_ref().is_none_or(|b| misses <= b.0) {
+                best = Some((misses, corr.clone(), closed.clone()));
+            }
+            if let Some(next) = ended {
                 closed = next;
                 continue;
             }
-            let cycled = !settled;
+            let (corr, closed) = match best {
+                Some((_, c, g)) if search.cycled => (c, g),
+                _ => (corr, closed),
+            };
             let updates = search.updates;
             // The whole step: Δu = w + K_s⁻¹ (δ − Pᵀ C Δu_A).
             let mut z = vec![0.0; nf];
@@ -361,11 +365,11 @@ impl CondensedContact {
                     "condensed contact step produced a non-finite update".into(),
                 ));
             }
-            return Ok(Some(CondensedStep {
+            return Ok(Some(ContactStep {
                 du: w,
                 closed,
                 updates,
-                cycled,
+                cycled: search.cycled,
             }));
         }
     }

@@ -13,7 +13,7 @@
 //! stops gaining on a residual within that floor, the step is as converged as double precision
 //! allows (a warning then says the penalty is larger than double precision resolves).
 
-use super::branches::BranchSearch;
+use super::branches::{BranchSearch, ContactStep, OnCycle};
 use super::condensed::CondensedContact;
 use super::linear::LinearSolver;
 use super::multipliers::{Group, MultiplierElimination};
@@ -167,7 +167,7 @@ impl NewtonContext<'_> {
 
     /// Solve K Δu = rhs for the contact points `points` at state `u`: condensed when possible
     /// (branches decided on the linearized problem), else with the full tangent of the current
-    /// branches. Returns Δu and the number of branch updates.
+    /// branches.
     fn solve_step(
         &mut self,
         u: &[f64],
@@ -175,7 +175,8 @@ impl NewtonContext<'_> {
         points: &[ContactPoint],
         guess: &[bool],
         ks_fresh: Option<&Evaluation>,
-    ) -> Result<(Vec<f64>, usize)> {
+        cycle: OnCycle,
+    ) -> Result<ContactStep> {
         let (model, dofs) = (self.asm.model, self.dofs);
         let describe = |eq: usize| describe_eq(model, dofs, eq);
         if let Condensed::Pending(cands) = &self.condensed {
@@ -227,10 +228,10 @@ impl NewtonContext<'_> {
         }
         if let Condensed::Ready(c) = &mut self.condensed {
             let t = Instant::now();
-            let step = c.step(&rhs, points, guess, self.dofs)?;
+            let step = c.step(&rhs, points, guess, self.dofs, cycle)?;
             self.times.solve += since(t);
             if let Some(step) = step {
-                return Ok((step.du, step.updates));
+                return Ok(step);
             }
             // A point reaches beyond the candidates (a node slid on): set up again with the
             // candidates of the current state added.
@@ -262,7 +263,7 @@ impl NewtonContext<'_> {
                     );
                 }
                 self.condensed = Condensed::Pending(cands);
-                return self.solve_step(u, rhs, points, guess, None);
+                return self.solve_step(u, rhs, points, guess, None, cycle);
             }
             self.condense_off();
         }
@@ -325,7 +326,7 @@ impl NewtonContext<'_> {
         rhs: Vec<f64>,
         points: &[ContactPoint],
         guess: &[bool],
-    ) -> Result<(Vec<f64>, usize)> {
+    ) -> Result<ContactStep> {
         let nf = self.dofs.n_free;
         let couplings: Vec<Vec<usize>> = points.iter().map(|p| p.codes.clone()).collect();
         if self.asm.set_couplings(&couplings) {
@@ -407,9 +408,19 @@ impl NewtonContext<'_> {
                     p.predicts_closed(&dq)
                 })
                 .collect();
+            // Unlike the condensed step, a cycle keeps the last guess's step here: the first
+            // guess's made two coarse shallow-ironing runs (structural tangent indefinite, so
+            // full tangents) fail where they converge with cut-backs.
             match search.next(&closed, &predicted) {
                 Some(next) => closed = next,
-                None => return Ok((step, search.updates)),
+                None => {
+                    return Ok(ContactStep {
+                        du: step,
+                        closed,
+                        updates: search.updates,
+                        cycled: search.cycled,
+                    })
+                }
             }
         }
     }
@@ -578,10 +589,11 @@ impl NewtonContext<'_> {
                 self.floor_dominated = (check.floor_excess > 1.0).then_some(check.floor_excess);
                 break;
             }
-            let (step, updates) = if has_contact {
+            let (step, updates, cycled) = if has_contact {
                 let ks = need_ks.then_some(&ev);
                 let guess = self.branch_guess(&points);
-                self.solve_step(u, rhs, &points, &guess, ks)?
+                let s = self.solve_step(u, rhs, &points, &guess, ks, OnCycle::FewestMisses)?;
+                (s.du, s.updates, s.cycled)
             } else {
                 if want_k {
                     self.factorize(ev.k_values.as_ref().expect("requested"))?;
@@ -590,11 +602,16 @@ impl NewtonContext<'_> {
                 let t = Instant::now();
                 self.solver.solve_in_place(&mut x)?;
                 self.times.solve += since(t);
-                (x, 0)
+                (x, 0, false)
             };
             if self.verbose && updates > 0 {
                 eprintln!(
-                    "      contact branches updated {updates} times on the linearized problem"
+                    "      contact branches updated {updates} times on the linearized problem{}",
+                    if cycled {
+                        " and came back to a guess"
+                    } else {
+                        ""
+                    }
                 );
             }
             for i in 0..nf {
@@ -644,7 +661,8 @@ impl NewtonContext<'_> {
                 None
             };
             let guess = self.branch_guess(&points);
-            self.solve_step(u, rhs, &points, &guess, ks.as_ref())?.0
+            self.solve_step(u, rhs, &points, &guess, ks.as_ref(), OnCycle::Last)?
+                .du
         } else {
             if need_k {
                 self.factorize(ev.k_values.as_ref().expect("requested"))?;
