@@ -823,6 +823,41 @@ fn mortar_tangents_are_jacobians_of_residuals() {
     }
 }
 
+/// The multiplier law's production tangent — no `set_pressure_limit` — is the Jacobian of its
+/// residual at any pressure: with multipliers at 100 times the stiffest E, the 2D mortar cases
+/// in large deformation (where the geometric part λ ∂B is not zero) and a node on a rigid circle
+/// ([`mortar2d_cases`]). The penalty laws drop the geometric part there
+/// (`geometric_tangent_is_dropped_only_beyond_a_pressure_of_e`, tests/contact_geometry.rs).
+#[test]
+fn multiplier_tangent_keeps_its_geometric_part_beyond_a_pressure_of_e() {
+    let law = "s2slagrangianmultipliercontact 4 loadTimeFunction 1 slavesegment 1 segmentset 1 2";
+    for (name, text, disp, active) in mortar2d_cases(1, law) {
+        let model = common::model_from_text(&text).unwrap();
+        let young = model
+            .materials
+            .iter()
+            .map(|m| m.young())
+            .fold(0.0, f64::max);
+        let contact = ContactSystem::new(&model).unwrap();
+        let dofs = hertz::solve::number_dofs(&model).unwrap();
+        let case = Case {
+            name: name.clone(),
+            text,
+            disp,
+            lambda: 100.0 * young,
+            active,
+        };
+        let u = displaced(&model, &dofs, &case);
+        let (err, states, checked) = fd_error(&model, &contact, &dofs, &u);
+        // λ this large also holds points with a small opening closed (λ − c·g > 0).
+        assert!(
+            states.iter().filter(|s| s.active).count() >= active,
+            "{name}"
+        );
+        assert!(checked > 0 && err < 1e-6, "{name}: tangent off by {err:e}");
+    }
+}
+
 /// The 3D mortar tangent is the Jacobian of its residual, in small deformation (reference
 /// segmentation, the gap following the nodes) and in large deformation (the clipping, the plane,
 /// the normals and the weights at the current state), for penalty and multipliers, on

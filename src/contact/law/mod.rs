@@ -8,9 +8,9 @@
 //!   unit normal n, the master nodes −N_a n); B = ∇g for a closest-point projection, not for a
 //!   smoothed normal field or a prescribed normal, so the tangent need not be symmetric.
 //!
-//! Each law splits its tangent into a material part (B ⊗ ∇g) and a geometric part (force × ∂B),
-//! and drops the geometric part while the iterate is far from any solution (see
-//! [`Laws::geometric_allowed`]).
+//! Each law splits its tangent into a material part (B ⊗ ∇g) and a geometric part (force × ∂B);
+//! the penalty laws drop the geometric part while the iterate is far from any solution (see
+//! [`Laws::geometric_allowed`]), the multiplier law keeps it.
 
 pub mod friction;
 pub mod multiplier;
@@ -85,10 +85,10 @@ pub struct Laws {
 }
 
 impl Laws {
-    /// Whether the geometric tangent part (force × ∂B) is assembled. It is part of the exact
-    /// tangent, but when an iterate has pushed a node deep into a curved master, the force there
-    /// is far beyond anything the bodies can carry, and its geometric stiffness — a large negative
-    /// one inside a convex master — makes the Newton step useless. A contact pressure above the
+    /// Whether a penalty law assembles the geometric tangent part (force × ∂B). It is part of the
+    /// exact tangent, but when an iterate has pushed a node deep into a curved master, the force
+    /// there is far beyond anything the bodies can carry, and its geometric stiffness — a large
+    /// negative one inside a convex master — makes the Newton step useless. A contact pressure above the
     /// stiffest Young's modulus (a strain of 100 %) marks such an iterate: there the geometric part
     /// is dropped; at any state the bodies can actually reach, the tangent is exact.
     pub fn geometric_allowed(&self, force: f64, area: f64) -> bool {
