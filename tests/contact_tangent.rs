@@ -825,8 +825,9 @@ fn mortar_tangents_are_jacobians_of_residuals() {
 
 /// The multiplier law's production tangent — no `set_pressure_limit` — is the Jacobian of its
 /// residual at any pressure: with multipliers at 100 times the stiffest E, the 2D mortar cases
-/// in large deformation (where the geometric part λ ∂B is not zero) and a node on a rigid circle
-/// ([`mortar2d_cases`]). The penalty laws drop the geometric part there
+/// in large deformation, where the geometric part λ ∂B is not zero ([`mortar2d_cases`]: straight
+/// and quadratic edges, a rigid circle moving with a node). The penalty laws drop the geometric
+/// part there
 /// (`geometric_tangent_is_dropped_only_beyond_a_pressure_of_e`, tests/contact_geometry.rs).
 #[test]
 fn multiplier_tangent_keeps_its_geometric_part_beyond_a_pressure_of_e() {

@@ -80,7 +80,8 @@ pub struct Laws {
     pub c: f64,
     /// Gaps smaller than this (a length, from the model size) count as touching.
     pub gap_tol: f64,
-    /// Contact pressure above which the geometric tangent part is dropped (the stiffest modulus).
+    /// Contact pressure above which the penalty laws drop the geometric tangent part (the
+    /// stiffest modulus).
     pub pressure_limit: f64,
 }
 
@@ -88,9 +89,9 @@ impl Laws {
     /// Whether a penalty law assembles the geometric tangent part (force × ∂B). It is part of the
     /// exact tangent, but when an iterate has pushed a node deep into a curved master, the force
     /// there is far beyond anything the bodies can carry, and its geometric stiffness — a large
-    /// negative one inside a convex master — makes the Newton step useless. A contact pressure above the
-    /// stiffest Young's modulus (a strain of 100 %) marks such an iterate: there the geometric part
-    /// is dropped; at any state the bodies can actually reach, the tangent is exact.
+    /// negative one inside a convex master — makes the Newton step useless. A contact pressure
+    /// above the stiffest Young's modulus (a strain of 100 %) marks such an iterate: there the
+    /// geometric part is dropped; at any state the bodies can actually reach, the tangent is exact.
     pub fn geometric_allowed(&self, force: f64, area: f64) -> bool {
         force.abs() <= self.pressure_limit * area
     }
