@@ -827,8 +827,8 @@ fn mortar_tangents_are_jacobians_of_residuals() {
 /// residual at any pressure: with multipliers at 100 times the stiffest E, the 2D mortar cases
 /// in large deformation, where the geometric part λ ∂B is not zero ([`mortar2d_cases`]: straight
 /// and quadratic edges, a rigid circle moving with a node). The penalty laws drop the geometric
-/// part there
-/// (`geometric_tangent_is_dropped_only_beyond_a_pressure_of_e`, tests/contact_geometry.rs).
+/// part there (`geometric_tangent_is_dropped_only_beyond_a_pressure_of_e`,
+/// tests/contact_geometry.rs).
 #[test]
 fn multiplier_tangent_keeps_its_geometric_part_beyond_a_pressure_of_e() {
     let law = "s2slagrangianmultipliercontact 4 loadTimeFunction 1 slavesegment 1 segmentset 1 2";
