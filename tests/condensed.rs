@@ -1,20 +1,26 @@
 //! The condensed contact step (Schur complement from the trailing factor block, the contact part
 //! dense on its equations, branches searched on the linearized problem) equals a direct
-//! factorization of the full tangent in the branches it settled on, for penalty and multipliers.
+//! factorization of the full tangent in the branches it settled on, for penalty and multipliers,
+//! and for a penalty with friction, whose branches are stick or slip too.
 
 use hertz::assembly::{Assembler, Contribution};
-use hertz::contact::{ContactSystem, Search};
+use hertz::contact::{ContactSystem, History, Search};
 use hertz::input::read_model;
 use hertz::solve::branches::OnCycle;
 use hertz::solve::condensed::CondensedContact;
 use hertz::solve::linear::LinearSolver;
 
-fn compare(multipliers: bool) {
+fn compare(multipliers: bool, friction: bool) {
     let path = std::env::temp_dir().join(format!(
-        "hertz-condensed-{}-{multipliers}.in",
+        "hertz-condensed-{}-{multipliers}-{friction}.in",
         std::process::id()
     ));
     hertz::bench::write_contact_block_input(&path, 8, 0.4, multipliers).unwrap();
+    if friction {
+        let text = std::fs::read_to_string(&path).unwrap();
+        let text = text.replace(" nodeset ", " friction 0.3 nodeset ");
+        std::fs::write(&path, text).unwrap();
+    }
     let model = read_model(&path).unwrap().model;
     std::fs::remove_file(&path).ok();
     let contact = ContactSystem::new(&model).unwrap();
@@ -27,13 +33,38 @@ fn compare(multipliers: bool) {
         if let Some(c) = dofs.code(n, 2) {
             u[c] = 0.4 + 0.01 * node.coords[0].sin();
         }
+        // With friction, a shear that makes some top nodes stick and others slip.
+        if let (true, Some(c)) = (friction, dofs.code(n, 1)) {
+            u[c] = 0.02 * (node.coords[0] - 4.0) / 4.0 * (1.0 + node.coords[1] / 8.0);
+        }
     }
     for (k, i) in (dofs.n_free - dofs.n_lambda..dofs.n_free).enumerate() {
         u[i] = if k % 3 == 0 { 50.0 } else { 0.0 };
     }
-    let (points, states) = contact.evaluate(&model, &dofs, &u, Search::Fresh).unwrap();
+    // The friction history: the states at u = 0.
+    let zero = vec![0.0; u.len()];
+    let before = contact
+        .evaluate(&model, &dofs, &zero, Search::Fresh)
+        .unwrap()
+        .1;
+    let history = History {
+        states: &before,
+        u: &zero,
+    };
+    let (points, states) = contact
+        .evaluate_with_history(&model, &dofs, &u, Search::Fresh, Some(history))
+        .unwrap();
     let n_active = states.iter().filter(|s| s.active).count();
     assert!(n_active >= 3, "{n_active} active contacts");
+    if friction {
+        let stick: Vec<bool> = states
+            .iter()
+            .filter_map(|s| s.friction)
+            .map(|f| f.0)
+            .collect();
+        println!("friction states (stick) of the closed nodes: {stick:?}");
+        assert!(stick.contains(&true) && stick.contains(&false), "{stick:?}");
+    }
     let rhs: Vec<f64> = (0..dofs.n_free)
         .map(|i| ((i * 7 % 13) as f64 - 6.0) * 1e3)
         .collect();
@@ -81,7 +112,18 @@ fn compare(multipliers: bool) {
         })
         .collect();
     let couplings: Vec<Vec<usize>> = contribs.iter().map(|c| c.codes.clone()).collect();
+    // Friction's tangent is unsymmetric: both triangles.
+    asm.set_symmetric(!friction);
     asm.set_couplings(&couplings);
+    if friction {
+        let changed = points
+            .iter()
+            .zip(&step.closed)
+            .filter(|(p, b)| p.friction.is_some() && b.closed && b.stick != p.current().stick)
+            .count();
+        println!("friction branches changed by the search: {changed}");
+        assert!(changed > 0, "the case exercises the other friction branch");
+    }
     let ev = asm.evaluate(&u, true, false, None, &contribs).unwrap();
     let mut direct = LinearSolver::default();
     direct
@@ -104,10 +146,15 @@ fn compare(multipliers: bool) {
 
 #[test]
 fn condensed_penalty_step_equals_direct_factorization() {
-    compare(false);
+    compare(false, false);
 }
 
 #[test]
 fn condensed_multiplier_step_equals_direct_factorization() {
-    compare(true);
+    compare(true, false);
+}
+
+#[test]
+fn condensed_frictional_penalty_step_equals_direct_factorization() {
+    compare(false, true);
 }

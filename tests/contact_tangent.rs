@@ -5,7 +5,9 @@
 //! on a vertex whose normal is averaged with the neighbouring edge, past the open end of the
 //! master where the force is weighted down; circle, cavity, sphere, polynomial above and below,
 //! plane, with and without a moving reference node; a prescribed normal). Partners are held fixed
-//! while the contact point moves with the unknowns, as in the linearization.
+//! while the contact point moves with the unknowns, as in the linearization. A penalty point with
+//! friction has its other branch (stick ↔ slip) checked too, and the trial force and slip limit
+//! the solver predicts the branch from.
 
 mod common;
 
@@ -50,13 +52,12 @@ fn fd_error_with_history(
         .evaluate_with_history(model, dofs, u, Search::Fresh, history)
         .unwrap();
     let contribs: Vec<_> = points.iter().map(|p| p.contribution()).collect();
-    let residual = |u: &[f64], k: usize| {
+    let point = |u: &[f64], k: usize| {
         contact
             .evaluate_with_history(model, dofs, u, Search::Frozen(&states), history)
             .unwrap()
-            .0[k]
-            .contribution()
-            .fe
+            .0
+            .swap_remove(k)
     };
     let h = 1e-6;
     let mut worst = 0.0f64;
@@ -67,16 +68,36 @@ fn fd_error_with_history(
         }
         let m = c.codes.len();
         let scale = c.ke.iter().fold(1e-12f64, |a, v| a.max(v.abs()));
+        // A penalty point with friction: its other branch (stick ↔ slip) and the trial force and
+        // slip limit the solver predicts the branch from, each against its gradient.
+        let other = points[k].friction.as_ref();
         for j in 0..m {
             let code = c.codes[j];
             assert!(code < dofs.n_primary(), "plain DOFs in these cases");
             let (mut up, mut um) = (u.to_vec(), u.to_vec());
             up[code] += h;
             um[code] -= h;
-            let (fp, fm) = (residual(&up, k), residual(&um, k));
+            let (pp, pm) = (point(&up, k), point(&um, k));
+            let (fp, fm) = (pp.contribution().fe, pm.contribution().fe);
             for i in 0..m {
                 let fd = (fp[i] - fm[i]) / (2.0 * h);
                 worst = worst.max((fd - c.ke[i * m + j]).abs() / scale);
+            }
+            let Some(f) = other else { continue };
+            let (fp, fm) = (pp.friction.unwrap(), pm.friction.unwrap());
+            assert_eq!(
+                fp.stick, f.stick,
+                "the friction state holds within the differences"
+            );
+            for i in 0..f.other_fe.len() {
+                let fd = (fp.other_fe[i] - fm.other_fe[i]) / (2.0 * h);
+                worst = worst.max((fd - f.other_ke[i * m + j]).abs() / scale);
+            }
+            let pairs = f.trial.iter().zip(fp.trial.iter().zip(&fm.trial));
+            for (t, (tp, tm)) in pairs.chain([(&f.limit, (&fp.limit, &fm.limit))]) {
+                let fd = (tp.0 - tm.0) / (2.0 * h);
+                let s = t.1.iter().fold(1e-12f64, |a, v| a.max(v.abs()));
+                worst = worst.max((fd - t.1[j]).abs() / s);
             }
         }
         checked += 1;

@@ -310,7 +310,7 @@ for the force P, P and Q per unit thickness:
   q(x) = mu p0 sqrt(1 - x^2/a^2) - mu p0 (c/a) sqrt(1 - x^2/c^2)  (|x| < c),  mu p(x) in the slip zone
 Checks (tests/friction.rs): c within one element (h = {h:g}), q(x) against the formula.
 hertz: P = 5.7449, Q = 0.8293 (Q/(mu P) = 0.481), a = 0.5160, c = 0.3717; stick zone half-width
-0.3689; q(x) within 3.1 % of mu p0 (beyond one element from the cusp at +-c); 2 and 5 iterations.
+0.3689; q(x) within 3.1 % of mu p0 (beyond one element from the cusp at +-c); 2 and 3 iterations.
 Run:  cargo run --release -- run examples/cattaneo_mindlin.in
 """
     lines = header("cattaneo_mindlin.out", "Cattaneo-Mindlin: a cylinder pressed then sheared on a block (plane strain)", comment)

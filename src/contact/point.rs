@@ -9,6 +9,17 @@
 //! guess of the branches, predicts every point's gap (and multiplier) from that solution, and
 //! repeats until prediction and guess agree (a primal-dual active-set search on the linear model,
 //! see `solve::condensed`). Each point provides both branches for that.
+//!
+//! Friction on a penalty point has the same kink between stick and slip, and a worse one in
+//! slip, whose tangent has no tangential stiffness (in 2D none at all): taking stick or slip from
+//! the iterate, the step of a patch of sliding nodes is the bodies' response to the whole friction
+//! force, which overshoots to the opposite slip and back (shallow ironing as mortar with `penalty
+//! 1e4`: no convergence even in the press; with the search, 351 iterations for its 110 steps, at
+//! most 4 a step, no cut-back). So a closed point with friction also gives its other
+//! friction branch ([`FrictionBranch`]), and the search decides stick or slip on the linear model
+//! too, from the predicted trial force: stick inside the cone, or where the trial force turns
+//! against the present one (the one slip branch there is, along the present trial force, is no
+//! model of that, and the point passes through stick to get there).
 
 use crate::assembly::Contribution;
 
@@ -43,6 +54,49 @@ pub struct ContactPoint {
     pub gap_grad: Vec<f64>,
     /// Branch of the current state.
     pub closed: bool,
+    /// The friction of a penalty point whose closed branch has it.
+    pub friction: Option<FrictionBranch>,
+}
+
+/// The friction of a penalty point: whether its closed branch sticks, the other branch, and
+/// what predicts which (see the module docs).
+#[derive(Debug, Clone)]
+pub struct FrictionBranch {
+    /// The closed branch sticks (else it slips).
+    pub stick: bool,
+    /// Residual and tangent of the closed branch with the other friction state, over `codes`;
+    /// empty where there is none (a sticking point in 3D, or one without elastic slip).
+    pub other_fe: Vec<f64>,
+    pub other_ke: Vec<f64>,
+    /// The trial force ε_T g_T (its components) and the slip limit μ·pn, each with its gradient
+    /// over `codes`.
+    pub trial: Vec<(f64, Vec<f64>)>,
+    pub limit: (f64, Vec<f64>),
+}
+
+impl FrictionBranch {
+    /// Whether the point sticks after a change `dq` of its unknowns: by the linearization of its
+    /// trial force and slip limit (the law's rule: stick while |trial| < limit), and where the
+    /// trial force turns against the present one (see the module docs); a sticking point without
+    /// a slip branch sticks.
+    pub fn predicts_stick(&self, dq: &[f64]) -> bool {
+        if self.stick && self.other_fe.is_empty() {
+            return true;
+        }
+        let lin = |(v, d): &(f64, Vec<f64>)| v + d.iter().zip(dq).map(|(a, b)| a * b).sum::<f64>();
+        let next: Vec<f64> = self.trial.iter().map(lin).collect();
+        let norm = next.iter().map(|t| t * t).sum::<f64>().sqrt();
+        let along: f64 = next.iter().zip(&self.trial).map(|(a, t)| a * t.0).sum();
+        norm < lin(&self.limit) * (1.0 - 1e-9) || along <= 0.0
+    }
+}
+
+/// A branch of a contact point: closed or open, and (closed, with friction) stick or slip.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Branch {
+    pub closed: bool,
+    /// Stick (else slip); false at points without friction branches.
+    pub stick: bool,
 }
 
 impl ContactPoint {
@@ -51,6 +105,7 @@ impl ContactPoint {
         self.closed_fe.clear();
         self.closed_ke.clear();
         self.closed = false;
+        self.friction = None;
     }
 
     /// Whether the point has a closed branch at all.
@@ -58,10 +113,29 @@ impl ContactPoint {
         !self.closed_fe.is_empty()
     }
 
+    /// The branch of the current state.
+    pub fn current(&self) -> Branch {
+        self.guess(self.closed)
+    }
+
+    /// Closed with the friction state the closed branch has now, or open.
+    pub fn guess(&self, closed: bool) -> Branch {
+        Branch {
+            closed,
+            stick: closed && self.friction.as_ref().is_some_and(|f| f.stick),
+        }
+    }
+
     /// Residual and tangent of a branch. The open branch is zero for the penalty and λ = 0 (the
-    /// rows r_λ = λ, K_λλ = 1, friction multipliers too) for multipliers.
-    pub fn branch(&self, closed: bool) -> (Vec<f64>, Vec<f64>) {
-        if closed && self.can_close() {
+    /// rows r_λ = λ, K_λλ = 1, friction multipliers too) for multipliers. A closed branch with
+    /// the other friction state than the current one's is that one where the point has it.
+    pub fn branch(&self, b: Branch) -> (Vec<f64>, Vec<f64>) {
+        if b.closed && self.can_close() {
+            if let Some(f) = &self.friction {
+                if b.stick != f.stick && !f.other_fe.is_empty() {
+                    return (f.other_fe.clone(), f.other_ke.clone());
+                }
+            }
             return (self.closed_fe.clone(), self.closed_ke.clone());
         }
         match self.law {
@@ -86,14 +160,18 @@ impl ContactPoint {
         }
     }
 
-    /// How the local residual changes when the point takes branch `closed` instead of its
-    /// current one (over `codes`), if it does.
-    pub fn branch_change(&self, closed: bool) -> Option<Vec<f64>> {
-        if closed == self.closed {
+    /// How the local residual changes when the point takes branch `b` instead of its current
+    /// one (over `codes`), if it does.
+    pub fn branch_change(&self, b: Branch) -> Option<Vec<f64>> {
+        let now = self.current();
+        if b == now {
             return None;
         }
-        let (to, _) = self.branch(closed);
-        let (from, _) = self.branch(self.closed);
+        let (to, _) = self.branch(b);
+        let (from, _) = self.branch(now);
+        if to == from {
+            return None;
+        }
         Some(
             (0..self.codes.len())
                 .map(|a| to.get(a).copied().unwrap_or(0.0) - from.get(a).copied().unwrap_or(0.0))
@@ -103,7 +181,7 @@ impl ContactPoint {
 
     /// The contribution of the current state, for the assembler.
     pub fn contribution(&self) -> Contribution {
-        let (fe, ke) = self.branch(self.closed);
+        let (fe, ke) = self.branch(self.current());
         Contribution {
             codes: self.codes.clone(),
             fe,
@@ -111,9 +189,19 @@ impl ContactPoint {
         }
     }
 
+    /// The branch after a change `dq` of its unknowns (over `codes`): closed by the
+    /// linearization of its gap (and its multiplier), stick by its friction's.
+    pub fn predicts(&self, dq: &[f64]) -> Branch {
+        let closed = self.predicts_closed(dq);
+        Branch {
+            closed,
+            stick: closed && self.friction.as_ref().is_some_and(|f| f.predicts_stick(dq)),
+        }
+    }
+
     /// Whether the point is closed after a change `dq` of its unknowns (over `codes`), by the
     /// linearization of its gap (and its multiplier).
-    pub fn predicts_closed(&self, dq: &[f64]) -> bool {
+    fn predicts_closed(&self, dq: &[f64]) -> bool {
         if !self.can_close() {
             return false;
         }

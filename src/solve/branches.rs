@@ -14,6 +14,7 @@
 //! single updates, the search has no answer, and which guess's step to take is a choice
 //! ([`OnCycle`]).
 
+use crate::contact::point::Branch;
 use std::collections::HashSet;
 
 /// Which guess's step a branch search that comes back to a guess returns.
@@ -35,15 +36,16 @@ pub enum OnCycle {
 pub struct ContactStep {
     pub du: Vec<f64>,
     /// Branch of every point the step was solved with.
-    pub closed: Vec<bool>,
+    pub closed: Vec<Branch>,
     /// Number of times the branches were updated.
     pub updates: usize,
     /// The search came back to a guess (the step is then that of the guess [`OnCycle`] says).
     pub cycled: bool,
 }
 
-pub struct BranchSearch {
-    seen: HashSet<Vec<bool>>,
+/// The search over guesses of type `T` per point (closed or open, and stick or slip).
+pub struct BranchSearch<T> {
+    seen: HashSet<Vec<T>>,
     /// One point per update (after a cycle).
     single: bool,
     pub updates: usize,
@@ -52,8 +54,8 @@ pub struct BranchSearch {
     pub cycled: bool,
 }
 
-impl BranchSearch {
-    pub fn new(max_updates: usize) -> BranchSearch {
+impl<T: Clone + Eq + std::hash::Hash> BranchSearch<T> {
+    pub fn new(max_updates: usize) -> BranchSearch<T> {
         BranchSearch {
             seen: HashSet::new(),
             single: false,
@@ -65,7 +67,7 @@ impl BranchSearch {
 
     /// The next guess after guess `closed` predicted `predicted`; None when the search is over
     /// (settled, or out of updates, or back at a guess it tried).
-    pub fn next(&mut self, closed: &[bool], predicted: &[bool]) -> Option<Vec<bool>> {
+    pub fn next(&mut self, closed: &[T], predicted: &[T]) -> Option<Vec<T>> {
         if closed == predicted || self.updates >= self.max_updates {
             return None;
         }
@@ -76,7 +78,7 @@ impl BranchSearch {
         let next = if self.single {
             let first = (0..closed.len()).find(|&i| closed[i] != predicted[i])?;
             let mut v = closed.to_vec();
-            v[first] = predicted[first];
+            v[first] = predicted[first].clone();
             v
         } else {
             predicted.to_vec()

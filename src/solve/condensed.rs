@@ -24,6 +24,7 @@
 use super::branches::{BranchSearch, ContactStep, OnCycle};
 use super::linear::LinearSolver;
 use crate::assembly::{DofMap, Pattern};
+use crate::contact::point::Branch;
 use crate::contact::ContactPoint;
 use crate::error::{Error, Result};
 use faer::linalg::solvers::{DenseSolveCore, Solve};
@@ -195,16 +196,39 @@ impl CondensedContact {
         self.base.solve_in_place(&mut w)?;
         let mdim = self.cand.len();
         let wc: Vec<f64> = self.cand.iter().map(|&e| w[e]).collect();
-        // The local tangent of both branches of every point.
-        let tangents: Vec<[Vec<f64>; 2]> = points
-            .iter()
-            .map(|p| [p.branch(false).1, p.branch(true).1])
-            .collect();
-        let mut closed: Vec<bool> = guess.to_vec();
+        // Closed or open, and with friction stick or slip, of every point.
+        let mut closed: Vec<Branch> = points.iter().zip(guess).map(|(p, &g)| p.guess(g)).collect();
         let mut search = BranchSearch::new(MAX_BRANCH_UPDATES);
         // The guess with the fewest points predicted otherwise (the latest of equals), its
         // δ − Pᵀ f_A: the step if the search comes back to a guess.
-        let mut best: Option<(usize, Vec<f64>, Vec<bool>)> = None;
+        let mut best: Option<(usize, Vec<f64>, Vec<Branch>)> = None;
+        // The local tangents of every point's branches: open, closed with the friction state it
+        // has now, and closed with the other one (stick ↔ slip) if it has friction.
+        let tangents: Vec<[Vec<f64>; 3]> = points
+            .iter()
+            .map(|p| {
+                let now = p.guess(true);
+                let other = match p.friction {
+                    Some(_) => {
+                        p.branch(Branch {
+                            stick: !now.stick,
+                            ..now
+                        })
+                        .1
+                    }
+                    None => Vec::new(),
+                };
+                [p.branch(p.guess(false)).1, p.branch(now).1, other]
+            })
+            .collect();
+        let tangent = |i: usize, b: Branch| {
+            let t = &tangents[i];
+            match (b.closed, b.stick == points[i].guess(true).stick) {
+                (false, _) => &t[0],
+                (true, true) => &t[1],
+                (true, false) => &t[2],
+            }
+        };
         loop {
             // Equations of the dense system: those of closed points and the shifted ones.
             let mut in_a = vec![usize::MAX; mdim];
@@ -221,7 +245,7 @@ impl CondensedContact {
                 }
             }
             for (i, l) in locs.iter().enumerate() {
-                if closed[i] && points[i].can_close() {
+                if closed[i].closed && points[i].can_close() {
                     for entries in l {
                         for &(k, _) in entries {
                             add(k, &mut a);
@@ -237,7 +261,7 @@ impl CondensedContact {
             // δ: the residual change of points whose branch differs from their current one.
             let mut delta = vec![0.0; mdim];
             for (i, l) in locs.iter().enumerate() {
-                let ke = &tangents[i][usize::from(closed[i])];
+                let ke = tangent(i, closed[i]);
                 let nd = l.len();
                 if let Some(change) = points[i].branch_change(closed[i]) {
                     for (entries, d) in l.iter().zip(change) {
@@ -322,7 +346,7 @@ impl CondensedContact {
                 ));
             }
             // Predict every point's branch from the linearized step.
-            let predicted: Vec<bool> = points
+            let predicted: Vec<Branch> = points
                 .iter()
                 .zip(&locs)
                 .map(|(p, l)| {
@@ -330,7 +354,7 @@ impl CondensedContact {
                         .iter()
                         .map(|entries| entries.iter().map(|&(k, wk)| wk * du_c[k]).sum())
                         .collect();
-                    p.predicts_closed(&dq)
+                    p.predicts(&dq)
                 })
                 .collect();
             let misses = closed

@@ -20,6 +20,7 @@ use super::multipliers::{Group, MultiplierElimination};
 use super::stepping::PhaseTimes;
 use super::stepping::StepInfo;
 use crate::assembly::{Assembler, Contribution, DofMap, Evaluation};
+use crate::contact::point::Branch;
 use crate::contact::{ContactPoint, ContactSystem, History, PointLaw, Search, SlotState};
 use crate::error::{Error, Result};
 use crate::model::Analysis;
@@ -335,7 +336,7 @@ impl NewtonContext<'_> {
         let t = Instant::now();
         let ks = self.asm.evaluate(u, true, false, None, &[])?;
         self.times.assembly += since(t);
-        let mut closed: Vec<bool> = guess.to_vec();
+        let mut closed: Vec<Branch> = points.iter().zip(guess).map(|(p, &g)| p.guess(g)).collect();
         let mut search = BranchSearch::new(MAX_FULL_UPDATES);
         // Multipliers eliminated through their slave rows below the Krylov threshold; above it
         // the saddle-point tangent's GMRES, preconditioned with the LDLᵀ of its symmetric part,
@@ -391,7 +392,7 @@ impl NewtonContext<'_> {
                     );
                 }
             }
-            let predicted: Vec<bool> = points
+            let predicted: Vec<Branch> = points
                 .iter()
                 .map(|p| {
                     let dq: Vec<f64> = p
@@ -405,7 +406,7 @@ impl NewtonContext<'_> {
                                 .sum()
                         })
                         .collect();
-                    p.predicts_closed(&dq)
+                    p.predicts(&dq)
                 })
                 .collect();
             // Unlike the condensed step, a cycle keeps the last guess's step here: the first

@@ -29,16 +29,38 @@ pub struct Tangential {
     /// Where the anchor would be if the state were converged: unchanged in stick, dragged behind
     /// the node in slip (a spatial point, to be projected on the partner).
     pub next_anchor: [f64; 3],
+    /// The force of the other branch at the same state, which the solver's branch search on
+    /// the linearized problem takes where it predicts the point to change (see
+    /// `contact::point`): in slip the stick force ε_T g_T; in stick, in 2D, the slip force along
+    /// the elastic slip. In 2D a slip goes one of two ways, and the search takes this branch
+    /// only where the predicted trial force points the elastic slip's way; in 3D the direction
+    /// of a slip to come is not known at a stick state, so there is none (offered along the
+    /// elastic slip, the predictor of a brick pushed obliquely slid its nodes along the inward
+    /// slip of the press and took a Newton iteration more).
+    pub other: Option<DVec>,
+    /// The trial force ε_T g_T and the slip limit μ·pn: stick while |trial| < limit.
+    pub trial: DVec,
+    pub limit: Dual,
 }
 
 impl Tangential {
     /// The friction part of a point's kinematics, with its residual contribution over the local
     /// unknowns.
-    pub fn kinematics(&self, residual: Vec<Jet>) -> FrictionKinematics {
+    /// `jet` takes a dual to the local unknowns, `spread` a force on the node to the residual
+    /// over them.
+    pub fn kinematics(
+        &self,
+        dim: usize,
+        jet: impl Fn(&Dual) -> Jet,
+        spread: impl Fn(&DVec) -> Vec<Jet>,
+    ) -> FrictionKinematics {
         FrictionKinematics {
-            residual,
+            residual: spread(&self.vector),
             stick: self.stick,
             force: self.force,
+            other: self.other.as_ref().map(spread),
+            trial: (0..dim).map(|i| jet(&self.trial[i])).collect(),
+            limit: jet(&self.limit),
         }
     }
 }
@@ -82,18 +104,26 @@ pub fn evaluate(law: Friction, point: &FrictionPoint) -> Tangential {
     // limit's), so taking the slip branch there lets a steady slide go on in one iteration per
     // step instead of starting each step from the stick tangent.
     let stick = law.penalty * slip_norm < limit * (1.0 - 1e-9) || slip_norm <= resolution;
-    let mut f = [zero; 3];
-    let next_anchor;
-    if stick {
-        for i in 0..dim {
-            f[i] = gt[i] * law.penalty;
-        }
-        next_anchor = std::array::from_fn(|i| if i < dim { xa[i].v } else { 0.0 });
-    } else {
+    let mut trial = [zero; 3];
+    for i in 0..dim {
+        trial[i] = gt[i] * law.penalty;
+    }
+    let sliding = || {
         let scale = pn * law.mu / norm2.sqrt();
+        let mut f = [zero; 3];
         for i in 0..dim {
             f[i] = gt[i] * scale;
         }
+        f
+    };
+    let (f, other, next_anchor);
+    if stick {
+        f = trial;
+        other = (dim == 2 && slip_norm > resolution).then(sliding);
+        next_anchor = std::array::from_fn(|i| if i < dim { xa[i].v } else { 0.0 });
+    } else {
+        f = sliding();
+        other = Some(trial);
         // |xs − xa'| tangentially = μ·pn/ε_T, behind the node along the slip.
         let back = limit.max(0.0) / (law.penalty * slip_norm);
         next_anchor = std::array::from_fn(|i| {
@@ -110,5 +140,8 @@ pub fn evaluate(law: Friction, point: &FrictionPoint) -> Tangential {
         stick,
         force,
         next_anchor,
+        other,
+        trial,
+        limit: pn * law.mu,
     }
 }

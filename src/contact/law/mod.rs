@@ -57,6 +57,12 @@ pub struct FrictionKinematics {
     pub residual: Vec<Jet>,
     pub stick: bool,
     pub force: f64,
+    /// The residual contribution of the other branch (stick ↔ slip; see
+    /// [`friction::Tangential::other`]).
+    pub other: Option<Vec<Jet>>,
+    /// The trial force ε_T g_T (dim components) and the slip limit μ·pn.
+    pub trial: Vec<Jet>,
+    pub limit: Jet,
 }
 
 impl PointKinematics {
@@ -114,6 +120,7 @@ fn point(
         gap: k.gap.v,
         gap_grad: k.gap.d.clone(),
         closed: closed_now,
+        friction: None,
     }
 }
 

@@ -7,7 +7,8 @@
 //! the point closes within the step.
 
 use super::{point, Laws, PointKinematics};
-use crate::contact::point::{ContactPoint, PointLaw};
+use crate::contact::dual::Jet;
+use crate::contact::point::{ContactPoint, FrictionBranch, PointLaw};
 
 pub fn evaluate(laws: &Laws, penalty: f64, codes: Vec<usize>, k: &PointKinematics) -> ContactPoint {
     let m = k.b.len();
@@ -27,15 +28,42 @@ pub fn evaluate(laws: &Laws, penalty: f64, codes: Vec<usize>, k: &PointKinematic
             ke[i * m + j] = penalty * kij;
         }
     }
-    let mut fe: Vec<f64> = v.iter().map(|vi| penalty * g.v * vi.v).collect();
+    let fe: Vec<f64> = v.iter().map(|vi| penalty * g.v * vi.v).collect();
     // Friction, with its exact (unsymmetric) tangent; at an open point its linear continuation.
-    if let Some(fr) = &k.friction {
+    // The closed branch with the other friction state too, for the solver's branch search.
+    let with = |fe: &[f64], ke: &[f64], r: &[Jet]| {
+        let mut fe = fe.to_vec();
+        let mut ke = ke.to_vec();
         for i in 0..m {
-            fe[i] += fr.residual[i].v;
+            fe[i] += r[i].v;
             for j in 0..m {
-                ke[i * m + j] += fr.residual[i].d[j];
+                ke[i * m + j] += r[i].d[j];
             }
         }
-    }
-    point(codes, PointLaw::Penalty, k, Some((fe, ke)), g.v <= 0.0)
+        (fe, ke)
+    };
+    let Some(fr) = &k.friction else {
+        return point(codes, PointLaw::Penalty, k, Some((fe, ke)), g.v <= 0.0);
+    };
+    let (other_fe, other_ke) = match &fr.other {
+        Some(r) => with(&fe, &ke, r),
+        None => (Vec::new(), Vec::new()),
+    };
+    let pair = |j: &Jet| (j.v, j.d.clone());
+    let branch = FrictionBranch {
+        stick: fr.stick,
+        other_fe,
+        other_ke,
+        trial: fr.trial.iter().map(pair).collect(),
+        limit: pair(&fr.limit),
+    };
+    let mut p = point(
+        codes,
+        PointLaw::Penalty,
+        k,
+        Some(with(&fe, &ke, &fr.residual)),
+        g.v <= 0.0,
+    );
+    p.friction = Some(branch);
+    p
 }

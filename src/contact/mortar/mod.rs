@@ -32,7 +32,7 @@ pub mod edges;
 pub mod faces;
 pub mod segment;
 
-use super::dual::{Dual, Jet};
+use super::dual::{DVec, Dual, Jet};
 use super::law::friction::{self, FrictionPoint};
 use super::law::{self, FrictionKinematics, Laws, PointKinematics, SlipKinematics};
 use super::{Anchor, ContactPoint, Ctx, Formulation, Local, Partner, SlotState};
@@ -475,13 +475,17 @@ fn slot_friction(
     for i in 0..dim {
         dz.push(nonzero(&form.normal[i]));
     }
-    let traction: Vec<Jet> = (0..dim).map(|i| Jet::chain(&t.vector[i], &dz, m)).collect();
-    let mut residual = vec![Jet::constant(0.0, m); m];
-    for (k, w) in &form.shares {
-        for i in 0..dim {
-            residual[dim * k + i] = w.product(&traction[i]);
+    let jet = |d: &Dual| Jet::chain(d, &dz, m);
+    // A traction t per unit area: node n's residual is w_jn·t.
+    let spread = |t: &DVec| {
+        let mut residual = vec![Jet::constant(0.0, m); m];
+        for (k, w) in &form.shares {
+            for i in 0..dim {
+                residual[dim * k + i] = w.product(&jet(&t[i]));
+            }
         }
-    }
+        residual
+    };
     // The elastic slip left: the traction over the tangential penalty (stick: all of the slip).
     let elastic = std::array::from_fn(|i| {
         if i < dim {
@@ -490,5 +494,5 @@ fn slot_friction(
             0.0
         }
     });
-    (t.kinematics(residual), elastic)
+    (t.kinematics(dim, jet, spread), elastic)
 }

@@ -190,7 +190,7 @@ impl NodeToSegment {
         } else {
             slid(t.next_anchor)
         };
-        kin.friction = Some(t.kinematics(spread(&t.vector)));
+        kin.friction = Some(t.kinematics(dim, jet, spread));
         next
     }
 }
