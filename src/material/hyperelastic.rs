@@ -187,7 +187,11 @@ impl Hyperelastic {
         if !(det > 0.0) {
             return Err(det);
         }
+        if let Hyperelastic::SimoPister { g, k } = *self {
+            return Ok(simo_pister(g, k, f, det));
+        }
         let c = right_cauchy_green(f);
+        // (Simo–Pister has returned above; its traces are Mooney–Rivlin's.)
         let traces: Vec<SpectralTrace> = match self {
             Hyperelastic::MooneyRivlin { .. } | Hyperelastic::SimoPister { .. } => {
                 invariant_traces(&c)
@@ -276,6 +280,34 @@ impl Hyperelastic {
         }
         Ok((p, a))
     }
+}
+
+/// Simo–Pister's P and A in closed form (the general path's to round-off, without its
+/// fourth-order products): with F⁻ᵀ and ln J,
+///   P = G F + (k ln J − G) F⁻ᵀ,
+///   A_iJkL = G δ_ik δ_JL + (G − k ln J) F⁻ᵀ_iL F⁻ᵀ_kJ + k F⁻ᵀ_iJ F⁻ᵀ_kL.
+fn simo_pister(g: f64, k: f64, f: &T2, det: f64) -> (T2, T4) {
+    let inv = crate::fem::geometry::inverse3(f, det);
+    let fit: T2 = std::array::from_fn(|i| std::array::from_fn(|j| inv[j][i]));
+    let ln_j = det.ln();
+    let mut p = [[0.0; 3]; 3];
+    let mut a = [[[[0.0; 3]; 3]; 3]; 3];
+    for i in 0..3 {
+        for jj in 0..3 {
+            p[i][jj] = g * f[i][jj] + (k * ln_j - g) * fit[i][jj];
+            for kk in 0..3 {
+                for ll in 0..3 {
+                    let mut v =
+                        (g - k * ln_j) * fit[i][ll] * fit[kk][jj] + k * fit[i][jj] * fit[kk][ll];
+                    if i == kk && jj == ll {
+                        v += g;
+                    }
+                    a[i][jj][kk][ll] = v;
+                }
+            }
+        }
+    }
+    (p, a)
 }
 
 /// The traces of `traces()` for Mooney–Rivlin and Simo–Pister, tr ln C = ln det C, tr C and
