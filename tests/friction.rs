@@ -215,9 +215,9 @@ fn sliding_block(method: Method, nlgeo: bool) {
 /// substeps; the same S increments given as steps of their own (iterations to spare) end in the
 /// same state. Were the history of a failed attempt's converged substeps kept, the anchors
 /// would start ahead of the block and the path-dependent stick state would differ.
-/// With node-to-segment and mortar penalty contact (at most 1 iteration: 2 substeps; at most 2
-/// cut back into 8 before the branch search decided stick or slip, and converge now), and with
-/// multipliers on the Cattaneo–Mindlin
+/// With node-to-segment and mortar penalty contact (at most 1 iteration: 2 substeps; allowed 2,
+/// the step was cut into 8 before the branch search decided stick or slip and now converges
+/// whole), and with multipliers on the Cattaneo–Mindlin
 /// problem (at most 3 iterations: 4 substeps). The block with multipliers is piecewise linear
 /// and solved in as many iterations as the stick/slip sets take to settle, the same in the
 /// last substep, which holds the last node's onset of slip, as in the whole step: starved, it

@@ -9,8 +9,9 @@
 //! * Simo–Pister: W = ½G(T₁ − 3) − G ln J + ½K(ln J)².
 //!
 //! φ's derivatives come from second-order automatic differentiation over its few arguments, the
-//! traces' derivatives from [`super::spectral`]; then S = 2 ∂W/∂C, P = F S and
-//! A_iJkL = δ_ik S_JL + 4 F_iI (∂²W/∂C_IJ∂C_LM) F_kM.
+//! traces' derivatives from [`super::spectral`] (Ogden) or in closed form (T_ln, T₁, T₂); then
+//! S = 2 ∂W/∂C, P = F S and A_iJkL = δ_ik S_JL + 4 F_iI (∂²W/∂C_IJ∂C_LM) F_kM. Simo–Pister's P
+//! and A are written out instead (the same to round-off, at a fraction of the cost).
 
 use super::spectral::{eigen_symmetric, Log, Power, Scalar1, SpectralTrace, T2, T4};
 
@@ -211,7 +212,6 @@ impl Hyperelastic {
             .collect();
         let phi = self.phi(&args);
         let na = traces.len();
-        // ∂W/∂C and ∂²W/∂C∂C.
         // ∂W/∂C = Σ_a φ_a ∂T_a, ∂²W/∂C∂C = Σ_a φ_a ∂²T_a + Σ_b (Σ_a φ_ab ∂T_a) ⊗ ∂T_b.
         let mut dw = [[0.0; 3]; 3];
         let mut mixed = [[[0.0; 3]; 3]; MAXA];
