@@ -1,6 +1,7 @@
-//! The search for the contact points' branches (closed or open) on the linearized problem: guess
-//! the branches, solve, predict every point's branch from the solution, and repeat until guess and
-//! prediction agree (see `contact::point`).
+//! The search for the contact points' branches (closed or open, and with friction on a penalty
+//! point stick or slip) on the linearized problem: guess the branches, solve, predict every
+//! point's branch from the solution, and repeat until guess and prediction agree (see
+//! `contact::point`).
 //!
 //! Updating every point at once (a primal-dual active-set step) settles in a few updates on most
 //! problems, but it can cycle when closing one point opens its neighbours, as on a slender beam
