@@ -202,6 +202,9 @@ impl CondensedContact {
         // The guess with the fewest points predicted otherwise (the latest of equals), its
         // δ − Pᵀ f_A: the step if the search comes back to a guess.
         let mut best: Option<(usize, Vec<f64>, Vec<Branch>)> = None;
+        // Whether a guess without closed points keeps the shift (see below).
+        let mut hold = false;
+        let shifted = (0..mdim).any(|k| self.shift[k] != 0.0 && !self.is_lambda(k, dofs));
         // The local tangents of every point's branches: open, closed with the friction state it
         // has now, and closed with the other one (stick ↔ slip) if it has friction.
         let tangents: Vec<[Vec<f64>; 3]> = points
@@ -255,8 +258,11 @@ impl CondensedContact {
             }
             let na = a.len();
             let mut c = Mat::<f64>::zeros(na, na);
+            let none_closed = !(0..points.len()).any(|i| closed[i].closed && points[i].can_close());
             for &k in &a {
-                c[(in_a[k], in_a[k])] -= self.shift[k];
+                if !(hold && none_closed) {
+                    c[(in_a[k], in_a[k])] -= self.shift[k];
+                }
             }
             // δ: the residual change of points whose branch differs from their current one.
             let mut delta = vec![0.0; mdim];
@@ -362,6 +368,15 @@ impl CondensedContact {
                 .zip(&predicted)
                 .filter(|(a, b)| a != b)
                 .count();
+            // A body held by contact alone whose guess closes no point has no Newton step (its
+            // tangent is singular; the solve's round-off sends it anywhere, and its prediction
+            // then confirms the guess): solved again with the shifted K_s', the body held by the
+            // springs α, the step moves it a bounded amount along its load, and the prediction
+            // sees the points that motion closes.
+            if misses == 0 && none_closed && !hold && shifted {
+                hold = true;
+                continue;
+            }
             let ended = search.next(&closed, &predicted);
             if cycle == OnCycle::FewestMisses && best.as_ref().is_none_or(|b| misses <= b.0) {
                 best = Some((misses, corr.clone(), closed.clone()));
