@@ -1,12 +1,15 @@
 //! Newton steps of contact problems, condensed on the contact equations, with every contact
-//! point's branch (closed or open) decided on the linearized problem.
+//! point's branch (closed or open, and with penalty friction stick or slip) decided on the
+//! linearized problem.
 //!
 //! The structural tangent K_s (elements only) is factorized with the contact candidate equations c
 //! (the DOFs of every node a contact point can involve, and the multipliers) eliminated last; the
 //! trailing block L₂₂ of its factor gives M = (K_s⁻¹)_cc = (L₂₂L₂₂ᵀ)⁻¹ without further solves.
 //! Multiplier rows, empty in K_s, carry a unit diagonal there; a body held by contact alone makes
 //! K_s singular, and then every candidate displacement carries a diagonal shift α as well. Both
-//! shifts are taken back in the contact part, so the step solves the true tangent.
+//! shifts are taken back in the contact part, so the step solves the true tangent (but for a
+//! guess that closes no point of such a body, which has no true step: see
+//! [`CondensedContact::step`]).
 //!
 //! A Newton step for a choice of branches: the contact tangent C on the equations A it touches
 //! (closed points, shifted equations) and the residual change δ of points whose branch differs from
