@@ -316,15 +316,7 @@ fn simo_pister(g: f64, k: f64, f: &T2, det: f64) -> (T2, T4) {
 /// their Hessians −½(C⁻¹_ik C⁻¹_jl + C⁻¹_il C⁻¹_jk), 0 and δ_ik δ_jl + δ_il δ_jk.
 fn invariant_traces(c: &T2) -> Vec<SpectralTrace> {
     let det = crate::fem::geometry::det3(c);
-    // C⁻¹ from the cofactors (C is symmetric).
-    let mut ci = [[0.0; 3]; 3];
-    for i in 0..3 {
-        for j in 0..3 {
-            let (i1, i2) = ((j + 1) % 3, (j + 2) % 3);
-            let (j1, j2) = ((i + 1) % 3, (i + 2) % 3);
-            ci[i][j] = (c[i1][j1] * c[i2][j2] - c[i1][j2] * c[i2][j1]) / det;
-        }
-    }
+    let ci = crate::fem::geometry::inverse3(c, det);
     let mut log = SpectralTrace {
         value: det.ln(),
         grad: ci,
@@ -409,22 +401,26 @@ mod tests {
         }
     }
 
-    /// P is the derivative of W, and A the derivative of P (central differences), at a general
-    /// deformation and at a rotated stretch with two equal principal stretches.
-    #[test]
-    fn stress_and_tangent_are_derivatives_of_energy_and_stress() {
+    /// A general deformation gradient, and a rotated stretch R · diag(1.2, 0.9, 0.9) with two
+    /// equal principal stretches.
+    fn deformations() -> [T2; 2] {
         let (c, s) = (0.6f64.cos(), 0.6f64.sin());
-        let fs = [
+        [
             [[1.1, 0.2, -0.1], [0.05, 0.9, 0.3], [0.0, -0.2, 1.2]],
-            // R · diag(1.2, 0.9, 0.9)
             [
                 [1.2 * c, -0.9 * s, 0.0],
                 [1.2 * s, 0.9 * c, 0.0],
                 [0.0, 0.0, 0.9],
             ],
-        ];
+        ]
+    }
+
+    /// P is the derivative of W, and A the derivative of P (central differences), at the
+    /// [`deformations`].
+    #[test]
+    fn stress_and_tangent_are_derivatives_of_energy_and_stress() {
         for law in laws() {
-            for f in fs {
+            for f in deformations() {
                 let (p, a) = law.pk1(&f).unwrap();
                 let h = 1e-6;
                 for k in 0..3 {
@@ -460,17 +456,8 @@ mod tests {
     /// gradients and Hessians to round-off, at a general C and at one with a double eigenvalue.
     #[test]
     fn invariant_traces_are_the_spectral_ones() {
-        let (c, s) = (0.6f64.cos(), 0.6f64.sin());
-        let fs = [
-            [[1.1, 0.2, -0.1], [0.05, 0.9, 0.3], [0.0, -0.2, 1.2]],
-            [
-                [1.2 * c, -0.9 * s, 0.0],
-                [1.2 * s, 0.9 * c, 0.0],
-                [0.0, 0.0, 0.9],
-            ],
-        ];
         let law = Hyperelastic::SimoPister { g: 1.0, k: 1.0 };
-        for f in fs {
+        for f in deformations() {
             let cc = right_cauchy_green(&f);
             let (e, n) = eigen_symmetric(&cc);
             let closed = invariant_traces(&cc);

@@ -7,7 +7,7 @@
 //! displacement; `dndx[a][I]` = ∂N_a/∂X_I; `f` = F (deformation gradient, 3×3, F₃₃ = 1 in 2D);
 //! `s` = second Piola–Kirchhoff stress tensor; `jxw` = |det J|·weight·thickness.
 
-use crate::fem::geometry::{det3, map_derivatives};
+use crate::fem::geometry::{det3, inverse3, map_derivatives};
 use crate::fem::{QuadPoint, Shape};
 use crate::material::{voigt_components, Constitutive, Elasticity, Hyperelastic, VOIGT_PAIRS};
 use crate::model::StressMode;
@@ -322,7 +322,7 @@ impl ContinuumKernel<'_> {
         }
         if let Some(st) = states {
             // Green–Lagrange strain and S = F⁻¹P in Voigt form (engineering shear strains).
-            let fi = inverse3(&f);
+            let fi = inverse3(&f, det3(&f));
             let mut strain = [0.0; 6];
             let mut stress = [0.0; 6];
             for (c, &(i, j)) in VOIGT_PAIRS.iter().enumerate() {
@@ -338,18 +338,4 @@ impl ContinuumKernel<'_> {
         }
         Ok(())
     }
-}
-
-/// Inverse of a 3×3 matrix (non-singular).
-fn inverse3(m: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
-    let d = det3(m);
-    let mut r = [[0.0; 3]; 3];
-    for i in 0..3 {
-        for j in 0..3 {
-            let (i1, i2) = ((j + 1) % 3, (j + 2) % 3);
-            let (j1, j2) = ((i + 1) % 3, (i + 2) % 3);
-            r[i][j] = (m[i1][j1] * m[i2][j2] - m[i1][j2] * m[i2][j1]) / d;
-        }
-    }
-    r
 }
