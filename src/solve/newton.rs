@@ -286,6 +286,21 @@ impl NewtonContext<'_> {
             .collect()
     }
 
+    /// The change of a point's unknowns (over its codes) in a step `du` of the free equations.
+    fn local_change(&self, p: &ContactPoint, du: &[f64]) -> Vec<f64> {
+        let nf = self.dofs.n_free;
+        p.codes
+            .iter()
+            .map(|&code| {
+                self.dofs
+                    .entries(code)
+                    .filter(|(e, _)| *e < nf)
+                    .map(|(e, w)| w * du[e])
+                    .sum()
+            })
+            .collect()
+    }
+
     /// Every multiplier point's multipliers and its slave node's free displacement equations.
     fn multiplier_groups(&self, points: &[ContactPoint]) -> Vec<Group> {
         let dofs = self.dofs;
@@ -394,20 +409,7 @@ impl NewtonContext<'_> {
             }
             let predicted: Vec<Branch> = points
                 .iter()
-                .map(|p| {
-                    let dq: Vec<f64> = p
-                        .codes
-                        .iter()
-                        .map(|&code| {
-                            self.dofs
-                                .entries(code)
-                                .filter(|(e, _)| *e < nf)
-                                .map(|(e, w)| w * step[e])
-                                .sum()
-                        })
-                        .collect();
-                    p.predicts(&dq)
-                })
+                .map(|p| p.predicts(&self.local_change(p, &step)))
                 .collect();
             // Unlike the condensed step, a cycle keeps the last guess's step here: the first
             // guess's made two coarse shallow-ironing runs (structural tangent indefinite, so
@@ -458,6 +460,9 @@ impl NewtonContext<'_> {
         let mut du = vec![0.0; nf];
         let mut prev: Option<Vec<SlotState>> = self.converged_states.clone();
         let mut prev2: Option<Vec<SlotState>> = None;
+        // Per penalty point closed in the last Newton step: the force of the step's linear model,
+        // which the next step's geometric tangent part takes (see `ContactPoint::hold_force`).
+        let mut held: Vec<Option<f64>> = Vec::new();
         for it in 0..=a.maxiter {
             let search = match &prev {
                 Some(p) => Search::Hint(p),
@@ -593,7 +598,22 @@ impl NewtonContext<'_> {
             let (step, updates, cycled) = if has_contact {
                 let ks = need_ks.then_some(&ev);
                 let guess = self.branch_guess(&points);
+                let mut points = points;
+                for (p, h) in points.iter_mut().zip(&held) {
+                    if let Some(force) = *h {
+                        p.hold_force(force);
+                    }
+                }
                 let s = self.solve_step(u, rhs, &points, &guess, ks, OnCycle::FewestMisses)?;
+                held = points
+                    .iter()
+                    .zip(&s.closed)
+                    .map(|(p, b)| {
+                        b.closed
+                            .then(|| p.held_force(&self.local_change(p, &s.du)))
+                            .flatten()
+                    })
+                    .collect();
                 (s.du, s.updates, s.cycled)
             } else {
                 if want_k {

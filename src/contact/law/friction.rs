@@ -41,6 +41,10 @@ pub struct Tangential {
     /// The trial force ε_T g_T and the slip limit μ·pn: stick while |trial| < limit.
     pub trial: DVec,
     pub limit: Dual,
+    /// The slip force per unit normal force, μ·g_T/|g_T| with pn held fixed, where the point
+    /// has a slip branch (its own or the other): the part of the slip tangent that scales with
+    /// pn (see `contact::point::ContactPoint::hold_force`).
+    pub unit_slip: Option<DVec>,
 }
 
 impl Tangential {
@@ -58,9 +62,10 @@ impl Tangential {
             residual: spread(&self.vector),
             stick: self.stick,
             force: self.force,
-            other: self.other.as_ref().map(spread),
+            other: self.other.as_ref().map(&spread),
             trial: (0..dim).map(|i| jet(&self.trial[i])).collect(),
             limit: jet(&self.limit),
+            unit_slip: self.unit_slip.as_ref().map(spread),
         }
     }
 }
@@ -108,7 +113,7 @@ pub fn evaluate(law: Friction, point: &FrictionPoint) -> Tangential {
     for i in 0..dim {
         trial[i] = gt[i] * law.penalty;
     }
-    let sliding = || {
+    let sliding_with = |pn: Dual| {
         let scale = pn * law.mu / norm2.sqrt();
         let mut f = [zero; 3];
         for i in 0..dim {
@@ -119,10 +124,10 @@ pub fn evaluate(law: Friction, point: &FrictionPoint) -> Tangential {
     let (f, other, next_anchor);
     if stick {
         f = trial;
-        other = (dim == 2 && slip_norm > resolution).then(sliding);
+        other = (dim == 2 && slip_norm > resolution).then(|| sliding_with(pn));
         next_anchor = std::array::from_fn(|i| if i < dim { xa[i].v } else { 0.0 });
     } else {
-        f = sliding();
+        f = sliding_with(pn);
         other = Some(trial);
         // |xs − xa'| tangentially = μ·pn/ε_T, behind the node along the slip.
         let back = limit.max(0.0) / (law.penalty * slip_norm);
@@ -134,6 +139,7 @@ pub fn evaluate(law: Friction, point: &FrictionPoint) -> Tangential {
             }
         });
     }
+    let unit_slip = (!stick || other.is_some()).then(|| sliding_with(Dual::constant(1.0, pn.n)));
     let force = (0..dim).map(|i| f[i].v * f[i].v).sum::<f64>().sqrt();
     Tangential {
         vector: f,
@@ -143,5 +149,6 @@ pub fn evaluate(law: Friction, point: &FrictionPoint) -> Tangential {
         other,
         trial,
         limit: pn * law.mu,
+        unit_slip,
     }
 }

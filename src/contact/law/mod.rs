@@ -63,6 +63,9 @@ pub struct FrictionKinematics {
     /// The trial force ε_T g_T (dim components) and the slip limit μ·pn.
     pub trial: Vec<Jet>,
     pub limit: Jet,
+    /// The residual contribution of the slip branch per unit normal force, pn held fixed
+    /// (see [`friction::Tangential::unit_slip`]).
+    pub unit_slip: Option<Vec<Jet>>,
 }
 
 impl PointKinematics {
@@ -121,6 +124,7 @@ fn point(
         gap_grad: k.gap.d.clone(),
         closed: closed_now,
         friction: None,
+        geometric: None,
     }
 }
 

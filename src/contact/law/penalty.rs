@@ -4,11 +4,14 @@
 //! Closed branch: r = p·g·v, v = w·B;  K = p·(v ⊗ ∇g + g·∂v) (the second term is the geometric
 //! part), plus the friction of the point if it has any (see [`super::friction`]). At an open point (g > 0) the closed branch is the linear model of the closing force:
 //! its value p·g·v (a pull) and the material part only; the solver uses it when it predicts that
-//! the point closes within the step.
+//! the point closes within the step. The point also gives its geometric part per unit force
+//! ([`Geometric`]) and, with friction, the slip force's part per unit normal force, so that the
+//! solver can take both with the force of its last Newton step instead of −p·g (see
+//! `ContactPoint::hold_force`).
 
 use super::{point, Laws, PointKinematics};
 use crate::contact::dual::Jet;
-use crate::contact::point::{ContactPoint, FrictionBranch, PointLaw};
+use crate::contact::point::{ContactPoint, FrictionBranch, Geometric, PointLaw};
 
 pub fn evaluate(laws: &Laws, penalty: f64, codes: Vec<usize>, k: &PointKinematics) -> ContactPoint {
     let m = k.b.len();
@@ -29,6 +32,12 @@ pub fn evaluate(laws: &Laws, penalty: f64, codes: Vec<usize>, k: &PointKinematic
         }
     }
     let fe: Vec<f64> = v.iter().map(|vi| penalty * g.v * vi.v).collect();
+    let geo = Geometric {
+        dv: v.iter().flat_map(|vi| vi.d.iter().copied()).collect(),
+        force: if geometric { -penalty * g.v } else { 0.0 },
+        penalty,
+        weight: k.weight.v,
+    };
     // Friction, with its exact (unsymmetric) tangent; at an open point its linear continuation.
     // The closed branch with the other friction state too, for the solver's branch search.
     let with = |fe: &[f64], ke: &[f64], r: &[Jet]| {
@@ -43,7 +52,9 @@ pub fn evaluate(laws: &Laws, penalty: f64, codes: Vec<usize>, k: &PointKinematic
         (fe, ke)
     };
     let Some(fr) = &k.friction else {
-        return point(codes, PointLaw::Penalty, k, Some((fe, ke)), g.v <= 0.0);
+        let mut p = point(codes, PointLaw::Penalty, k, Some((fe, ke)), g.v <= 0.0);
+        p.geometric = Some(geo);
+        return p;
     };
     let (other_fe, other_ke) = match &fr.other {
         Some(r) => with(&fe, &ke, r),
@@ -56,6 +67,9 @@ pub fn evaluate(laws: &Laws, penalty: f64, codes: Vec<usize>, k: &PointKinematic
         other_ke,
         trial: fr.trial.iter().map(pair).collect(),
         limit: pair(&fr.limit),
+        unit_slip_ke: fr.unit_slip.as_ref().map_or_else(Vec::new, |r| {
+            r.iter().flat_map(|ri| ri.d.iter().copied()).collect()
+        }),
     };
     let mut p = point(
         codes,
@@ -65,5 +79,6 @@ pub fn evaluate(laws: &Laws, penalty: f64, codes: Vec<usize>, k: &PointKinematic
         g.v <= 0.0,
     );
     p.friction = Some(branch);
+    p.geometric = Some(geo);
     p
 }
