@@ -14,8 +14,8 @@
 //! slip, whose tangent has no tangential stiffness (in 2D none at all): taking stick or slip from
 //! the iterate, the step of a patch of sliding nodes is the bodies' response to the whole friction
 //! force, which overshoots to the opposite slip and back (shallow ironing as mortar with `penalty
-//! 1e4`: no convergence even in the press; with the search, 351 iterations for its 110 steps, at
-//! most 4 a step, no cut-back). So a closed point with friction also gives its other
+//! 1e4`: no convergence even in the press; with the search, 361 iterations for its 110 steps, at
+//! most 5 a step, no cut-back). So a closed point with friction also gives its other
 //! friction branch ([`FrictionBranch`]), and the search decides stick or slip on the linear model
 //! too, from the predicted trial force: stick inside the cone, or where the trial force turns
 //! against the present one (the one slip branch there is, along the present trial force, is no
