@@ -31,6 +31,10 @@ pub enum OnCycle {
     /// times its neighbours' force and inverted an element; the fewest-miss guess, the iterate's
     /// own branches there, let the next iterate decide (no cut-back, at most 7 iterations).
     FewestMisses,
+    /// The fewest-miss guess, the earliest of equals: for a Newton iteration after one whose
+    /// cycled search did not lower the residual (the latest of equals there can be a step that
+    /// leaves the iterate where it is, which would be chosen again and again).
+    FewestMissesEarliest,
 }
 
 /// A Newton step of a contact problem, with how its branch search went.

@@ -381,7 +381,11 @@ impl CondensedContact {
                 continue;
             }
             let ended = search.next(&closed, &predicted);
-            if cycle == OnCycle::FewestMisses && best.as_ref().is_none_or(|b| misses <= b.0) {
+            let better = |b: &(usize, _, _)| match cycle {
+                OnCycle::FewestMisses => misses <= b.0,
+                _ => misses < b.0,
+            };
+            if cycle != OnCycle::Last && best.as_ref().is_none_or(better) {
                 best = Some((misses, corr.clone(), closed.clone()));
             }
             if let Some(next) = ended {

@@ -463,6 +463,7 @@ impl NewtonContext<'_> {
         // Per penalty point closed in the last Newton step: the force of the step's linear model,
         // which the next step's geometric tangent part takes (see `ContactPoint::hold_force`).
         let mut held: Vec<Option<f64>> = Vec::new();
+        let mut last_cycled = false;
         for it in 0..=a.maxiter {
             let search = match &prev {
                 Some(p) => Search::Hint(p),
@@ -604,7 +605,18 @@ impl NewtonContext<'_> {
                         p.hold_force(force);
                     }
                 }
-                let s = self.solve_step(u, rhs, &points, &guess, ks, OnCycle::FewestMisses)?;
+                // A cycled search whose step did not lower the residual takes the earliest of
+                // its equal guesses next time.
+                let stalled = last_cycled
+                    && info.residual_history.len() >= 2
+                    && check.worst >= 0.99 * info.residual_history[info.residual_history.len() - 2];
+                let cycle = if stalled {
+                    OnCycle::FewestMissesEarliest
+                } else {
+                    OnCycle::FewestMisses
+                };
+                let s = self.solve_step(u, rhs, &points, &guess, ks, cycle)?;
+                last_cycled = s.cycled;
                 held = points
                     .iter()
                     .zip(&s.closed)
