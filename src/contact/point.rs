@@ -108,12 +108,17 @@ impl FrictionBranch {
         if self.stick && self.other_fe.is_empty() {
             return true;
         }
-        let lin = |(v, d): &(f64, Vec<f64>)| v + d.iter().zip(dq).map(|(a, b)| a * b).sum::<f64>();
+        let lin = |(v, d): &(f64, Vec<f64>)| linearized(*v, d, dq);
         let next: Vec<f64> = self.trial.iter().map(lin).collect();
         let norm = next.iter().map(|t| t * t).sum::<f64>().sqrt();
         let along: f64 = next.iter().zip(&self.trial).map(|(a, t)| a * t.0).sum();
         norm < lin(&self.limit) * (1.0 - 1e-9) || along <= 0.0
     }
+}
+
+/// A value `v` with gradient `d` after a change `dq`, by its linearization.
+fn linearized(v: f64, d: &[f64], dq: &[f64]) -> f64 {
+    v + d.iter().zip(dq).map(|(a, b)| a * b).sum::<f64>()
 }
 
 /// A branch of a contact point: closed or open, and (closed, with friction) stick or slip.
@@ -224,17 +229,16 @@ impl ContactPoint {
         }
     }
 
+    /// The gap after a change `dq` of its unknowns (over `codes`), by its linearization.
+    fn linear_gap(&self, dq: &[f64]) -> f64 {
+        linearized(self.gap, &self.gap_grad, dq)
+    }
+
     /// The force λ̂ = −ε·g_lin of a penalty point's closed branch after a Newton step that
     /// changed its unknowns by `dq`, by the step's linear model, where that is a compression.
     pub fn held_force(&self, dq: &[f64]) -> Option<f64> {
         let geo = self.geometric.as_ref()?;
-        let g = self.gap
-            + self
-                .gap_grad
-                .iter()
-                .zip(dq)
-                .map(|(a, b)| a * b)
-                .sum::<f64>();
+        let g = self.linear_gap(dq);
         (self.can_close() && g < 0.0).then(|| -geo.penalty * g)
     }
 
@@ -279,13 +283,7 @@ impl ContactPoint {
         if !self.can_close() {
             return false;
         }
-        let g = self.gap
-            + self
-                .gap_grad
-                .iter()
-                .zip(dq)
-                .map(|(a, b)| a * b)
-                .sum::<f64>();
+        let g = self.linear_gap(dq);
         match self.law {
             PointLaw::Penalty => g <= 0.0,
             PointLaw::Multiplier { lambda, c, tol, .. } => {
