@@ -312,7 +312,7 @@ fn check_friction(
 /// the tangent over the multipliers too).
 #[test]
 fn friction_tangents_are_jacobians_of_residuals_in_stick_and_slip() {
-    for (base, lambda) in [(PEN, 0.0), (LM, 1000.0)] {
+    for (base, lambda) in [(PEN, 1000.0), (LM, 1000.0)] {
         for (mu, stick) in [(5.0, true), (0.05, false)] {
             let law = format!("{base} friction {mu}");
             for kind in ["q4", "q8"] {
@@ -355,7 +355,10 @@ fn friction_tangents_are_jacobians_of_residuals_in_stick_and_slip() {
 #[test]
 fn friction_tangents_against_faces_are_jacobians_of_residuals() {
     let laws = [
-        ("n2spenaltycontact 1 loadTimeFunction 1 penalty 1000", 0.0),
+        (
+            "n2spenaltycontact 1 loadTimeFunction 1 penalty 1000",
+            1000.0,
+        ),
         (
             "n2slagrangianmultipliercontact 1 loadTimeFunction 1",
             1000.0,
@@ -669,101 +672,6 @@ fn face_tangents_are_jacobians_of_residuals() {
     }
 }
 
-/// At an open point the closed branch (the linear model the solver uses when it predicts the
-/// point closes) carries friction's continuation, whose tangent is the Jacobian of its part of
-/// the branch (the branch with friction less the one without; the normal part of an open point's
-/// branch is its material part only, by design).
-#[test]
-fn friction_continuation_of_an_open_point_is_jacobian_of_its_closed_branch() {
-    for seg in [
-        None,
-        Some("circlecontactsegment 1 centerpoint 2 0.3 0.2 radius 0.9 node 900"),
-    ] {
-        let with = strip("q4", 1, 1, (0.3, 1.05), seg, &format!("{PEN} friction 0.3"));
-        let without = strip("q4", 1, 1, (0.3, 1.05), seg, PEN);
-        let (mf, m0) = (
-            common::model_from_text(&with).unwrap(),
-            common::model_from_text(&without).unwrap(),
-        );
-        let (cf, c0) = (
-            ContactSystem::new(&mf).unwrap(),
-            ContactSystem::new(&m0).unwrap(),
-        );
-        let dofs = hertz::solve::number_dofs(&mf).unwrap();
-        let u0 = vec![0.0; dofs.n_primary()];
-        let history = cf.evaluate(&mf, &dofs, &u0, Search::Fresh).unwrap().1;
-        // Slid sideways, still clear of the master (gap > 0).
-        let case = Case {
-            name: "open".into(),
-            text: with.clone(),
-            disp: vec![(label_of_slave(&with), [0.04, 0.1, 0.0])],
-            lambda: 0.0,
-            active: 0,
-        };
-        let u = displaced(&mf, &dofs, &case);
-        let zero = vec![0.0; u.len()];
-        let at_rest = History {
-            states: &history,
-            u: &zero,
-        };
-        let (_, states) = cf
-            .evaluate_with_history(&mf, &dofs, &u, Search::Fresh, Some(at_rest))
-            .unwrap();
-        assert!(states[0].gap > 0.0 && !states[0].active, "{states:?}");
-        assert!(
-            states[0].friction.is_none(),
-            "an open point reports no friction"
-        );
-        // The friction part of the closed branch at u: (fe, ke) with friction less without.
-        let part = |u: &[f64]| {
-            let pf = cf
-                .evaluate_with_history(&mf, &dofs, u, Search::Frozen(&states), Some(at_rest))
-                .unwrap()
-                .0
-                .remove(0);
-            let p0 = c0
-                .evaluate(&m0, &dofs, u, Search::Frozen(&states))
-                .unwrap()
-                .0
-                .remove(0);
-            assert_eq!(pf.codes, p0.codes);
-            let fe: Vec<f64> = pf
-                .closed_fe
-                .iter()
-                .zip(&p0.closed_fe)
-                .map(|(a, b)| a - b)
-                .collect();
-            let ke: Vec<f64> = pf
-                .closed_ke
-                .iter()
-                .zip(&p0.closed_ke)
-                .map(|(a, b)| a - b)
-                .collect();
-            (pf.codes, fe, ke)
-        };
-        let (codes, fe, ke) = part(&u);
-        assert!(
-            fe.iter().any(|v| v.abs() > 0.0),
-            "{seg:?}: friction in the branch"
-        );
-        let m = codes.len();
-        let scale = ke.iter().fold(1e-12f64, |a, v| a.max(v.abs()));
-        let h = 1e-6;
-        let mut worst = 0.0f64;
-        for j in 0..m {
-            let (mut up, mut um) = (u.clone(), u.clone());
-            up[codes[j]] += h;
-            um[codes[j]] -= h;
-            let (fp, fm) = (part(&up).1, part(&um).1);
-            for i in 0..m {
-                let fd = (fp[i] - fm[i]) / (2.0 * h);
-                worst = worst.max((fd - ke[i * m + j]).abs() / scale);
-            }
-        }
-        assert!(worst < 1e-6, "{seg:?}: {worst:e}");
-    }
-}
-
 /// The 2D mortar cases of condition `law` (a record with `slavesegment`): name, input, the
 /// displacements and the expected active slots. Non-matching blocks of straight edges (3/2) and
 /// of curved quadratic ones (the mid-side nodes moved off the chords), and the upper block
@@ -1017,8 +925,8 @@ fn check_mortar3d(name: &str, text: &str, disp: Disp, lambda: f64) {
 /// differentiated too), on the cases of the frictionless mortar tests: 2D straight
 /// and quadratic edges and a rigid circle moving with a node, 3D hexahedra, tetrahedra and
 /// wedges against faces and against a rigid sphere moving with a node; the history is the state
-/// at u = 0. Penalty, and multipliers (the pressures and the
-/// friction tractions' components at 1000: the tangent over the multipliers too).
+/// at u = 0. Penalty (solved in multiplier form) and multipliers, the pressures and the friction
+/// tractions' components at 1000: the tangent over the multipliers too.
 #[test]
 fn mortar_friction_tangents_are_jacobians_in_stick_and_slip() {
     use hertz::bench::mesh::Solid;
@@ -1027,7 +935,7 @@ fn mortar_friction_tangents_are_jacobians_in_stick_and_slip() {
         (
             "s2spenaltycontact 4 loadTimeFunction 1 penalty 1e4 slavesegment 1 segmentset 1 2",
             Law::Penalty(1e4),
-            0.0,
+            1000.0,
         ),
         (
             "s2slagrangianmultipliercontact 4 loadTimeFunction 1 slavesegment 1 segmentset 1 2",

@@ -215,20 +215,18 @@ fn sliding_block(method: Method, nlgeo: bool) {
 /// substeps; the same S increments given as steps of their own (iterations to spare) end in the
 /// same state. Were the history of a failed attempt's converged substeps kept, the anchors
 /// would start ahead of the block and the path-dependent stick state would differ.
-/// With node-to-segment and mortar penalty contact (at most 1 iteration: 2 substeps; allowed 2,
-/// the step was cut into 8 before the branch search decided stick or slip and now converges
-/// whole), and with multipliers on the Cattaneo–Mindlin
-/// problem (at most 3 iterations: 4 substeps). The block with multipliers is piecewise linear
-/// and solved in as many iterations as the stick/slip sets take to settle, the same in the
-/// last substep, which holds the last node's onset of slip, as in the whole step: starved, it
-/// never converges.
+/// With node-to-segment and mortar penalty contact (at most 2 iterations: 8 substeps), and with
+/// multipliers on the Cattaneo–Mindlin problem (at most 3 iterations: 4 substeps). The block
+/// with multipliers is piecewise linear and solved in as many iterations as the stick/slip sets
+/// take to settle, the same in the last substep, which holds the last node's onset of slip, as
+/// in the whole step: starved, it never converges.
 #[test]
 fn a_cut_back_step_restarts_from_the_converged_friction_history() {
     for method in [Method::Penalty, Method::Mortar] {
         let text = method.form(&pushed_by(0.99));
         cut_back(
             &format!("{method:?}"),
-            &text.replace("maxiter 30", "maxiter 1"),
+            &text.replace("maxiter 30", "maxiter 2"),
             &text,
             1e-12,
         );
@@ -676,10 +674,11 @@ fn shallow_ironing_gives_the_published_forces() {
 }
 
 /// The shallow ironing benchmark as mortar with a penalty (10⁴ per unit area, ε_T the same):
-/// the same published ranges, no cut-back and at most 5 iterations a step. With stick or slip
-/// taken from the iterate instead of searched on the linearized problem (`contact::point`), the
-/// sliding die's contact nodes swung from one slip direction to the other and the press did not
-/// converge (t = 0.4).
+/// the same published ranges, no cut-back and at most 5 iterations a step. Solved as a penalty
+/// (the force −ε·g of the iterate), with stick or slip from the iterate the sliding die's
+/// contact nodes swung from one slip direction to the other and the press did not converge
+/// (t = 0.4); searched on the linearized problem it took 361 iterations, now 343 in multiplier
+/// form (`contact::law::multiplier`).
 #[test]
 fn shallow_ironing_with_a_penalty_gives_the_published_forces() {
     use hertz::bench::examples::SHALLOW_IRONING;
@@ -769,6 +768,47 @@ fn a_stiff_penalty_irons_like_the_multipliers() {
         );
         assert!(
             fx_fy.abs() < 0.05 && (fx_fy - fx_fy_m).abs() < 1e-3,
+            "{penalty}: Fx/Fy(1.5) {fx_fy} against {fx_fy_m}"
+        );
+    }
+}
+
+/// Shallow ironing with friction as mortar penalty with the penalty from the mesh (10³ E/h) and
+/// with `penalty 1e5`: no cut-back, at most 6 iterations a step up to t = 1.5 and 8 after (the
+/// multipliers take 7 as the die nears the block's end), Fy(1) of the multipliers to 10⁻³ and
+/// Fx/Fy(1.5) to 2·10⁻³ (the mesh's penalty's own error: 1.4·10⁻⁵ and 7·10⁻⁴; `penalty 1e5`,
+/// sixty times softer, to 10⁻² and 2·10⁻²: 4.4·10⁻³ and 7·10⁻⁴).
+/// Solved as a penalty, the friction force μ·ε·(−g) carried ε times each iterate's gap error
+/// (10⁻³ after a step along the die's arc, against a penetration of 10⁻⁶) and the stick/slip
+/// decision ε_T times its slip error: the mesh's penalty stopped at t = 0.3 and `penalty 1e5`
+/// needed 152 cut-backs. With its forces as unknowns (the penalty's compliance in the
+/// multipliers' rows) the solution is the penalty's and the iteration the multipliers'.
+#[test]
+fn a_stiff_penalty_with_friction_irons_like_the_multipliers() {
+    use hertz::bench::examples::SHALLOW_IRONING;
+    let multipliers = SHALLOW_IRONING.input();
+    let (fy_m, fx_fy_m, _) = shallow_ironing_run(&multipliers);
+    for (penalty, tol) in [("", 1e-3), ("penalty 1e5 ", 1e-2)] {
+        let text = multipliers.replace(
+            "s2slagrangianmultipliercontact 4 loadTimeFunction 1 ",
+            &format!("s2spenaltycontact 4 loadTimeFunction 1 {penalty}"),
+        );
+        assert!(text.contains(&format!(
+            "s2spenaltycontact 4 loadTimeFunction 1 {penalty}slavesegment"
+        )));
+        let (fy, fx_fy, iterations) = shallow_ironing_run(&text);
+        assert!(
+            iterations
+                .iter()
+                .all(|&(t, i)| i <= if t <= 1.5 + 1e-9 { 6 } else { 8 }),
+            "{penalty}: {iterations:?}"
+        );
+        assert!(
+            (fy - fy_m).abs() < tol * fy_m,
+            "{penalty}: Fy(1) {fy} against {fy_m}"
+        );
+        assert!(
+            (fx_fy - fx_fy_m).abs() < 2.0 * tol,
             "{penalty}: Fx/Fy(1.5) {fx_fy} against {fx_fy_m}"
         );
     }

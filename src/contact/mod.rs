@@ -750,18 +750,27 @@ pub fn apply_law(
     state: &mut SlotState,
 ) -> ContactPoint {
     let codes = local.codes.clone();
-    let multipliers = lambda_eqs.is_some();
+    let multipliers = law == ContactLaw::Multiplier;
     let (point, penalty) = match (law, lambda_eqs) {
-        (ContactLaw::Penalty(p), _) => (law::penalty::evaluate(ctx.laws, p, codes, kin), p),
-        (ContactLaw::Multiplier, Some(eqs)) => {
+        (ContactLaw::Penalty(p), None) => (law::penalty::evaluate(ctx.laws, p, codes, kin), p),
+        (law, Some(eqs)) => {
+            // A penalty with its forces as unknowns: its compliance 1/ε.
+            let compliance = match law {
+                ContactLaw::Penalty(p) => 1.0 / p,
+                ContactLaw::Multiplier => 0.0,
+            };
+            let lambdas = &ctx.u[eqs.clone()];
             let (point, friction) =
-                law::multiplier::evaluate(ctx.laws, &ctx.u[eqs.clone()], codes, eqs, kin);
-            if kin.slip.is_some() {
+                law::multiplier::evaluate(ctx.laws, lambdas, codes, eqs, kin, compliance);
+            if let Some(s) = &kin.slip {
                 state.friction = friction;
-                // A sticking node keeps its anchor; a sliding or open one is anchored where it
-                // is now (the state's anchor from the kinematics).
-                if let (Some((true, _)), Some(s)) = (friction, &kin.slip) {
-                    state.anchor = Some(s.kept);
+                // A sticking node keeps its anchor; a sliding one leaves it behind by its
+                // elastic slip (none without a penalty: where it is now, as an open one, the
+                // state's anchor from the kinematics).
+                match friction {
+                    Some((true, _)) => state.anchor = Some(s.kept),
+                    Some((false, _)) if s.slid.is_some() => state.anchor = s.slid,
+                    _ => {}
                 }
             }
             (point, 0.0)

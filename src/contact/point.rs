@@ -36,13 +36,15 @@ use crate::assembly::Contribution;
 pub enum PointLaw {
     /// Closed while g ≤ 0.
     Penalty,
-    /// Active while λ − c·g > −c·tol; the normal multiplier is the last code, with value
-    /// `lambda`, after the `tangential` friction multipliers with values `lambda_t`.
+    /// Active while λ − c·(g + compliance·λ) > −c·tol; the normal multiplier is the last code,
+    /// with value `lambda`, after the `tangential` friction multipliers with values `lambda_t`.
+    /// `compliance` is 1/ε for a penalty solved in multiplier form, else 0.
     Multiplier {
         lambda: f64,
         lambda_t: [f64; 3],
         tangential: usize,
         c: f64,
+        compliance: f64,
         tol: f64,
     },
 }
@@ -57,7 +59,8 @@ pub struct ContactPoint {
     /// point cannot close (no partner, zero weight).
     pub closed_fe: Vec<f64>,
     pub closed_ke: Vec<f64>,
-    /// Gap and its gradient over the displacement codes.
+    /// Gap and its gradient over the displacement codes (a penalty in multiplier form: the
+    /// weighted gap w·g its normal row holds).
     pub gap: f64,
     pub gap_grad: Vec<f64>,
     /// Branch of the current state.
@@ -286,9 +289,15 @@ impl ContactPoint {
         let g = self.linear_gap(dq);
         match self.law {
             PointLaw::Penalty => g <= 0.0,
-            PointLaw::Multiplier { lambda, c, tol, .. } => {
+            PointLaw::Multiplier {
+                lambda,
+                c,
+                compliance,
+                tol,
+                ..
+            } => {
                 let l = lambda + dq[self.codes.len() - 1];
-                l - c * g > -c * tol
+                l - c * (g + compliance * l) > -c * tol
             }
         }
     }

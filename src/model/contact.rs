@@ -47,6 +47,17 @@ pub enum ContactLaw {
     Multiplier,
 }
 
+impl ContactLaw {
+    /// Whether a condition with this law and `friction` has its contact forces as unknowns of
+    /// the Newton system: with Lagrange multipliers, and with a penalty and friction, whose
+    /// forces are solved as multipliers with the penalty's compliance (see
+    /// `contact::law::multiplier`): the same solution, and a Newton iteration that does not
+    /// carry the penalty times the gap error of each iterate into the friction force.
+    pub fn forces_are_unknowns(self, friction: Option<Friction>) -> bool {
+        self == ContactLaw::Multiplier || friction.is_some()
+    }
+}
+
 /// Which nodes meet what.
 #[derive(Debug, Clone)]
 pub enum Pairing {

@@ -49,6 +49,10 @@ pub struct SlipKinematics {
     pub stiffness: f64,
     /// The anchor the node keeps if it sticks (else it is anchored where it is).
     pub kept: crate::contact::Anchor,
+    /// 1/ε_T of a penalty solved in multiplier form (else 0), and the anchor a sliding node
+    /// leaves: behind it by the elastic slip λ_T/ε_T (node-to-segment; None: where it is).
+    pub compliance: f64,
+    pub slid: Option<crate::contact::Anchor>,
 }
 
 /// The friction part of a closed contact point: its residual contribution and state.

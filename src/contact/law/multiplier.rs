@@ -24,20 +24,43 @@
 //! μλ·v/|v| (v = P λ_T + c_T g_T), along the slip, with |λ_T| = μλ. The branch is taken from the
 //! current iterate (a generalized Jacobian of the kink); c_T only sets the Newton path. Divided
 //! by c_T, each row is a length, as the gap rows are. Inactive points hold λ_T = 0.
+//!
+//! A penalty with friction is solved in this form too, with the penalty's compliance (1/ε, and
+//! 1/ε_T in [`SlipKinematics::compliance`]) in the rows:
+//!   C_N = λ − max(0, λ − c (w·g + λ/ε)),   C_T = (λ_T − proj(P λ_T + c_T (g_T − P λ_T/ε_T))) / c_T,
+//! whose solutions are exactly the penalty's (active: λ = −ε·w·g; stick: λ_T = ε_T g_T; slip:
+//! λ_T = μλ along g_T with ε_T |g_T| > μλ), with g_T measured from the anchor the last step left
+//! (the elastic slip stays in it). The Newton iteration differs: the forces are held between
+//! iterates, so a gap error of an iterate (10⁻³ after a step along a curved die, against a
+//! penetration λ/ε of 10⁻⁶ with the penalty from the mesh) is an error of a length in the rows,
+//! not an error ε times it in the friction force, and stick or slip is decided from the held
+//! force plus c_T times the slip instead of ε_T times it. c and c_T are capped at ε and ε_T: at
+//! the cap the rules are the penalty's own.
 
 use super::{point, Laws, PointKinematics, SlipKinematics};
 use crate::contact::dual::{Dual, Jet};
 use crate::contact::point::{ContactPoint, PointLaw};
 
+/// c of a complementarity rule capped at the penalty 1/`compliance` (none: c).
+fn capped(c: f64, compliance: f64) -> f64 {
+    if compliance > 0.0 {
+        c.min(1.0 / compliance)
+    } else {
+        c
+    }
+}
+
 /// `codes`: the displacement codes, then the equations of the multipliers `lambdas`: the
-/// friction force's components (if any) and last the normal force. Returns the point and, for
-/// an active point with friction, whether it sticks and the friction force's magnitude.
+/// friction force's components (if any) and last the normal force. `compliance`: 1/ε of a
+/// penalty condition solved in this form, else 0. Returns the point and, for an active point with
+/// friction, whether it sticks and the friction force's magnitude.
 pub fn evaluate(
     laws: &Laws,
     lambdas: &[f64],
     mut codes: Vec<usize>,
     eqs: std::ops::Range<usize>,
     k: &PointKinematics,
+    compliance: f64,
 ) -> (ContactPoint, Option<(bool, f64)>) {
     let m = k.b.len();
     let nt = eqs.len() - 1;
@@ -46,15 +69,24 @@ pub fn evaluate(
     let lambda = lambdas[nt];
     let mut lambda_t = [0.0; 3];
     lambda_t[..nt].copy_from_slice(&lambdas[..nt]);
-    let g = &k.gap;
+    let cn = compliance;
+    let c = capped(laws.c, cn);
+    // The constraint the normal row holds: g, or with a penalty's compliance w·g (the penalty's
+    // force is ε·w·⟨−g⟩; the weight only switches a multiplier).
+    let h = if cn > 0.0 {
+        k.weight.product(&k.gap)
+    } else {
+        k.gap.clone()
+    };
     let law = PointLaw::Multiplier {
         lambda,
         lambda_t,
         tangential: nt,
-        c: laws.c,
+        c,
+        compliance: cn,
         tol: laws.gap_tol,
     };
-    if !(k.weight.v > 0.0) || g.v.is_nan() {
+    if !(k.weight.v > 0.0) || k.gap.v.is_nan() {
         return (point(codes, law, k, None, false), None);
     }
     let mut fe = vec![0.0; mm];
@@ -62,12 +94,13 @@ pub fn evaluate(
     for i in 0..m {
         fe[i] = -lambda * k.b[i].v;
         ke[i * mm + mm - 1] = -k.b[i].v;
-        ke[(mm - 1) * mm + i] = -g.d[i];
+        ke[(mm - 1) * mm + i] = -h.d[i];
         for j in 0..m {
             ke[i * mm + j] = -lambda * k.b[i].d[j];
         }
     }
-    fe[mm - 1] = -g.v;
+    fe[mm - 1] = -(h.v + cn * lambda);
+    ke[(mm - 1) * mm + mm - 1] = -cn;
     let mut friction = None;
     match &k.slip {
         Some(s) if nt > 0 => {
@@ -100,9 +133,13 @@ pub fn evaluate(
             }
         }
     }
-    let active = lambda - laws.c * g.v > -laws.c * laws.gap_tol;
+    let active = lambda - c * (h.v + cn * lambda) > -c * laws.gap_tol;
     let friction = friction.filter(|_| active);
-    (point(codes, law, k, Some((fe, ke)), active), friction)
+    let mut p = point(codes, law, k, Some((fe, ke)), active);
+    if cn > 0.0 {
+        (p.gap, p.gap_grad) = (h.v, h.d);
+    }
+    (p, friction)
 }
 
 /// The rows C_T of the friction multipliers over (q, λ_T, λ) (m + nt + 1 unknowns), whether the
@@ -129,8 +166,9 @@ fn coulomb(s: &SlipKinematics, lambda: f64, lambda_t: &[f64], m: usize) -> (Vec<
     };
     let gt = tangential(&d);
     let pt = tangential(&lt);
-    let c = s.stiffness;
-    let v: Vec<Dual> = (0..dim).map(|i| pt[i] + gt[i] * c).collect();
+    let ct = s.compliance;
+    let c = capped(s.stiffness, ct);
+    let v: Vec<Dual> = (0..dim).map(|i| pt[i] + (gt[i] - pt[i] * ct) * c).collect();
     let norm = v.iter().fold(zero, |a, &x| a + x * x).sqrt();
     // The slip limit μ⟨λ⟩ (its derivative taken on the λ ≥ 0 side at λ = 0).
     let limit = if ln.v >= 0.0 { ln * s.mu } else { zero };

@@ -198,11 +198,11 @@ impl SlotLaw {
     /// K_λu = K_uλᵀ / D_j (the full tangent stored as one triangle lost the other: mortar
     /// multipliers solved with full tangents diverged).
     fn symmetric(&self) -> bool {
-        self.law != ContactLaw::Multiplier
+        !self.law.forces_are_unknowns(self.friction)
     }
 
     fn n_multipliers(&self, slots: usize) -> usize {
-        if self.law == ContactLaw::Multiplier {
+        if self.law.forces_are_unknowns(self.friction) {
             slots * self.multipliers_per_slot()
         } else {
             0
@@ -273,7 +273,13 @@ impl SlotLaw {
             ContactLaw::Penalty(p) => p * self.scale[j],
             ContactLaw::Multiplier => 0.0,
         };
-        let multipliers = self.law == ContactLaw::Multiplier;
+        let multipliers = self.law.forces_are_unknowns(self.friction);
+        // A penalty with its forces as unknowns: its compliance 1/ε (see `law::multiplier`).
+        let compliance = if multipliers && penalty > 0.0 {
+            1.0 / penalty
+        } else {
+            0.0
+        };
         // Anchors keep the elastic slip of the last converged step (none with multipliers).
         let anchored = |elastic: [f64; 3]| Anchor {
             partner: w.partner,
@@ -281,10 +287,20 @@ impl SlotLaw {
             offset: elastic,
         };
         if let (Some(f), Some(slip), true, true) = (self.friction, &w.slip, has, multipliers) {
-            let u = slip.slip(ctx, local, &w.area, [0.0; 3]);
-            let kept = anchored([0.0; 3]);
-            kin.slip = Some(slip.kinematics(local, u, kept, f.mu, self.stiffness[j]));
-            state.anchor = Some(kept);
+            // With a penalty the slip is measured from the anchor's elastic slip.
+            let elastic = match anchor {
+                Some(a) if compliance > 0.0 => a.offset,
+                _ => [0.0; 3],
+            };
+            let u = slip.slip(ctx, local, &w.area, elastic);
+            let kept = anchored(elastic);
+            let mut sk = slip.kinematics(local, u, kept, f.mu, self.stiffness[j]);
+            if compliance > 0.0 {
+                sk.compliance = 1.0 / (f.penalty * self.scale[j]);
+            }
+            kin.slip = Some(sk);
+            // Open (or without a penalty): no elastic slip left.
+            state.anchor = Some(anchored([0.0; 3]));
         } else if let (Some(f), Some(slip), true) = (self.friction, &w.slip, has) {
             let f = Friction {
                 penalty: f.penalty * self.scale[j],
@@ -311,19 +327,29 @@ impl SlotLaw {
                 state.anchor = Some(anchored([0.0; 3]));
             }
         }
-        let point = match self.law {
-            ContactLaw::Penalty(_) => law::penalty::evaluate(&laws, penalty, codes, &kin),
-            ContactLaw::Multiplier => {
-                let per = self.multipliers_per_slot();
-                let eqs = first_lambda + per * j..first_lambda + per * (j + 1);
-                let (point, friction) =
-                    law::multiplier::evaluate(&laws, &ctx.u[eqs.clone()], codes, eqs, &kin);
-                if kin.slip.is_some() {
-                    // Traction per unit area: the node's force is its times D_j.
-                    state.friction = friction.map(|(stick, t)| (stick, t * w.area.v));
+        let point = if multipliers {
+            let per = self.multipliers_per_slot();
+            let eqs = first_lambda + per * j..first_lambda + per * (j + 1);
+            let lambdas = &ctx.u[eqs.clone()];
+            let (point, friction) =
+                law::multiplier::evaluate(&laws, lambdas, codes, eqs, &kin, compliance);
+            if let Some(s) = &kin.slip {
+                // Traction per unit area: the node's force is its times D_j.
+                state.friction = friction.map(|(stick, t)| (stick, t * w.area.v));
+                // A closed penalty slot leaves its elastic slip λ_T/ε_T.
+                if friction.is_some() && s.compliance > 0.0 {
+                    state.anchor = Some(anchored(std::array::from_fn(|i| {
+                        if i < self.dim {
+                            lambdas[i] * s.compliance
+                        } else {
+                            0.0
+                        }
+                    })));
                 }
-                point
             }
+            point
+        } else {
+            law::penalty::evaluate(&laws, penalty, codes, &kin)
         };
         if has {
             state.gap = kin.gap.v;
@@ -421,6 +447,8 @@ impl SlipForm {
             mu,
             stiffness,
             kept,
+            compliance: 0.0,
+            slid: None,
         }
     }
 }

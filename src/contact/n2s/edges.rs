@@ -167,14 +167,14 @@ impl NodeToSegment {
     }
 
     /// Kinematics against edge `k` with the contact point converged at `s0`, with the friction
-    /// of a node anchored at `anchor` (the next anchor is returned).
+    /// of a node anchored at `anchor`, `held` its friction force (the next anchor is returned).
     pub(super) fn edge_kinematics(
         &self,
         ctx: &Ctx,
         slot: &Slot,
         k: usize,
         s0: f64,
-        anchor: Option<&Anchor>,
+        (anchor, held): (Option<&Anchor>, [f64; 3]),
     ) -> Result<(Local, PointKinematics, Option<Anchor>)> {
         let edge = &self.edges.edges[k];
         let mut local = Local::new(2);
@@ -263,6 +263,7 @@ impl NodeToSegment {
                     [xs3, xa3, dir],
                     (gap, weight),
                     (anchor, at_point),
+                    held,
                     |p| {
                         geom_f.project([p[0], p[1]]).map_or(at_point, |sa| Anchor {
                             xi: [sa, 0.0],

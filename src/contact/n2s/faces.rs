@@ -129,7 +129,7 @@ impl NodeToSegment {
     }
 
     /// Kinematics against face `k` with the contact point converged at `xi0`, with the friction
-    /// of a node anchored at `anchor` (the next anchor is returned).
+    /// of a node anchored at `anchor`, `held` its friction force (the next anchor is returned).
     pub(super) fn face_kinematics(
         &self,
         ctx: &Ctx,
@@ -137,7 +137,7 @@ impl NodeToSegment {
         k: usize,
         xi0: [f64; 2],
         cur: &Current,
-        anchor: Option<&Anchor>,
+        (anchor, held): (Option<&Anchor>, [f64; 3]),
     ) -> Result<(Local, PointKinematics, Option<Anchor>)> {
         let face = &self.faces.faces[k];
         let nc = face.nodes.len();
@@ -303,6 +303,7 @@ impl NodeToSegment {
                     [xs, xa, dir],
                     (gap, weight),
                     (anchor.expect("an anchor"), at_point),
+                    held,
                     |p| {
                         self.face_geometry_f64(k, cur)
                             .project(p)

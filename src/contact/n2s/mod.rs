@@ -135,12 +135,10 @@ impl NodeToSegment {
     /// `spread` distributes a force on the node over the local unknowns (the node, and its
     /// negative over the master), `jet` takes the kinematics' duals to the local unknowns.
     ///
-    /// With the penalty law: the tangential force, and the anchor is the contact point `at_point`
-    /// while open, the same anchor while it sticks, `slid` of the point it is dragged to when it
-    /// slides. Open points get the friction too: the closed branch the solver may predict for
-    /// them is then the continuation of the closed point's. With multipliers: the slip the
-    /// friction multipliers act on, and the anchor is `at_point` unless the law finds the point
-    /// sticking (see [`super::apply_law`]).
+    /// The slip the friction multipliers act on (see [`super::apply_law`]), and the anchor is
+    /// `at_point` unless the law finds the point sticking (it keeps `anchor`) or, with a penalty,
+    /// sliding: then it is `slid` of the point behind the node by the elastic slip
+    /// `held`/ε_T, `held` the friction force the iteration holds (its multipliers).
     #[allow(clippy::too_many_arguments)]
     fn point_friction(
         &self,
@@ -149,6 +147,7 @@ impl NodeToSegment {
         point: [DVec; 3],
         (gap, weight): (Dual, Dual),
         (anchor, at_point): (&Anchor, Anchor),
+        held: [f64; 3],
         slid: impl FnOnce([f64; 3]) -> Anchor,
         spread: impl Fn(&DVec) -> Vec<Jet>,
         jet: impl Fn(&Dual) -> Jet,
@@ -156,8 +155,10 @@ impl NodeToSegment {
     ) -> Anchor {
         let [xs, xa, n] = point;
         let dim = self.dim;
-        let ContactLaw::Penalty(p) = slot.law(self.law) else {
+        if self.law.forces_are_unknowns(Some(law)) {
             let nv = xs[0].n;
+            let penalty = matches!(self.law, ContactLaw::Penalty(_));
+            let compliance = if penalty { 1.0 / law.penalty } else { 0.0 };
             kin.slip = Some(SlipKinematics {
                 slip: (0..dim).map(|i| jet(&(xs[i] - xa[i]))).collect(),
                 normal: (0..dim).map(|i| jet(&n[i])).collect(),
@@ -170,8 +171,14 @@ impl NodeToSegment {
                 mu: law.mu,
                 stiffness: slot.stiffness,
                 kept: *anchor,
+                compliance,
+                slid: penalty
+                    .then(|| slid(std::array::from_fn(|i| xs[i].v - held[i] * compliance))),
             });
             return at_point;
+        }
+        let ContactLaw::Penalty(p) = slot.law(self.law) else {
+            unreachable!("a multiplier condition has its forces as unknowns")
         };
         let t = friction::evaluate(
             law,
@@ -460,7 +467,7 @@ impl Formulation for NodeToSegment {
     }
 
     fn n_multipliers(&self) -> usize {
-        if self.law == ContactLaw::Multiplier {
+        if self.law.forces_are_unknowns(self.friction) {
             self.slots.len() * self.multipliers_per_node()
         } else {
             0
@@ -550,8 +557,15 @@ impl Formulation for NodeToSegment {
         let searching = start.elapsed().as_secs_f64();
         for (k, (slot, chosen)) in self.slots.iter().zip(chosen).enumerate() {
             let per = self.multipliers_per_node();
-            let lambda_eqs = (self.law == ContactLaw::Multiplier)
+            let lambda_eqs = self
+                .law
+                .forces_are_unknowns(self.friction)
                 .then_some(first_lambda + per * k..first_lambda + per * (k + 1));
+            // The friction force the iteration holds (its multipliers; see `point_friction`).
+            let mut held = [0.0; 3];
+            if let (Some(eqs), Some(_)) = (&lambda_eqs, self.friction) {
+                held[..self.dim].copy_from_slice(&ctx.u[eqs.start..eqs.start + self.dim]);
+            }
             let mut state = SlotState::unpaired(self.number, slot.node, ctx.position(slot.node)?.0);
             let anchor = history
                 .and_then(|h| h.get(k))
@@ -561,12 +575,14 @@ impl Formulation for NodeToSegment {
                     state.partner = c.partner;
                     state.xi = c.xi;
                     let (local, kin, next) = match c.partner {
-                        Partner::Edge(e) => self.edge_kinematics(ctx, slot, e, c.xi[0], anchor)?,
+                        Partner::Edge(e) => {
+                            self.edge_kinematics(ctx, slot, e, c.xi[0], (anchor, held))?
+                        }
                         Partner::Face(f) => {
-                            self.face_kinematics(ctx, slot, f, c.xi, &cur, anchor)?
+                            self.face_kinematics(ctx, slot, f, c.xi, &cur, (anchor, held))?
                         }
                         Partner::Rigid(seg) => {
-                            self.rigid_kinematics(ctx, slot, seg, c.xi[0], anchor)?
+                            self.rigid_kinematics(ctx, slot, seg, c.xi[0], (anchor, held))?
                         }
                         _ => unreachable!("node-to-segment partners are edges, faces or rigid"),
                     };

@@ -110,14 +110,14 @@ impl NodeToSegment {
     }
 
     /// Kinematics against rigid segment `seg`, with the polynomial's contact abscissa `t0`, and
-    /// the friction of a node anchored at `anchor` (the next anchor is returned).
+    /// the friction of a node anchored at `anchor`, `held` its friction force (the next anchor is returned).
     pub(super) fn rigid_kinematics(
         &self,
         ctx: &Ctx,
         slot: &Slot,
         seg: usize,
         t0: f64,
-        anchor: Option<&Anchor>,
+        (anchor, held): (Option<&Anchor>, [f64; 3]),
     ) -> Result<(Local, PointKinematics, Option<Anchor>)> {
         let model = ctx.model;
         let dim = self.dim;
@@ -215,6 +215,7 @@ impl NodeToSegment {
                     [xs3, xa3, dir],
                     (gap, Dual::constant(1.0, m)),
                     (anchor, at_point),
+                    held,
                     |p| Anchor {
                         offset: std::array::from_fn(|i| p[i] - here[i].v),
                         ..at_point
