@@ -20,10 +20,10 @@
 //! F_int,a = ∫ F·S·∇N_a dV; its tangent adds the geometric term ∫ ∇N_a·S·∇N_b dV·I. Contact adds
 //! internal forces p·w·g·B (penalty) or λ·B with the constraint g = 0 (multipliers) per contact
 //! point, g the gap and B the force direction over the point's unknowns (for mortar contact g is
-//! a slave node's weighted mean gap), and on frictional penalty points the Coulomb return map of
-//! the elastic slip from an anchor, on frictional multiplier points a friction force λ_T with
-//! Alart and Curnier's complementarity function of the slip from the anchor, with exact
-//! (unsymmetric) tangents.
+//! a slave node's weighted mean gap), and with friction a friction force λ_T with Alart and
+//! Curnier's complementarity function of the slip from an anchor, with exact (unsymmetric)
+//! tangents; a frictional penalty condition has its forces λ, λ_T as unknowns too, with the
+//! penalty's compliance in their rows (g + λ/ε = 0, and g_T = λ_T/ε_T while it sticks).
 //!
 //! # Example
 //! ```

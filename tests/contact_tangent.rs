@@ -5,10 +5,10 @@
 //! on a vertex whose normal is averaged with the neighbouring edge, past the open end of the
 //! master where the force is weighted down; circle, cavity, sphere, polynomial above and below,
 //! plane, with and without a moving reference node; a prescribed normal). Partners are held fixed
-//! while the contact point moves with the unknowns, as in the linearization. A penalty point with
-//! friction has its other branch (stick ↔ slip) checked too, and the trial force and slip limit
-//! the solver predicts the branch from. A penalty point's tangent with a held force (the solver's
-//! `ContactPoint::hold_force`) is checked against the residual ε·g·u written as ε·u ⊗ ∇g − λ·∂u.
+//! while the contact point moves with the unknowns, as in the linearization. Friction is checked
+//! with multipliers and with a penalty (solved in the multipliers' form, with its compliance), the
+//! tangent over the multipliers too. A penalty point's tangent with a held force (the solver's
+//! `ContactPoint::hold_force`) is checked against the residual ε·g·v written as ε·v ⊗ ∇g − λ·∂v.
 
 mod common;
 
@@ -69,9 +69,6 @@ fn fd_error_with_history(
         }
         let m = c.codes.len();
         let scale = c.ke.iter().fold(1e-12f64, |a, v| a.max(v.abs()));
-        // A penalty point with friction: its other branch (stick ↔ slip) and the trial force and
-        // slip limit the solver predicts the branch from, each against its gradient.
-        let other = points[k].friction.as_ref();
         let held = held_force_check(&points[k]);
         for j in 0..m {
             let code = c.codes[j];
@@ -85,37 +82,15 @@ fn fd_error_with_history(
                 let fd = (fp[i] - fm[i]) / (2.0 * h);
                 worst = worst.max((fd - c.ke[i * m + j]).abs() / scale);
             }
-            if let Some((ke, slip_other, penalty, force)) = &held {
-                // R = ε·g·u (u = v, less the slip force per unit normal force): the tangent with
-                // the held force λ is ε·u ⊗ ∇g − λ·∂u.
-                let r = |q: &hertz::contact::ContactPoint| match (&q.friction, slip_other) {
-                    (Some(f), true) => f.other_fe.clone(),
-                    _ => q.closed_fe.clone(),
-                };
-                let r0 = r(&points[k]);
-                let (rp, rm) = (r(&pp), r(&pm));
+            if let Some((ke, penalty, force)) = &held {
+                // R = ε·g·v: the tangent with the held force λ is ε·v ⊗ ∇g − λ·∂v.
+                let (r0, rp, rm) = (&points[k].closed_fe, &pp.closed_fe, &pm.closed_fe);
                 let g0 = points[k].gap;
                 for i in 0..m {
                     let du = (rp[i] / (penalty * pp.gap) - rm[i] / (penalty * pm.gap)) / (2.0 * h);
                     let expected = r0[i] / g0 * points[k].gap_grad[j] - force * du;
                     worst = worst.max((expected - ke[i * m + j]).abs() / scale);
                 }
-            }
-            let Some(f) = other else { continue };
-            let (fp, fm) = (pp.friction.unwrap(), pm.friction.unwrap());
-            assert_eq!(
-                fp.stick, f.stick,
-                "the friction state holds within the differences"
-            );
-            for i in 0..f.other_fe.len() {
-                let fd = (fp.other_fe[i] - fm.other_fe[i]) / (2.0 * h);
-                worst = worst.max((fd - f.other_ke[i * m + j]).abs() / scale);
-            }
-            let pairs = f.trial.iter().zip(fp.trial.iter().zip(&fm.trial));
-            for (t, (tp, tm)) in pairs.chain([(&f.limit, (&fp.limit, &fm.limit))]) {
-                let fd = (tp.0 - tm.0) / (2.0 * h);
-                let s = t.1.iter().fold(1e-12f64, |a, v| a.max(v.abs()));
-                worst = worst.max((fd - t.1[j]).abs() / s);
             }
         }
         checked += 1;
@@ -238,28 +213,17 @@ fn n2s_tangents_are_jacobians_of_residuals_on_straight_and_quadratic_edges() {
 /// A frictional case: the history is the state at u = 0, the tangent checked at the displaced
 /// state (multipliers, the normal and the friction force's components, at `lambda`), where the
 /// point must stick or slip as `stick` says.
-/// For a penalty point that is closed with its geometric part, weight 1 and, with friction, a
-/// slip branch: that branch's tangent with half its force held (`ContactPoint::hold_force`),
-/// whether it is the other branch, the penalty and the held force.
-fn held_force_check(p: &hertz::contact::ContactPoint) -> Option<(Vec<f64>, bool, f64, f64)> {
+/// For a penalty point that is closed with its geometric part and weight 1: its closed tangent
+/// with half its force held (`ContactPoint::hold_force`), the penalty and the held force.
+fn held_force_check(p: &hertz::contact::ContactPoint) -> Option<(Vec<f64>, f64, f64)> {
     let geo = p.geometric.as_ref()?;
     if geo.force == 0.0 || geo.weight != 1.0 || p.gap >= 0.0 {
         return None;
     }
-    let slip_other = match &p.friction {
-        None => false,
-        Some(f) if !f.stick => false,
-        Some(f) if !f.other_fe.is_empty() => true,
-        Some(_) => return None,
-    };
     let mut q = p.clone();
     let force = 0.5 * geo.force;
     q.hold_force(force);
-    let ke = match (&q.friction, slip_other) {
-        (Some(f), true) => f.other_ke.clone(),
-        _ => q.closed_ke.clone(),
-    };
-    Some((ke, slip_other, geo.penalty, force))
+    Some((q.closed_ke, geo.penalty, force))
 }
 
 fn check_friction(

@@ -10,22 +10,14 @@
 //! repeats until prediction and guess agree (a primal-dual active-set search on the linear model,
 //! see `solve::condensed`). Each point provides both branches for that.
 //!
-//! Friction on a penalty point has the same kink between stick and slip, and a worse one in
-//! slip, whose tangent has no tangential stiffness (in 2D none at all): taking stick or slip from
-//! the iterate, the step of a patch of sliding nodes is the bodies' response to the whole friction
-//! force, which overshoots to the opposite slip and back (shallow ironing as mortar with `penalty
-//! 1e4`: no convergence even in the press; with the search, 361 iterations for its 110 steps, at
-//! most 5 a step, no cut-back). So a closed point with friction also gives its other
-//! friction branch ([`FrictionBranch`]), and the search decides stick or slip on the linear model
-//! too, from the predicted trial force: stick inside the cone, or where the trial force turns
-//! against the present one (the one slip branch there is, along the present trial force, is no
-//! model of that, and the point passes through stick to get there).
+//! Friction is not searched there: a condition with friction has its forces as unknowns (with a
+//! penalty, its compliance in the multipliers' rows; see `contact::law::multiplier`), and the
+//! semismooth Newton method takes stick or slip from the iterate's held forces.
 //!
 //! A stiff penalty has one more trap: its force −ε·g is the iterate's, and a Newton step along a
 //! curved surface leaves a gap error (10⁻³–10⁻² on the shallow ironing die) far above the
 //! penetration λ/ε of a penalty from the mesh (10⁻⁶). The parts of the tangent that scale with the
-//! force (the geometric part, and the slip force's) then carry a force wrong by orders of
-//! magnitude. The solver takes them with the force of the last step's linear model instead
+//! force (the geometric part) then carry a force wrong by orders of magnitude. The solver takes them with the force of the last step's linear model instead
 //! ([`ContactPoint::hold_force`]): the Newton step of the penalty with its force as an unknown
 //! (a perturbed Lagrangian), which converges to the same solution.
 
@@ -65,8 +57,6 @@ pub struct ContactPoint {
     pub gap_grad: Vec<f64>,
     /// Branch of the current state.
     pub closed: bool,
-    /// The friction of a penalty point whose closed branch has it.
-    pub friction: Option<FrictionBranch>,
     /// A penalty point's geometric tangent part per unit force (see [`Geometric`]).
     pub geometric: Option<Geometric>,
 }
@@ -83,53 +73,15 @@ pub struct Geometric {
     pub weight: f64,
 }
 
-/// The friction of a penalty point: whether its closed branch sticks, the other branch, and
-/// what predicts which (see the module docs).
-#[derive(Debug, Clone)]
-pub struct FrictionBranch {
-    /// The closed branch sticks (else it slips).
-    pub stick: bool,
-    /// Residual and tangent of the closed branch with the other friction state, over `codes`;
-    /// empty where there is none (a sticking point in 3D, or one without elastic slip).
-    pub other_fe: Vec<f64>,
-    pub other_ke: Vec<f64>,
-    /// The trial force ε_T g_T (its components) and the slip limit μ·pn, each with its gradient
-    /// over `codes`.
-    pub trial: Vec<(f64, Vec<f64>)>,
-    pub limit: (f64, Vec<f64>),
-    /// The part of the slip branch's tangent per unit normal force (row-major over `codes`;
-    /// empty without a slip branch): the slip force μ·pn·ĝ_T's derivative at fixed pn.
-    pub unit_slip_ke: Vec<f64>,
-}
-
-impl FrictionBranch {
-    /// Whether the point sticks after a change `dq` of its unknowns: by the linearization of its
-    /// trial force and slip limit (the law's rule: stick while |trial| < limit), and where the
-    /// trial force turns against the present one (see the module docs); a sticking point without
-    /// a slip branch sticks.
-    pub fn predicts_stick(&self, dq: &[f64]) -> bool {
-        if self.stick && self.other_fe.is_empty() {
-            return true;
-        }
-        let lin = |(v, d): &(f64, Vec<f64>)| linearized(*v, d, dq);
-        let next: Vec<f64> = self.trial.iter().map(lin).collect();
-        let norm = next.iter().map(|t| t * t).sum::<f64>().sqrt();
-        let along: f64 = next.iter().zip(&self.trial).map(|(a, t)| a * t.0).sum();
-        norm < lin(&self.limit) * (1.0 - 1e-9) || along <= 0.0
-    }
-}
-
 /// A value `v` with gradient `d` after a change `dq`, by its linearization.
 fn linearized(v: f64, d: &[f64], dq: &[f64]) -> f64 {
     v + d.iter().zip(dq).map(|(a, b)| a * b).sum::<f64>()
 }
 
-/// A branch of a contact point: closed or open, and (closed, with friction) stick or slip.
+/// A branch of a contact point: closed or open.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Branch {
     pub closed: bool,
-    /// Stick (else slip); false at points without friction branches.
-    pub stick: bool,
 }
 
 impl ContactPoint {
@@ -138,7 +90,6 @@ impl ContactPoint {
         self.closed_fe.clear();
         self.closed_ke.clear();
         self.closed = false;
-        self.friction = None;
     }
 
     /// Whether the point has a closed branch at all.
@@ -151,24 +102,15 @@ impl ContactPoint {
         self.guess(self.closed)
     }
 
-    /// Closed with the friction state the closed branch has now, or open.
+    /// Closed or open.
     pub fn guess(&self, closed: bool) -> Branch {
-        Branch {
-            closed,
-            stick: closed && self.friction.as_ref().is_some_and(|f| f.stick),
-        }
+        Branch { closed }
     }
 
     /// Residual and tangent of a branch. The open branch is zero for the penalty and λ = 0 (the
-    /// rows r_λ = λ, K_λλ = 1, friction multipliers too) for multipliers. A closed branch with
-    /// the other friction state than the current one's is that one where the point has it.
+    /// rows r_λ = λ, K_λλ = 1, friction multipliers too) for multipliers.
     pub fn branch(&self, b: Branch) -> (Vec<f64>, Vec<f64>) {
         if b.closed && self.can_close() {
-            if let Some(f) = &self.friction {
-                if b.stick != f.stick && !f.other_fe.is_empty() {
-                    return (f.other_fe.clone(), f.other_ke.clone());
-                }
-            }
             return (self.closed_fe.clone(), self.closed_ke.clone());
         }
         match self.law {
@@ -223,12 +165,10 @@ impl ContactPoint {
     }
 
     /// The branch after a change `dq` of its unknowns (over `codes`): closed by the
-    /// linearization of its gap (and its multiplier), stick by its friction's.
+    /// linearization of its gap (and its multiplier).
     pub fn predicts(&self, dq: &[f64]) -> Branch {
-        let closed = self.predicts_closed(dq);
         Branch {
-            closed,
-            stick: closed && self.friction.as_ref().is_some_and(|f| f.predicts_stick(dq)),
+            closed: self.predicts_closed(dq),
         }
     }
 
@@ -246,37 +186,22 @@ impl ContactPoint {
     }
 
     /// Take the geometric part of the closed tangent with the held force λ̂ instead of the
-    /// iterate's −ε·g, and so the slip force's part that scales with the normal force: the
-    /// Newton step of the penalty written with its force as an unknown (λ̂ + ε·g = 0, a
-    /// perturbed Lagrangian), whose displacement step is the penalty's but for these parts.
-    /// Where a step along a curved surface leaves a gap error far above the penetration λ̂/ε of
-    /// a stiff penalty, −ε·g is no measure of the force (shallow ironing as mortar with the
-    /// penalty from the mesh, frictionless: 3220 iterations and 55 cut-backs with −ε·g, 452 and
-    /// none with λ̂).
+    /// iterate's −ε·g: the Newton step of the penalty written with its force as an unknown
+    /// (λ̂ + ε·g = 0, a perturbed Lagrangian), whose displacement step is the penalty's but for
+    /// this part. Where a step along a curved surface leaves a gap error far above the
+    /// penetration λ̂/ε of a stiff penalty, −ε·g is no measure of the force (shallow ironing as
+    /// mortar with the penalty from the mesh, frictionless: 3220 iterations and 55 cut-backs with
+    /// −ε·g, 452 and none with λ̂).
     pub fn hold_force(&mut self, force: f64) {
         let Some(geo) = &mut self.geometric else {
             return;
         };
         let d = geo.force - force;
-        // The normal force the friction's slip tangent holds now, and the held one.
-        let d_slip = -geo.penalty * geo.weight * self.gap - geo.weight * force;
         geo.force = force;
-        let add = |ke: &mut Vec<f64>, d: f64, by: &[f64]| {
-            if ke.len() == by.len() {
-                for (k, b) in ke.iter_mut().zip(by) {
-                    *k += d * b;
-                }
+        if self.closed_ke.len() == geo.dv.len() {
+            for (k, b) in self.closed_ke.iter_mut().zip(&geo.dv) {
+                *k += d * b;
             }
-        };
-        add(&mut self.closed_ke, d, &geo.dv);
-        if let Some(f) = &mut self.friction {
-            add(&mut f.other_ke, d, &geo.dv);
-            let slip = if f.stick {
-                &mut f.other_ke
-            } else {
-                &mut self.closed_ke
-            };
-            add(slip, -d_slip, &f.unit_slip_ke);
         }
     }
 

@@ -1,5 +1,5 @@
-//! The search for the contact points' branches (closed or open, and with friction on a penalty
-//! point stick or slip) on the linearized problem: guess the branches, solve, predict every
+//! The search for the contact points' branches (closed or open) on the linearized problem:
+//! guess the branches, solve, predict every
 //! point's branch from the solution, and repeat until guess and prediction agree (see
 //! `contact::point`).
 //!
@@ -48,7 +48,7 @@ pub struct ContactStep {
     pub cycled: bool,
 }
 
-/// The search over guesses of type `T` per point (closed or open, and stick or slip).
+/// The search over guesses of type `T` per point (closed or open).
 pub struct BranchSearch<T> {
     seen: HashSet<Vec<T>>,
     /// One point per update (after a cycle).

@@ -1,6 +1,5 @@
 //! Newton steps of contact problems, condensed on the contact equations, with every contact
-//! point's branch (closed or open, and with penalty friction stick or slip) decided on the
-//! linearized problem.
+//! point's branch (closed or open) decided on the linearized problem.
 //!
 //! The structural tangent K_s (elements only) is factorized with the contact candidate equations c
 //! (the DOFs of every node a contact point can involve, and the multipliers) eliminated last; the
@@ -199,7 +198,7 @@ impl CondensedContact {
         self.base.solve_in_place(&mut w)?;
         let mdim = self.cand.len();
         let wc: Vec<f64> = self.cand.iter().map(|&e| w[e]).collect();
-        // Closed or open, and with friction stick or slip, of every point.
+        // Closed or open, of every point.
         let mut closed: Vec<Branch> = points.iter().zip(guess).map(|(p, &g)| p.guess(g)).collect();
         let mut search = BranchSearch::new(MAX_BRANCH_UPDATES);
         // The guess with the fewest points predicted otherwise (the latest of equals), its
@@ -208,33 +207,12 @@ impl CondensedContact {
         // Whether a guess without closed points keeps the shift (see below).
         let mut hold = false;
         let shifted = (0..mdim).any(|k| self.shift[k] != 0.0 && !self.is_lambda(k, dofs));
-        // The local tangents of every point's branches: open, closed with the friction state it
-        // has now, and closed with the other one (stick ↔ slip) if it has friction.
-        let tangents: Vec<[Vec<f64>; 3]> = points
+        // The local tangents of every point's branches: open and closed.
+        let tangents: Vec<[Vec<f64>; 2]> = points
             .iter()
-            .map(|p| {
-                let now = p.guess(true);
-                let other = match p.friction {
-                    Some(_) => {
-                        p.branch(Branch {
-                            stick: !now.stick,
-                            ..now
-                        })
-                        .1
-                    }
-                    None => Vec::new(),
-                };
-                [p.branch(p.guess(false)).1, p.branch(now).1, other]
-            })
+            .map(|p| [p.branch(p.guess(false)).1, p.branch(p.guess(true)).1])
             .collect();
-        let tangent = |i: usize, b: Branch| {
-            let t = &tangents[i];
-            match (b.closed, b.stick == points[i].guess(true).stick) {
-                (false, _) => &t[0],
-                (true, true) => &t[1],
-                (true, false) => &t[2],
-            }
-        };
+        let tangent = |i: usize, b: Branch| &tangents[i][usize::from(b.closed)];
         loop {
             // Equations of the dense system: those of closed points and the shifted ones.
             let mut in_a = vec![usize::MAX; mdim];

@@ -12,7 +12,6 @@
 //! the penalty laws drop the geometric part while the iterate is far from any solution (see
 //! [`Laws::geometric_allowed`]), the multiplier law keeps it.
 
-pub mod friction;
 pub mod multiplier;
 pub mod penalty;
 
@@ -26,10 +25,7 @@ pub struct PointKinematics {
     pub b: Vec<Jet>,
     /// The node's tributary area (2D: length × thickness), or a floor for isolated nodes.
     pub area: f64,
-    /// Friction of the closed point (penalty conditions with `friction`).
-    pub friction: Option<FrictionKinematics>,
-    /// Slip of the point (multiplier conditions with `friction`: the law's friction multipliers
-    /// act on it).
+    /// Slip of the point (conditions with `friction`: the law's friction multipliers act on it).
     pub slip: Option<SlipKinematics>,
 }
 
@@ -55,23 +51,6 @@ pub struct SlipKinematics {
     pub slid: Option<crate::contact::Anchor>,
 }
 
-/// The friction part of a closed contact point: its residual contribution and state.
-pub struct FrictionKinematics {
-    /// Residual contribution over the local unknowns, with its gradient.
-    pub residual: Vec<Jet>,
-    pub stick: bool,
-    pub force: f64,
-    /// The residual contribution of the other branch (stick ↔ slip; see
-    /// [`friction::Tangential::other`]).
-    pub other: Option<Vec<Jet>>,
-    /// The trial force ε_T g_T (dim components) and the slip limit μ·pn.
-    pub trial: Vec<Jet>,
-    pub limit: Jet,
-    /// The residual contribution of the slip branch per unit normal force, pn held fixed
-    /// (see [`friction::Tangential::unit_slip`]).
-    pub unit_slip: Option<Vec<Jet>>,
-}
-
 impl PointKinematics {
     /// Kinematics evaluated in duals over the local unknowns.
     pub fn from_duals(gap: Dual, weight: Dual, b: &[Dual], area: f64) -> PointKinematics {
@@ -80,7 +59,6 @@ impl PointKinematics {
             weight: weight.into(),
             b: b.iter().map(|&v| v.into()).collect(),
             area,
-            friction: None,
             slip: None,
         }
     }
@@ -127,7 +105,6 @@ fn point(
         gap: k.gap.v,
         gap_grad: k.gap.d.clone(),
         closed: closed_now,
-        friction: None,
         geometric: None,
     }
 }

@@ -173,7 +173,8 @@ fn coulomb(s: &SlipKinematics, lambda: f64, lambda_t: &[f64], m: usize) -> (Vec<
     // The slip limit μ⟨λ⟩ (its derivative taken on the λ ≥ 0 side at λ = 0).
     let limit = if ln.v >= 0.0 { ln * s.mu } else { zero };
     // On the limit (within 1e-9: a node that slid in the last step starts the next one there)
-    // the point slides, as with the penalty law (see `friction::evaluate`).
+    // the point slides: the force is the same either way, and the slip branch lets a steady
+    // slide go on in one iteration per step.
     let stick = norm.v == 0.0 || norm.v < limit.v * (1.0 - 1e-9);
     let proj: Vec<Dual> = if stick {
         v

@@ -32,9 +32,8 @@ pub mod edges;
 pub mod faces;
 pub mod segment;
 
-use super::dual::{DVec, Dual, Jet};
-use super::law::friction::{self, FrictionPoint};
-use super::law::{self, FrictionKinematics, Laws, PointKinematics, SlipKinematics};
+use super::dual::Jet;
+use super::law::{self, Laws, PointKinematics, SlipKinematics};
 use super::{Anchor, ContactPoint, Ctx, Formulation, Local, Partner, SlotState};
 use crate::error::Result;
 use crate::model::{ContactLaw, Friction, Model, SegmentKind};
@@ -260,7 +259,6 @@ impl SlotLaw {
             weight: Jet::constant(if has { 1.0 } else { 0.0 }, m),
             b,
             area: 1.0,
-            friction: None,
             slip: None,
         };
         // The multipliers' active-set rule compares a pressure with c·ḡ: c per unit area.
@@ -286,7 +284,7 @@ impl SlotLaw {
             xi: [0.0; 2],
             offset: elastic,
         };
-        if let (Some(f), Some(slip), true, true) = (self.friction, &w.slip, has, multipliers) {
+        if let (Some(f), Some(slip), true) = (self.friction, &w.slip, has) {
             // With a penalty the slip is measured from the anchor's elastic slip.
             let elastic = match anchor {
                 Some(a) if compliance > 0.0 => a.offset,
@@ -301,31 +299,6 @@ impl SlotLaw {
             kin.slip = Some(sk);
             // Open (or without a penalty): no elastic slip left.
             state.anchor = Some(anchored([0.0; 3]));
-        } else if let (Some(f), Some(slip), true) = (self.friction, &w.slip, has) {
-            let f = Friction {
-                penalty: f.penalty * self.scale[j],
-                ..f
-            };
-            // The penalty's pressure λ = −ε·ḡ.
-            let pn = Jet {
-                v: -penalty * kin.gap.v,
-                d: kin.gap.d.iter().map(|d| -penalty * d).collect(),
-            };
-            let elastic = anchor.map_or([0.0; 3], |a| a.offset);
-            let u = slip.slip(ctx, local, &w.area, elastic);
-            let (fk, next) = slot_friction(f, local, slip, &u, &pn);
-            // An open slot has no friction, not even in the closed branch the solver may predict
-            // for it: continued from the open state, its penalty pressure −ε·ḡ is a pull as large
-            // as the opening, and μ times it a tangential force that has nothing to do with the
-            // friction the slot will carry once closed (in large deformation, where a step's
-            // first iterate can lift a whole side off, it sent the Newton iteration astray).
-            if kin.gap.v <= 0.0 {
-                state.friction = Some((fk.stick, fk.force * w.area.v));
-                state.anchor = Some(anchored(next));
-                kin.friction = Some(fk);
-            } else {
-                state.anchor = Some(anchored([0.0; 3]));
-            }
         }
         let point = if multipliers {
             let per = self.multipliers_per_slot();
@@ -451,76 +424,4 @@ impl SlipForm {
             slid: None,
         }
     }
-}
-
-/// Coulomb friction of a slot (see [`law::friction`]): the trial elastic slip is `slip` (the
-/// last step's elastic slip plus the step's ũ_j) tangential to the slot's normal, the limit μ·λ_j
-/// with the penalty's pressure `pn`; the traction t acts per unit area, so node n's residual is
-/// w_jn·t. Evaluated in duals over (slip, λ_j, ∫ Φ_j ν) and chained to the local unknowns: the
-/// tangent is exact and unsymmetric. Returns the friction kinematics and the elastic slip this
-/// state leaves if it converges.
-fn slot_friction(
-    law: Friction,
-    local: &Local,
-    form: &SlipForm,
-    slip: &[Jet],
-    pn: &Jet,
-) -> (FrictionKinematics, [f64; 3]) {
-    let dim = local.dim;
-    let m = local.m();
-    // z = (slip, λ_j, ∫ Φ_j ν).
-    let nz = 2 * dim + 1;
-    let mut xs = [Dual::constant(0.0, nz); 3];
-    let xa = [Dual::constant(0.0, nz); 3];
-    let mut nu = [Dual::constant(0.0, nz); 3];
-    for i in 0..dim {
-        xs[i] = Dual::variable(slip[i].v, i, nz);
-        nu[i] = Dual::variable(form.normal[i].v, dim + 1 + i, nz);
-    }
-    let len = (0..dim)
-        .fold(Dual::constant(0.0, nz), |acc, i| acc + nu[i] * nu[i])
-        .sqrt();
-    let n = nu.map(|v| v / len);
-    let t = friction::evaluate(
-        law,
-        &FrictionPoint {
-            xs,
-            xa,
-            n,
-            pn: Dual::variable(pn.v, dim, nz),
-            dim,
-        },
-    );
-    let nonzero = |j: &Jet| -> Vec<(usize, f64)> {
-        j.d.iter()
-            .copied()
-            .enumerate()
-            .filter(|(_, v)| *v != 0.0)
-            .collect()
-    };
-    let mut dz: Vec<Vec<(usize, f64)>> = slip.iter().map(nonzero).collect();
-    dz.push(nonzero(pn));
-    for i in 0..dim {
-        dz.push(nonzero(&form.normal[i]));
-    }
-    let jet = |d: &Dual| Jet::chain(d, &dz, m);
-    // A traction t per unit area: node n's residual is w_jn·t.
-    let spread = |t: &DVec| {
-        let mut residual = vec![Jet::constant(0.0, m); m];
-        for (k, w) in &form.shares {
-            for i in 0..dim {
-                residual[dim * k + i] = w.product(&jet(&t[i]));
-            }
-        }
-        residual
-    };
-    // The elastic slip left: the traction over the tangential penalty (stick: all of the slip).
-    let elastic = std::array::from_fn(|i| {
-        if i < dim {
-            t.vector[i].v / law.penalty
-        } else {
-            0.0
-        }
-    });
-    (t.kinematics(dim, jet, spread), elastic)
 }

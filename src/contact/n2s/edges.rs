@@ -261,7 +261,6 @@ impl NodeToSegment {
                     slot,
                     law,
                     [xs3, xa3, dir],
-                    (gap, weight),
                     (anchor, at_point),
                     held,
                     |p| {

@@ -260,7 +260,7 @@ impl NodeToSegment {
             weight: chain(&weight),
             b: bj,
             area: crate::contact::law_area(slot.area, ctx.model),
-            friction: None,
+
             slip: None,
         };
         let mut next = None;
@@ -301,7 +301,6 @@ impl NodeToSegment {
                     slot,
                     law,
                     [xs, xa, dir],
-                    (gap, weight),
                     (anchor.expect("an anchor"), at_point),
                     held,
                     |p| {

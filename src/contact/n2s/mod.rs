@@ -26,7 +26,6 @@ use super::dual::{DVec, Dual, Jet};
 use super::geometry::edges::EdgeSurface;
 use super::geometry::faces::{FaceSurface, NodalNormal};
 use super::geometry::scalar::Scalar;
-use super::law::friction::{self, FrictionPoint};
 use super::law::{PointKinematics, SlipKinematics};
 use super::search::broad::BroadPhase;
 use super::search::{self, Candidate};
@@ -130,22 +129,20 @@ impl NodeToSegment {
         1 + if self.friction.is_some() { self.dim } else { 0 }
     }
 
-    /// The friction of a point with gap `gap`, weight `weight` and force direction `dir`,
-    /// anchored at `xa` (`anchor`), into `kin`; returns the anchor it leaves for the next step.
-    /// `spread` distributes a force on the node over the local unknowns (the node, and its
-    /// negative over the master), `jet` takes the kinematics' duals to the local unknowns.
-    ///
-    /// The slip the friction multipliers act on (see [`super::apply_law`]), and the anchor is
-    /// `at_point` unless the law finds the point sticking (it keeps `anchor`) or, with a penalty,
-    /// sliding: then it is `slid` of the point behind the node by the elastic slip
-    /// `held`/ε_T, `held` the friction force the iteration holds (its multipliers).
+    /// The friction of a point with force direction `dir` anchored at `xa` (`anchor`), into
+    /// `kin`: the slip the friction multipliers act on (see [`super::apply_law`]). Returns the
+    /// anchor an open point leaves, `at_point`; the law keeps `anchor` where the point sticks
+    /// and, with a penalty, takes `slid` where it slides: `slid` of the point behind the node by
+    /// the elastic slip `held`/ε_T, `held` the friction force the iteration holds (its
+    /// multipliers). `spread` distributes a force on the node over the local unknowns (the
+    /// node, and its negative over the master), `jet` takes the kinematics' duals to the local
+    /// unknowns.
     #[allow(clippy::too_many_arguments)]
     fn point_friction(
         &self,
         slot: &Slot,
         law: Friction,
-        point: [DVec; 3],
-        (gap, weight): (Dual, Dual),
+        [xs, xa, n]: [DVec; 3],
         (anchor, at_point): (&Anchor, Anchor),
         held: [f64; 3],
         slid: impl FnOnce([f64; 3]) -> Anchor,
@@ -153,52 +150,26 @@ impl NodeToSegment {
         jet: impl Fn(&Dual) -> Jet,
         kin: &mut PointKinematics,
     ) -> Anchor {
-        let [xs, xa, n] = point;
         let dim = self.dim;
-        if self.law.forces_are_unknowns(Some(law)) {
-            let nv = xs[0].n;
-            let penalty = matches!(self.law, ContactLaw::Penalty(_));
-            let compliance = if penalty { 1.0 / law.penalty } else { 0.0 };
-            kin.slip = Some(SlipKinematics {
-                slip: (0..dim).map(|i| jet(&(xs[i] - xa[i]))).collect(),
-                normal: (0..dim).map(|i| jet(&n[i])).collect(),
-                share: (0..dim)
-                    .map(|k| {
-                        let unit = std::array::from_fn(|i| Dual::constant(f64::from(i == k), nv));
-                        spread(&unit)
-                    })
-                    .collect(),
-                mu: law.mu,
-                stiffness: slot.stiffness,
-                kept: *anchor,
-                compliance,
-                slid: penalty
-                    .then(|| slid(std::array::from_fn(|i| xs[i].v - held[i] * compliance))),
-            });
-            return at_point;
-        }
-        let ContactLaw::Penalty(p) = slot.law(self.law) else {
-            unreachable!("a multiplier condition has its forces as unknowns")
-        };
-        let t = friction::evaluate(
-            law,
-            &FrictionPoint {
-                xs,
-                xa,
-                n,
-                pn: -(weight * gap * p),
-                dim,
-            },
-        );
-        let next = if gap.v > 0.0 {
-            at_point
-        } else if t.stick {
-            *anchor
-        } else {
-            slid(t.next_anchor)
-        };
-        kin.friction = Some(t.kinematics(dim, jet, spread));
-        next
+        let nv = xs[0].n;
+        let penalty = matches!(self.law, ContactLaw::Penalty(_));
+        let compliance = if penalty { 1.0 / law.penalty } else { 0.0 };
+        kin.slip = Some(SlipKinematics {
+            slip: (0..dim).map(|i| jet(&(xs[i] - xa[i]))).collect(),
+            normal: (0..dim).map(|i| jet(&n[i])).collect(),
+            share: (0..dim)
+                .map(|k| {
+                    let unit = std::array::from_fn(|i| Dual::constant(f64::from(i == k), nv));
+                    spread(&unit)
+                })
+                .collect(),
+            mu: law.mu,
+            stiffness: slot.stiffness,
+            kept: *anchor,
+            compliance,
+            slid: penalty.then(|| slid(std::array::from_fn(|i| xs[i].v - held[i] * compliance))),
+        });
+        at_point
     }
 }
 
@@ -587,11 +558,6 @@ impl Formulation for NodeToSegment {
                         _ => unreachable!("node-to-segment partners are edges, faces or rigid"),
                     };
                     state.anchor = next;
-                    state.friction = kin
-                        .friction
-                        .as_ref()
-                        .filter(|_| kin.gap.v <= 0.0)
-                        .map(|f| (f.stick, f.force));
                     (local, kin)
                 }
                 None => {

@@ -213,7 +213,6 @@ impl NodeToSegment {
                     slot,
                     law,
                     [xs3, xa3, dir],
-                    (gap, Dual::constant(1.0, m)),
                     (anchor, at_point),
                     held,
                     |p| Anchor {
