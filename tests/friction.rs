@@ -735,6 +735,19 @@ fn shallow_ironing_run(text: &str) -> (f64, f64, Vec<(f64, usize)>) {
     (fy, ratio, iterations)
 }
 
+/// Runs the shallow ironing input `multipliers` as mortar penalty, `penalty` the condition's
+/// option ("penalty 1e6 ", or "" for the mesh's), as [`shallow_ironing_run`].
+fn shallow_ironing_as_penalty(multipliers: &str, penalty: &str) -> (f64, f64, Vec<(f64, usize)>) {
+    let text = multipliers.replace(
+        "s2slagrangianmultipliercontact 4 loadTimeFunction 1 ",
+        &format!("s2spenaltycontact 4 loadTimeFunction 1 {penalty}"),
+    );
+    assert!(text.contains(&format!(
+        "s2spenaltycontact 4 loadTimeFunction 1 {penalty}slavesegment"
+    )));
+    shallow_ironing_run(&text)
+}
+
 /// Shallow ironing without friction as mortar penalty with the penalty from the mesh (10³ E/h,
 /// a penetration of about 5·10⁻⁶ against gap errors of 10⁻³–10⁻² from a Newton step along the
 /// die's arc) and with `penalty 1e6`: at most 6 iterations a step, no cut-back, and the forces of
@@ -750,14 +763,7 @@ fn a_stiff_penalty_irons_like_the_multipliers() {
     let multipliers = SHALLOW_IRONING.input().replace(" friction 0.3", "");
     let (fy_m, fx_fy_m, _) = shallow_ironing_run(&multipliers);
     for penalty in ["", "penalty 1e6 "] {
-        let text = multipliers.replace(
-            "s2slagrangianmultipliercontact 4 loadTimeFunction 1 ",
-            &format!("s2spenaltycontact 4 loadTimeFunction 1 {penalty}"),
-        );
-        assert!(text.contains(&format!(
-            "s2spenaltycontact 4 loadTimeFunction 1 {penalty}slavesegment"
-        )));
-        let (fy, fx_fy, iterations) = shallow_ironing_run(&text);
+        let (fy, fx_fy, iterations) = shallow_ironing_as_penalty(&multipliers, penalty);
         assert!(
             iterations.iter().all(|&(_, i)| i <= 6),
             "{penalty}: {iterations:?}"
@@ -789,14 +795,7 @@ fn a_stiff_penalty_with_friction_irons_like_the_multipliers() {
     let multipliers = SHALLOW_IRONING.input();
     let (fy_m, fx_fy_m, _) = shallow_ironing_run(&multipliers);
     for (penalty, tol) in [("", 1e-3), ("penalty 1e5 ", 1e-2)] {
-        let text = multipliers.replace(
-            "s2slagrangianmultipliercontact 4 loadTimeFunction 1 ",
-            &format!("s2spenaltycontact 4 loadTimeFunction 1 {penalty}"),
-        );
-        assert!(text.contains(&format!(
-            "s2spenaltycontact 4 loadTimeFunction 1 {penalty}slavesegment"
-        )));
-        let (fy, fx_fy, iterations) = shallow_ironing_run(&text);
+        let (fy, fx_fy, iterations) = shallow_ironing_as_penalty(&multipliers, penalty);
         assert!(
             iterations
                 .iter()

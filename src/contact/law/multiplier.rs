@@ -51,7 +51,7 @@ fn capped(c: f64, compliance: f64) -> f64 {
 }
 
 /// `codes`: the displacement codes, then the equations of the multipliers `lambdas`: the
-/// friction force's components (if any) and last the normal force. `compliance`: 1/ε of a
+/// friction force's components (if any) and last the normal force. `cn`: 1/ε of a
 /// penalty condition solved in this form, else 0. Returns the point and, for an active point with
 /// friction, whether it sticks and the friction force's magnitude.
 pub fn evaluate(
@@ -60,7 +60,7 @@ pub fn evaluate(
     mut codes: Vec<usize>,
     eqs: std::ops::Range<usize>,
     k: &PointKinematics,
-    compliance: f64,
+    cn: f64,
 ) -> (ContactPoint, Option<(bool, f64)>) {
     let m = k.b.len();
     let nt = eqs.len() - 1;
@@ -69,7 +69,6 @@ pub fn evaluate(
     let lambda = lambdas[nt];
     let mut lambda_t = [0.0; 3];
     lambda_t[..nt].copy_from_slice(&lambdas[..nt]);
-    let cn = compliance;
     let c = capped(laws.c, cn);
     // The constraint the normal row holds: g, or with a penalty's compliance w·g (the penalty's
     // force is ε·w·⟨−g⟩; the weight only switches a multiplier).
