@@ -707,3 +707,120 @@ fn patch_test_total_lagrangian_every_continuum_element() {
         }
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// Edge tractions on 2D element boundaries.
+
+/// A 2 × 1 plate of two quadrilaterals (or four triangles), thickness 0.5, E = 100, ν = 0.3,
+/// held at x = 0 and pulled by the traction p = 3 on its right edge, given by `set3` (the edge
+/// set). Uniform stress σ_xx = p: u_x = p·x/E and u_y = −ν·p·y/E, exact on any such mesh.
+fn traction_plate(kind: &str, set3: &str) -> String {
+    let elements = match kind {
+        "PlaneStress2d" => "PlaneStress2d 1 nodes 4 5 4 1 2\nPlaneStress2d 2 nodes 4 6 5 2 3\n",
+        _ => {
+            "TrPlaneStress2d 1 nodes 3 5 4 1\nTrPlaneStress2d 2 nodes 3 5 1 2\n\
+              TrPlaneStress2d 3 nodes 3 6 5 2\nTrPlaneStress2d 4 nodes 3 6 2 3\n"
+        }
+    };
+    let nelem = elements.lines().count();
+    format!(
+        "plate.out\nedge traction on a plate\nLinearStatic nsteps 1\ndomain 2dPlaneStress\n\
+         OutputManager\n\
+         ndofman 6 nelem {nelem} ncrosssect 1 nmat 1 nbc 3 nic 0 nltf 1 nset 3\n\
+         node 1 coords 2 0 0\nnode 2 coords 2 1 0\nnode 3 coords 2 2 0\n\
+         node 4 coords 2 0 1\nnode 5 coords 2 1 1\nnode 6 coords 2 2 1\n\
+         {elements}SimpleCS 1 thick 0.5 material 1 set 1\nIsoLE 1 d 0 E {YOUNG} n {POISSON} tAlpha 0\n\
+         BoundaryCondition 1 loadTimeFunction 1 dofs 1 1 values 1 0 set 2\n\
+         BoundaryCondition 2 loadTimeFunction 1 dofs 1 2 values 1 0 set 4\n\
+         ConstantEdgeLoad 3 loadTimeFunction 1 dofs 2 1 2 components 2 3.0 0 set 3\n\
+         ConstantFunction 1 f(t) 1.0\n\
+         Set 1 allelements\nSet 2 nodes 2 1 4\n{set3}\nSet 4 nodes 1 1\n"
+    )
+    .replace("nset 3", "nset 4")
+}
+
+/// An edge load on `elementboundaries` of 2D elements acts on those edges, exactly as on
+/// `elementedges` (a Gmsh physical curve becomes `elementboundaries`).
+#[test]
+fn edge_load_on_2d_element_boundaries_acts_on_the_edges() {
+    // The right edge: nodes 3 and 6. Quadrilateral 2 (6 5 2 3): boundary 4 (3 -> 6); triangle 4
+    // (6 2 3): boundary 3 (3 -> 6).
+    for (kind, edge) in [("PlaneStress2d", "2 4"), ("TrPlaneStress2d", "4 3")] {
+        for key in ["elementboundaries", "elementedges"] {
+            let text = traction_plate(kind, &format!("Set 3 {key} 2 {edge}"));
+            let model = common::model_from_text(&text).unwrap_or_else(|e| panic!("{e}"));
+            let mut u = Vec::new();
+            run_analysis(&model, &common::quiet(), |r| {
+                u = (0..6)
+                    .map(|n| [r.displacement(n, 1).unwrap(), r.displacement(n, 2).unwrap()])
+                    .collect();
+                Ok(())
+            })
+            .unwrap();
+            for (n, x) in [
+                [0.0, 0.0],
+                [1.0, 0.0],
+                [2.0, 0.0],
+                [0.0, 1.0],
+                [1.0, 1.0],
+                [2.0, 1.0],
+            ]
+            .iter()
+            .enumerate()
+            {
+                let exact = [3.0 * x[0] / YOUNG, -POISSON * 3.0 * x[1] / YOUNG];
+                for d in 0..2 {
+                    assert!(
+                        (u[n][d] - exact[d]).abs() < 1e-12,
+                        "{kind} {key}: node {} u{} = {} (exact {})",
+                        n + 1,
+                        d + 1,
+                        u[n][d],
+                        exact[d]
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// A load whose set has nothing it can act on is an input error at the load's line, never a
+/// run that applies nothing.
+#[test]
+fn a_load_that_would_act_on_nothing_is_an_input_error() {
+    for (set3, expected) in [
+        (
+            "Set 3 nodes 2 3 6",
+            "ConstantEdgeLoad 3 acts on set 3, which has no element edges",
+        ),
+        (
+            "Set 3 elements 1 2",
+            "ConstantEdgeLoad 3 acts on set 3, which has no element edges",
+        ),
+    ] {
+        let text = traction_plate("PlaneStress2d", set3);
+        let err = common::model_from_text(&text).unwrap_err();
+        assert!(err.to_string().contains(expected), "{err}");
+        assert!(
+            err.to_string().contains(":19:"),
+            "names the load's line: {err}"
+        );
+    }
+    let surface = traction_plate("PlaneStress2d", "Set 3 elementboundaries 2 2 4")
+        .replace("ConstantEdgeLoad 3", "ConstantSurfaceLoad 3");
+    let err = common::model_from_text(&surface).unwrap_err();
+    assert!(
+        err.to_string().contains(
+            "ConstantSurfaceLoad 3 acts on set 3, which names boundaries of 2D element 2"
+        ),
+        "{err}"
+    );
+    let bc = traction_plate("PlaneStress2d", "Set 3 elementboundaries 2 2 4")
+        .replace("Set 4 nodes 1 1", "Set 4 nodes 0");
+    let err = common::model_from_text(&bc).unwrap_err();
+    assert!(
+        err.to_string()
+            .contains("BoundaryCondition 2 acts on set 4, which has no nodes"),
+        "{err}"
+    );
+}

@@ -730,6 +730,7 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
                         dofs,
                         values,
                         set: Some(set).filter(|&s| s > 0),
+                        span: r.span(),
                     }),
                 )?;
             }
@@ -778,6 +779,7 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
                     dofs,
                     components,
                     set,
+                    span: r.span(),
                 });
                 bcs.put(&r, None)?;
             }
@@ -943,19 +945,29 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
         e.cross_section = csn - 1;
         e.material = mat - 1;
     }
+    // A load or condition that would act on nothing is an input error, never a silent no-op.
     for l in &loads {
         let s = &sets[l.set - 1];
-        let empty = match l.kind {
-            LoadKind::Nodal => s.nodes.is_empty(),
-            LoadKind::Edge => s.edges.is_empty(),
-            LoadKind::Surface => s.boundaries.is_empty() && s.surfaces.is_empty(),
-            LoadKind::DeadWeight => s.elements.is_empty(),
+        let why = match l.boundaries(s, &model_elements) {
+            Err(msg) => Some(msg),
+            Ok(_) => l.acts_on_nothing(s, &model_elements),
         };
-        if empty {
-            c.warnings.push(format!(
-                "load {} acts on set {}, which has no matching entities",
-                l.number, l.set
-            ));
+        if let Some(msg) = why {
+            return Err(Error::Input {
+                span: l.span.clone(),
+                msg,
+            });
+        }
+    }
+    for d in &dirichlet {
+        if let Some(s) = d.set.filter(|&s| sets[s - 1].nodes.is_empty()) {
+            return Err(Error::Input {
+                span: d.span.clone(),
+                msg: format!(
+                    "BoundaryCondition {} acts on set {s}, which has no nodes: it would prescribe nothing",
+                    d.number
+                ),
+            });
         }
     }
 

@@ -344,6 +344,8 @@ pub struct Dirichlet {
     pub dofs: Vec<DofId>,
     pub values: Vec<f64>,
     pub set: Option<usize>,
+    /// The record, for messages.
+    pub span: Span,
 }
 
 impl Dirichlet {
@@ -363,6 +365,18 @@ pub enum LoadKind {
     DeadWeight,
 }
 
+impl LoadKind {
+    /// The record keyword, for messages.
+    pub fn record_name(&self) -> &'static str {
+        match self {
+            LoadKind::Nodal => "NodalLoad",
+            LoadKind::Edge => "ConstantEdgeLoad",
+            LoadKind::Surface => "ConstantSurfaceLoad",
+            LoadKind::DeadWeight => "DeadWeight",
+        }
+    }
+}
+
 #[derive(Debug, Clone)]
 pub struct Load {
     pub number: usize,
@@ -372,6 +386,111 @@ pub struct Load {
     pub dofs: Vec<DofId>,
     pub components: Vec<f64>,
     pub set: usize,
+    /// The record, for messages.
+    pub span: Span,
+}
+
+impl Load {
+    /// The element boundaries a traction acts on, as (element index, local node numbers).
+    ///
+    /// An edge load acts on `elementedges` and on the `elementboundaries` of 2D elements (the
+    /// boundary of a 2D element is an edge: what a Gmsh physical curve becomes); a surface load
+    /// on `elementsurfaces` and the `elementboundaries` of 3D elements. A set entity the load
+    /// cannot act on (a face under an edge load, an edge under a surface load), or a set with
+    /// nothing to act on, is an error: a load that silently applies nothing is a wrong answer.
+    /// Nodal loads and dead weight have no boundaries (an empty list).
+    pub fn boundaries(
+        &self,
+        set: &Set,
+        elements: &[Element],
+    ) -> std::result::Result<Vec<(usize, &'static [usize])>, String> {
+        let dim = |e: usize| elements[e].etype.shape().dim();
+        let label = |e: usize| elements[e].label;
+        let name = self.kind.record_name();
+        let mut out = Vec::new();
+        match self.kind {
+            LoadKind::Nodal | LoadKind::DeadWeight => return Ok(out),
+            LoadKind::Edge => {
+                if let Some(&(e, _)) = set.surfaces.first() {
+                    return Err(format!(
+                        "{name} {} acts on set {}, whose `elementsurfaces` name faces (element {}): \
+                         an edge load acts on `elementedges`, or on `elementboundaries` of 2D elements; \
+                         use ConstantSurfaceLoad on faces",
+                        self.number,
+                        self.set,
+                        label(e)
+                    ));
+                }
+                for &(e, b) in &set.edges {
+                    out.push((e, elements[e].etype.shape().edges()[b - 1]));
+                }
+                for &(e, b) in &set.boundaries {
+                    if dim(e) != 2 {
+                        return Err(format!(
+                            "{name} {} acts on set {}, whose `elementboundaries` name faces of 3D \
+                             element {}: an edge load acts on edges (`elementedges` in 3D); use \
+                             ConstantSurfaceLoad on faces",
+                            self.number,
+                            self.set,
+                            label(e)
+                        ));
+                    }
+                    out.push((e, elements[e].etype.shape().boundaries()[b - 1]));
+                }
+            }
+            LoadKind::Surface => {
+                let faces = set.boundaries.iter().chain(&set.surfaces);
+                if let Some(&(e, _)) = set.edges.first() {
+                    return Err(format!(
+                        "{name} {} acts on set {}, whose `elementedges` name edges (element {}): \
+                         a surface load acts on faces of 3D elements; use ConstantEdgeLoad on edges",
+                        self.number,
+                        self.set,
+                        label(e)
+                    ));
+                }
+                for &(e, b) in faces {
+                    if dim(e) != 3 {
+                        return Err(format!(
+                            "{name} {} acts on set {}, which names boundaries of {}D element {}: a \
+                             surface load acts on faces of 3D elements; use ConstantEdgeLoad on the \
+                             edges of 2D elements",
+                            self.number,
+                            self.set,
+                            dim(e),
+                            label(e)
+                        ));
+                    }
+                    out.push((e, elements[e].etype.shape().boundaries()[b - 1]));
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    /// Why this load would act on nothing, if it would: its set has none of what it acts on.
+    pub fn acts_on_nothing(&self, set: &Set, elements: &[Element]) -> Option<String> {
+        let (empty, what) = match self.kind {
+            LoadKind::Nodal => (set.nodes.is_empty(), "no nodes"),
+            LoadKind::DeadWeight => (set.elements.is_empty(), "no elements"),
+            LoadKind::Edge => (
+                self.boundaries(set, elements).is_ok_and(|b| b.is_empty()),
+                "no element edges (`elementedges`, or `elementboundaries` of 2D elements)",
+            ),
+            LoadKind::Surface => (
+                self.boundaries(set, elements).is_ok_and(|b| b.is_empty()),
+                "no element faces (`elementboundaries` or `elementsurfaces` of 3D elements)",
+            ),
+        };
+        empty.then(|| {
+            format!(
+                "{} {} acts on set {}, which has {what}: it would apply nothing",
+                self.kind.record_name(),
+                self.number,
+                self.set
+            )
+        })
+    }
 }
 
 /// `Set` record (spec §1.16), resolved to 0-based indices.

@@ -32,10 +32,9 @@ pub fn reference_contributions(model: &Model, load: &Load) -> Result<Vec<(usize,
             }
         }
         LoadKind::Edge => {
-            for &(e, b) in &set.edges {
+            for (e, local) in load_boundaries(model, load)? {
                 let el = &model.elements[e];
                 let shape = el.etype.shape();
-                let local = shape.edges()[b - 1];
                 let thick = if shape.dim() == 2 {
                     element_thickness(model, e)
                 } else {
@@ -63,19 +62,9 @@ pub fn reference_contributions(model: &Model, load: &Load) -> Result<Vec<(usize,
             }
         }
         LoadKind::Surface => {
-            for &(e, b) in set.boundaries.iter().chain(&set.surfaces) {
+            for (e, local) in load_boundaries(model, load)? {
                 let el = &model.elements[e];
                 let shape = el.etype.shape();
-                if shape.dim() != 3 {
-                    return Err(Error::Input {
-                        span: el.span.clone(),
-                        msg: format!(
-                            "surface load {} acts on element {}, which is not a 3D element",
-                            load.number, el.label
-                        ),
-                    });
-                }
-                let local = shape.boundaries()[b - 1];
                 let face = shape.boundary_shape(local.len());
                 let mut n = [0.0; 4];
                 let mut dn = [[0.0; 3]; 4];
@@ -103,6 +92,16 @@ pub fn reference_contributions(model: &Model, load: &Load) -> Result<Vec<(usize,
         }
     }
     Ok(out)
+}
+
+/// The element boundaries an edge or surface load acts on (see [`Load::boundaries`]).
+fn load_boundaries(model: &Model, load: &Load) -> Result<Vec<(usize, &'static [usize])>> {
+    let set = &model.sets[load.set - 1];
+    load.boundaries(set, &model.elements)
+        .map_err(|msg| Error::Input {
+            span: load.span.clone(),
+            msg,
+        })
 }
 
 /// Thickness of a 2D element (1 when the cross section gives none).
