@@ -3,6 +3,7 @@
 
 use crate::error::{Error, Result};
 use crate::input::read_model;
+use crate::output::names::OutputNames;
 use crate::output::vtu::{self, VtuFormat};
 use crate::output::{check, outfile, write_atomic, write_atomic_parts};
 use crate::solve::{run_analysis, SolveParams};
@@ -82,20 +83,13 @@ pub fn run_file(path: &Path, opts: &RunOptions) -> Result<RunReport> {
             .map(Path::to_path_buf)
             .unwrap_or_else(|| PathBuf::from(".")),
     };
-    let out_name = if model.output_name.is_empty() {
-        "hertz.out".to_string()
-    } else {
-        model.output_name.clone()
-    };
-    let stem = Path::new(&out_name)
-        .file_stem()
-        .and_then(|s| s.to_str())
-        .unwrap_or("hertz")
-        .to_string();
+    let names = OutputNames::new(dir.clone(), &model.output_name);
     if opts.write_outputs {
+        names.check_inputs_kept(&read.sources)?;
         std::fs::create_dir_all(&dir)
             .map_err(|e| Error::Output(format!("cannot create {}: {e}", dir.display())))?;
     }
+    let stem = names.stem.clone();
     let mut out_parts = vec![outfile::header(&model)];
     let mut output_clock = std::time::Duration::ZERO;
     let mut vtus: Vec<(f64, String)> = Vec::new();
@@ -157,23 +151,23 @@ pub fn run_file(path: &Path, opts: &RunOptions) -> Result<RunReport> {
             out_parts.push(format!("\nAnalysis stopped: {e}\n"));
         }
         out_parts.push(outfile::footer(clock.elapsed().as_secs_f64()));
-        let out_path = dir.join(&out_name);
+        let out_path = names.out_path();
         let bytes: Vec<&[u8]> = out_parts.iter().map(|p| p.as_bytes()).collect();
         write_atomic_parts(&out_path, &bytes)?;
         report.written.push(out_path);
         if !model.contacts.is_empty() {
-            let csv_path = dir.join(format!("{stem}.contact.csv"));
+            let csv_path = names.path("contact.csv");
             write_atomic(&csv_path, csv.as_bytes())?;
             report.written.push(csv_path);
         }
         for (ext, text) in [("steps.csv", &history), ("newton.csv", &newton)] {
-            let p = dir.join(format!("{stem}.{ext}"));
+            let p = names.path(ext);
             write_atomic(&p, text.as_bytes())?;
             report.written.push(p);
         }
         if !vtus.is_empty() {
             vtu::write_collection(&dir, &stem, &vtus)?;
-            report.written.push(dir.join(format!("{stem}.pvd")));
+            report.written.push(names.path("pvd"));
         }
         output_clock += start.elapsed();
     }

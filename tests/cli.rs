@@ -368,3 +368,98 @@ fn version_and_completions() {
         "{script}"
     );
 }
+
+/// An input whose first line names the input itself (or a file it includes) is refused before
+/// anything is solved or written: exit 2, the reason, and the input intact.
+#[test]
+fn run_never_overwrites_its_input() {
+    let dir = temp_dir("own-input");
+    std::fs::create_dir_all(&dir).unwrap();
+    let example = std::fs::read_to_string(root().join("examples/cantilever.in")).unwrap();
+    let body = example.split_once('\n').unwrap().1;
+    for (name, first_line) in [("self.in", "self.in"), ("main.in", "part.in")] {
+        let text = format!("{first_line}\n{body}");
+        let path = dir.join(name);
+        std::fs::write(&path, &text).unwrap();
+        // The second case names an included file: the mesh lives in part.in.
+        let text = if name == "main.in" {
+            let (head, rest) = text.split_once("node 1 coords").unwrap();
+            std::fs::write(dir.join("part.in"), format!("node 1 coords{rest}")).unwrap();
+            let t = format!("{head}@include \"part.in\"\n");
+            std::fs::write(&path, &t).unwrap();
+            t
+        } else {
+            text
+        };
+        let out = hertz(&["run", "-q", path.to_str().unwrap()]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{stderr}");
+        assert!(
+            stderr.contains(&format!(
+                "would overwrite its input file {}",
+                dir.join(first_line).display()
+            )),
+            "{stderr}"
+        );
+        assert_eq!(
+            std::fs::read_to_string(&path).unwrap(),
+            text,
+            "input intact"
+        );
+        let written: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .filter(|n| !n.ends_with(".in"))
+            .collect();
+        assert!(written.is_empty(), "nothing written: {written:?}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `hertz import` writes over no file it did not write: the default `mesh.in` beside a user's
+/// input of that name is refused (exit 2, the file intact); its own earlier output is renewed.
+#[test]
+fn import_never_overwrites_a_users_file() {
+    let dir = temp_dir("import-keep");
+    std::fs::create_dir_all(&dir).unwrap();
+    let mesh = dir.join("square.msh");
+    std::fs::copy(root().join("tests/data/gmsh/square_tri.msh"), &mesh).unwrap();
+    let users = dir.join("square.in");
+    std::fs::write(&users, "my own model\n").unwrap();
+    let out = hertz(&["import", mesh.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("exists and was not written by `hertz import`"),
+        "{stderr}"
+    );
+    assert_eq!(std::fs::read_to_string(&users).unwrap(), "my own model\n");
+    let target = dir.join("square_mesh.in");
+    for _ in 0..2 {
+        let out = hertz(&[
+            "import",
+            mesh.to_str().unwrap(),
+            "-o",
+            target.to_str().unwrap(),
+        ]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    assert!(std::fs::read_to_string(&target)
+        .unwrap()
+        .starts_with("# Converted by hertz"));
+    let out = hertz(&[
+        "import",
+        mesh.to_str().unwrap(),
+        "-o",
+        mesh.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(std::fs::read_to_string(&mesh)
+        .unwrap()
+        .contains("$MeshFormat"));
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -16,12 +16,24 @@ pub struct Line {
 /// Read `path` into logical lines, skipping blank lines and `#` comments (column 1 only) and
 /// splicing `@include "file"` lines (paths relative to the including file).
 pub fn read_lines(path: &Path) -> Result<Vec<Line>> {
-    let mut out = Vec::new();
-    read_into(path, &mut out, 0)?;
-    Ok(out)
+    Ok(read_lines_and_sources(path)?.0)
 }
 
-fn read_into(path: &Path, out: &mut Vec<Line>, depth: usize) -> Result<()> {
+/// [`read_lines`], and every file the input consists of: `path`, the files it includes and the
+/// Gmsh meshes it splices, in the order first read (the outputs must never overwrite them).
+pub fn read_lines_and_sources(path: &Path) -> Result<(Vec<Line>, Vec<PathBuf>)> {
+    let mut out = Vec::new();
+    let mut sources = Vec::new();
+    read_into(path, &mut out, &mut sources, 0)?;
+    Ok((out, sources))
+}
+
+fn read_into(
+    path: &Path,
+    out: &mut Vec<Line>,
+    sources: &mut Vec<PathBuf>,
+    depth: usize,
+) -> Result<()> {
     if depth > 16 {
         return Err(Error::InputFile {
             file: path.display().to_string(),
@@ -33,6 +45,9 @@ fn read_into(path: &Path, out: &mut Vec<Line>, depth: usize) -> Result<()> {
         msg: format!("cannot read file: {e}"),
     })?;
     let content = decode_text(path, &bytes)?;
+    if !sources.iter().any(|p| p == path) {
+        sources.push(path.to_path_buf());
+    }
     let file = Arc::new(path.to_path_buf());
     let mut pending: Option<(usize, String)> = None;
     for (i, raw) in content.lines().enumerate() {
@@ -56,7 +71,10 @@ fn read_into(path: &Path, out: &mut Vec<Line>, depth: usize) -> Result<()> {
             continue;
         }
         if let Some(rest) = text.trim_start().strip_prefix("@gmsh") {
-            splice_gmsh(path, start, &text, rest, out)?;
+            let mesh = splice_gmsh(path, start, &text, rest, out)?;
+            if !sources.contains(&mesh) {
+                sources.push(mesh);
+            }
             continue;
         }
         if let Some(rest) = text.trim_start().strip_prefix("@include") {
@@ -70,7 +88,7 @@ fn read_into(path: &Path, out: &mut Vec<Line>, depth: usize) -> Result<()> {
                     format!("included file {} does not exist", inc.display()),
                 ));
             }
-            read_into(&inc, out, depth + 1)?;
+            read_into(&inc, out, sources, depth + 1)?;
             continue;
         }
         out.push(Line {
@@ -103,14 +121,14 @@ fn line_error(path: &Path, line: usize, text: &str, msg: String) -> Error {
 
 /// `@gmsh "mesh.msh" [plane stress|strain]`: the mesh's node, element and set records, as
 /// `hertz import` writes them, in place of the line. They are located in messages as
-/// `mesh.msh [converted]:k`, record k of the conversion.
+/// `mesh.msh [converted]:k`, record k of the conversion. Returns the mesh file's path.
 fn splice_gmsh(
     path: &Path,
     line: usize,
     text: &str,
     rest: &str,
     out: &mut Vec<Line>,
-) -> Result<()> {
+) -> Result<PathBuf> {
     use crate::mesh::gmsh::{convert, Plane};
     let here = |msg: String| line_error(path, line, text, msg);
     let words = tokenize(rest);
@@ -147,7 +165,7 @@ fn splice_gmsh(
                 text,
             }),
     );
-    Ok(())
+    Ok(mesh)
 }
 
 /// The file's bytes as text: a UTF-8 byte-order mark is skipped; a NUL byte or bytes that are not

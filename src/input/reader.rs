@@ -1,17 +1,20 @@
 //! Builds a [`Model`] from the records of an OOFEM input file in the order of spec §1.2,
 //! checking counts, record numbers and every cross reference.
 
-use super::lexer::{read_lines, Line};
+use super::lexer::{read_lines_and_sources, Line};
 use super::record::Record;
 use crate::error::{Error, Result};
 use crate::model::*;
 use std::collections::HashMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// The model and the warnings met while reading it.
 pub struct ReadResult {
     pub model: Model,
     pub warnings: Vec<String>,
+    /// Every file the input consists of: the input file, its `@include`d files and `@gmsh`
+    /// meshes.
+    pub sources: Vec<PathBuf>,
 }
 
 /// Upper bound on the number of steps (guards allocations against absurd inputs).
@@ -229,7 +232,7 @@ impl<T> Numbered<T> {
 
 /// Read and check an OOFEM input file.
 pub fn read_model(path: &Path) -> Result<ReadResult> {
-    let lines = read_lines(path)?;
+    let (lines, sources) = read_lines_and_sources(path)?;
     let file = path.display().to_string();
     if lines.len() < 2 {
         return Err(Error::InputFile {
@@ -1021,6 +1024,7 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
     Ok(ReadResult {
         model,
         warnings: c.warnings,
+        sources,
     })
 }
 

@@ -68,12 +68,51 @@ pub enum Plane {
     Strain,
 }
 
+/// The first words of every file `hertz import` writes (see [`Converted::fragment`]).
+const FRAGMENT_MARK: &str = "# Converted by hertz ";
+
+/// `hertz import` writes `out` only where no file is, or over a file it wrote itself (its first
+/// line is the conversion header): never over the mesh, an input or any other file of the user's.
+fn refuse_to_overwrite_a_users_file(out: &Path, mesh: &Path) -> Result<()> {
+    let same = |a: &Path, b: &Path| match (a.canonicalize(), b.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => a == b,
+    };
+    if same(out, mesh) {
+        return Err(Error::InputFile {
+            file: mesh.display().to_string(),
+            msg: format!(
+                "the output {} would overwrite the mesh: name another with -o FILE",
+                out.display()
+            ),
+        });
+    }
+    let Ok(mut f) = std::fs::File::open(out) else {
+        return Ok(());
+    };
+    let mut head = [0u8; FRAGMENT_MARK.len()];
+    let ours =
+        std::io::Read::read_exact(&mut f, &mut head).is_ok() && head == FRAGMENT_MARK.as_bytes();
+    if ours {
+        return Ok(());
+    }
+    Err(Error::InputFile {
+        file: mesh.display().to_string(),
+        msg: format!(
+            "{} exists and was not written by `hertz import`: refusing to overwrite it; name the \
+             output with -o FILE (or remove the file)",
+            out.display()
+        ),
+    })
+}
+
 /// `hertz import`: arguments.
 #[derive(Debug, clap::Args)]
 pub struct ImportArgs {
     /// Gmsh mesh (.msh 2.2 or 4.1, ASCII)
     pub mesh: PathBuf,
-    /// Output file (default: MESH with the extension .in, e.g. disk.msh -> disk.in)
+    /// Output file (default: MESH with the extension .in, e.g. disk.msh -> disk.in); an existing
+    /// file is overwritten only if `hertz import` wrote it
     #[arg(short, long, value_name = "FILE")]
     pub output: Option<PathBuf>,
     /// 2D element types: plane stress or plane strain
@@ -667,7 +706,7 @@ impl Converted {
     /// The `@include`-able fragment: a comment header (the counts, the sets) and the records.
     pub fn fragment(&self, source: &Path) -> String {
         let mut out = format!(
-            "# Converted by hertz {} from {}: {} nodes, {} elements{}.\n\
+            "{FRAGMENT_MARK}{} from {}: {} nodes, {} elements{}.\n\
              # Counts record: {}\n\
              # Nodes, elements and sets follow in this order: @include this file after the counts\n\
              # record; further sets of your own come right after the @include, numbered on.\n",
@@ -699,12 +738,7 @@ pub fn import_command(args: &ImportArgs) -> Result<()> {
         .output
         .clone()
         .unwrap_or_else(|| args.mesh.with_extension("in"));
-    if out == args.mesh {
-        return Err(Error::Output(format!(
-            "{} would overwrite the mesh",
-            out.display()
-        )));
-    }
+    refuse_to_overwrite_a_users_file(&out, &args.mesh)?;
     crate::output::write_atomic(&out, c.fragment(&args.mesh).as_bytes())?;
     eprintln!(
         "wrote {}: {} nodes, {} elements ({}D); counts record: {}",

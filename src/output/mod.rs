@@ -1,6 +1,7 @@
 //! Results: the OOFEM `.out` file, ParaView VTU/PVD files, `#%BEGIN_CHECK%` rule evaluation.
 
 pub mod check;
+pub mod names;
 pub mod number;
 pub mod outfile;
 pub mod vtu;
