@@ -759,3 +759,117 @@ fn mortar_gap_is_exact_on_slave_faces_past_the_master_end() {
         }
     }
 }
+
+/// A plane-strain neo-Hookean block (1 × 1, n × n quadrilaterals, `nlgeo 1`) on rollers, pushed
+/// up by `lift` into a fixed frictionless rigid plane at y = 1 with `condition` (its slave side:
+/// the top edges, set 3 or edge segment 2; the plane is segment 1): a homogeneous compression.
+fn compressed_block(n: usize, lift: f64, condition: &str) -> String {
+    let mut s = String::new();
+    let node = |i: usize, j: usize| j * (n + 1) + i + 1;
+    let nn = (n + 1) * (n + 1);
+    let _ = std::fmt::Write::write_fmt(
+        &mut s,
+        format_args!(
+            "block.out\nblock compressed by a rigid plane\n\
+             NonLinearStatic nsteps 3 controlmode 1 rtolf 1e-10 maxiter 30\n\
+             domain PlaneStrain\nOutputManager\n\
+             ndofman {nn} nelem {} ncrosssect 1 nmat 1 nbc 3 nic 0 nltf 1 nset 4 ncontactseg 2\n",
+            n * n
+        ),
+    );
+    for j in 0..=n {
+        for i in 0..=n {
+            s += &format!(
+                "node {} coords 2 {} {}\n",
+                node(i, j),
+                i as f64 / n as f64,
+                j as f64 / n as f64
+            );
+        }
+    }
+    let mut top = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let e = j * n + i + 1;
+            s += &format!(
+                "Quad1PlaneStrain {e} nodes 4 {} {} {} {} nlgeo 1\n",
+                node(i + 1, j + 1),
+                node(i, j + 1),
+                node(i, j),
+                node(i + 1, j)
+            );
+            if j == n - 1 {
+                top.push(format!("{e} 1"));
+            }
+        }
+    }
+    s += "planecontactsegment 1 point 2 0 1 normal 2 0 -1\n";
+    s += "linear2delementedgecontactsegment 2 edgeset 3\n";
+    s += "SimpleCS 1 thick 1 material 1 set 1\n";
+    s += "MooneyRivlinCompressibleMat 1 d 0 c1 50 c2 0 k 1000\n";
+    s += &format!("BoundaryCondition 1 loadTimeFunction 1 dofs 1 2 values 1 {lift} set 2\n");
+    s += "BoundaryCondition 2 loadTimeFunction 1 dofs 1 1 values 1 0 set 4\n";
+    s += condition;
+    s += "\nPiecewiseLinFunction 1 npoints 2 t 2 0 3 f(t) 2 0 1\n";
+    s += "Set 1 allelements\n";
+    s += &format!("Set 2 noderanges {{(1 {})}}\n", n + 1);
+    s += &format!("Set 3 elementboundaries {} {}\n", 2 * n, top.join(" "));
+    s += "Set 4 nodes 1 1\n";
+    s
+}
+
+/// The `pressure` of every formulation is the same quantity: the normal force over the node's
+/// contact area in the current configuration (true pressure) in large deformation. On a block
+/// compressed by 30 % under a rigid plane (a homogeneous state) node-to-segment and mortar give
+/// at every closed node the total force over the current contact width.
+#[test]
+fn contact_pressure_is_true_pressure_in_every_formulation() {
+    let n = 4;
+    let conditions = [
+        "n2slagrangianmultipliercontact 3 loadTimeFunction 1 slaveset 3 segmentset 1 1",
+        "n2spenaltycontact 3 loadTimeFunction 1 slaveset 3 segmentset 1 1",
+        "s2slagrangianmultipliercontact 3 loadTimeFunction 1 slavesegment 2 segmentset 1 1",
+        "s2spenaltycontact 3 loadTimeFunction 1 slavesegment 2 segmentset 1 1",
+    ];
+    let mut pressures = Vec::new();
+    for c in conditions {
+        let model = common::model_from_text(&compressed_block(n, 0.3, c)).unwrap();
+        let mut last = Vec::new();
+        run_analysis(&model, &common::quiet(), |r| {
+            last = r.contact.to_vec();
+            Ok(())
+        })
+        .unwrap_or_else(|e| panic!("{c}: {e}"));
+        let closed: Vec<_> = last.iter().filter(|s| s.active).collect();
+        assert_eq!(closed.len(), n + 1, "{c}: every top node closed");
+        let force: f64 = closed.iter().map(|s| s.force).sum();
+        let (lo, hi) = closed
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), s| {
+                (a.min(s.x[0]), b.max(s.x[0]))
+            });
+        let true_pressure = force / (hi - lo);
+        assert!(
+            (hi - lo - 1.0).abs() > 0.1,
+            "{c}: the block widened ({})",
+            hi - lo
+        );
+        for s in &closed {
+            assert!(
+                (s.pressure - true_pressure).abs() < 2e-3 * true_pressure,
+                "{c}: node {} pressure {} vs force / current width {}",
+                s.node,
+                s.pressure,
+                true_pressure
+            );
+        }
+        pressures.push(true_pressure);
+    }
+    // The penalties leave a small overlap: the same state to the penalty's compliance.
+    for p in &pressures[1..] {
+        assert!(
+            (p - pressures[0]).abs() < 2e-3 * pressures[0],
+            "{pressures:?}"
+        );
+    }
+}

@@ -4,6 +4,7 @@
 
 use super::dual::{self, Dual};
 use super::law::PointKinematics;
+use super::tributary::PressureAreas;
 use super::{apply_law, ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState};
 use crate::error::{Error, Result};
 use crate::model::{ContactLaw, Model, Pairing};
@@ -19,6 +20,8 @@ pub struct NodeToNode {
     number: usize,
     law: ContactLaw,
     pairs: Vec<Pair>,
+    /// The areas the slave nodes' pressures refer to.
+    areas: PressureAreas,
 }
 
 impl NodeToNode {
@@ -69,6 +72,7 @@ impl NodeToNode {
             number: c.number,
             law: c.law,
             pairs: out,
+            areas: PressureAreas::new(model, &slaves),
         })
     }
 }
@@ -111,6 +115,7 @@ impl Formulation for NodeToNode {
         states: &mut Vec<SlotState>,
     ) -> Result<f64> {
         let dim = ctx.dim;
+        let areas = self.areas.at(|n| Ok(ctx.position(n)?.0))?;
         for (k, p) in self.pairs.iter().enumerate() {
             let mut local = Local::new(dim);
             local.add(ctx, p.slave)?;
@@ -137,7 +142,7 @@ impl Formulation for NodeToNode {
                 ..SlotState::unpaired(self.number, p.slave, ctx.position(p.slave)?.0)
             };
             points.push(apply_law(
-                ctx, self.law, lambda_eqs, &local, &kin, p.area, &mut state,
+                ctx, self.law, lambda_eqs, &local, &kin, areas[k], &mut state,
             ));
             states.push(state);
         }

@@ -30,10 +30,46 @@ fn triangle_area(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
     0.5 * (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt()
 }
 
-/// Tributary data of every node of `nodes` (the contact nodes of one condition), in that order.
-pub fn tributaries(model: &Model, nodes: &[usize]) -> Vec<Tributary> {
+/// One boundary of the contact nodes' own surface: an element edge (2D) or face (3D) whose nodes
+/// are all contact nodes of the condition.
+#[derive(Debug, Clone)]
+pub struct Facet {
+    /// Its nodes (model indices), in the element's boundary order.
+    pub nodes: Vec<usize>,
+    /// The thickness of its 2D element (unused in 3D).
+    thick: f64,
+    plane: bool,
+    /// Its element is in large deformation: its current measure is the one that counts.
+    pub nlgeo: bool,
+}
+
+impl Facet {
+    /// Each node's share of the facet's length × thickness (2D) or area (3D) at positions `x`
+    /// (in the facet's node order).
+    pub fn shares(&self, x: &[[f64; 3]]) -> Vec<f64> {
+        if self.plane {
+            if x.len() == 2 {
+                vec![0.5 * dist(x[0], x[1]) * self.thick; 2]
+            } else {
+                // Quadratic edge (ends, middle): Simpson weights 1/6, 1/6, 2/3.
+                let l = (dist(x[0], x[2]) + dist(x[2], x[1])) * self.thick;
+                vec![l / 6.0, l / 6.0, 2.0 * l / 3.0]
+            }
+        } else {
+            let a = if x.len() == 3 {
+                triangle_area(x[0], x[1], x[2])
+            } else {
+                triangle_area(x[0], x[1], x[2]) + triangle_area(x[0], x[2], x[3])
+            };
+            vec![a / x.len() as f64; x.len()]
+        }
+    }
+}
+
+/// The facets of the surface that the contact nodes `nodes` make up.
+pub fn facets(model: &Model, nodes: &[usize]) -> Vec<Facet> {
     let members: HashSet<usize> = nodes.iter().copied().collect();
-    let mut out: HashMap<usize, Tributary> = HashMap::new();
+    let mut out = Vec::new();
     for (ei, el) in model.elements.iter().enumerate() {
         if el.etype.is_truss() || !el.nodes.iter().any(|n| members.contains(n)) {
             continue;
@@ -44,31 +80,34 @@ pub fn tributaries(model: &Model, nodes: &[usize]) -> Vec<Tributary> {
             if !bn.iter().all(|n| members.contains(n)) {
                 continue;
             }
-            let x: Vec<[f64; 3]> = bn.iter().map(|&n| model.nodes[n].coords).collect();
-            let shares: Vec<f64> = if shape.dim() == 2 {
-                let thick = crate::solid::loads::element_thickness(model, ei);
-                if bn.len() == 2 {
-                    vec![0.5 * dist(x[0], x[1]) * thick; 2]
+            let plane = shape.dim() == 2;
+            out.push(Facet {
+                nodes: bn,
+                thick: if plane {
+                    crate::solid::loads::element_thickness(model, ei)
                 } else {
-                    // Quadratic edge (ends, middle): Simpson weights 1/6, 1/6, 2/3.
-                    let l = (dist(x[0], x[2]) + dist(x[2], x[1])) * thick;
-                    vec![l / 6.0, l / 6.0, 2.0 * l / 3.0]
-                }
-            } else {
-                let a = if bn.len() == 3 {
-                    triangle_area(x[0], x[1], x[2])
-                } else {
-                    triangle_area(x[0], x[1], x[2]) + triangle_area(x[0], x[2], x[3])
-                };
-                vec![a / bn.len() as f64; bn.len()]
-            };
-            for (k, (&n, s)) in bn.iter().zip(shares).enumerate() {
-                let t = out.entry(n).or_default();
-                t.measure += s;
-                for (j, &m) in bn.iter().enumerate() {
-                    if j != k && !t.neighbors.contains(&m) {
-                        t.neighbors.push(m);
-                    }
+                    0.0
+                },
+                plane,
+                nlgeo: el.nlgeo,
+            });
+        }
+    }
+    out
+}
+
+/// Tributary data of every node of `nodes` (the contact nodes of one condition), in that order,
+/// in the reference configuration.
+pub fn tributaries(model: &Model, nodes: &[usize]) -> Vec<Tributary> {
+    let mut out: HashMap<usize, Tributary> = HashMap::new();
+    for f in facets(model, nodes) {
+        let x: Vec<[f64; 3]> = f.nodes.iter().map(|&n| model.nodes[n].coords).collect();
+        for (k, (&n, s)) in f.nodes.iter().zip(f.shares(&x)).enumerate() {
+            let t = out.entry(n).or_default();
+            t.measure += s;
+            for (j, &m) in f.nodes.iter().enumerate() {
+                if j != k && !t.neighbors.contains(&m) {
+                    t.neighbors.push(m);
                 }
             }
         }
@@ -77,4 +116,70 @@ pub fn tributaries(model: &Model, nodes: &[usize]) -> Vec<Tributary> {
         .iter()
         .map(|n| out.get(n).cloned().unwrap_or_default())
         .collect()
+}
+
+/// The area each contact node's pressure refers to: its tributary measure on its own surface,
+/// with every facet in large deformation at its current position and the others at their
+/// reference one, so that force / area is the true (Cauchy) contact pressure in large
+/// deformation and the engineering one in small, for every formulation alike.
+#[derive(Debug, Clone)]
+pub struct PressureAreas {
+    /// The contact nodes (model indices), in the condition's order.
+    nodes: Vec<usize>,
+    /// Their surface's facets in large deformation (the others keep their reference measure).
+    moving: Vec<Facet>,
+    /// Each node's measure in the reference configuration, less the moving facets' shares.
+    fixed: Vec<f64>,
+}
+
+impl PressureAreas {
+    /// The areas of the contact nodes `nodes` of one condition.
+    pub fn new(model: &Model, nodes: &[usize]) -> PressureAreas {
+        let index: HashMap<usize, usize> = nodes.iter().enumerate().map(|(k, &n)| (n, k)).collect();
+        let mut fixed = vec![0.0; nodes.len()];
+        let mut moving = Vec::new();
+        for f in facets(model, nodes) {
+            if f.nlgeo {
+                moving.push(f);
+                continue;
+            }
+            let x: Vec<[f64; 3]> = f.nodes.iter().map(|&n| model.nodes[n].coords).collect();
+            for (&n, s) in f.nodes.iter().zip(f.shares(&x)) {
+                fixed[index[&n]] += s;
+            }
+        }
+        PressureAreas {
+            nodes: nodes.to_vec(),
+            moving,
+            fixed,
+        }
+    }
+
+    /// The areas with the nodes at `position(n)`.
+    pub fn at(
+        &self,
+        mut position: impl FnMut(usize) -> crate::error::Result<[f64; 3]>,
+    ) -> crate::error::Result<Vec<f64>> {
+        let mut out = self.fixed.clone();
+        if self.moving.is_empty() {
+            return Ok(out);
+        }
+        let index: HashMap<usize, usize> = self
+            .nodes
+            .iter()
+            .enumerate()
+            .map(|(k, &n)| (n, k))
+            .collect();
+        for f in &self.moving {
+            let x = f
+                .nodes
+                .iter()
+                .map(|&n| position(n))
+                .collect::<crate::error::Result<Vec<_>>>()?;
+            for (&n, s) in f.nodes.iter().zip(f.shares(&x)) {
+                out[index[&n]] += s;
+            }
+        }
+        Ok(out)
+    }
 }

@@ -29,6 +29,7 @@ use super::geometry::scalar::Scalar;
 use super::law::{PointKinematics, SlipKinematics};
 use super::search::broad::BroadPhase;
 use super::search::{self, Candidate};
+use super::tributary::PressureAreas;
 use super::Anchor;
 use super::{apply_law, ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState};
 use crate::error::{Error, Result};
@@ -110,6 +111,8 @@ pub struct NodeToSegment {
     /// `ISOLATED_RAMP` of an edge length past it, whatever the node's tributary extents, which
     /// keeps coincident corners (flush bodies) continuous.
     covered: std::collections::HashSet<usize>,
+    /// The areas the nodes' pressures refer to.
+    areas: PressureAreas,
 }
 
 /// The master surface at the current state: positions of its nodes, the broad phases of its
@@ -312,6 +315,7 @@ impl NodeToSegment {
             })
             .collect();
         Ok(NodeToSegment {
+            areas: PressureAreas::new(model, nodes),
             number: c.number,
             law: c.law,
             friction: c.friction,
@@ -526,6 +530,7 @@ impl Formulation for NodeToSegment {
             });
         }
         let searching = start.elapsed().as_secs_f64();
+        let areas = self.areas.at(|n| Ok(ctx.position(n)?.0))?;
         for (k, (slot, chosen)) in self.slots.iter().zip(chosen).enumerate() {
             let per = self.multipliers_per_node();
             let lambda_eqs = self
@@ -584,7 +589,7 @@ impl Formulation for NodeToSegment {
                 lambda_eqs,
                 &local,
                 &kin,
-                slot.area,
+                areas[k],
                 &mut state,
             ));
             states.push(state);
