@@ -224,13 +224,15 @@ fn reaction(
         .sum()
 }
 
-/// examples/patch3d.in: every contact node carries the closed-form uniaxial nominal stress of the
-/// neo-Hookean law at 20 % compression times its tributary area, to round-off, in ≤ 3 iterations.
+/// examples/patch3d.in: every contact node's pressure is the closed-form uniaxial true stress of
+/// the neo-Hookean law at 20 % compression (the nominal one over the lateral stretch squared), to
+/// round-off, in ≤ 3 iterations.
 #[test]
 fn patch3d_example_transmits_the_exact_pressure() {
     use hertz::bench::verify::{neo_hookean_law, uniaxial_stress, PATCH_H};
     let stretch = 1.0 - hertz::bench::examples::PATCH_DELTA / (2.0 * PATCH_H);
-    let exact = -uniaxial_stress(&neo_hookean_law(), stretch).1;
+    let (lateral, nominal) = uniaxial_stress(&neo_hookean_law(), stretch);
+    let exact = -nominal / (lateral * lateral);
     let mut worst = 0.0f64;
     let its = run_example("patch3d.in", |_, r| {
         if r.step == 4 {

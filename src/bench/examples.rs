@@ -75,7 +75,9 @@ pub const SHALLOW_IRONING: ShallowIroning = ShallowIroning {
 pub fn all() -> Vec<Example> {
     let stretch = 1.0 - PATCH_DELTA / (2.0 * PATCH_H);
     let law = neo_hookean_law();
-    let p = -uniaxial_stress(&law, stretch).1;
+    let (lateral, nominal) = uniaxial_stress(&law, stretch);
+    let p = -nominal;
+    let sigma = p / (lateral * lateral);
     let (c1, k) = match law {
         crate::material::hyperelastic::Hyperelastic::MooneyRivlin { c1, k, .. } => (c1, k),
         _ => unreachable!("neo-Hookean is Mooney-Rivlin with c2 = 0"),
@@ -100,10 +102,10 @@ pub fn all() -> Vec<Example> {
 and the master's bottom; the slave's top moved down by {PATCH_DELTA} (20 % compression) in 4 steps.
 Node-to-face contact with multipliers, the slave's bottom nodes on the master's top faces.
 Exact solution: homogeneous uniaxial stress, axial stretch {stretch}; for mooneyrivlincompressiblemat
-c1 = {c1:.6}, c2 = 0, k = {k:.6} the nominal pressure is P = {p:.10}
-(at the lateral stretch where the lateral nominal stress vanishes), and each contact node carries P times its
-reference tributary area.
-hertz: every node's pressure equals P to 1e-12, 2-3 Newton iterations per step
+c1 = {c1:.6}, c2 = 0, k = {k:.6} the nominal pressure is P = {p:.10} at the lateral stretch
+{lateral:.10} where the lateral nominal stress vanishes: each contact node carries P times its
+reference tributary area, and its (true) contact pressure is P / {lateral:.6}^2 = {sigma:.10}.
+hertz: every node's pressure equals {sigma:.10} to 1e-12, 2-3 Newton iterations per step
 (tests/examples.rs; all six face numbers, tets and wedges in tests/contact3d.rs).
 Run:  cargo run --release -- run examples/patch3d.in",
                 h = PATCH_H
