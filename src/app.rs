@@ -2,7 +2,7 @@
 //! Shared by the `hertz` binary and the integration tests.
 
 use crate::error::{Error, Result};
-use crate::input::read_model;
+use crate::input::read_model_warning;
 use crate::output::names::OutputNames;
 use crate::output::vtu::{self, VtuFormat};
 use crate::output::{check, outfile, write_atomic, write_atomic_parts};
@@ -23,6 +23,10 @@ pub struct RunOptions {
     pub log_iterations: bool,
     /// How the `.vtu` arrays are written.
     pub vtu_format: VtuFormat,
+    /// Called with each warning as it comes up (the reader's before anything is solved, also
+    /// when reading then fails; a step's when it converged). Every warning is also collected in
+    /// the report.
+    pub on_warning: Option<fn(&str)>,
 }
 
 /// What a run produced.
@@ -43,34 +47,54 @@ impl RunReport {
     }
 }
 
-/// Read, solve and check `path`. Warnings are collected in the report (and, on a reader error,
-/// lost with it: the error says what matters).
+impl RunReport {
+    /// Keep a warning, and pass it on at once to the caller's `on_warning`.
+    fn warn(&mut self, opts: &RunOptions, w: String) {
+        if let Some(f) = opts.on_warning {
+            f(&w);
+        }
+        self.warnings.push(w);
+    }
+}
+
+/// Read, solve and check `path`. Warnings are collected in the report and passed to
+/// `opts.on_warning` as they come up (on a reader error only there).
 pub fn run_file(path: &Path, opts: &RunOptions) -> Result<RunReport> {
     let clock = Instant::now();
-    let read = read_model(path)?;
+    let mut read_warnings = Vec::new();
+    let read = read_model_warning(path, &mut read_warnings);
+    if let (Err(_), Some(f)) = (&read, opts.on_warning) {
+        read_warnings.iter().for_each(|w| f(w));
+    }
+    let read = read?;
     let model = read.model;
     let mut report = RunReport {
-        warnings: read.warnings,
         has_errorcheck: model.analysis.errorcheck,
         ..Default::default()
     };
+    for w in read_warnings {
+        report.warn(opts, w);
+    }
     let rules = if model.analysis.errorcheck {
         let raw = std::fs::read(path).map_err(|e| Error::InputFile {
             file: path.display().to_string(),
             msg: e.to_string(),
         })?;
         let (rules, w) = check::parse_rules(&String::from_utf8_lossy(&raw));
-        report
-            .warnings
-            .extend(w.into_iter().map(|m| format!("{}: {m}", path.display())));
+        for m in w {
+            report.warn(opts, format!("{}: {m}", path.display()));
+        }
         let nsteps = model.step_times().len();
         for r in rules.iter().filter(|r| r.step == 0 || r.step > nsteps) {
-            report.warnings.push(format!(
-                "{}:{}: check rule for step {} never applies (the analysis has {nsteps} steps)",
-                path.display(),
-                r.line,
-                r.step
-            ));
+            report.warn(
+                opts,
+                format!(
+                    "{}:{}: check rule for step {} never applies (the analysis has {nsteps} steps)",
+                    path.display(),
+                    r.line,
+                    r.step
+                ),
+            );
         }
         rules
     } else {
@@ -110,7 +134,7 @@ pub fn run_file(path: &Path, opts: &RunOptions) -> Result<RunReport> {
         for w in &res.info.warnings {
             if !solver_warnings.contains(w) {
                 solver_warnings.push(w.clone());
-                report.warnings.push(format!("step {}: {w}", res.step));
+                report.warn(opts, format!("step {}: {w}", res.step));
             }
         }
         report

@@ -122,6 +122,11 @@ fn report(result: hertz::error::Result<()>) -> ExitCode {
     }
 }
 
+/// A warning on stderr, as it comes up.
+fn print_warning(w: &str) {
+    eprintln!("warning: {w}");
+}
+
 /// `run` (with `output` = Some((directory, VTU format)): write the results) or `check`.
 fn run_or_check(
     file: PathBuf,
@@ -136,16 +141,12 @@ fn run_or_check(
         log_iterations: v.verbose,
         out_dir,
         vtu_format,
+        on_warning: (!v.quiet).then_some(print_warning as fn(&str)),
     };
     let report_ = match run_file(&file, &opts) {
         Ok(r) => r,
         Err(e) => return report(Err(e)),
     };
-    if !v.quiet {
-        for w in &report_.warnings {
-            eprintln!("warning: {w}");
-        }
-    }
     let failed = report_.n_failed();
     if report_.has_errorcheck {
         for o in report_.outcomes.iter().filter(|o| !o.passed) {

@@ -463,3 +463,30 @@ fn import_never_overwrites_a_users_file() {
         .contains("$MeshFormat"));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A warning about an unread token comes before the solver's error, when the typo is the likely
+/// cause, and also before a reader error.
+#[test]
+fn warnings_come_before_a_failure() {
+    let dir = temp_dir("warn-first");
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = std::fs::read_to_string(root().join("tests/data/mechanism.in")).unwrap();
+    let typo = text.replacen(
+        "StaticStructural nsteps 1",
+        "StaticStructural nsteps 1 maxitr 20",
+        1,
+    );
+    let broken = typo.replacen("Truss2d 3 nodes 2 3 4", "Truss2d 3 nodes 2 3 9", 1);
+    assert_ne!(broken, typo, "the element record to break is there");
+    for (name, text, exit) in [("solve.in", &typo, 3), ("read.in", &broken, 2)] {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        let out = hertz(&["run", path.to_str().unwrap(), "-o", dir.to_str().unwrap()]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(exit), "{stderr}");
+        let warning = stderr.find("unread token(s) `maxitr 20`").expect(&stderr);
+        let error = stderr.find("error:").expect(&stderr);
+        assert!(warning < error, "the warning first: {stderr}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

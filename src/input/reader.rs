@@ -25,16 +25,17 @@ const SUPPORTED_BCS: &str =
                              n2npenaltycontact, n2nlagrangianmultipliercontact, n2spenaltycontact, \
                              n2slagrangianmultipliercontact";
 
-struct Cursor {
+struct Cursor<'w> {
     lines: Vec<Line>,
     pos: usize,
     file: String,
-    warnings: Vec<String>,
+    /// The caller's: the warnings met so far stay with it when reading fails.
+    warnings: &'w mut Vec<String>,
     /// The sets came right after the elements: a set record met later is one too many.
     sets_read_early: bool,
 }
 
-impl Cursor {
+impl Cursor<'_> {
     fn next(&mut self, what: &str) -> Result<Record> {
         let Some(line) = self.lines.get(self.pos).cloned() else {
             return Err(Error::InputFile {
@@ -163,7 +164,7 @@ impl Block {
     }
 }
 
-impl Cursor {
+impl Cursor<'_> {
     /// Record `i` (0-based) of the `n` records of `block`. A record that belongs to another block
     /// means a count is wrong: the error names the count and the record found.
     fn next_of(&mut self, block: Block, i: usize, n: usize) -> Result<Record> {
@@ -232,6 +233,14 @@ impl<T> Numbered<T> {
 
 /// Read and check an OOFEM input file.
 pub fn read_model(path: &Path) -> Result<ReadResult> {
+    let mut warnings = Vec::new();
+    let model = read_model_warning(path, &mut warnings)?;
+    Ok(ReadResult { warnings, ..model })
+}
+
+/// [`read_model`], collecting the warnings into `warnings` (also those met before an error: an
+/// unread token is often its cause). The result's own `warnings` are empty.
+pub fn read_model_warning(path: &Path, warnings: &mut Vec<String>) -> Result<ReadResult> {
     let (lines, sources) = read_lines_and_sources(path)?;
     let file = path.display().to_string();
     if lines.len() < 2 {
@@ -246,7 +255,7 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
         lines: lines[2..].to_vec(),
         pos: 0,
         file: file.clone(),
-        warnings: Vec::new(),
+        warnings,
         sets_read_early: false,
     };
 
@@ -840,11 +849,18 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
                 if r.flag("datafile") {
                     return Err(r.error("PiecewiseLinFunction `datafile` is not supported; list t and f(t)"));
                 }
-                r.opt_usize("npoints")?;
+                let npoints = r.opt_usize("npoints")?;
                 let t = r.float_array("t")?;
                 let f = r.float_array("f(t)")?;
                 if t.is_empty() || t.len() != f.len() {
                     return Err(r.error(format!("`t` has {} points and `f(t)` {}: they must match", t.len(), f.len())));
+                }
+                if npoints.is_some_and(|n| n != t.len()) {
+                    return Err(r.error(format!(
+                        "`npoints {}` but `t` and `f(t)` have {} points: they must match",
+                        npoints.unwrap_or(0),
+                        t.len()
+                    )));
                 }
                 if t.windows(2).any(|w| w[1] <= w[0]) {
                     return Err(r.error("`t` must be strictly increasing"));
@@ -1023,7 +1039,7 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
     }
     Ok(ReadResult {
         model,
-        warnings: c.warnings,
+        warnings: Vec::new(),
         sources,
     })
 }
@@ -1322,6 +1338,20 @@ fn read_sets(c: &mut Cursor, nset: usize, refs: &Refs) -> Result<Vec<Set>> {
                 contact_elements,
             },
         )?;
+        // `nodes 1 2 3 4` (the count forgotten) reads one node, 2: numbers that no count covers
+        // are an error, not a set with fewer members.
+        let stray: Vec<&str> = r
+            .unread()
+            .into_iter()
+            .filter(|t| t.parse::<f64>().is_ok())
+            .collect();
+        if !stray.is_empty() {
+            return Err(r.error(format!(
+                "numbers `{}` that no count covers: an array is written with its count first, \
+                 e.g. `nodes 3 1 2 3` (was the count forgotten, or is it too small?)",
+                stray.join(" ")
+            )));
+        }
         c.finish(&r);
     }
     Ok(sets.finish())
