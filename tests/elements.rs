@@ -824,3 +824,26 @@ fn a_load_that_would_act_on_nothing_is_an_input_error() {
         "{err}"
     );
 }
+
+/// A load on element boundaries shared by two elements (inside the mesh) is read with a warning
+/// naming the load and the elements: a traction inside a body is rarely meant.
+#[test]
+fn a_load_on_interior_boundaries_is_warned_about() {
+    // Quadrilateral 1 (5 4 1 2), boundary 4: the edge 2-5 it shares with quadrilateral 2.
+    let text = traction_plate("PlaneStress2d", "Set 3 elementboundaries 2 1 4");
+    let path = std::env::temp_dir().join(format!("hertz-interior-{}.in", std::process::id()));
+    std::fs::write(&path, text).unwrap();
+    let read = hertz::input::read_model(&path).unwrap();
+    std::fs::remove_file(&path).ok();
+    assert!(
+        read.warnings.iter().any(|w| w
+            .contains(":19: ConstantEdgeLoad 3 lies on 1 element boundary shared by two elements")),
+        "{:?}",
+        read.warnings
+    );
+    let outer = traction_plate("PlaneStress2d", "Set 3 elementboundaries 2 2 4");
+    std::fs::write(&path, outer).unwrap();
+    let read = hertz::input::read_model(&path).unwrap();
+    std::fs::remove_file(&path).ok();
+    assert!(read.warnings.is_empty(), "{:?}", read.warnings);
+}

@@ -439,3 +439,70 @@ fn vtu_cells_are_positive_whatever_the_input_orientation() {
 fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
+
+/// `tests/data/gmsh/square_tri_v22.msh` rewritten by `edit` (line by line, with the section it is
+/// in) into a temporary file.
+fn edited_square(tag: &str, edit: impl Fn(&str, &str) -> Option<String>) -> PathBuf {
+    let text = std::fs::read_to_string(data("square_tri_v22.msh")).unwrap();
+    let mut section = String::new();
+    let mut out = String::new();
+    for line in text.lines() {
+        if line.starts_with('$') {
+            section = line.to_string();
+        }
+        if let Some(l) = edit(&section, line) {
+            out += &l;
+            out.push('\n');
+        }
+    }
+    let path = std::env::temp_dir().join(format!("hertz-{tag}-{}.msh", std::process::id()));
+    std::fs::write(&path, out).unwrap();
+    path
+}
+
+/// A mesh without physical groups gives no sets: the error says so instead of only that a set
+/// record is missing; a NaN coordinate is an error at its line, naming it.
+#[test]
+fn gmsh_mistakes_are_named() {
+    // No physical groups: drop $PhysicalNames, set every element's physical tag to 0.
+    let groupless = edited_square("groupless", |section, line| {
+        if section.starts_with("$PhysicalNames") || section == "$EndPhysicalNames" {
+            return None;
+        }
+        let w: Vec<&str> = line.split_whitespace().collect();
+        if section == "$Elements" && w.len() > 4 {
+            let mut w: Vec<String> = w.iter().map(|s| s.to_string()).collect();
+            w[3] = "0".into();
+            return Some(w.join(" "));
+        }
+        Some(line.to_string())
+    });
+    let c = convert(&groupless, Plane::Stress).unwrap();
+    assert!(c.sets.is_empty());
+    let text = patch_input(
+        &convert(&data("square_tri_v22.msh"), Plane::Stress).unwrap(),
+        &format!("@gmsh \"{}\"", groupless.display()),
+    );
+    let err = common::model_from_text(&text).unwrap_err().to_string();
+    assert!(err.contains("expected set record 1 of"), "{err}");
+    assert!(
+        err.contains("has no physical groups, so `@gmsh` gives no sets"),
+        "{err}"
+    );
+    std::fs::remove_file(&groupless).ok();
+
+    // A NaN coordinate: node 5 (line 17 of the file).
+    let nan = edited_square("nan", |section, line| {
+        Some(if section == "$Nodes" && line.starts_with("5 ") {
+            "5 nan 0 0".to_string()
+        } else {
+            line.to_string()
+        })
+    });
+    let err = convert(&nan, Plane::Stress).unwrap_err().to_string();
+    assert!(
+        err.contains(":17: node coordinate x is `NaN`, not a finite number"),
+        "{err}"
+    );
+    std::fs::remove_file(&nan).ok();
+}

@@ -28,6 +28,21 @@ pub fn read_lines_and_sources(path: &Path) -> Result<(Vec<Line>, Vec<PathBuf>)> 
     Ok((out, sources))
 }
 
+/// The `@gmsh` meshes among `sources` that have no physical group (and so give no set).
+pub fn meshes_without_groups(lines: &[Line], sources: &[PathBuf]) -> Vec<PathBuf> {
+    sources
+        .iter()
+        .filter(|p| {
+            let converted = PathBuf::from(format!("{} [converted]", p.display()));
+            lines.iter().any(|l| *l.file == converted)
+                && !lines
+                    .iter()
+                    .any(|l| *l.file == converted && l.text.starts_with("Set "))
+        })
+        .cloned()
+        .collect()
+}
+
 fn read_into(
     path: &Path,
     out: &mut Vec<Line>,

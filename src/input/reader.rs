@@ -1,7 +1,7 @@
 //! Builds a [`Model`] from the records of an OOFEM input file in the order of spec §1.2,
 //! checking counts, record numbers and every cross reference.
 
-use super::lexer::{read_lines_and_sources, Line};
+use super::lexer::{meshes_without_groups, read_lines_and_sources, Line};
 use super::record::Record;
 use crate::error::{Error, Result};
 use crate::model::*;
@@ -242,6 +242,7 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
 /// unread token is often its cause). The result's own `warnings` are empty.
 pub fn read_model_warning(path: &Path, warnings: &mut Vec<String>) -> Result<ReadResult> {
     let (lines, sources) = read_lines_and_sources(path)?;
+    let groupless = meshes_without_groups(&lines, &sources);
     let file = path.display().to_string();
     if lines.len() < 2 {
         return Err(Error::InputFile {
@@ -573,7 +574,8 @@ pub fn read_model_warning(path: &Path, warnings: &mut Vec<String>) -> Result<Rea
     };
     let mut sets: Option<Vec<Set>> = None;
     if nset > 0 && c.peek_keyword().as_deref() == Some("set") {
-        sets = Some(read_sets(&mut c, nset, &refs)?);
+        sets =
+            Some(read_sets(&mut c, nset, &refs).map_err(|e| explain_missing_sets(e, &groupless))?);
         c.sets_read_early = true;
     }
 
@@ -880,7 +882,7 @@ pub fn read_model_warning(path: &Path, warnings: &mut Vec<String>) -> Result<Rea
 
     let sets = match sets {
         Some(s) => s,
-        None => read_sets(&mut c, nset, &refs)?,
+        None => read_sets(&mut c, nset, &refs).map_err(|e| explain_missing_sets(e, &groupless))?,
     };
 
     if let Some(line) = c.lines.get(c.pos) {
@@ -1003,6 +1005,12 @@ pub fn read_model_warning(path: &Path, warnings: &mut Vec<String>) -> Result<Rea
     )?;
     segments.extend(upstream_segments);
     contacts.extend(upstream_contacts);
+    c.warnings.extend(interior_boundary_warnings(
+        &model_elements,
+        &loads,
+        &segments,
+        &sets,
+    ));
     let model = Model {
         input_path: path.to_path_buf(),
         output_name,
@@ -1196,6 +1204,30 @@ struct Refs<'a> {
     contact_elements: &'a HashMap<usize, usize>,
 }
 
+/// A missing set record, when a spliced Gmsh mesh has no physical groups: say that this is why.
+fn explain_missing_sets(e: Error, groupless: &[PathBuf]) -> Error {
+    let Some(mesh) = groupless.first() else {
+        return e;
+    };
+    let note = format!(
+        " ({} has no physical groups, so `@gmsh` gives no sets: hertz makes one set per physical \
+         group; define Physical Curve/Surface/Volume groups in Gmsh for the body and each loaded, \
+         supported or contact boundary)",
+        mesh.display()
+    );
+    match e {
+        Error::InputFile { file, msg } if msg.contains("expected set record") => Error::InputFile {
+            file,
+            msg: msg + &note,
+        },
+        Error::Input { span, msg } if msg.contains("expected set record") => Error::Input {
+            span,
+            msg: msg + &note,
+        },
+        e => e,
+    }
+}
+
 fn read_sets(c: &mut Cursor, nset: usize, refs: &Refs) -> Result<Vec<Set>> {
     let mut sets = Numbered::new("set", nset);
     for i in 0..nset {
@@ -1363,6 +1395,88 @@ fn elements_ref_nodes(nodes: &[Node]) -> Vec<[f64; 3]> {
 
 /// Every element must have a non-degenerate reference geometry whose Jacobian keeps one sign
 /// (OOFEM integrates with |det J|, so a consistently clockwise element is fine).
+/// Warnings for loads and contact segments on element boundaries that are interior to the mesh
+/// (shared by two elements, e.g. between two glued parts): a traction or a contact surface
+/// there acts inside the body, which is rarely meant.
+fn interior_boundary_warnings(
+    elements: &[Element],
+    loads: &[Load],
+    segments: &[crate::model::ContactSegment],
+    sets: &[Set],
+) -> Vec<String> {
+    use crate::model::SegmentKind;
+    let key = |e: usize, local: &[usize]| {
+        let el = &elements[e];
+        let mut k: Vec<usize> = local.iter().map(|&a| el.nodes[a]).collect();
+        k.sort_unstable();
+        k
+    };
+    let mut uses: HashMap<Vec<usize>, usize> = HashMap::new();
+    for (e, el) in elements.iter().enumerate() {
+        if el.etype.is_truss() {
+            continue;
+        }
+        for local in el.etype.shape().boundaries() {
+            *uses.entry(key(e, local)).or_default() += 1;
+        }
+    }
+    let interior = |list: &[(usize, &[usize])]| {
+        let found: Vec<usize> = list
+            .iter()
+            .filter(|(e, local)| uses.get(&key(*e, local)).is_some_and(|&n| n > 1))
+            .map(|(e, _)| elements[*e].label)
+            .collect();
+        (!found.is_empty()).then_some(found)
+    };
+    let say = |span: &crate::error::Span, what: String, labels: Vec<usize>| {
+        let shown: Vec<String> = labels.iter().take(5).map(|l| l.to_string()).collect();
+        format!(
+            "{}:{}: {what} lies on {} element {} shared by two elements (inside the mesh: \
+             glued parts?), of element(s) {}{}",
+            span.file.display(),
+            span.line,
+            labels.len(),
+            if labels.len() == 1 {
+                "boundary"
+            } else {
+                "boundaries"
+            },
+            shown.join(" "),
+            if labels.len() > 5 { " .." } else { "" }
+        )
+    };
+    let mut out = Vec::new();
+    for l in loads {
+        let Ok(list) = l.boundaries(&sets[l.set - 1], elements) else {
+            continue;
+        };
+        if let Some(labels) = interior(&list) {
+            out.push(say(
+                &l.span,
+                format!("{} {}", l.kind.record_name(), l.number),
+                labels,
+            ));
+        }
+    }
+    for g in segments {
+        let list: Vec<(usize, &[usize])> = match &g.kind {
+            SegmentKind::Edges { edges: b } | SegmentKind::Faces { faces: b } => b
+                .iter()
+                .map(|&(e, k)| (e, elements[e].etype.shape().boundaries()[k - 1]))
+                .collect(),
+            _ => continue,
+        };
+        if let Some(labels) = interior(&list) {
+            out.push(say(
+                &g.span,
+                format!("contact segment {}", g.number),
+                labels,
+            ));
+        }
+    }
+    out
+}
+
 fn check_geometry(coords: &[[f64; 3]], elements: &[Element]) -> Result<()> {
     for el in elements {
         let x: Vec<[f64; 3]> = el.nodes.iter().map(|&n| coords[n]).collect();

@@ -191,6 +191,20 @@ impl<'a> Tokens<'a> {
         })
     }
 
+    /// A node coordinate: a finite number (NaN or infinity is an error at its line).
+    fn coord(&mut self, what: &str) -> Result<f64> {
+        let v: f64 = self.num(what)?;
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(err(
+                self.path,
+                self.line,
+                format!("node coordinate {what} is `{v}`, not a finite number"),
+            ))
+        }
+    }
+
     /// Nodes per element of Gmsh type `ty`, or an error naming the type.
     fn nodes_of_type(&self, ty: usize) -> Result<usize> {
         gmsh_type(ty).map(|t| t.1).ok_or_else(|| {
@@ -320,7 +334,7 @@ fn read_raw(path: &Path) -> Result<RawMesh> {
                     let n: usize = t.num("the number of nodes")?;
                     for _ in 0..n {
                         let tag = t.num("a node tag")?;
-                        let x = [t.num("x")?, t.num("y")?, t.num("z")?];
+                        let x = [t.coord("x")?, t.coord("y")?, t.coord("z")?];
                         mesh.nodes.push((tag, x));
                     }
                     t.expect("$EndNodes")?;
@@ -339,7 +353,7 @@ fn read_raw(path: &Path) -> Result<RawMesh> {
                             .map(|_| t.num("a node tag"))
                             .collect::<Result<Vec<usize>>>()?;
                         for tag in tags {
-                            let x = [t.num("x")?, t.num("y")?, t.num("z")?];
+                            let x = [t.coord("x")?, t.coord("y")?, t.coord("z")?];
                             if parametric == 1 {
                                 return Err(err(path, t.line, "parametric node coordinates are not read; save without them (Mesh.SaveParametric = 0)"));
                             }
@@ -750,6 +764,14 @@ pub fn import_command(args: &ImportArgs) -> Result<()> {
     );
     for l in c.set_summary() {
         eprintln!("  {l}");
+    }
+    if c.sets.is_empty() {
+        eprintln!(
+            "warning: {} has no physical groups, so the records have no sets (nset 0): hertz makes \
+             one set per physical group; define Physical groups in Gmsh for the body and each \
+             loaded, supported or contact boundary",
+            args.mesh.display()
+        );
     }
     Ok(())
 }
