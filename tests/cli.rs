@@ -490,3 +490,45 @@ fn warnings_come_before_a_failure() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A body that only frictionless contact holds, pushed sideways, is a mechanism: exit 3 at once
+/// (no step halvings) naming a node's DOF 1, with a penalty and with multipliers. The same block
+/// pressed without the push (a consistent singular tangent), or held by friction, solves.
+#[test]
+fn a_contact_mechanism_is_named_at_once() {
+    let text = std::fs::read_to_string(root().join("tests/data/contact_mechanism.in")).unwrap();
+    let multipliers = text.replace("n2spenaltycontact", "n2slagrangianmultipliercontact");
+    let dir = temp_dir("contact-mechanism");
+    std::fs::create_dir_all(&dir).unwrap();
+    let run = |name: &str, text: &str| {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        hertz(&["check", path.to_str().unwrap()])
+    };
+    for (name, text) in [("penalty.in", &text), ("multipliers.in", &multipliers)] {
+        let out = run(name, text);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(3), "{name}: {stderr}");
+        assert!(
+            stderr.contains("the tangent with the contact's stiffness is singular at node")
+                && stderr.contains("DOF 1: a mechanism"),
+            "{name}: {stderr}"
+        );
+        assert!(
+            !stderr.contains("halving") && !stderr.contains("retrying"),
+            "{stderr}"
+        );
+    }
+    let unpushed = text.replace("components 2 0.1 0", "components 2 0 0");
+    let held = multipliers.replace("segmentset 1 1", "segmentset 1 1 friction 0.3");
+    for (name, text) in [("unpushed.in", &unpushed), ("held.in", &held)] {
+        let out = run(name, text);
+        assert_eq!(
+            out.status.code(),
+            Some(0),
+            "{name}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -98,7 +98,9 @@ fn compare(multipliers: bool, friction: bool) {
     .expect("supernodal with trailing candidates");
     let guess: Vec<bool> = points.iter().map(|p| p.closed).collect();
     let step = cc
-        .step(&rhs, &points, &guess, &dofs, OnCycle::FewestMisses)
+        .step(&rhs, &points, &guess, &dofs, OnCycle::FewestMisses, &|eq| {
+            format!("equation {eq}")
+        })
         .unwrap()
         .expect("all points on candidates");
 

@@ -164,7 +164,9 @@ impl CondensedContact {
     /// One Newton step for the residual `r` (free equations) with the contact `points` at the
     /// current state: the branches are searched on the linearized problem (see the module docs),
     /// from the first guess `guess`; `cycle` says which guess's step a search that comes back to
-    /// a guess returns. Ok(None) if a point touches an equation outside the candidates.
+    /// a guess returns. Ok(None) if a point touches an equation outside the candidates. A step
+    /// that a mechanism makes impossible (a singular tangent whose null motion the load drives)
+    /// is an [`Error::Singular`] naming an equation it moves (`describe`).
     pub fn step(
         &mut self,
         r: &[f64],
@@ -172,6 +174,7 @@ impl CondensedContact {
         guess: &[bool],
         dofs: &DofMap,
         cycle: OnCycle,
+        describe: &dyn Fn(usize) -> String,
     ) -> Result<Option<ContactStep>> {
         let nf = dofs.n_free;
         // Candidate positions and weights of every point's local codes.
@@ -311,7 +314,20 @@ impl CondensedContact {
                 let w_a = Mat::<f64>::from_fn(na, 1, |i, _| w_c[a[i]]);
                 let mut x = &s_a * &w_a;
                 let sys = &s_a + &c;
-                sys.as_ref().partial_piv_lu().solve_in_place(x.as_mut());
+                let lu = sys.as_ref().partial_piv_lu();
+                if shifted {
+                    if let Some(i) = driven_mechanism(sys.as_ref(), lu.U(), x.col(0)) {
+                        return Err(Error::Singular(format!(
+                            "the tangent with the contact's stiffness is singular at {}: a \
+                             mechanism (a body that contact alone holds can move along it with \
+                             nothing to resist, e.g. sideways on frictionless contact) and the \
+                             load drives it; restrain that motion (a support, a symmetry \
+                             condition or friction)",
+                            describe(self.cand[a[i]])
+                        )));
+                    }
+                }
+                lu.solve_in_place(x.as_mut());
                 let diff = Mat::<f64>::from_fn(na, 1, |i, _| w_a[(i, 0)] - x[(i, 0)]);
                 let f = &s_a * &diff;
                 for i in 0..na {
@@ -406,4 +422,66 @@ impl CondensedContact {
     fn is_lambda(&self, k: usize, dofs: &DofMap) -> bool {
         self.cand[k] >= dofs.n_free - dofs.n_lambda
     }
+}
+
+/// Relative size of a pivot below which a dense contact system counts as singular.
+const SINGULAR_PIVOT: f64 = 1e-13;
+
+/// Whether the square system `sys` x = `b` has no solution because of a mechanism: `sys` singular
+/// (a vanishing pivot) and `b` not orthogonal to its left null vector. Then the index of the
+/// unknown the mechanism moves most. `u` is the upper factor of the partial-pivoting LU the caller
+/// solves with: a cheap first sign, confirmed by two rank-revealing (full-pivoting) factorizations
+/// only when a pivot vanishes there.
+fn driven_mechanism(
+    sys: faer::MatRef<'_, f64>,
+    u: faer::MatRef<'_, f64>,
+    b: faer::ColRef<'_, f64>,
+) -> Option<usize> {
+    let pivots = |u: faer::MatRef<'_, f64>| {
+        let d: Vec<f64> = (0..u.nrows()).map(|i| u[(i, i)].abs()).collect();
+        let max = d.iter().copied().fold(0.0, f64::max);
+        let min = d.iter().copied().fold(f64::INFINITY, f64::min);
+        (min, max)
+    };
+    let (min, max) = pivots(u);
+    if !(min <= SINGULAR_PIVOT * max) || max == 0.0 {
+        return None;
+    }
+    let right = null_vector(sys)?;
+    let left = null_vector(sys.transpose())?;
+    let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let b: Vec<f64> = (0..b.nrows()).map(|i| b[i]).collect();
+    let drive = left.iter().zip(&b).map(|(y, b)| y * b).sum::<f64>().abs();
+    if drive <= 1e-8 * norm(&left) * norm(&b) {
+        return None;
+    }
+    (0..right.len()).max_by(|&i, &j| right[i].abs().total_cmp(&right[j].abs()))
+}
+
+/// A vector v with `m` v ≈ 0 from a full-pivoting LU whose last pivot vanishes (relative to the
+/// first, the largest), or None if no pivot does.
+fn null_vector(m: faer::MatRef<'_, f64>) -> Option<Vec<f64>> {
+    let n = m.nrows();
+    let lu = m.full_piv_lu();
+    let u = lu.U();
+    if n == 0 || u[(n - 1, n - 1)].abs() > SINGULAR_PIVOT * u[(0, 0)].abs() {
+        return None;
+    }
+    // U w = 0 with w_n = 1: back substitution on the leading block.
+    let mut w = vec![0.0; n];
+    w[n - 1] = 1.0;
+    for i in (0..n - 1).rev() {
+        let s: f64 = (i + 1..n).map(|j| u[(i, j)] * w[j]).sum();
+        w[i] = -s / u[(i, i)];
+    }
+    // v = Q w or Q⁻¹ w, whichever the factorization's convention makes the null vector.
+    let (fwd, bwd) = lu.Q().arrays();
+    let residual = |v: &[f64]| {
+        (0..n)
+            .map(|i| (0..n).map(|j| m[(i, j)] * v[j]).sum::<f64>().powi(2))
+            .sum::<f64>()
+    };
+    let a: Vec<f64> = (0..n).map(|i| w[fwd[i]]).collect();
+    let b: Vec<f64> = (0..n).map(|i| w[bwd[i]]).collect();
+    Some(if residual(&a) <= residual(&b) { a } else { b })
 }

@@ -229,7 +229,7 @@ impl NewtonContext<'_> {
         }
         if let Condensed::Ready(c) = &mut self.condensed {
             let t = Instant::now();
-            let step = c.step(&rhs, points, guess, self.dofs, cycle)?;
+            let step = c.step(&rhs, points, guess, self.dofs, cycle, &describe)?;
             self.times.solve += since(t);
             if let Some(step) = step {
                 return Ok(step);
