@@ -873,3 +873,58 @@ fn contact_pressure_is_true_pressure_in_every_formulation() {
         );
     }
 }
+
+/// `common::mortar_blocks` (4 elements on each block's side: its nodes 0.5 apart) with the upper
+/// block moved down by `sink`.
+fn sunk_blocks(sink: f64, condition: &str) -> String {
+    let text = common::mortar_blocks(4, 4, 0, condition);
+    let n_low = 3 * 5;
+    text.lines()
+        .map(|l| {
+            let w: Vec<&str> = l.split_whitespace().collect();
+            match w[..] {
+                ["node", id, "coords", "2", x, y] if id.parse::<usize>().unwrap() > n_low => {
+                    format!(
+                        "node {id} coords 2 {x} {}",
+                        y.parse::<f64>().unwrap() - sink
+                    )
+                }
+                _ => l.to_string(),
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// A body that starts deep inside another (more than half an element) is warned about with the
+/// depth and a node, node-to-segment and mortar alike; a small overlap is not.
+#[test]
+fn a_deep_start_inside_a_deformable_master_is_warned_about() {
+    for condition in [
+        "n2spenaltycontact 4 loadTimeFunction 1 penalty 1e4 slaveset 4 segmentset 1 2",
+        "s2slagrangianmultipliercontact 4 loadTimeFunction 1 slavesegment 1 segmentset 1 2",
+    ] {
+        for (sink, warned) in [(0.3, true), (1e-3, false)] {
+            let model = common::model_from_text(&sunk_blocks(sink, condition)).unwrap();
+            let mut warnings = Vec::new();
+            let _ = run_analysis(&model, &common::quiet(), |r| {
+                warnings.extend(r.info.warnings.iter().cloned());
+                Ok(())
+            });
+            let found = warnings
+                .iter()
+                .find(|w| w.contains("start inside their master surface"));
+            assert_eq!(
+                found.is_some(),
+                warned,
+                "{condition} sunk {sink}: {warnings:?}"
+            );
+            if let Some(w) = found {
+                assert!(
+                    w.contains("5 node(s) of contact condition 4") && w.contains("up to 3.000e-1"),
+                    "{w}"
+                );
+            }
+        }
+    }
+}

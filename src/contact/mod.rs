@@ -628,7 +628,8 @@ pub fn initial_warnings(model: &Model, states: &[SlotState]) -> Vec<String> {
             }
         }
     }
-    inside
+    let mut out: Vec<String> = deep_starts(model, states);
+    out.extend(inside
         .into_iter()
         .map(|((cond, g), (n, depth))| {
             let seg = &model.segments[g];
@@ -641,6 +642,65 @@ pub fn initial_warnings(model: &Model, states: &[SlotState]) -> Vec<String> {
             format!(
                 "{n} node(s) of contact condition {cond} start inside rigid segment {} (by up to {depth:.3e}) and will be pushed out{hint}",
                 seg.number
+            )
+        }));
+    out
+}
+
+/// Warnings for contact nodes that start inside a deformable master by more than half the size
+/// of their own elements: not a faceting overlap of curved surfaces but bodies placed into each
+/// other, which the first step pushes apart with forces far above the load's.
+fn deep_starts(model: &Model, states: &[SlotState]) -> Vec<String> {
+    use std::collections::BTreeMap;
+    let deep: Vec<&SlotState> = states
+        .iter()
+        .filter(|s| matches!(s.partner, Partner::Edge(_) | Partner::Face(_)) && s.gap < 0.0)
+        .collect();
+    if deep.is_empty() {
+        return Vec::new();
+    }
+    // Each node's shortest distance to a node of its own elements.
+    let mut size: std::collections::HashMap<usize, f64> =
+        deep.iter().map(|s| (s.node, f64::INFINITY)).collect();
+    for el in &model.elements {
+        for &n in &el.nodes {
+            let Some(h) = size.get(&n).copied() else {
+                continue;
+            };
+            let x = model.nodes[n].coords;
+            let near = el
+                .nodes
+                .iter()
+                .filter(|&&m| m != n)
+                .map(|&m| {
+                    let y = model.nodes[m].coords;
+                    (0..3).map(|i| (y[i] - x[i]).powi(2)).sum::<f64>().sqrt()
+                })
+                .fold(h, f64::min);
+            size.insert(n, near);
+        }
+    }
+    // condition -> (count, depth, node of the deepest)
+    let mut found: BTreeMap<usize, (usize, f64, usize)> = BTreeMap::new();
+    for s in deep {
+        let h = size[&s.node];
+        if h.is_finite() && -s.gap > 0.5 * h {
+            let e = found.entry(s.condition).or_insert((0, 0.0, s.node));
+            e.0 += 1;
+            if -s.gap > e.1 {
+                (e.1, e.2) = (-s.gap, s.node);
+            }
+        }
+    }
+    found
+        .into_iter()
+        .map(|(cond, (n, depth, node))| {
+            format!(
+                "{n} node(s) of contact condition {cond} start inside their master surface by more \
+                 than half their elements' size, up to {depth:.3e} (node {}): the first step pushes \
+                 the bodies apart with forces far above the load's; move them apart (or check the \
+                 mesh and which side is the master)",
+                model.nodes[node].label
             )
         })
         .collect()
