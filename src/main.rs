@@ -11,10 +11,11 @@ use std::process::ExitCode;
 
 const AFTER_HELP: &str = "\
 Examples:
-    hertz run examples/hertz_cylinder.in          solve; write .out, .vtu per step, .pvd
+    hertz run examples/hertz_cylinder.in         solve; write .out, .vtu per step, .pvd
     hertz check tests.in                         solve and evaluate the #%BEGIN_CHECK% rules
     hertz import mesh.msh -o mesh.in             Gmsh mesh -> OOFEM records to @include
-    hertz plot run.contact.csv --hertz           contact pressure with the Hertz curve (SVG)
+    hertz plot run.contact.csv --hertz 25.75,0.4686
+                                                 contact pressure with the Hertz curve P0,A (SVG)
 
 Exit codes: 0 success, 1 a check rule failed, 2 bad input or usage, 3 the solver failed,
 4 output failed. User guide: docs/guide.md";

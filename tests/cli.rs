@@ -532,3 +532,67 @@ fn a_contact_mechanism_is_named_at_once() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// Every example command of `hertz --help` parses as written: run where its files do not exist,
+/// it fails on the missing file, never with a usage error.
+#[test]
+fn help_examples_parse_as_written() {
+    let out = hertz(&["--help"]);
+    let help = String::from_utf8_lossy(&out.stdout).to_string();
+    let dir = temp_dir("help-examples");
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut n = 0;
+    for line in help
+        .lines()
+        .filter(|l| l.trim_start().starts_with("hertz "))
+    {
+        // The command is the words up to a run of two spaces (the description).
+        let cmd = line.trim_start().split("  ").next().unwrap();
+        let args: Vec<&str> = cmd.split_whitespace().skip(1).collect();
+        let out = Command::new(env!("CARGO_BIN_EXE_hertz"))
+            .args(&args)
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            !stderr.contains("Usage:"),
+            "`{cmd}` is not valid usage: {stderr}"
+        );
+        n += 1;
+    }
+    assert!(n >= 4, "{help}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The per-step history's columns follow the boundary conditions' numbers, then the DOF ids, not
+/// the order their nodes come in.
+#[test]
+fn steps_csv_columns_follow_the_condition_numbers() {
+    let text = "plate.out\nplate\nLinearStatic nsteps 1\ndomain 2dPlaneStress\nOutputManager\n\
+        ndofman 4 nelem 1 ncrosssect 1 nmat 1 nbc 3 nic 0 nltf 1 nset 4\n\
+        node 1 coords 2 0 0\nnode 2 coords 2 1 0\nnode 3 coords 2 1 1\nnode 4 coords 2 0 1\n\
+        PlaneStress2d 1 nodes 4 1 2 3 4\nSimpleCS 1 thick 1 material 1 set 1\n\
+        IsoLE 1 d 0 E 100 n 0.3 tAlpha 0\n\
+        BoundaryCondition 1 loadTimeFunction 1 dofs 2 2 1 values 2 0.01 0 set 2\n\
+        BoundaryCondition 2 loadTimeFunction 1 dofs 1 2 values 1 0 set 3\n\
+        BoundaryCondition 3 loadTimeFunction 1 dofs 1 1 values 1 0 set 4\n\
+        ConstantFunction 1 f(t) 1.0\n\
+        Set 1 allelements\nSet 2 nodes 1 3\nSet 3 nodes 2 1 2\nSet 4 nodes 1 4\n";
+    let dir = temp_dir("steps-order");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("plate.in");
+    std::fs::write(&path, text).unwrap();
+    let out = hertz(&["run", "-q", path.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(dir.join("plate.steps.csv")).unwrap();
+    assert_eq!(
+        csv.lines().next().unwrap(),
+        "step,time,iterations,substeps,residual,bc1.u1,bc1.r1,bc1.u2,bc1.r2,bc2.u2,bc2.r2,bc3.u1,bc3.r1"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

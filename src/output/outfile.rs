@@ -301,14 +301,13 @@ pub fn history_csv_header(model: &Model, dofs: &DofMap) -> String {
     s
 }
 
-/// The (Dirichlet index, DOF id) pairs of the prescribed DOFs, in first-seen order.
+/// The (Dirichlet index, DOF id) pairs of the prescribed DOFs, in the input's order of the
+/// conditions, each by DOF id.
 fn prescribed_groups(dofs: &DofMap) -> Vec<(usize, DofId)> {
-    let mut groups = Vec::new();
-    for &(_, d, bc) in &dofs.prescribed {
-        if !groups.contains(&(bc, d)) {
-            groups.push((bc, d));
-        }
-    }
+    let mut groups: Vec<(usize, DofId)> =
+        dofs.prescribed.iter().map(|&(_, d, bc)| (bc, d)).collect();
+    groups.sort_unstable();
+    groups.dedup();
     groups
 }
 

@@ -544,10 +544,10 @@ impl NewtonContext<'_> {
                             l.join(" ")
                         };
                         if !closing.is_empty() {
-                            line += &format!("; closed {}", list(&closing));
+                            line += &format!("; closed nodes {}", list(&closing));
                         }
                         if !opened.is_empty() {
-                            line += &format!("; opened {}", list(&opened));
+                            line += &format!("; opened nodes {}", list(&opened));
                         }
                         // Friction: the slipping nodes, and those that changed between stick
                         // and slip.
@@ -564,7 +564,7 @@ impl NewtonContext<'_> {
                             line += &format!("; slipping {slipping}");
                         }
                         if !switched.is_empty() {
-                            line += &format!(" (stick/slip changed: {})", list(&switched));
+                            line += &format!(" (stick/slip changed: nodes {})", list(&switched));
                         }
                     }
                 }
