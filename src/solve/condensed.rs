@@ -206,7 +206,7 @@ impl CondensedContact {
         let mut search = BranchSearch::new(MAX_BRANCH_UPDATES);
         // The guess with the fewest points predicted otherwise (the latest of equals), its
         // δ − Pᵀ f_A: the step if the search comes back to a guess.
-        let mut best: Option<(usize, Vec<f64>, Vec<Branch>)> = None;
+        let mut best: Option<(usize, Vec<f64>, Vec<Branch>, Option<usize>)> = None;
         // Whether a guess without closed points keeps the shift (see below).
         let mut hold = false;
         let shifted = (0..mdim).any(|k| self.shift[k] != 0.0 && !self.is_lambda(k, dofs));
@@ -308,6 +308,7 @@ impl CondensedContact {
                 .map(|k| wc[k] + (0..mdim).map(|j| self.m[(k, j)] * delta[j]).sum::<f64>())
                 .collect();
             let mut f_a = vec![0.0; na];
+            let mut mechanism: Option<usize> = None;
             if na > 0 {
                 let m_aa = Mat::<f64>::from_fn(na, na, |i, j| self.m[(a[i], a[j])]);
                 let s_a = m_aa.as_ref().partial_piv_lu().inverse();
@@ -315,17 +316,11 @@ impl CondensedContact {
                 let mut x = &s_a * &w_a;
                 let sys = &s_a + &c;
                 let lu = sys.as_ref().partial_piv_lu();
-                if shifted {
-                    if let Some(i) = driven_mechanism(sys.as_ref(), lu.U(), x.col(0)) {
-                        return Err(Error::Singular(format!(
-                            "the tangent with the contact's stiffness is singular at {}: a \
-                             mechanism (a body that contact alone holds can move along it with \
-                             nothing to resist, e.g. sideways on frictionless contact) and the \
-                             load drives it; restrain that motion (a support, a symmetry \
-                             condition or friction)",
-                            describe(self.cand[a[i]])
-                        )));
-                    }
+                // A guess that leaves a body free along a motion its load drives (a guess
+                // without closed points is singular by design: see `hold` below).
+                if shifted && !none_closed {
+                    mechanism =
+                        driven_mechanism(sys.as_ref(), lu.U(), x.col(0)).map(|i| self.cand[a[i]]);
                 }
                 lu.solve_in_place(x.as_mut());
                 let diff = Mat::<f64>::from_fn(na, 1, |i, _| w_a[(i, 0)] - x[(i, 0)]);
@@ -375,21 +370,34 @@ impl CondensedContact {
                 continue;
             }
             let ended = search.next(&closed, &predicted);
-            let better = |b: &(usize, _, _)| match cycle {
+            let better = |b: &(usize, _, _, _)| match cycle {
                 OnCycle::FewestMisses => misses <= b.0,
                 _ => misses < b.0,
             };
             if cycle != OnCycle::Last && best.as_ref().is_none_or(better) {
-                best = Some((misses, corr.clone(), closed.clone()));
+                best = Some((misses, corr.clone(), closed.clone(), mechanism));
             }
             if let Some(next) = ended {
                 closed = next;
                 continue;
             }
-            let (corr, closed) = match best {
-                Some((_, c, g)) if search.cycled => (c, g),
-                _ => (corr, closed),
+            let (corr, closed, mechanism) = match best {
+                Some((_, c, g, m)) if search.cycled => (c, g, m),
+                _ => (corr, closed, mechanism),
             };
+            // The step's own branches leave a body free along a motion its load drives: there
+            // is no Newton step, and no smaller load step makes one.
+            if let Some(eq) = mechanism {
+                return Err(Error::Singular(format!(
+                    "the tangent with the contact's stiffness is singular at {}: a mechanism, a \
+                     motion of a body that contact alone holds which nothing resists (sideways \
+                     on frictionless contact, or sliding where the tangential load exceeds what \
+                     friction holds, mu times the normal force), and the load drives it: no \
+                     equilibrium exists; restrain that motion (a support, a symmetry condition, \
+                     friction) or lower the tangential load",
+                    describe(eq)
+                )));
+            }
             let updates = search.updates;
             // The whole step: Δu = w + K_s⁻¹ (δ − Pᵀ C Δu_A).
             let mut z = vec![0.0; nf];

@@ -262,6 +262,10 @@ pub fn run_analysis(
                         ok = false;
                         break;
                     }
+                    // No smaller step helps a mechanism: say at which step it showed.
+                    Err(Error::Singular(msg)) => {
+                        return Err(Error::Singular(format!("step {step} (t = {t}): {msg}")))
+                    }
                     Err(e) => return Err(e),
                 }
             }
