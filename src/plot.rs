@@ -57,7 +57,7 @@ pub struct PlotArgs {
     #[arg(long)]
     pub step: Option<usize>,
     /// Load chart over time: each driven boundary condition's reaction against time (force
-    /// histories), not against its prescribed value
+    /// histories), not against its prescribed value (written as STEM.load_time.svg)
     #[arg(long)]
     pub time: bool,
     /// Coordinate along the contact surface
@@ -152,6 +152,8 @@ pub struct Figure {
     pub x_label: String,
     pub y_label: String,
     pub log_y: bool,
+    /// The x values are whole numbers (iterations): ticks between them are not labelled.
+    pub x_integer: bool,
     pub series: Vec<Series>,
 }
 
@@ -163,15 +165,36 @@ fn register_font() {
     });
 }
 
-const COLORS: [RGBColor; 6] = [
+/// Ten distinct colours (the first six as before: tests find series by them).
+const COLORS: [RGBColor; 10] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
     RGBColor(44, 160, 44),
     RGBColor(255, 127, 14),
     RGBColor(148, 103, 189),
     RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(127, 127, 127),
+    RGBColor(188, 189, 34),
+    RGBColor(23, 190, 207),
 ];
 
+/// Series beyond this many get colours from a blue-to-red ramp (in their order) instead.
+const MAX_DISTINCT: usize = COLORS.len();
+
+/// The colour of series `i` of `n`.
+fn series_color(i: usize, n: usize) -> RGBColor {
+    if n <= MAX_DISTINCT {
+        return COLORS[i];
+    }
+    let t = i as f64 / (n - 1) as f64;
+    let lerp = |a: u8, b: u8| (a as f64 + t * (b as f64 - a as f64)).round() as u8;
+    let (a, b) = (COLORS[0], COLORS[1]);
+    RGBColor(lerp(a.0, b.0), lerp(a.1, b.1), lerp(a.2, b.2))
+}
+
+/// The axis range over `values`: padded by 5 %; a field uniform to round-off (a span below 1e-9
+/// of its size) gets ±10 % of its value, not an axis over its round-off.
 fn range(values: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
     let (lo, hi) = values
         .filter(|v| v.is_finite() && (!log || *v > 0.0))
@@ -184,12 +207,83 @@ fn range(values: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
     if log {
         return (lo / 2.0, hi * 2.0);
     }
-    let pad = if hi > lo {
+    let size = lo.abs().max(hi.abs());
+    let pad = if hi - lo > 1e-9 * size {
         0.05 * (hi - lo)
+    } else if size > 0.0 {
+        0.1 * size
     } else {
-        lo.abs().max(1.0) * 0.1
+        1.0
     };
     (lo - pad, hi + pad)
+}
+
+/// A tick label on a linear axis spanning `span`: the digits the tick spacing needs (about a
+/// tenth of the span), in scientific form for very large or small values.
+fn linear_label(v: f64, span: f64) -> String {
+    let step = (span / 10.0).abs().max(f64::MIN_POSITIVE);
+    let mag = v.abs().max(step);
+    if !(1e-3..1e6).contains(&mag) {
+        let digits = (mag.log10().floor() - step.log10().floor()).clamp(0.0, 6.0) as usize;
+        return format!("{v:.digits$e}");
+    }
+    let decimals = (-step.log10().floor()).clamp(0.0, 9.0) as usize;
+    let text = format!("{v:.decimals$}");
+    // No "-0" for a tick at zero.
+    if text
+        .trim_start_matches('-')
+        .chars()
+        .all(|c| c == '0' || c == '.')
+    {
+        text.trim_start_matches('-').to_string()
+    } else {
+        text
+    }
+}
+
+/// A tick label on a log axis: the power of ten it is closest to, or the value in one digit.
+fn log_label(v: f64) -> String {
+    let e = v.log10();
+    if (e - e.round()).abs() < 1e-6 {
+        format!("1e{}", e.round() as i64)
+    } else {
+        format!("{v:.0e}")
+    }
+}
+
+/// The corner whose quarter of the plot holds the fewest points: the legend goes there.
+fn legend_corner(fig: &Figure, x: (f64, f64), y: (f64, f64)) -> SeriesLabelPosition {
+    let norm = |v: f64, (a, b): (f64, f64), log: bool| {
+        if log {
+            (v.ln() - a.ln()) / (b.ln() - a.ln())
+        } else {
+            (v - a) / (b - a)
+        }
+    };
+    let mut count = [0usize; 4]; // upper right, upper left, lower right, lower left
+    for s in &fig.series {
+        for &(px, py) in &s.points {
+            if !(px.is_finite() && py.is_finite()) || (fig.log_y && py <= 0.0) {
+                continue;
+            }
+            let (u, w) = (norm(px, x, false), norm(py, y, fig.log_y));
+            // The legend box spans about 40 % of the width and 35 % of the height.
+            let right = u > 0.6;
+            let left = u < 0.4;
+            let upper = w > 0.65;
+            let lower = w < 0.35;
+            count[0] += usize::from(right && upper);
+            count[1] += usize::from(left && upper);
+            count[2] += usize::from(right && lower);
+            count[3] += usize::from(left && lower);
+        }
+    }
+    match (0..4).min_by_key(|&i| count[i]).unwrap_or(0) {
+        0 => SeriesLabelPosition::UpperRight,
+        1 => SeriesLabelPosition::UpperLeft,
+        2 => SeriesLabelPosition::LowerRight,
+        _ => SeriesLabelPosition::LowerLeft,
+    }
 }
 
 fn draw_on<DB: DrawingBackend>(area: DrawingArea<DB, Shift>, fig: &Figure) -> Result<()>
@@ -201,24 +295,39 @@ where
     let all = || fig.series.iter().flat_map(|s| s.points.iter());
     let (x0, x1) = range(all().map(|p| p.0), false);
     let (y0, y1) = range(all().map(|p| p.1), fig.log_y);
+    let corner = legend_corner(fig, (x0, x1), (y0, y1));
     let mut builder = ChartBuilder::on(&area);
     builder
         .caption(&fig.title, (FAMILY, 22))
         .margin(12)
         .x_label_area_size(45)
         .y_label_area_size(75);
+    let x_fmt = |v: &f64| {
+        if fig.x_integer && (v - v.round()).abs() > 1e-9 {
+            String::new()
+        } else if fig.x_integer {
+            format!("{}", v.round() as i64)
+        } else {
+            linear_label(*v, x1 - x0)
+        }
+    };
+    let y_lin = |v: &f64| linear_label(*v, y1 - y0);
+    let y_log = |v: &f64| log_label(*v);
+    let n = fig.series.len();
     macro_rules! body {
-        ($chart:expr) => {{
+        ($chart:expr, $y_fmt:expr) => {{
             let mut chart = $chart;
             chart
                 .configure_mesh()
                 .x_desc(fig.x_label.as_str())
                 .y_desc(fig.y_label.as_str())
+                .x_label_formatter(&x_fmt)
+                .y_label_formatter($y_fmt)
                 .label_style((FAMILY, 14))
                 .draw()
                 .map_err(|e| fail(&e))?;
             for (i, s) in fig.series.iter().enumerate() {
-                let color = COLORS[i % COLORS.len()];
+                let color = series_color(i, n);
                 let pts: Vec<(f64, f64)> = s
                     .points
                     .iter()
@@ -234,12 +343,21 @@ where
                         .draw_series(LineSeries::new(pts, color.stroke_width(2)))
                         .map_err(|e| fail(&e))?
                 };
-                anno.label(s.label.as_str()).legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2))
-                });
+                if !s.label.is_empty() {
+                    let markers = s.markers;
+                    anno.label(s.label.as_str()).legend(move |(x, y)| {
+                        if markers {
+                            Circle::new((x + 9, y), 4, color.filled()).into_dyn()
+                        } else {
+                            PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2))
+                                .into_dyn()
+                        }
+                    });
+                }
             }
             chart
                 .configure_series_labels()
+                .position(corner)
                 .background_style(WHITE.mix(0.85))
                 .border_style(BLACK)
                 .label_font((FAMILY, 14))
@@ -248,13 +366,19 @@ where
         }};
     }
     if fig.log_y {
-        body!(builder
-            .build_cartesian_2d(x0..x1, (y0..y1).log_scale())
-            .map_err(|e| fail(&e))?);
+        body!(
+            builder
+                .build_cartesian_2d(x0..x1, (y0..y1).log_scale())
+                .map_err(|e| fail(&e))?,
+            &y_log
+        );
     } else {
-        body!(builder
-            .build_cartesian_2d(x0..x1, y0..y1)
-            .map_err(|e| fail(&e))?);
+        body!(
+            builder
+                .build_cartesian_2d(x0..x1, y0..y1)
+                .map_err(|e| fail(&e))?,
+            &y_lin
+        );
     }
     area.present().map_err(|e| fail(&e))?;
     Ok(())
@@ -372,6 +496,7 @@ pub fn pressure_figure(
         x_label: format!("{:?}", along).to_lowercase(),
         y_label: "pressure".into(),
         log_y: false,
+        x_integer: false,
         series,
     })
 }
@@ -428,6 +553,7 @@ pub fn load_figure(path: &Path, over_time: bool) -> Result<Figure> {
         x_label: x_label.into(),
         y_label: "summed reaction".into(),
         log_y: false,
+        x_integer: false,
         series,
     })
 }
@@ -452,11 +578,13 @@ pub fn residual_figure(path: &Path) -> Result<Figure> {
             }),
         }
     }
-    // Many steps: keep the legend readable by labelling only the first and the last.
+    // Many steps: their colours run from blue (the first) to red (the last), and the legend
+    // names about eight of them, the first and the last among them, each in its own colour.
     let n = series.len();
-    if n > 6 {
+    if n > MAX_DISTINCT {
+        let every = n.div_ceil(8);
         for (i, s) in series.iter_mut().enumerate() {
-            if i != 0 && i != n - 1 {
+            if i % every != 0 && i != n - 1 {
                 s.label.clear();
             }
         }
@@ -466,6 +594,7 @@ pub fn residual_figure(path: &Path) -> Result<Figure> {
         x_label: "iteration".into(),
         y_label: "relative residual".into(),
         log_y: true,
+        x_integer: true,
         series,
     })
 }
@@ -521,7 +650,8 @@ pub fn plot_files(args: &PlotArgs) -> Result<Vec<PathBuf>> {
                 pressure_figure(&input("contact.csv"), args.step, args.along, args.hertz)?,
                 "pressure",
             ),
-            Chart::Load => (load_figure(&input("steps.csv"), args.time)?, "load"),
+            Chart::Load if args.time => (load_figure(&input("steps.csv"), true)?, "load_time"),
+            Chart::Load => (load_figure(&input("steps.csv"), false)?, "load"),
             Chart::Residuals => (residual_figure(&input("newton.csv"))?, "residuals"),
         };
         let out = dir.join(format!("{base}.{name}.{ext}"));
@@ -593,5 +723,122 @@ mod tests {
         assert_eq!(by_time[0], vec![(0.0, 0.0), (0.5, 4.0), (1.5, 5.0)]);
         assert_eq!(by_time[1], vec![(0.0, 0.0), (0.5, 0.5), (1.5, 1.5)]);
         std::fs::remove_dir_all(dir).ok();
+    }
+
+    /// The tick labels of an SVG chart (plotters writes each as a `<text>` element).
+    fn svg_texts(fig: &super::Figure, tag: &str) -> Vec<String> {
+        let path =
+            std::env::temp_dir().join(format!("hertz-plot-{tag}-{}.svg", std::process::id()));
+        super::draw(fig, &path).unwrap();
+        let svg = std::fs::read_to_string(&path).unwrap();
+        std::fs::remove_file(&path).ok();
+        svg.split("<text")
+            .skip(1)
+            .map(|t| {
+                let body = &t[t.find('>').unwrap() + 1..];
+                body[..body.find("</text>").unwrap()].trim().to_string()
+            })
+            .collect()
+    }
+
+    /// Residuals of 15 steps from 1 to 1e-13: the log axis is labelled in powers of ten (no
+    /// `9999999998` or `0000001e-13`), the iteration axis in whole numbers, the legend names
+    /// eight steps with the first and the last, and no two steps share a colour.
+    #[test]
+    fn residual_chart_labels_read_cleanly() {
+        let dir = std::env::temp_dir().join(format!("hertz-plot-res-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("run.newton.csv");
+        let mut csv = String::from("step,iteration,residual\n");
+        for step in 1..=15 {
+            for it in 0..=4 {
+                csv += &format!("{step},{it},{:e}\n", 10f64.powi(-3 * it - (step % 2)));
+            }
+        }
+        std::fs::write(&path, csv).unwrap();
+        let fig = super::residual_figure(&path).unwrap();
+        std::fs::remove_dir_all(&dir).ok();
+        let texts = svg_texts(&fig, "res");
+        let ticks: Vec<&String> = texts.iter().filter(|t| t.parse::<f64>().is_ok()).collect();
+        assert!(ticks.len() > 6, "{texts:?}");
+        for t in &ticks {
+            assert!(
+                !t.contains("999") && !t.contains("000") && !t.contains('.'),
+                "{texts:?}"
+            );
+        }
+        assert!(texts.iter().any(|t| t == "1e-13"), "{texts:?}");
+        assert!(
+            texts.iter().any(|t| t == "4"),
+            "whole iterations: {texts:?}"
+        );
+        let legend: Vec<&String> = texts.iter().filter(|t| t.starts_with("step ")).collect();
+        assert_eq!(legend.len(), 8, "{legend:?}");
+        assert!(
+            legend.contains(&&"step 1".to_string()) && legend.contains(&&"step 15".to_string())
+        );
+        let colors: std::collections::HashSet<_> = (0..15)
+            .map(|i| super::series_color(i, 15))
+            .map(|c| (c.0, c.1, c.2))
+            .collect();
+        assert_eq!(colors.len(), 15);
+    }
+
+    /// A uniform field is drawn on an axis around its value, not over its round-off: its tick
+    /// labels differ from each other.
+    #[test]
+    fn a_uniform_field_gets_a_readable_axis() {
+        let points: Vec<(f64, f64)> = (0..9)
+            .map(|i| (i as f64 * 0.1, 2.0647 + 1e-15 * (i % 3) as f64))
+            .collect();
+        let fig = super::Figure {
+            title: "uniform".into(),
+            x_label: "x".into(),
+            y_label: "pressure".into(),
+            log_y: false,
+            x_integer: false,
+            series: vec![super::Series {
+                label: "p".into(),
+                points,
+                markers: true,
+            }],
+        };
+        let texts = svg_texts(&fig, "uniform");
+        let ticks: Vec<f64> = texts
+            .iter()
+            .filter_map(|t| t.parse::<f64>().ok())
+            .filter(|v| *v > 1.5)
+            .collect();
+        assert!(ticks.len() >= 3, "{texts:?}");
+        let mut distinct = ticks.clone();
+        distinct.dedup();
+        assert_eq!(distinct.len(), ticks.len(), "{texts:?}");
+    }
+
+    /// The legend goes to the corner with the fewest points: not over data in the upper right.
+    #[test]
+    fn the_legend_avoids_the_data() {
+        let points: Vec<(f64, f64)> = (0..20).map(|i| (0.8 + 0.01 * i as f64, 0.9)).collect();
+        let fig = super::Figure {
+            title: "t".into(),
+            x_label: "x".into(),
+            y_label: "y".into(),
+            log_y: false,
+            x_integer: false,
+            series: vec![super::Series {
+                label: "a".into(),
+                points: [vec![(0.0, 0.0)], points].concat(),
+                markers: true,
+            }],
+        };
+        let corner = super::legend_corner(&fig, (0.0, 1.0), (0.0, 1.0));
+        assert!(!matches!(
+            corner,
+            plotters::chart::SeriesLabelPosition::UpperRight
+        ));
+        assert!(!matches!(
+            corner,
+            plotters::chart::SeriesLabelPosition::LowerLeft
+        ));
     }
 }

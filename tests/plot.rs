@@ -57,7 +57,8 @@ fn plots_hold_the_runs_series() {
         .count();
     let svg = std::fs::read_to_string(dir.join("hertz_gmsh.pressure.svg")).unwrap();
     assert!(with_pressure > 30);
-    assert_eq!(svg.matches("<circle").count(), with_pressure);
+    // One marker per node, and the legend's.
+    assert_eq!(svg.matches("<circle").count(), with_pressure + 1);
     assert!(polylines(&svg, "#D62728").contains(&401), "Hertz curve");
     assert!(svg.contains("Hertz: p0 = 25.75, a = 0.4686"));
 
@@ -74,6 +75,21 @@ fn plots_hold_the_runs_series() {
     let svg = std::fs::read_to_string(dir.join("hertz_gmsh.load.svg")).unwrap();
     assert!(polylines(&svg, "#1F77B4").contains(&2));
     assert!(svg.contains("bc2, DOF 2"));
+
+    // Load over time: a file of its own beside the load chart, not over it.
+    hertz(&[
+        "plot",
+        dir.join("hertz_gmsh").to_str().unwrap(),
+        "-c",
+        "load",
+        "--time",
+    ]);
+    let over_time = std::fs::read_to_string(dir.join("hertz_gmsh.load_time.svg")).unwrap();
+    assert!(over_time.contains(">\ntime\n</text>"), "the time axis");
+    assert_eq!(
+        std::fs::read_to_string(dir.join("hertz_gmsh.load.svg")).unwrap(),
+        svg
+    );
 
     // PNG: a real image of the chart's size.
     hertz(&[
