@@ -6,7 +6,7 @@ use crate::input::read_model_warning;
 use crate::output::names::OutputNames;
 use crate::output::vtu::{self, VtuFormat};
 use crate::output::{check, outfile, write_atomic, write_atomic_parts};
-use crate::solve::{run_analysis, SolveParams};
+use crate::solve::{run_analysis_observed, Observer, Phase, Silent, SolveParams};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -17,16 +17,8 @@ pub struct RunOptions {
     pub write_outputs: bool,
     /// Directory for the outputs; default: next to the input file.
     pub out_dir: Option<PathBuf>,
-    /// One log line per step on stderr.
-    pub log_steps: bool,
-    /// One log line per Newton iteration on stderr.
-    pub log_iterations: bool,
     /// How the `.vtu` arrays are written.
     pub vtu_format: VtuFormat,
-    /// Called with each warning as it comes up (the reader's before anything is solved, also
-    /// when reading then fails; a step's when it converged). Every warning is also collected in
-    /// the report.
-    pub on_warning: Option<fn(&str)>,
 }
 
 /// What a run produced.
@@ -48,23 +40,33 @@ impl RunReport {
 }
 
 impl RunReport {
-    /// Keep a warning, and pass it on at once to the caller's `on_warning`.
-    fn warn(&mut self, opts: &RunOptions, w: String) {
-        if let Some(f) = opts.on_warning {
-            f(&w);
-        }
+    /// Keep a warning, and pass it on at once to the observer.
+    fn warn(&mut self, observer: &dyn Observer, w: String) {
+        observer.warning(&w);
         self.warnings.push(w);
     }
 }
 
-/// Read, solve and check `path`. Warnings are collected in the report and passed to
-/// `opts.on_warning` as they come up (on a reader error only there).
+/// Read, solve and check `path`, reporting nothing on the way (see [`run_file_observed`]).
+/// Warnings are collected in the report.
 pub fn run_file(path: &Path, opts: &RunOptions) -> Result<RunReport> {
+    run_file_observed(path, opts, &Silent)
+}
+
+/// [`run_file`], telling `observer` of each warning as it comes up (the reader's before
+/// anything is solved, also when reading then fails) and of the solver's phases, iterations and
+/// steps.
+pub fn run_file_observed(
+    path: &Path,
+    opts: &RunOptions,
+    observer: &dyn Observer,
+) -> Result<RunReport> {
     let clock = Instant::now();
+    observer.phase(&Phase::Reading);
     let mut read_warnings = Vec::new();
     let read = read_model_warning(path, &mut read_warnings);
-    if let (Err(_), Some(f)) = (&read, opts.on_warning) {
-        read_warnings.iter().for_each(|w| f(w));
+    if read.is_err() {
+        read_warnings.iter().for_each(|w| observer.warning(w));
     }
     let read = read?;
     let model = read.model;
@@ -73,7 +75,7 @@ pub fn run_file(path: &Path, opts: &RunOptions) -> Result<RunReport> {
         ..Default::default()
     };
     for w in read_warnings {
-        report.warn(opts, w);
+        report.warn(observer, w);
     }
     let rules = if model.analysis.errorcheck {
         let raw = std::fs::read(path).map_err(|e| Error::InputFile {
@@ -82,12 +84,12 @@ pub fn run_file(path: &Path, opts: &RunOptions) -> Result<RunReport> {
         })?;
         let (rules, w) = check::parse_rules(&String::from_utf8_lossy(&raw));
         for m in w {
-            report.warn(opts, format!("{}: {m}", path.display()));
+            report.warn(observer, format!("{}: {m}", path.display()));
         }
         let nsteps = model.step_times().len();
         for r in rules.iter().filter(|r| r.step == 0 || r.step > nsteps) {
             report.warn(
-                opts,
+                observer,
                 format!(
                     "{}:{}: check rule for step {} never applies (the analysis has {nsteps} steps)",
                     path.display(),
@@ -121,20 +123,17 @@ pub fn run_file(path: &Path, opts: &RunOptions) -> Result<RunReport> {
     csv.push('\n');
     let mut history = String::new();
     let mut newton = format!("{}\n", outfile::NEWTON_CSV_HEADER);
-    let params = SolveParams {
-        log_steps: opts.log_steps,
-        log_iterations: opts.log_iterations,
-        ..Default::default()
-    };
+    let params = SolveParams::default();
     let mut steps_done = 0;
     let mut solver_warnings: Vec<String> = Vec::new();
-    let result = run_analysis(&model, &params, |res| {
+    let result = run_analysis_observed(&model, &params, observer, |res| {
         steps_done += 1;
         // Each solver warning once, with the first step it came up in.
         for w in &res.info.warnings {
             if !solver_warnings.contains(w) {
                 solver_warnings.push(w.clone());
-                report.warn(opts, format!("step {}: {w}", res.step));
+                // The solver told the observer when it came up.
+                report.warnings.push(format!("step {}: {w}", res.step));
             }
         }
         report

@@ -2,7 +2,10 @@
 //! 2 bad input or usage, 3 solver failure, 4 output failure.
 
 use clap::{CommandFactory, Parser, Subcommand};
-use hertz::app::{run_file, RunOptions};
+mod cli;
+
+use cli::observer::{CliObserver, Level};
+use hertz::app::{run_file_observed, RunOptions};
 use hertz::output::check::describe_failure;
 use hertz::output::vtu::VtuFormat;
 use std::io::IsTerminal;
@@ -98,8 +101,15 @@ fn main() -> ExitCode {
             verbosity,
         } => run_or_check(file, Some((output, vtu)), &verbosity),
         Command::Check { file, verbosity } => run_or_check(file, None, &verbosity),
-        Command::Import(args) => report(hertz::mesh::gmsh::import_command(&args)),
-        Command::Plot(args) => report(hertz::plot::plot_command(&args)),
+        Command::Import(args) => report(
+            hertz::mesh::gmsh::import_command(&args)
+                .map(|lines| lines.iter().for_each(|l| eprintln!("{l}"))),
+        ),
+        Command::Plot(args) => report(hertz::plot::plot_files(&args).map(|files| {
+            files
+                .iter()
+                .for_each(|p| eprintln!("wrote {}", p.display()))
+        })),
         Command::Bench(args) => hertz::bench::main(args),
         Command::Completions { shell } => {
             clap_complete::generate(shell, &mut Cli::command(), "hertz", &mut std::io::stdout());
@@ -123,11 +133,6 @@ fn report(result: hertz::error::Result<()>) -> ExitCode {
     }
 }
 
-/// A warning on stderr, as it comes up.
-fn print_warning(w: &str) {
-    eprintln!("warning: {w}");
-}
-
 /// `run` (with `output` = Some((directory, VTU format)): write the results) or `check`.
 fn run_or_check(
     file: PathBuf,
@@ -138,13 +143,19 @@ fn run_or_check(
     let (out_dir, vtu_format) = output.unwrap_or_default();
     let opts = RunOptions {
         write_outputs: run,
-        log_steps: !v.quiet,
-        log_iterations: v.verbose,
         out_dir,
         vtu_format,
-        on_warning: (!v.quiet).then_some(print_warning as fn(&str)),
     };
-    let report_ = match run_file(&file, &opts) {
+    let level = match (v.quiet, v.verbose) {
+        (true, _) => Level::Quiet,
+        (_, true) => Level::Verbose,
+        _ => Level::Normal,
+    };
+    let observer = CliObserver::new(level);
+    let result = run_file_observed(&file, &opts, &observer);
+    // The progress bar is cleared before anything more is printed.
+    drop(observer);
+    let report_ = match result {
         Ok(r) => r,
         Err(e) => return report(Err(e)),
     };

@@ -661,14 +661,6 @@ pub fn plot_files(args: &PlotArgs) -> Result<Vec<PathBuf>> {
     Ok(written)
 }
 
-/// `hertz plot` for the command line: draw and name the files written.
-pub fn plot_command(args: &PlotArgs) -> Result<()> {
-    for p in plot_files(args)? {
-        eprintln!("wrote {}", p.display());
-    }
-    Ok(())
-}
-
 #[cfg(test)]
 mod tests {
     /// `--along r` measures the distance from the axis, whichever coordinate the axis runs

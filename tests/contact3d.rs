@@ -20,7 +20,6 @@ fn solve(text: &str) -> (Vec<SlotState>, Vec<usize>) {
     run_analysis(
         &model,
         &SolveParams {
-            log_steps: false,
             max_cutbacks: 0,
             ..Default::default()
         },
@@ -229,7 +228,6 @@ fn two_beams(tb: &TwoBeams, swap: bool) -> BeamsResult {
     run_analysis(
         &model,
         &SolveParams {
-            log_steps: false,
             max_cutbacks: 0,
             ..Default::default()
         },
@@ -426,7 +424,6 @@ fn wedge_pressed_onto_a_brick() {
                 run_analysis(
                     &model,
                     &SolveParams {
-                        log_steps: false,
                         max_cutbacks: 0,
                         ..Default::default()
                     },
@@ -527,7 +524,6 @@ fn large_sliding_over_a_curved_master() {
         run_analysis(
             &model,
             &SolveParams {
-                log_steps: false,
                 max_cutbacks: 0,
                 ..Default::default()
             },
@@ -594,7 +590,6 @@ fn large_contact_zone_patch_test_by_gmres() {
         run_analysis(
             &model,
             &SolveParams {
-                log_steps: false,
                 max_cutbacks: 0,
                 ..Default::default()
             },

@@ -195,7 +195,6 @@ fn run_example(
     hertz::solve::run_analysis(
         &model,
         &hertz::solve::SolveParams {
-            log_steps: false,
             max_cutbacks: 0,
             ..Default::default()
         },

@@ -65,3 +65,59 @@ fn hopeless_step_fails_with_a_solver_error() {
         "{msg}"
     );
 }
+
+/// An observer that records what it is told, in order.
+#[derive(Default)]
+struct Recorder {
+    events: std::cell::RefCell<Vec<String>>,
+    iterations: std::cell::RefCell<Vec<hertz::solve::IterationReport>>,
+}
+
+impl hertz::solve::Observer for Recorder {
+    fn phase(&self, phase: &hertz::solve::Phase) {
+        self.events.borrow_mut().push(format!("phase {phase}"));
+    }
+    fn iteration(&self, r: &hertz::solve::IterationReport) {
+        self.events
+            .borrow_mut()
+            .push(format!("iteration {}", r.iteration));
+        self.iterations.borrow_mut().push(r.clone());
+    }
+    fn step(&self, r: &hertz::solve::StepReport) {
+        self.events
+            .borrow_mut()
+            .push(format!("step {} of {}", r.step, r.n_steps));
+    }
+    fn warning(&self, m: &str) {
+        self.events.borrow_mut().push(format!("warning {m}"));
+    }
+}
+
+/// The driver tells its observer, in order, of reading, the set-up, each factorization with its
+/// size, every Newton iteration (the residuals of the step's history, the contact nodes that
+/// closed) and each step, and the library prints nothing itself.
+#[test]
+fn an_observer_hears_phases_iterations_and_steps_in_order() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/coulomb_block.in");
+    let rec = Recorder::default();
+    let mut histories = Vec::new();
+    let model = hertz::input::read_model(&path).unwrap().model;
+    hertz::solve::run_analysis_observed(&model, &common::quiet(), &rec, |r| {
+        histories.push(r.info.residual_history.clone());
+        Ok(())
+    })
+    .unwrap();
+    let events = rec.events.borrow();
+    assert!(events[0].starts_with("phase set-up ("), "{events:?}");
+    let first_step = events.iter().position(|e| e == "step 1 of 2").unwrap();
+    assert!(events[..first_step]
+        .iter()
+        .any(|e| e.starts_with("phase factorization (") && e.ends_with(" unknowns)")));
+    assert_eq!(events.last().unwrap(), "step 2 of 2");
+    let heard: Vec<f64> = rec.iterations.borrow().iter().map(|r| r.residual).collect();
+    let expected: Vec<f64> = histories.concat();
+    assert_eq!(heard, expected);
+    let first = &rec.iterations.borrow()[1];
+    assert_eq!((first.step, first.closed, first.contact_points), (1, 5, 5));
+    assert_eq!(first.closed_nodes.len(), 5);
+}

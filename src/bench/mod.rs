@@ -262,7 +262,6 @@ pub fn run_contact(n: usize, multipliers: bool) -> Result<ContactBenchFigures> {
     crate::solve::run_analysis(
         &model,
         &crate::solve::SolveParams {
-            log_steps: false,
             ..Default::default()
         },
         |r| {
@@ -401,7 +400,6 @@ pub fn run_contact3d(m: Model3d, law: suite::Law) -> Result<Contact3dFigures> {
     crate::solve::run_analysis(
         &model,
         &crate::solve::SolveParams {
-            log_steps: false,
             ..Default::default()
         },
         |r| {

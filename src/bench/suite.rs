@@ -787,7 +787,6 @@ pub fn run(text: &str) -> Result<Outcome> {
     run_analysis(
         &model,
         &SolveParams {
-            log_steps: false,
             max_cutbacks: 3,
             ..Default::default()
         },

@@ -745,8 +745,9 @@ impl Converted {
     }
 }
 
-/// `hertz import MESH [-o FILE] [--plane stress|strain]`.
-pub fn import_command(args: &ImportArgs) -> Result<()> {
+/// `hertz import MESH [-o FILE] [--plane stress|strain]`: write the records; returns what to
+/// tell the user (the file, the counts, the sets, and a warning line if the mesh has no groups).
+pub fn import_command(args: &ImportArgs) -> Result<Vec<String>> {
     let c = convert(&args.mesh, args.plane)?;
     let out = args
         .output
@@ -754,24 +755,22 @@ pub fn import_command(args: &ImportArgs) -> Result<()> {
         .unwrap_or_else(|| args.mesh.with_extension("in"));
     refuse_to_overwrite_a_users_file(&out, &args.mesh)?;
     crate::output::write_atomic(&out, c.fragment(&args.mesh).as_bytes())?;
-    eprintln!(
+    let mut lines = vec![format!(
         "wrote {}: {} nodes, {} elements ({}D); counts record: {}",
         out.display(),
         c.coords.len(),
         c.elements.len(),
         c.dim,
         c.counts()
-    );
-    for l in c.set_summary() {
-        eprintln!("  {l}");
-    }
+    )];
+    lines.extend(c.set_summary().into_iter().map(|l| format!("  {l}")));
     if c.sets.is_empty() {
-        eprintln!(
+        lines.push(format!(
             "warning: {} has no physical groups, so the records have no sets (nset 0): hertz makes \
              one set per physical group; define Physical groups in Gmsh for the body and each \
              loaded, supported or contact boundary",
             args.mesh.display()
-        );
+        ));
     }
-    Ok(())
+    Ok(lines)
 }

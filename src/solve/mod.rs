@@ -7,9 +7,11 @@ pub mod linear;
 pub mod multipliers;
 pub mod newton;
 pub mod ordering;
+pub mod report;
 pub mod stepping;
 
-pub use stepping::{run_analysis, SolveParams, StepInfo, StepResult};
+pub use report::{IterationReport, Observer, Phase, Silent, StepReport};
+pub use stepping::{run_analysis, run_analysis_observed, SolveParams, StepInfo, StepResult};
 
 use crate::assembly::DofMap;
 use crate::contact::ContactSystem;

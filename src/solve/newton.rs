@@ -17,6 +17,7 @@ use super::branches::{BranchSearch, ContactStep, OnCycle};
 use super::condensed::CondensedContact;
 use super::linear::LinearSolver;
 use super::multipliers::{Group, MultiplierElimination};
+use super::report::{IterationReport, Observer, Phase};
 use super::stepping::PhaseTimes;
 use super::stepping::StepInfo;
 use crate::assembly::{Assembler, Contribution, DofMap, Evaluation};
@@ -24,7 +25,6 @@ use crate::contact::point::Branch;
 use crate::contact::{ContactPoint, ContactSystem, History, PointLaw, Search, SlotState};
 use crate::error::{Error, Result};
 use crate::model::Analysis;
-use crate::output::number::sci;
 use std::time::Instant;
 
 /// How Newton systems with contact are solved.
@@ -58,10 +58,10 @@ pub(super) struct NewtonContext<'a> {
     pub linear: bool,
     /// No element uses large deformation: the structural tangent is constant.
     pub small_strain: bool,
-    /// Progress bar on a terminal: steps done, the running iteration and residual.
-    pub progress: Option<indicatif::ProgressBar>,
-    /// Log every iteration (residual, contact changes) on stderr.
-    pub verbose: bool,
+    /// Told of each phase, iteration and detail (see [`super::report`]).
+    pub observer: &'a dyn Observer,
+    /// The step being solved (for the reports).
+    pub step: usize,
     pub condensed: Condensed,
     /// Contact states of the last converged step (the first hint of the next step's search,
     /// and the friction history: restoring them restores it).
@@ -119,6 +119,45 @@ fn describe_eq(model: &crate::model::Model, dofs: &DofMap, eq: usize) -> String 
 }
 
 impl NewtonContext<'_> {
+    /// The report of iteration `it`: its residual, and the contact nodes that closed, opened or
+    /// changed between stick and slip since the previous iteration's `prev`.
+    fn iteration_report(
+        &self,
+        it: usize,
+        residual: f64,
+        states: &[SlotState],
+        prev: Option<&[SlotState]>,
+    ) -> IterationReport {
+        let label = |s: &SlotState| self.asm.model.nodes[s.node].label;
+        let mut r = IterationReport {
+            step: self.step,
+            iteration: it,
+            residual,
+            contact_points: states.len(),
+            closed: states.iter().filter(|s| s.active).count(),
+            ..Default::default()
+        };
+        let slips = |s: &SlotState| s.friction.map(|(stick, _)| !stick);
+        if states.iter().any(|s| s.friction.is_some()) {
+            r.slipping = Some(states.iter().filter(|s| slips(s) == Some(true)).count());
+        }
+        if let Some(p) = prev.filter(|p| p.len() == states.len()) {
+            for (s, q) in states.iter().zip(p) {
+                if s.active != q.active {
+                    if s.active {
+                        r.closed_nodes.push(label(s));
+                    } else {
+                        r.opened_nodes.push(label(s));
+                    }
+                }
+                if slips(s).is_some() && slips(q).is_some() && slips(s) != slips(q) {
+                    r.switched_nodes.push(label(s));
+                }
+            }
+        }
+        r
+    }
+
     /// Contact points and states at `u`, with the friction history of the last converged step.
     fn evaluate_contact(
         &self,
@@ -158,6 +197,14 @@ impl NewtonContext<'_> {
     fn factorize(&mut self, kv: &[f64]) -> Result<()> {
         let (model, dofs) = (self.asm.model, self.dofs);
         let describe = |eq: usize| describe_eq(model, dofs, eq);
+        self.observer.phase(&Phase::Factorization {
+            kind: if self.asm.pattern.symmetric {
+                "symmetric tangent"
+            } else {
+                "non-symmetric tangent"
+            },
+            unknowns: self.asm.pattern.n,
+        });
         let t = Instant::now();
         self.solver
             .factorize(&self.asm.pattern, kv, self.linear, &describe)?;
@@ -193,6 +240,10 @@ impl NewtonContext<'_> {
                 }
             };
             let lambdas = self.dofs.n_free - self.dofs.n_lambda..self.dofs.n_free;
+            self.observer.phase(&Phase::Factorization {
+                kind: "structural tangent, contact condensed",
+                unknowns: self.asm.pattern.n,
+            });
             let t = Instant::now();
             let made = CondensedContact::new(
                 &self.asm.pattern,
@@ -216,6 +267,10 @@ impl NewtonContext<'_> {
         } else if let (Condensed::Ready(c), Some(ks)) = (&mut self.condensed, ks_fresh) {
             // Large deformation: the structural tangent changed.
             let kv = ks.k_values.as_ref().expect("requested");
+            self.observer.phase(&Phase::Factorization {
+                kind: "structural tangent, contact condensed",
+                unknowns: self.asm.pattern.n,
+            });
             let t = Instant::now();
             let ok = match c.factorize(&self.asm.pattern, kv, &describe) {
                 Ok(ok) => ok,
@@ -228,6 +283,7 @@ impl NewtonContext<'_> {
             }
         }
         if let Condensed::Ready(c) = &mut self.condensed {
+            self.observer.phase(&Phase::Solve);
             let t = Instant::now();
             let step = c.step(&rhs, points, guess, self.dofs, cycle, &describe)?;
             self.times.solve += since(t);
@@ -257,12 +313,10 @@ impl NewtonContext<'_> {
                 cands.sort_unstable();
                 cands.dedup();
                 self.regrowths += 1;
-                if self.verbose {
-                    eprintln!(
-                        "      contact reaches beyond the condensed equations: {} candidates now",
-                        cands.len()
-                    );
-                }
+                self.observer.detail(&format!(
+                    "contact reaches beyond the condensed equations: {} candidates now",
+                    cands.len()
+                ));
                 self.condensed = Condensed::Pending(cands);
                 return self.solve_step(u, rhs, points, guess, None, cycle);
             }
@@ -395,16 +449,20 @@ impl NewtonContext<'_> {
             } else {
                 let (model, dofs) = (self.asm.model, self.dofs);
                 let describe = |eq: usize| describe_eq(model, dofs, eq);
+                self.observer.phase(&Phase::Factorization {
+                    kind: "tangent, multipliers eliminated",
+                    unknowns: self.asm.pattern.n,
+                });
                 let t = Instant::now();
                 self.eliminate
                     .solve(&self.asm.pattern, &kv, &mut step, &groups, &describe)?;
                 self.times.factor += since(t);
-                if self.verbose && search.updates == 0 {
-                    eprintln!(
-                        "      multipliers eliminated through the slave rows: {} of {}",
+                if search.updates == 0 {
+                    self.observer.detail(&format!(
+                        "multipliers eliminated through the slave rows: {} of {}",
                         self.eliminate.eliminated,
                         self.eliminate.eliminated + self.eliminate.kept
-                    );
+                    ));
                 }
             }
             let predicted: Vec<Branch> = points
@@ -491,6 +549,7 @@ impl NewtonContext<'_> {
                     && !self.factor_valid
                     && (it == 0 || a.manrmsteps.is_some_and(|k| it % k == 0)));
             let contribs: Vec<Contribution> = points.iter().map(|p| p.contribution()).collect();
+            self.observer.phase(&Phase::Assembly);
             let t = Instant::now();
             let mut ev = self.asm.evaluate(
                 u,
@@ -516,60 +575,12 @@ impl NewtonContext<'_> {
             }
             info.residual_history.push(check.worst);
             info.iterations += 1;
-            if let Some(bar) = &self.progress {
-                bar.set_message(format!(
-                    "iteration {it:3}  residual {}",
-                    sci(check.worst, 2)
-                ));
-            }
-            if self.verbose {
-                let closed = states.iter().filter(|s| s.active).count();
-                let mut line = format!("    iteration {it:3}  residual {}", sci(check.worst, 3));
-                if has_contact {
-                    line += &format!("  contact nodes closed {closed}/{}", states.len());
-                    let label = |s: &SlotState| self.asm.model.nodes[s.node].label.to_string();
-                    if let Some(p) = &prev {
-                        let (opened, closing): (Vec<_>, Vec<_>) = states
-                            .iter()
-                            .zip(p)
-                            .filter(|(s, q)| s.active != q.active)
-                            .partition(|(s, _)| !s.active);
-                        // Node labels, the first few of them on a large model.
-                        let list = |v: &[(&SlotState, &SlotState)]| {
-                            let mut l: Vec<String> =
-                                v.iter().take(12).map(|(s, _)| label(s)).collect();
-                            if v.len() > 12 {
-                                l.push(format!("… ({} more)", v.len() - 12));
-                            }
-                            l.join(" ")
-                        };
-                        if !closing.is_empty() {
-                            line += &format!("; closed nodes {}", list(&closing));
-                        }
-                        if !opened.is_empty() {
-                            line += &format!("; opened nodes {}", list(&opened));
-                        }
-                        // Friction: the slipping nodes, and those that changed between stick
-                        // and slip.
-                        let slips = |s: &SlotState| s.friction.map(|(stick, _)| !stick);
-                        let slipping = states.iter().filter(|s| slips(s) == Some(true)).count();
-                        let switched: Vec<_> = states
-                            .iter()
-                            .zip(p)
-                            .filter(|(s, q)| {
-                                slips(s).is_some() && slips(q).is_some() && slips(s) != slips(q)
-                            })
-                            .collect();
-                        if states.iter().any(|s| s.friction.is_some()) {
-                            line += &format!("; slipping {slipping}");
-                        }
-                        if !switched.is_empty() {
-                            line += &format!(" (stick/slip changed: nodes {})", list(&switched));
-                        }
-                    }
-                }
-                eprintln!("{line}");
-            }
+            self.observer.iteration(&self.iteration_report(
+                it,
+                check.worst,
+                &states,
+                prev.as_deref(),
+            ));
             if check.converged && (it > 0 || check.worst == 0.0) {
                 if let (0, false, false, Some(kv)) =
                     (it, has_contact, self.factor_valid, ev.k_values.as_ref())
@@ -579,8 +590,9 @@ impl NewtonContext<'_> {
                     self.factorize(kv)?;
                 }
                 if let Some(r) = check.floor_ratio.filter(|_| !self.floor_warned) {
-                    info.warnings
-                        .push(penalty_warning(self.asm.model, r, a.rtolf));
+                    let w = penalty_warning(self.asm.model, r, a.rtolf);
+                    self.observer.warning(&w);
+                    info.warnings.push(w);
                     self.floor_warned = true;
                 }
                 if has_contact {
@@ -637,15 +649,15 @@ impl NewtonContext<'_> {
                 self.times.solve += since(t);
                 (x, 0, false)
             };
-            if self.verbose && updates > 0 {
-                eprintln!(
-                    "      contact branches updated {updates} times on the linearized problem{}",
+            if updates > 0 {
+                self.observer.detail(&format!(
+                    "contact branches updated {updates} times on the linearized problem{}",
                     if cycled {
                         " and came back to a guess"
                     } else {
                         ""
                     }
-                );
+                ));
             }
             for i in 0..nf {
                 u[i] += step[i];

@@ -10,14 +10,13 @@
 use super::linear::{LinearSolver, SolverStats};
 use super::multipliers::MultiplierElimination;
 use super::newton::{Condensed, NewtonContext};
+use super::report::{Observer, Phase, Silent, StepReport};
 use crate::assembly::{Assembler, DofMap};
 use crate::contact::{ContactSystem, Search, SlotState};
 use crate::error::{Error, Result};
 use crate::model::{AnalysisKind, Model};
-use crate::output::number::sci;
 use crate::solid::loads::reference_contributions;
 use crate::solid::GpState;
-use std::io::IsTerminal;
 use std::time::Instant;
 
 /// Driver settings beyond what the input file says.
@@ -25,10 +24,6 @@ use std::time::Instant;
 pub struct SolveParams {
     /// How many times a failing step may be halved.
     pub max_cutbacks: usize,
-    /// Print one line per step on stderr.
-    pub log_steps: bool,
-    /// Print every Newton iteration (residual, contact state) on stderr.
-    pub log_iterations: bool,
     /// Unknowns from which a non-symmetric tangent is solved by GMRES preconditioned with its
     /// symmetric part instead of a sparse LU (see [`super::krylov`]).
     pub krylov_min_unknowns: usize,
@@ -42,8 +37,6 @@ impl Default for SolveParams {
     fn default() -> Self {
         SolveParams {
             max_cutbacks: 5,
-            log_steps: true,
-            log_iterations: false,
             krylov_min_unknowns: super::linear::KRYLOV_MIN_UNKNOWNS,
             condensed_contact: true,
         }
@@ -105,34 +98,30 @@ impl StepResult<'_> {
     }
 }
 
-/// A progress bar over the steps (drawn on stderr, only when it is a terminal).
-fn progress_bar(nsteps: usize) -> indicatif::ProgressBar {
-    let bar = indicatif::ProgressBar::new(nsteps as u64);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template(
-            "[{elapsed_precise}] {bar:30} step {pos}/{len}  {msg}",
-        )
-        .expect("valid progress template"),
-    );
-    bar
-}
-
-/// One log line on stderr, above the progress bar if there is one.
-fn log_line(ctx: &NewtonContext, line: String) {
-    match &ctx.progress {
-        Some(bar) => bar.println(line),
-        None => eprintln!("{line}"),
-    }
-}
-
-/// Run every step of the analysis, calling `on_step` after each converged step.
+/// Run every step of the analysis, calling `on_step` after each converged step; nothing is
+/// reported on the way (see [`run_analysis_observed`]).
 pub fn run_analysis(
     model: &Model,
     params: &SolveParams,
+    on_step: impl FnMut(&StepResult) -> Result<()>,
+) -> Result<()> {
+    run_analysis_observed(model, params, &Silent, on_step)
+}
+
+/// [`run_analysis`], telling `observer` of each phase, Newton iteration, step, cut-back and
+/// warning as they come.
+pub fn run_analysis_observed(
+    model: &Model,
+    params: &SolveParams,
+    observer: &dyn Observer,
     mut on_step: impl FnMut(&StepResult) -> Result<()>,
 ) -> Result<()> {
     let contact = ContactSystem::new(model)?;
     let dofs = DofMap::new(model, &contact.extra_dofs())?;
+    observer.phase(&Phase::SetUp {
+        unknowns: dofs.n_free,
+        steps: model.step_times().len(),
+    });
     let asm = Assembler::new(model, &dofs)?;
     let nf = dofs.n_free;
     let np = dofs.n_primary();
@@ -171,6 +160,9 @@ pub fn run_analysis(
         .evaluate(model, &dofs, &vec![0.0; np], Search::Fresh)?
         .1;
     let mut initial_warnings = crate::contact::initial_warnings(model, &initial_states);
+    for w in &initial_warnings {
+        observer.warning(w);
+    }
     let slot_nodes: Vec<usize> = initial_states.iter().map(|s| s.node).collect();
     let mut solver = LinearSolver::default();
     solver.groups = Some(dofs.free_eq_nodes());
@@ -183,9 +175,8 @@ pub fn run_analysis(
         factor_valid: false,
         linear,
         small_strain,
-        progress: (params.log_steps && !params.log_iterations && std::io::stderr().is_terminal())
-            .then(|| progress_bar(model.step_times().len())),
-        verbose: params.log_iterations,
+        observer,
+        step: 0,
         condensed,
         converged_states: None,
         initial_states: initial_states.clone(),
@@ -210,6 +201,7 @@ pub fn run_analysis(
         ctx.times = PhaseTimes::default();
         ctx.contact.take_times();
         let step = k + 1;
+        ctx.step = step;
         let target = match a.kind {
             AnalysisKind::NonLinearStatic => {
                 let r = external(&|f| {
@@ -256,9 +248,7 @@ pub fn run_analysis(
                         break;
                     }
                     Err(Error::Solve(msg)) if level < params.max_cutbacks => {
-                        if params.log_steps {
-                            log_line(&ctx, format!("step {step}: {msg}; cutting the step"));
-                        }
+                        observer.retry(&format!("step {step}: {msg}; cutting the step"));
                         ok = false;
                         break;
                     }
@@ -275,19 +265,16 @@ pub fn run_analysis(
                 break;
             }
             ctx.factor_valid = false;
-            if params.log_steps && level < params.max_cutbacks {
-                log_line(
-                    &ctx,
-                    format!(
-                        "step {step}: no convergence in {} iterations{}; retrying in {} substeps",
-                        a.maxiter,
-                        diagnosis
-                            .as_ref()
-                            .map(|d| format!(" ({d})"))
-                            .unwrap_or_default(),
-                        2 * nsub
-                    ),
-                );
+            if level < params.max_cutbacks {
+                observer.retry(&format!(
+                    "step {step}: no convergence in {} iterations{}; retrying in {} substeps",
+                    a.maxiter,
+                    diagnosis
+                        .as_ref()
+                        .map(|d| format!(" ({d})"))
+                        .unwrap_or_default(),
+                    2 * nsub
+                ));
             }
         }
         if !done {
@@ -320,38 +307,17 @@ pub fn run_analysis(
             contact: contact - searching,
             ..ctx.times
         };
-        if params.log_steps {
-            log_line(
-                &ctx,
-                format!(
-                    "step {step}/{nsteps}  t = {}  iterations {}  residual {}  substeps {}  {:.3} s",
-                    sci(t, 4),
-                    info.iterations,
-                    sci(info.residual_history.last().copied().unwrap_or(0.0), 2),
-                    info.substeps,
-                    info.wall_seconds
-                ),
-            );
-            if let Some(bar) = &ctx.progress {
-                bar.inc(1);
-            }
-            if params.log_iterations {
-                let t = &info.times;
-                eprintln!(
-                    "    time: contact search {:.3} s, contact points {:.3} s, assembly {:.3} s, \
-                     factorization {:.3} s, solves {:.3} s{}",
-                    t.search,
-                    t.contact,
-                    t.assembly,
-                    t.factor,
-                    t.solve,
-                    match info.solver.krylov_iterations {
-                        0 => String::new(),
-                        k => format!(" (last solve: {k} GMRES iterations)"),
-                    }
-                );
-            }
-        }
+        observer.step(&StepReport {
+            step,
+            n_steps: nsteps,
+            time: t,
+            iterations: info.iterations,
+            residual: info.residual_history.last().copied().unwrap_or(0.0),
+            substeps: info.substeps,
+            wall_seconds: info.wall_seconds,
+            times: info.times,
+            krylov_iterations: info.solver.krylov_iterations,
+        });
         let states = ev.states.unwrap_or_default();
         on_step(&StepResult {
             step,
@@ -363,9 +329,6 @@ pub fn run_analysis(
             contact: &contact_states,
             info: &info,
         })?;
-    }
-    if let Some(bar) = &ctx.progress {
-        bar.finish_and_clear();
     }
     Ok(())
 }

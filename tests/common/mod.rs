@@ -18,7 +18,6 @@ pub fn model_from_text(text: &str) -> hertz::error::Result<Model> {
 /// Solver settings of the tests: the defaults, without step lines on stderr.
 pub fn quiet() -> hertz::solve::SolveParams {
     hertz::solve::SolveParams {
-        log_steps: false,
         ..Default::default()
     }
 }

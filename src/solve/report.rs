@@ -1,0 +1,95 @@
+//! What a run reports while it goes: the [`Observer`] the driver tells of each phase, Newton
+//! iteration, finished step, cut-back and warning. The library prints nothing itself: the CLI
+//! implements an observer (log lines, a progress bar, `-q`/`-v`), a test records the reports, a
+//! script can forward them.
+
+use super::stepping::PhaseTimes;
+
+/// A phase of the work, reported as it begins (a long one is what a user waits on).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Phase {
+    /// Reading the input file (with its includes and meshes).
+    Reading,
+    /// Contact conditions, DOF numbering and the sparse pattern, before the first of `steps`.
+    SetUp { unknowns: usize, steps: usize },
+    /// The element loop (internal forces and tangents) and the contact points.
+    Assembly,
+    /// A sparse factorization of `unknowns` equations (`kind`: Cholesky, LDLᵀ, LU, or the
+    /// condensed contact step's structural factor).
+    Factorization { kind: &'static str, unknowns: usize },
+    /// Triangular solves and the contact branch search.
+    Solve,
+}
+
+impl std::fmt::Display for Phase {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Phase::Reading => write!(f, "reading the input"),
+            Phase::SetUp { unknowns, .. } => write!(f, "set-up ({unknowns} unknowns)"),
+            Phase::Assembly => write!(f, "assembly"),
+            Phase::Factorization { kind, unknowns } => {
+                write!(f, "factorization ({kind}, {unknowns} unknowns)")
+            }
+            Phase::Solve => write!(f, "solve"),
+        }
+    }
+}
+
+/// One Newton iteration: its residual and what contact did.
+#[derive(Debug, Clone, Default)]
+pub struct IterationReport {
+    pub step: usize,
+    /// 0 before the first solve.
+    pub iteration: usize,
+    /// Largest relative (or absolute) force error over the DOF groups.
+    pub residual: f64,
+    /// Contact points in the model (0 without contact).
+    pub contact_points: usize,
+    /// Of them, closed.
+    pub closed: usize,
+    /// Node labels that closed and opened since the last iteration.
+    pub closed_nodes: Vec<usize>,
+    pub opened_nodes: Vec<usize>,
+    /// With friction: the sliding nodes' count, and the nodes that changed between stick and
+    /// slip since the last iteration.
+    pub slipping: Option<usize>,
+    pub switched_nodes: Vec<usize>,
+}
+
+/// A converged step.
+#[derive(Debug, Clone, Default)]
+pub struct StepReport {
+    pub step: usize,
+    pub n_steps: usize,
+    pub time: f64,
+    pub iterations: usize,
+    pub residual: f64,
+    pub substeps: usize,
+    pub wall_seconds: f64,
+    pub times: PhaseTimes,
+    /// GMRES iterations of the last solve (0: a direct solve).
+    pub krylov_iterations: usize,
+}
+
+/// Receives a run's reports. Every method has an empty default: implement what you show.
+/// Methods take `&self` (an observer keeps its own state in cells): the driver holds it shared.
+pub trait Observer {
+    /// A phase begins.
+    fn phase(&self, _phase: &Phase) {}
+    /// A Newton iteration's residual was evaluated.
+    fn iteration(&self, _report: &IterationReport) {}
+    /// A step converged.
+    fn step(&self, _report: &StepReport) {}
+    /// A step did not converge and is cut back (or retried in substeps): why.
+    fn retry(&self, _message: &str) {}
+    /// A detail of the solver's work, for a verbose log (e.g. the contact branch search).
+    fn detail(&self, _message: &str) {}
+    /// Something the user should know (also kept in the step's `StepInfo::warnings`).
+    fn warning(&self, _message: &str) {}
+}
+
+/// An observer that shows nothing.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Silent;
+
+impl Observer for Silent {}
