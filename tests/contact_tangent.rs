@@ -317,6 +317,7 @@ fn friction_tangents_are_jacobians_of_residuals_in_stick_and_slip() {
 /// the node moves to the neighbouring face (the anchor's corners are unknowns too). Penalty and
 /// multipliers (at 1000).
 #[test]
+#[ignore = "long: runs with `cargo test --release -- --ignored` (CI runs both)"]
 fn friction_tangents_against_faces_are_jacobians_of_residuals() {
     let laws = [
         (
@@ -800,6 +801,7 @@ fn multiplier_tangent_keeps_its_geometric_part_beyond_a_pressure_of_e() {
 /// non-matching quadrilateral (hexahedra), triangular (tetrahedra) and mixed (wedges) faces
 /// ([`mortar3d_case`]).
 #[test]
+#[ignore = "long: runs with `cargo test --release -- --ignored` (CI runs both)"]
 fn mortar_tangents_in_3d_are_jacobians_of_residuals() {
     use hertz::bench::mesh::Solid;
     use hertz::bench::suite::Law;
@@ -892,6 +894,7 @@ fn check_mortar3d(name: &str, text: &str, disp: Disp, lambda: f64) {
 /// at u = 0. Penalty (solved in multiplier form) and multipliers, the pressures and the friction
 /// tractions' components at 1000: the tangent over the multipliers too.
 #[test]
+#[ignore = "long: runs with `cargo test --release -- --ignored` (CI runs both)"]
 fn mortar_friction_tangents_are_jacobians_in_stick_and_slip() {
     use hertz::bench::mesh::Solid;
     use hertz::bench::suite::Law;

@@ -668,6 +668,7 @@ fn die_reaction_balanced(
 /// guess of a branch search that comes back to a guess (see `solve::branches`), step t = 1.94
 /// inverted an element at the die's trailing corner and was cut back.
 #[test]
+#[ignore = "long: runs with `cargo test --release -- --ignored` (CI runs both)"]
 fn shallow_ironing_gives_the_published_forces() {
     use hertz::bench::examples::SHALLOW_IRONING;
     shallow_ironing(&SHALLOW_IRONING.input(), 6, 7);
@@ -680,6 +681,7 @@ fn shallow_ironing_gives_the_published_forces() {
 /// (t = 0.4); searched on the linearized problem it took 361 iterations, now 343 in multiplier
 /// form (`contact::law::multiplier`).
 #[test]
+#[ignore = "long: runs with `cargo test --release -- --ignored` (CI runs both)"]
 fn shallow_ironing_with_a_penalty_gives_the_published_forces() {
     use hertz::bench::examples::SHALLOW_IRONING;
     let text = SHALLOW_IRONING.input().replace(
@@ -758,6 +760,7 @@ fn shallow_ironing_as_penalty(multipliers: &str, penalty: &str) -> (f64, f64, Ve
 /// it was, for 14 iterations and two cut-backs, until a stalled cycle took the other
 /// (`OnCycle::FewestMissesEarliest`).
 #[test]
+#[ignore = "long: runs with `cargo test --release -- --ignored` (CI runs both)"]
 fn a_stiff_penalty_irons_like_the_multipliers() {
     use hertz::bench::examples::SHALLOW_IRONING;
     let multipliers = SHALLOW_IRONING.input().replace(" friction 0.3", "");
@@ -790,6 +793,7 @@ fn a_stiff_penalty_irons_like_the_multipliers() {
 /// needed 152 cut-backs. With its forces as unknowns (the penalty's compliance in the
 /// multipliers' rows) the solution is the penalty's and the iteration the multipliers'.
 #[test]
+#[ignore = "long: runs with `cargo test --release -- --ignored` (CI runs both)"]
 fn a_stiff_penalty_with_friction_irons_like_the_multipliers() {
     use hertz::bench::examples::SHALLOW_IRONING;
     let multipliers = SHALLOW_IRONING.input();

@@ -300,6 +300,7 @@ fn mortar_against_a_rigid_plane_passes_the_patch_test_in_3d() {
 /// oscillation (the dual basis keeps each node's force its own). One Newton iteration (small
 /// deformation).
 #[test]
+#[ignore = "long: runs with `cargo test --release -- --ignored` (CI runs both)"]
 fn hertz_sphere_with_mortar_meets_hertz() {
     use hertz::analytic::{compare_hertz_sphere, contact_modulus};
     use hertz::bench::verify::{HertzSphere, HERTZ_R, NU};
@@ -484,6 +485,7 @@ fn rigid_sphere_with_mortar_meets_hertz() {
 /// node's pressure is the exact Cauchy stress of homogeneous uniaxial compression to round-off;
 /// with a penalty the pressure is uniform to round-off. 2 to 3 Newton iterations per step.
 #[test]
+#[ignore = "long: runs with `cargo test --release -- --ignored` (CI runs both)"]
 fn mortar_passes_the_contact_patch_test_in_large_deformation_3d() {
     use hertz::bench::verify::{neo_hookean_law, uniaxial_stress};
     let (lateral, nominal) = uniaxial_stress(&neo_hookean_law(), 1.0 - 0.2 / (2.0 * PATCH_H));
@@ -563,6 +565,7 @@ fn pressures(path: &str, condensed: bool) -> (Vec<f64>, Vec<usize>, (usize, usiz
 /// its own multiplier alone — and the solution is the condensed solve's, in as many iterations.
 /// (2D against a rigid cylinder and an elastic one, 3D patch test and rigid-sphere Hertz.)
 #[test]
+#[ignore = "long: runs with `cargo test --release -- --ignored` (CI runs both)"]
 fn mortar_multipliers_condense_out_of_full_tangents() {
     for (file, all) in [
         ("examples/hertz_mortar.in", true),
