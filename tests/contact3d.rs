@@ -615,3 +615,69 @@ fn large_contact_zone_patch_test_by_gmres() {
         assert!(out.1 <= 2 && (1..=10).contains(&out.2), "{law:?}: {out:?}");
     }
 }
+
+/// Worst relative deviation from Hertz's p(r) = p0 √(1 − r²/a²) (a and p0 from the computed force)
+/// of the closed contact nodes within r < 0.8 a: on the axis, on the symmetry planes x = 0 or
+/// y = 0 (off the axis), and elsewhere, as (min, max) each.
+fn hertz_node_errors(states: &[SlotState]) -> [(f64, f64); 3] {
+    use hertz::analytic::contact_modulus;
+    let e_star = contact_modulus(E, NU, E, NU);
+    let force = 4.0 * states.iter().map(|s| s.force).sum::<f64>();
+    let a = (3.0 * force * HERTZ_R / (4.0 * e_star)).cbrt();
+    let p0 = 3.0 * force / (2.0 * std::f64::consts::PI * a * a);
+    let mut out = [(f64::INFINITY, f64::NEG_INFINITY); 3];
+    for s in states.iter().filter(|s| s.active) {
+        let r = s.x[0].hypot(s.x[1]);
+        if r > 0.8 * a {
+            continue;
+        }
+        let e = s.pressure / (p0 * (1.0 - (r / a).powi(2)).sqrt()) - 1.0;
+        let k = if r < 1e-9 {
+            0
+        } else if s.x[0].abs().min(s.x[1].abs()) < 1e-9 {
+            1
+        } else {
+            2
+        };
+        out[k] = (out[k].0.min(e), out[k].1.max(e));
+    }
+    out
+}
+
+/// Node-to-face pressures node by node on a structured quarter model: on the axis, on the
+/// symmetry planes and inside, every closed node within 0.8 a is within 3 % of Hertz, with
+/// multipliers and with a penalty (1e6, 1e3 E), on bricks and on tetrahedra (each brick cut in
+/// six: an unstructured-like pattern of faces).
+#[test]
+fn node_to_face_pressures_on_symmetry_planes_follow_hertz() {
+    for kind in [Solid::Hex, Solid::Tet] {
+        for law in [Law::Multiplier, Law::Penalty(1e6)] {
+            let text = HertzSphere {
+                kind,
+                sym: 0,
+                h: 0.2,
+                delta: 0.15,
+                nlgeo: false,
+                law,
+                mortar: false,
+            }
+            .input();
+            let (states, _) = solve(&text);
+            let [axis, planes, inside] = hertz_node_errors(&states);
+            println!(
+                "{kind:?} {law:?}: axis {:+.2} %, planes {:+.2} .. {:+.2} %, inside {:+.2} .. {:+.2} %",
+                100.0 * axis.0,
+                100.0 * planes.0,
+                100.0 * planes.1,
+                100.0 * inside.0,
+                100.0 * inside.1
+            );
+            for (what, (lo, hi)) in [("axis", axis), ("planes", planes), ("inside", inside)] {
+                assert!(
+                    lo.is_finite() && lo > -0.03 && hi < 0.03,
+                    "{kind:?} {law:?} {what}: {lo:+.4} .. {hi:+.4}"
+                );
+            }
+        }
+    }
+}
