@@ -9,7 +9,7 @@ use hertz::contact::{ContactSystem, History, Search};
 use hertz::input::read_model;
 use hertz::solve::branches::OnCycle;
 use hertz::solve::condensed::CondensedContact;
-use hertz::solve::linear::LinearSolver;
+use hertz::solve::linear::FaerSolver;
 
 fn compare(multipliers: bool, friction: bool) {
     let path = std::env::temp_dir().join(format!(
@@ -132,7 +132,7 @@ fn compare(multipliers: bool, friction: bool) {
     asm.set_symmetric(!friction);
     asm.set_couplings(&couplings);
     let ev = asm.evaluate(&u, true, false, None, &contribs).unwrap();
-    let mut direct = LinearSolver::default();
+    let mut direct = FaerSolver::default();
     direct
         .factorize(&asm.pattern, ev.k_values.as_ref().unwrap(), false, &|e| {
             e.to_string()

@@ -121,3 +121,57 @@ fn an_observer_hears_phases_iterations_and_steps_in_order() {
     assert_eq!((first.step, first.closed, first.contact_points), (1, 5, 5));
     assert_eq!(first.closed_nodes.len(), 5);
 }
+
+/// Every step's primary vector and iteration count of the input `text` solved with `solver`
+/// (full tangents: the condensed contact step off, so the chosen solver factorizes every tangent).
+fn solve_with(
+    text: &str,
+    solver: hertz::solve::SolverChoice,
+) -> hertz::error::Result<(Vec<Vec<f64>>, Vec<usize>)> {
+    let model = common::model_from_text(text)?;
+    let params = hertz::solve::SolveParams {
+        solver,
+        condensed_contact: false,
+        ..common::quiet()
+    };
+    let mut out = (Vec::new(), Vec::new());
+    run_analysis(&model, &params, |r| {
+        out.0.push(r.u.to_vec());
+        out.1.push(r.info.iterations);
+        Ok(())
+    })?;
+    Ok(out)
+}
+
+/// The Newton driver sees only the `LinearSolver` interface: the sparse faer solver and the
+/// dense LU give the same steps (a geometrically nonlinear cantilever, a frictional block) to
+/// 1e-9 relative in the same iterations, and the dense LU names a mechanism too.
+#[test]
+fn sparse_and_dense_solvers_give_the_same_newton_steps() {
+    use hertz::solve::SolverChoice;
+    let read = |file: &str| {
+        std::fs::read_to_string(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(file))
+            .unwrap()
+            .replace("MAXITER", "30")
+    };
+    for file in [
+        "examples/coulomb_block.in",
+        "tests/data/cantilever_nlgeo.in",
+    ] {
+        let (sparse, its_s) = solve_with(&read(file), SolverChoice::Sparse).unwrap();
+        let (dense, its_d) = solve_with(&read(file), SolverChoice::Dense).unwrap();
+        assert_eq!(its_s, its_d, "{file}");
+        for (a, b) in sparse.iter().zip(&dense) {
+            let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(1e-300);
+            let diff = a
+                .iter()
+                .zip(b)
+                .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+            assert!(diff < 1e-9 * scale, "{file}: {diff:e} of {scale:e}");
+        }
+    }
+    let err = solve_with(&read("tests/data/mechanism.in"), SolverChoice::Dense)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("singular at node"), "{err}");
+}

@@ -13,7 +13,7 @@ pub mod verify;
 use crate::error::{Error, Result};
 use crate::fem::shape::HEXA8_CORNERS;
 use crate::input::read_model;
-use crate::solve::linear::LinearSolver;
+use crate::solve::linear::{FaerSolver, LinearSolver, SolverSettings};
 use crate::solve::ordering::OrderingKind;
 use crate::solve::stepping::reference_load_vectors;
 use std::fmt::Write as _;
@@ -492,9 +492,11 @@ pub fn run(dim: usize, n: usize, ordering: OrderingKind) -> Result<BenchFigures>
     let t = Instant::now();
     let ev = asm.evaluate(&u0, true, false, None, &[])?;
     f.assembly_s = t.elapsed().as_secs_f64();
-    let mut solver = LinearSolver::default();
-    solver.ordering = ordering;
-    solver.groups = Some(dofs.free_eq_nodes());
+    let mut solver = FaerSolver::new(SolverSettings {
+        ordering,
+        groups: Some(dofs.free_eq_nodes()),
+        ..Default::default()
+    });
     let values = ev.k_values.as_ref().expect("tangent requested");
     solver.factorize(&asm.pattern, values, true, &|e| format!("equation {e}"))?;
     let mut rhs = vec![0.0; dofs.n_free];
@@ -504,7 +506,7 @@ pub fn run(dim: usize, n: usize, ordering: OrderingKind) -> Result<BenchFigures>
         }
     }
     solver.solve_in_place(&mut rhs)?;
-    let st = &solver.stats;
+    let st = solver.stats();
     f.ordering = st.ordering;
     f.ordering_s = st.ordering_seconds;
     f.symbolic_s = st.symbolic_seconds;

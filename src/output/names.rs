@@ -110,7 +110,7 @@ mod tests {
         let input = dir.join("model.in");
         std::fs::write(&input, "x").unwrap();
         let kept = |out: &str, d: &Path| {
-            OutputNames::new(d.to_path_buf(), out).check_inputs_kept(&[input.clone()])
+            OutputNames::new(d.to_path_buf(), out).check_inputs_kept(std::slice::from_ref(&input))
         };
         assert!(kept("model.in", &dir).is_err());
         assert!(kept("model.out", &dir).is_ok());

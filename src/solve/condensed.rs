@@ -24,7 +24,7 @@
 //! primal-dual active-set search on the linear model: see `contact::point`).
 
 use super::branches::{BranchSearch, ContactStep, OnCycle};
-use super::linear::LinearSolver;
+use super::linear::{FaerSolver, SolverSettings};
 use crate::assembly::{DofMap, Pattern};
 use crate::contact::point::Branch;
 use crate::contact::ContactPoint;
@@ -42,8 +42,13 @@ pub const REDUNDANCY_COMPLIANCE: f64 = 1e-10;
 /// Largest number of branch updates in one step.
 const MAX_BRANCH_UPDATES: usize = 60;
 
+/// A guess of the branch search kept as the step if the search comes back to a guess: its
+/// points predicted otherwise, δ − Pᵀ f_A, its branches, and the equation a driven mechanism
+/// moves most under it (if it has one).
+type Guess = (usize, Vec<f64>, Vec<Branch>, Option<usize>);
+
 pub struct CondensedContact {
-    base: LinearSolver,
+    base: FaerSolver,
     /// Position of every free equation among the candidates (usize::MAX if none).
     pos: Vec<usize>,
     /// Candidate equations, in the order of M.
@@ -71,9 +76,11 @@ impl CondensedContact {
         if cand.is_empty() || cand.len() > MAX_CANDIDATES || !pattern.symmetric {
             return Ok(None);
         }
-        let mut base = LinearSolver::default();
-        base.groups = groups;
-        base.last_block = Some(cand.clone());
+        let base = FaerSolver::new(SolverSettings {
+            groups,
+            last_block: Some(cand.clone()),
+            ..Default::default()
+        });
         let shift: Vec<f64> = cand
             .iter()
             .map(|e| if lambdas.contains(e) { 1.0 } else { 0.0 })
@@ -206,7 +213,7 @@ impl CondensedContact {
         let mut search = BranchSearch::new(MAX_BRANCH_UPDATES);
         // The guess with the fewest points predicted otherwise (the latest of equals), its
         // δ − Pᵀ f_A: the step if the search comes back to a guess.
-        let mut best: Option<(usize, Vec<f64>, Vec<Branch>, Option<usize>)> = None;
+        let mut best: Option<Guess> = None;
         // Whether a guess without closed points keeps the shift (see below).
         let mut hold = false;
         let shifted = (0..mdim).any(|k| self.shift[k] != 0.0 && !self.is_lambda(k, dofs));

@@ -11,7 +11,9 @@ pub mod report;
 pub mod stepping;
 
 pub use report::{IterationReport, Observer, Phase, Silent, StepReport};
-pub use stepping::{run_analysis, run_analysis_observed, SolveParams, StepInfo, StepResult};
+pub use stepping::{
+    run_analysis, run_analysis_observed, SolveParams, SolverChoice, StepInfo, StepResult,
+};
 
 use crate::assembly::DofMap;
 use crate::contact::ContactSystem;

@@ -16,7 +16,7 @@
 //! it (up to round-off, 1e-12 of its own coupling) and C has full column rank; the others stay
 //! unknowns of the reduced system.
 
-use super::linear::LinearSolver;
+use super::linear::{FaerSolver, LinearSolver, SolverSettings};
 use crate::assembly::Pattern;
 use crate::error::Result;
 
@@ -34,7 +34,7 @@ const COUPLING_TOL: f64 = 1e-12;
 /// The reduced system's solver, kept while its pattern stays the same.
 #[derive(Default)]
 pub struct MultiplierElimination {
-    solver: LinearSolver,
+    solver: FaerSolver,
     pattern: Option<Pattern>,
     /// Multipliers eliminated and kept in the last solve.
     pub eliminated: usize,
@@ -153,10 +153,12 @@ fn qr(c: &[f64], r: usize, p: usize) -> (Vec<f64>, Vec<f64>) {
 
 impl MultiplierElimination {
     /// Reduced systems of `krylov_min` unknowns and more are solved by GMRES (see
-    /// [`LinearSolver`]).
+    /// [`FaerSolver`]).
     pub fn new(krylov_min: usize) -> MultiplierElimination {
-        let mut solver = LinearSolver::default();
-        solver.krylov_min = krylov_min;
+        let solver = FaerSolver::new(SolverSettings {
+            krylov_min,
+            ..Default::default()
+        });
         MultiplierElimination {
             solver,
             ..Default::default()
@@ -165,7 +167,7 @@ impl MultiplierElimination {
 
     /// The reduced system's last factorization and solve.
     pub fn stats(&self) -> &super::linear::SolverStats {
-        &self.solver.stats
+        self.solver.stats()
     }
 
     /// Solve T x = `rhs` in place (T: `values` on `pattern`, displacements and multipliers),
@@ -538,7 +540,7 @@ mod tests {
     /// LU solve's to 1e-13, and return the (eliminated, kept) multipliers.
     fn against_full_solve(a: &[Vec<f64>], rhs: &[f64], groups: &[Group]) -> (usize, usize) {
         let (pattern, values) = dense(a);
-        let mut full = LinearSolver::default();
+        let mut full = FaerSolver::default();
         full.factorize(&pattern, &values, false, &|i| format!("{i}"))
             .unwrap();
         let mut want = rhs.to_vec();

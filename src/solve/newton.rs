@@ -51,7 +51,11 @@ pub(super) struct NewtonContext<'a> {
     pub asm: Assembler<'a>,
     pub contact: ContactSystem,
     pub dofs: &'a DofMap,
-    pub solver: LinearSolver,
+    pub solver: Box<dyn LinearSolver>,
+    /// The node of every free equation (the condensed solve's ordering groups them).
+    pub groups: Option<Vec<usize>>,
+    /// Unknowns from which non-symmetric tangents go to GMRES (multipliers then stay unknowns).
+    pub krylov_min: usize,
     /// The current factorization is the (constant) tangent of a linear problem.
     pub factor_valid: bool,
     /// Small strain and no contact: the tangent is constant.
@@ -250,7 +254,7 @@ impl NewtonContext<'_> {
                 ks.k_values.as_ref().expect("requested"),
                 &cands,
                 lambdas,
-                self.solver.groups.clone(),
+                self.groups.clone(),
                 &describe,
             );
             self.times.factor += since(t);
@@ -411,7 +415,7 @@ impl NewtonContext<'_> {
         // the saddle-point tangent's GMRES, preconditioned with the LDLᵀ of its symmetric part,
         // serves better: the reduced system's symmetric part (gap rows in place of slave rows)
         // is no preconditioner for it.
-        let groups = if nf < self.solver.krylov_min {
+        let groups = if nf < self.krylov_min {
             self.multiplier_groups(points)
         } else {
             Vec::new()

@@ -7,7 +7,7 @@
 //! A step that does not converge is restarted in 2, 4, … substeps (loads and prescribed values
 //! interpolated linearly); after `max_cutbacks` halvings the run stops with an error.
 
-use super::linear::{LinearSolver, SolverStats};
+use super::linear::{DenseLu, FaerSolver, LinearSolver, SolverSettings, SolverStats};
 use super::multipliers::MultiplierElimination;
 use super::newton::{Condensed, NewtonContext};
 use super::report::{Observer, Phase, Silent, StepReport};
@@ -31,6 +31,18 @@ pub struct SolveParams {
     /// [`super::condensed`]); false: full tangents, the multipliers eliminated through their
     /// slave nodes' rows (see [`super::multipliers`]), as beyond the candidates' limit.
     pub condensed_contact: bool,
+    /// The linear solver of the full tangents.
+    pub solver: SolverChoice,
+}
+
+/// Which [`LinearSolver`] factorizes the full tangents.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SolverChoice {
+    /// [`FaerSolver`]: sparse direct factorizations, GMRES for large non-symmetric tangents.
+    #[default]
+    Sparse,
+    /// [`DenseLu`]: a dense LU, the reference for small models.
+    Dense,
 }
 
 impl Default for SolveParams {
@@ -39,6 +51,7 @@ impl Default for SolveParams {
             max_cutbacks: 5,
             krylov_min_unknowns: super::linear::KRYLOV_MIN_UNKNOWNS,
             condensed_contact: true,
+            solver: SolverChoice::Sparse,
         }
     }
 }
@@ -164,14 +177,22 @@ pub fn run_analysis_observed(
         observer.warning(w);
     }
     let slot_nodes: Vec<usize> = initial_states.iter().map(|s| s.node).collect();
-    let mut solver = LinearSolver::default();
-    solver.groups = Some(dofs.free_eq_nodes());
-    solver.krylov_min = params.krylov_min_unknowns;
+    let groups = Some(dofs.free_eq_nodes());
+    let solver: Box<dyn LinearSolver> = match params.solver {
+        SolverChoice::Sparse => Box::new(FaerSolver::new(SolverSettings {
+            groups: groups.clone(),
+            krylov_min: params.krylov_min_unknowns,
+            ..Default::default()
+        })),
+        SolverChoice::Dense => Box::new(DenseLu::default()),
+    };
     let mut ctx = NewtonContext {
         asm,
         contact,
         dofs: &dofs,
         solver,
+        groups,
+        krylov_min: params.krylov_min_unknowns,
         factor_valid: false,
         linear,
         small_strain,
@@ -299,7 +320,7 @@ pub fn run_analysis_observed(
         info.solver = if ctx.eliminate.eliminated + ctx.eliminate.kept > 0 {
             ctx.eliminate.stats().clone()
         } else {
-            ctx.solver.stats.clone()
+            ctx.solver.stats().clone()
         };
         let (searching, contact) = ctx.contact.take_times();
         info.times = PhaseTimes {

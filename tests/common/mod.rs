@@ -15,11 +15,9 @@ pub fn model_from_text(text: &str) -> hertz::error::Result<Model> {
     read.map(|r| r.model)
 }
 
-/// Solver settings of the tests: the defaults, without step lines on stderr.
+/// Solver settings of the tests: the defaults (the library prints nothing).
 pub fn quiet() -> hertz::solve::SolveParams {
-    hertz::solve::SolveParams {
-        ..Default::default()
-    }
+    hertz::solve::SolveParams::default()
 }
 
 /// Solve the input file `path`; return its model, the last step's contact states and residual
@@ -232,7 +230,6 @@ pub fn run_writing_vtu(
             write_outputs: true,
             out_dir,
             vtu_format,
-            ..Default::default()
         },
     )
     .unwrap();

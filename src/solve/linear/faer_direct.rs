@@ -9,10 +9,11 @@
 //! it came from: L_jj² < [`PIVOT_RATIO`]·A_jj means column j is a linear combination of the
 //! columns before it, i.e. a mechanism.
 
-use super::krylov::{gmres, matvec, SymmetricPart};
-use super::ordering::{self, OrderingKind};
+use super::{LinearSolver, SolverSettings, SolverStats};
 use crate::assembly::Pattern;
 use crate::error::{Error, Result};
+use crate::solve::krylov::{gmres, matvec, SymmetricPart};
+use crate::solve::ordering;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, LdltRef, LltRef, SymbolicCholesky,
@@ -29,20 +30,6 @@ use std::time::Instant;
 /// up to round-off: exact rigid-body modes give ratios near 1e-16, the stiffest well-posed models
 /// (slender structures, penalty contact 10⁹ times stiffer than the bodies) stay above 1e-11.
 pub const PIVOT_RATIO: f64 = 1e-13;
-
-/// Timings and sizes of the last factorization (for logs and benchmarks).
-#[derive(Debug, Clone, Default)]
-pub struct SolverStats {
-    pub ordering: &'static str,
-    pub ordering_seconds: f64,
-    pub symbolic_seconds: f64,
-    pub numeric_seconds: f64,
-    pub solve_seconds: f64,
-    pub factor_nnz: usize,
-    pub used_lu: bool,
-    /// GMRES iterations of the last solve (0 for a direct solve).
-    pub krylov_iterations: usize,
-}
 
 /// A sparse LU on a fixed pattern: the symbolic analysis once, a numeric factorization per call.
 /// The matrix is the general pattern's values, or a symmetric pattern's upper triangle mirrored.
@@ -156,7 +143,7 @@ struct Krylov {
     general: Pattern,
     part: SymmetricPart,
     values: Vec<f64>,
-    sym: LinearSolver,
+    sym: FaerSolver,
 }
 
 /// Unknowns from which a general (non-symmetric) matrix is solved by GMRES preconditioned with its
@@ -167,46 +154,68 @@ const LDLT_REGULARIZATION: f64 = 1e-8;
 /// GMRES stops at this relative residual.
 const KRYLOV_TOL: f64 = 1e-12;
 
-/// Factorizes matrices that share one pattern.
-pub struct LinearSolver {
-    /// Fill-reducing ordering to use.
-    pub ordering: OrderingKind,
-    /// Node of every equation (lets METIS order the node graph).
-    pub groups: Option<Vec<usize>>,
-    /// Equations to eliminate last (their Schur complement is then the trailing factor block).
-    pub last_block: Option<Vec<usize>>,
+/// The faer implementation of [`LinearSolver`]: factorizes matrices that share one pattern.
+pub struct FaerSolver {
+    settings: SolverSettings,
     symbolic: Option<SymbolicCholesky<usize>>,
     lu: Option<GeneralLu>,
     /// Parallelism chosen with the symbolic analysis.
     par: Par,
     factor: Factor,
-    /// A symmetric matrix that is not positive definite gets an LDLᵀ with regularized pivots
-    /// instead of an LU: accurate enough to precondition, not to solve (see [`Self::factorize_ldlt`]).
-    pub preconditioner: bool,
-    /// Size from which general matrices go to GMRES.
-    pub krylov_min: usize,
     krylov: Option<Box<Krylov>>,
     /// GMRES failed once on this pattern: LU from then on.
     krylov_failed: bool,
-    pub stats: SolverStats,
+    stats: SolverStats,
 }
 
-impl Default for LinearSolver {
+impl Default for FaerSolver {
     fn default() -> Self {
-        LinearSolver {
-            ordering: OrderingKind::Auto,
-            groups: None,
-            last_block: None,
+        FaerSolver::new(SolverSettings::default())
+    }
+}
+
+impl FaerSolver {
+    /// A solver with `settings` (ordering, node groups, equations to eliminate last, ...).
+    pub fn new(settings: SolverSettings) -> Self {
+        FaerSolver {
+            settings,
             symbolic: None,
             lu: None,
             par: Par::Seq,
             factor: Factor::None,
-            preconditioner: false,
-            krylov_min: KRYLOV_MIN_UNKNOWNS,
             krylov: None,
             krylov_failed: false,
             stats: SolverStats::default(),
         }
+    }
+
+    /// Its settings.
+    pub fn settings(&self) -> &SolverSettings {
+        &self.settings
+    }
+}
+
+impl LinearSolver for FaerSolver {
+    fn factorize(
+        &mut self,
+        pattern: &Pattern,
+        values: &[f64],
+        spd: bool,
+        describe_eq: &dyn Fn(usize) -> String,
+    ) -> Result<()> {
+        FaerSolver::factorize(self, pattern, values, spd, describe_eq)
+    }
+    fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()> {
+        FaerSolver::solve_in_place(self, rhs)
+    }
+    fn stats(&self) -> &SolverStats {
+        &self.stats
+    }
+    fn reset(&mut self) {
+        FaerSolver::reset(self)
+    }
+    fn trailing_factor_block(&self) -> Option<(Vec<usize>, faer::Mat<f64>)> {
+        FaerSolver::trailing_factor_block(self)
     }
 }
 
@@ -219,7 +228,7 @@ fn par_for(pattern: &Pattern) -> Par {
     } else {
         0.5 * per_column
     };
-    if per_column > super::ordering::DENSE_PATTERN_PER_COLUMN {
+    if per_column > crate::solve::ordering::DENSE_PATTERN_PER_COLUMN {
         faer::get_global_parallelism()
     } else {
         Par::Seq
@@ -278,7 +287,7 @@ fn singular_message(at: &str) -> String {
     )
 }
 
-impl LinearSolver {
+impl FaerSolver {
     /// Factorize the matrix given by its values on `pattern` (upper triangle of a symmetric
     /// matrix, or all entries of a general one). When a symmetric matrix must be positive definite
     /// (`spd`: linear elasticity) a failed LLᵀ is a mechanism and is reported at its equation via
@@ -293,7 +302,7 @@ impl LinearSolver {
     ) -> Result<()> {
         let t = Instant::now();
         if !pattern.symmetric {
-            if pattern.n >= self.krylov_min && !self.krylov_failed {
+            if pattern.n >= self.settings.krylov_min && !self.krylov_failed {
                 self.factorize_krylov(pattern, values, describe_eq)?;
             } else {
                 self.factorize_lu(pattern, values)?;
@@ -306,8 +315,12 @@ impl LinearSolver {
             SymbolicSparseColMatRef::new_checked(n, n, &pattern.col_ptr, None, &pattern.row_idx);
         if self.symbolic.is_none() {
             let t = Instant::now();
-            let mut ord = ordering::compute(pattern, self.groups.as_deref(), self.ordering)?;
-            if let Some(last) = &self.last_block {
+            let mut ord = ordering::compute(
+                pattern,
+                self.settings.groups.as_deref(),
+                self.settings.ordering,
+            )?;
+            if let Some(last) = &self.settings.last_block {
                 ord.move_to_end(last);
             }
             self.stats.ordering_seconds = t.elapsed().as_secs_f64();
@@ -319,7 +332,7 @@ impl LinearSolver {
                 Side::Upper,
                 SymmetricOrdering::Custom(perm),
                 CholeskySymbolicParams {
-                    supernodal_flop_ratio_threshold: if self.last_block.is_some() {
+                    supernodal_flop_ratio_threshold: if self.settings.last_block.is_some() {
                         SupernodalThreshold::FORCE_SUPERNODAL
                     } else {
                         SupernodalThreshold::AUTO
@@ -386,7 +399,9 @@ impl LinearSolver {
                     .unwrap_or_default();
                 return Err(Error::Singular(singular_message(&at)));
             }
-            Some(_) if self.preconditioner => self.factorize_ldlt(pattern, values, describe_eq)?,
+            Some(_) if self.settings.preconditioner => {
+                self.factorize_ldlt(pattern, values, describe_eq)?
+            }
             Some(_) => {
                 // Not positive definite: LU on both triangles.
                 self.factorize_lu(pattern, values)?;
@@ -476,13 +491,12 @@ impl LinearSolver {
         describe_eq: &dyn Fn(usize) -> String,
     ) -> Result<()> {
         if self.krylov.is_none() {
-            let mut sym = LinearSolver {
-                ordering: self.ordering,
-                groups: self.groups.clone(),
+            let sym = FaerSolver::new(SolverSettings {
+                ordering: self.settings.ordering,
+                groups: self.settings.groups.clone(),
                 preconditioner: true,
                 ..Default::default()
-            };
-            sym.stats = SolverStats::default();
+            });
             self.krylov = Some(Box::new(Krylov {
                 general: pattern.clone(),
                 part: SymmetricPart::new(pattern),
@@ -612,7 +626,7 @@ impl LinearSolver {
     pub fn trailing_factor_block(&self) -> Option<(Vec<usize>, faer::Mat<f64>)> {
         use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
         use faer::sparse::linalg::cholesky::SymbolicCholeskyRaw;
-        let last = self.last_block.as_ref()?;
+        let last = self.settings.last_block.as_ref()?;
         let symbolic = self.symbolic.as_ref()?;
         let Factor::Llt(values) = &self.factor else {
             return None;
@@ -702,10 +716,10 @@ mod tests {
     /// iterations.
     fn solve(krylov_min: usize, a: &[Vec<f64>], b: &[f64]) -> Result<(Vec<f64>, usize)> {
         let (pattern, values) = from_dense(a);
-        let mut s = LinearSolver {
+        let mut s = FaerSolver::new(SolverSettings {
             krylov_min,
             ..Default::default()
-        };
+        });
         s.factorize(&pattern, &values, false, &|e| format!("equation {e}"))?;
         let mut x = b.to_vec();
         s.solve_in_place(&mut x)?;

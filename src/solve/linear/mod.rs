@@ -1,0 +1,95 @@
+//! Linear solvers behind one interface: analyse a pattern and factorize (or set up) values,
+//! solve in place, report what was done. The Newton driver sees only [`LinearSolver`]; the
+//! condensed contact step asks for the optional trailing Schur block and falls back to full
+//! tangents where a solver has none.
+//!
+//! * [`FaerSolver`] (`faer_direct`): sparse LLᵀ with a fill-reducing ordering, a regularized LDLᵀ
+//!   preconditioner, sparse LU, and GMRES preconditioned by the symmetric part from
+//!   [`SolverSettings::krylov_min`] unknowns on non-symmetric patterns;
+//! * [`DenseLu`] (`dense`): a dense LU with partial pivoting, a reference for small systems.
+//!
+//! A new solver (e.g. PETSc's KSP) implements [`LinearSolver`]; a singular matrix is an
+//! [`crate::error::Error::Singular`] naming the equation through `describe_eq`.
+
+pub mod dense;
+pub mod faer_direct;
+
+pub use dense::DenseLu;
+pub use faer_direct::{FaerSolver, KRYLOV_MIN_UNKNOWNS, PIVOT_RATIO};
+
+use super::ordering::OrderingKind;
+use crate::assembly::Pattern;
+use crate::error::Result;
+
+/// Timings and sizes of the last factorization (for logs and benchmarks).
+#[derive(Debug, Clone, Default)]
+pub struct SolverStats {
+    pub ordering: &'static str,
+    pub ordering_seconds: f64,
+    pub symbolic_seconds: f64,
+    pub numeric_seconds: f64,
+    pub solve_seconds: f64,
+    pub factor_nnz: usize,
+    pub used_lu: bool,
+    /// GMRES iterations of the last solve (0 for a direct solve).
+    pub krylov_iterations: usize,
+}
+
+/// How a solver orders and splits its work.
+#[derive(Debug, Clone)]
+pub struct SolverSettings {
+    /// Fill-reducing ordering to use.
+    pub ordering: OrderingKind,
+    /// Node of every equation (lets METIS order the node graph).
+    pub groups: Option<Vec<usize>>,
+    /// Equations to eliminate last (their Schur complement is then the trailing factor block).
+    pub last_block: Option<Vec<usize>>,
+    /// A symmetric matrix that is not positive definite gets an LDLᵀ with regularized pivots
+    /// instead of an LU: accurate enough to precondition, not to solve.
+    pub preconditioner: bool,
+    /// Size from which general (non-symmetric) matrices go to GMRES.
+    pub krylov_min: usize,
+}
+
+impl Default for SolverSettings {
+    fn default() -> Self {
+        SolverSettings {
+            ordering: OrderingKind::Auto,
+            groups: None,
+            last_block: None,
+            preconditioner: false,
+            krylov_min: KRYLOV_MIN_UNKNOWNS,
+        }
+    }
+}
+
+/// A solver for matrices that share one sparsity pattern.
+pub trait LinearSolver {
+    /// Factorize (or set up) the matrix given by its values on `pattern`: the upper triangle of
+    /// a symmetric pattern, or every entry of a general one. `spd`: the matrix must be positive
+    /// definite (linear elasticity), so a failed Cholesky factorization is a mechanism. A
+    /// singular matrix is an `Error::Singular` naming its equation through `describe_eq`.
+    fn factorize(
+        &mut self,
+        pattern: &Pattern,
+        values: &[f64],
+        spd: bool,
+        describe_eq: &dyn Fn(usize) -> String,
+    ) -> Result<()>;
+
+    /// Solve with the last factorization, `rhs` overwritten by the solution.
+    fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()>;
+
+    /// What the last factorization and solve did.
+    fn stats(&self) -> &SolverStats;
+
+    /// Forget what was analysed (the pattern changed).
+    fn reset(&mut self);
+
+    /// Optional: the trailing block L₂₂ of a Cholesky factor whose last equations are
+    /// [`SolverSettings::last_block`], with the equation at each of its positions (L₂₂L₂₂ᵀ is the
+    /// Schur complement on them). The condensed contact step needs it; None: it is not offered.
+    fn trailing_factor_block(&self) -> Option<(Vec<usize>, faer::Mat<f64>)> {
+        None
+    }
+}
