@@ -596,3 +596,25 @@ fn steps_csv_columns_follow_the_condition_numbers() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// An unknown condition record lists every supported one, mortar and upstream records included
+/// (the list comes from the reader's keyword tables).
+#[test]
+fn unknown_condition_lists_every_supported_record() {
+    let text = std::fs::read_to_string(root().join("tests/data/bad/unknown_load.in")).unwrap();
+    let Err(err) = hertz::input::read_model_str(&text, "unknown_load.in") else {
+        panic!("an unknown record is an error");
+    };
+    let err = err.to_string();
+    for kw in [
+        "DeadWeight",
+        "n2slagrangianmultipliercontact",
+        "s2spenaltycontact",
+        "s2slagrangianmultipliercontact",
+        "StructuralPenaltyContactBC",
+    ] {
+        assert!(err.contains(kw), "{kw}: {err}");
+    }
+    assert!(!err.contains("ConstantPressureLoad"), "{err}");
+    assert!(err.starts_with("unknown_load.in:21:"), "{err}");
+}

@@ -28,6 +28,17 @@ pub fn read_lines_and_sources(path: &Path) -> Result<(Vec<Line>, Vec<PathBuf>)> 
     Ok((out, sources))
 }
 
+/// [`read_lines_and_sources`] of input `text` held in memory under the name `name` (messages
+/// say `name:line`; `@include` and `@gmsh` paths are relative to `name`'s directory, the
+/// current one for a bare name). The sources list the files it splices, not `name`.
+pub fn text_lines_and_sources(name: &Path, text: &str) -> Result<(Vec<Line>, Vec<PathBuf>)> {
+    let mut out = Vec::new();
+    let mut sources = Vec::new();
+    let content = decode_text(name, text.as_bytes())?;
+    splice_text(name, content, &mut out, &mut sources, 0)?;
+    Ok((out, sources))
+}
+
 /// The `@gmsh` meshes among `sources` that have no physical group (and so give no set).
 pub fn meshes_without_groups(lines: &[Line], sources: &[PathBuf]) -> Vec<PathBuf> {
     sources
@@ -63,6 +74,17 @@ fn read_into(
     if !sources.iter().any(|p| p == path) {
         sources.push(path.to_path_buf());
     }
+    splice_text(path, content, out, sources, depth)
+}
+
+/// The logical lines of `content`, the text of `path`, with its includes and meshes spliced.
+fn splice_text(
+    path: &Path,
+    content: &str,
+    out: &mut Vec<Line>,
+    sources: &mut Vec<PathBuf>,
+    depth: usize,
+) -> Result<()> {
     let file = Arc::new(path.to_path_buf());
     let mut pending: Option<(usize, String)> = None;
     for (i, raw) in content.lines().enumerate() {

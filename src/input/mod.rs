@@ -6,4 +6,4 @@ pub mod reader;
 pub mod record;
 pub mod upstream;
 
-pub use reader::{read_model, read_model_warning, ReadResult};
+pub use reader::{read_model, read_model_str, read_model_warning, ReadResult};

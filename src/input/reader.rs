@@ -1,7 +1,7 @@
 //! Builds a [`Model`] from the records of an OOFEM input file in the order of spec §1.2,
 //! checking counts, record numbers and every cross reference.
 
-use super::lexer::{meshes_without_groups, read_lines_and_sources, Line};
+use super::lexer::{meshes_without_groups, read_lines_and_sources, text_lines_and_sources, Line};
 use super::record::Record;
 use crate::error::{Error, Result};
 use crate::model::*;
@@ -20,10 +20,6 @@ pub struct ReadResult {
 /// Upper bound on the number of steps (guards allocations against absurd inputs).
 const MAX_STEPS: usize = 10_000_000;
 const SUPPORTED_ANALYSES: &str = "LinearStatic, NonLinearStatic, StaticStructural";
-const SUPPORTED_BCS: &str =
-    "BoundaryCondition, NodalLoad, ConstantEdgeLoad, ConstantSurfaceLoad, DeadWeight, \
-                             n2npenaltycontact, n2nlagrangianmultipliercontact, n2spenaltycontact, \
-                             n2slagrangianmultipliercontact";
 
 struct Cursor<'w> {
     lines: Vec<Line>,
@@ -98,14 +94,39 @@ const MATERIAL_KEYWORDS: [&str; 4] = [
     "ogdencompressiblemat",
     "simopistermat",
 ];
+/// Boundary condition and load records (keywords compare case-insensitively).
 const LOAD_KEYWORDS: [&str; 6] = [
-    "boundarycondition",
-    "nodalload",
-    "constantedgeload",
-    "constantsurfaceload",
-    "constantpressureload",
-    "deadweight",
+    "BoundaryCondition",
+    "NodalLoad",
+    "ConstantEdgeLoad",
+    "ConstantSurfaceLoad",
+    "ConstantPressureLoad",
+    "DeadWeight",
 ];
+/// The upstream OOFEM contact condition record.
+const UPSTREAM_CONDITION: &str = "StructuralPenaltyContactBC";
+/// Records of the boundary-condition block that hertz reads but refuses with a message of their
+/// own (not offered as supported).
+const REFUSED_CONDITIONS: [&str; 1] = ["ConstantPressureLoad"];
+
+/// The boundary-condition block's supported records, from the keyword tables.
+fn supported_conditions() -> String {
+    LOAD_KEYWORDS
+        .iter()
+        .filter(|k| !REFUSED_CONDITIONS.contains(k))
+        .copied()
+        .chain(super::contact::CONDITION_KEYWORDS)
+        .chain([UPSTREAM_CONDITION])
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Whether `kw` (lower case) is a record of the boundary-condition block.
+fn is_condition(kw: &str) -> bool {
+    LOAD_KEYWORDS.iter().any(|k| k.eq_ignore_ascii_case(kw))
+        || super::contact::CONDITION_KEYWORDS.contains(&kw)
+        || UPSTREAM_CONDITION.eq_ignore_ascii_case(kw)
+}
 const FUNCTION_KEYWORDS: [&str; 3] = ["constantfunction", "piecewiselinfunction", "peakfunction"];
 
 impl Block {
@@ -124,12 +145,7 @@ impl Block {
             }
             _ if super::contact::SEGMENTS.contains(&kw) => Block::Segment,
             _ if MATERIAL_KEYWORDS.contains(&kw) => Block::Material,
-            _ if LOAD_KEYWORDS.contains(&kw)
-                || super::contact::CONDITION_KEYWORDS.contains(&kw)
-                || kw == "structuralpenaltycontactbc" =>
-            {
-                Block::Condition
-            }
+            _ if is_condition(kw) => Block::Condition,
             _ if FUNCTION_KEYWORDS.contains(&kw) => Block::TimeFunction,
             _ => return None,
         })
@@ -238,10 +254,30 @@ pub fn read_model(path: &Path) -> Result<ReadResult> {
     Ok(ReadResult { warnings, ..model })
 }
 
+/// Read and check an OOFEM input held in memory, named `name` in messages (e.g. a model built
+/// by a script); `@include` and `@gmsh` paths are relative to `name`'s directory.
+pub fn read_model_str(text: &str, name: &str) -> Result<ReadResult> {
+    let mut warnings = Vec::new();
+    let path = Path::new(name);
+    let (lines, sources) = text_lines_and_sources(path, text)?;
+    let model = model_from_lines(path, lines, sources, &mut warnings)?;
+    Ok(ReadResult { warnings, ..model })
+}
+
 /// [`read_model`], collecting the warnings into `warnings` (also those met before an error: an
 /// unread token is often its cause). The result's own `warnings` are empty.
 pub fn read_model_warning(path: &Path, warnings: &mut Vec<String>) -> Result<ReadResult> {
     let (lines, sources) = read_lines_and_sources(path)?;
+    model_from_lines(path, lines, sources, warnings)
+}
+
+/// The model of the logical `lines` of input `path` (its `sources` the files it consists of).
+fn model_from_lines(
+    path: &Path,
+    lines: Vec<Line>,
+    sources: Vec<PathBuf>,
+    warnings: &mut Vec<String>,
+) -> Result<ReadResult> {
     let groupless = meshes_without_groups(&lines, &sources);
     let file = path.display().to_string();
     if lines.len() < 2 {
@@ -827,7 +863,8 @@ pub fn read_model_warning(path: &Path, warnings: &mut Vec<String>) -> Result<Rea
             }
             _ => {
                 return Err(r.error(format!(
-                    "unsupported boundary condition or load `{kw}`; supported: {SUPPORTED_BCS}"
+                    "unsupported boundary condition or load `{kw}`; supported: {}",
+                    supported_conditions()
                 )))
             }
         }
