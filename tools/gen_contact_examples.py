@@ -224,7 +224,7 @@ Run:  cargo run --release --example hertz -- examples/hertz_cylinder.in
     ).replace("hertz_cylinder.in", "hertz_cylinder_mortar.in").replace(
         "F is twice the sum of the reactions on the cap's top (half model).",
         "F is twice the sum of the nodal contact forces (half model).\n"
-        "hertz: p0 and a within 1 % of Hertz (tests/mortar.rs).")
+        "hertz: p0 and a within 1 % of Hertz (tests/suite/mortar.rs).")
     lines = header("hertz_cylinder_mortar.out",
                    "Hertz: elastic cylinder on an elastic block, mortar contact (plane strain)", comment_m)
     sets.append(f"Set 7 elementboundaries {2 * len(cap_bottom_elems)} " + " ".join(f"{e} 3" for e in cap_bottom_elems))
@@ -308,7 +308,7 @@ Analytical solution (Cattaneo 1938, Mindlin 1949; Johnson, Contact Mechanics, 7.
 for the force P, P and Q per unit thickness:
   stick zone |x| < c,  c = a sqrt(1 - Q/(mu P))
   q(x) = mu p0 sqrt(1 - x^2/a^2) - mu p0 (c/a) sqrt(1 - x^2/c^2)  (|x| < c),  mu p(x) in the slip zone
-Checks (tests/friction.rs): c within one element (h = {h:g}), q(x) against the formula.
+Checks (tests/suite/friction.rs): c within one element (h = {h:g}), q(x) against the formula.
 hertz: P = 5.7449, Q = 0.8293 (Q/(mu P) = 0.481), a = 0.5160, c = 0.3717; stick zone half-width
 0.3689; q(x) within 3.1 % of mu p0 (beyond one element from the cusp at +-c); 2 and 3 iterations.
 Run:  cargo run --release -- run examples/cattaneo_mindlin.in
@@ -356,7 +356,7 @@ node: the nodal contact pressures, weighted over the slave edges (no tributary l
 Analytical solution (Hertz, rigid indenter, F per unit thickness of the full cylinder):
   E* = E/(1 - nu^2),  a = sqrt(4 F R/(pi E*)),  p0 = sqrt(F E*/(pi R)),  p(x) = p0 sqrt(1 - x^2/a^2)
 F is twice the sum of the nodal contact forces (half model).
-hertz: p0 and a within 1 % of Hertz, the pressure smooth (tests/mortar.rs).
+hertz: p0 and a within 1 % of Hertz, the pressure smooth (tests/suite/mortar.rs).
 Run:  cargo run --release -- run examples/hertz_mortar.in
 """
     lines = header("hertz_mortar.out", "Hertz: rigid cylinder on an elastic block, mortar contact (plane strain)", comment)

@@ -106,7 +106,7 @@ c1 = {c1:.6}, c2 = 0, k = {k:.6} the nominal pressure is P = {p:.10} at the late
 {lateral:.10} where the lateral nominal stress vanishes: each contact node carries P times its
 reference tributary area, and its (true) contact pressure is P / {lateral:.6}^2 = {sigma:.10}.
 hertz: every node's pressure equals {sigma:.10} to 1e-12, 2-3 Newton iterations per step
-(tests/examples.rs; all six face numbers, tets and wedges in tests/contact3d.rs).
+(tests/suite/examples.rs; all six face numbers, tets and wedges in tests/suite/contact3d.rs).
 Run:  cargo run --release -- run examples/patch3d.in",
                 h = PATCH_H
             ),
@@ -136,7 +136,7 @@ Analytical solution (Hertz, force F of the full sphere = 4 x the quarter's conta
   1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2,  a = (3 F R/(4 E*))^(1/3),  p0 = 3 F/(2 pi a^2)
 p0 is the pressure of the node on the axis, a the radius of the ellipse fitted to the active nodes.
 hertz: p0 +0.05 %, a -0.87 % of Hertz for the computed F (bounds 3 % and 5 %, in every
-orientation of the bricks: tests/contact3d.rs).
+orientation of the bricks: tests/suite/contact3d.rs).
 Run:  cargo run --release -- run examples/hertz_sphere.in"
             ),
             input: sphere.input(),
@@ -152,7 +152,7 @@ Analytical solution (Hertz, force F of the full sphere = 4 x the quarter's conta
   1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2,  a = (3 F R/(4 E*))^(1/3),  p0 = 3 F/(2 pi a^2)
 p0 is the pressure of the node on the axis, a the radius of the ellipse fitted to the active nodes.
 hertz: p0 +0.87 %, a -0.83 % of Hertz for the computed F, no pressure above p0 by more than
-0.9 %, 1 iteration (tests/mortar.rs: also wedges and tetrahedra, and the penalty from the mesh).
+0.9 %, 1 iteration (tests/suite/mortar.rs: also wedges and tetrahedra, and the penalty from the mesh).
 Run:  cargo run --release -- run examples/hertz_sphere_mortar.in"
             ),
             input: HertzSphere {
@@ -174,7 +174,7 @@ References: global equilibrium (the clamp reactions balance the applied forces t
 point symmetry about the model's centre (the two beams' answers agree to 1e-8), and the
 clamp force converging as h^2 with the mesh:
   elements 20 x 2: -0.599854,  40 x 4: -0.626077,  80 x 8: -0.632189
-hertz: 2-4 Newton iterations per step (tests/contact3d.rs).
+hertz: 2-4 Newton iterations per step (tests/suite/contact3d.rs).
 Run:  cargo run --release -- run examples/two_beams.in"
             ),
             input: TwoBeams {
@@ -230,7 +230,7 @@ node held in y: plane strain in 3D. Node-to-face contact with multipliers, the c
 nodes within x <= 1.2 on the block's top faces.
 Reference: the force per unit depth equals the 2D node-to-segment force of cylinder2d.in.
 hertz: equal to 1e-9 with multipliers, 1e-4 with a penalty, with the bricks numbered so
-that each of their six face numbers is on the contact surfaces (tests/contact3d.rs, at
+that each of their six face numbers is on the contact surfaces (tests/suite/contact3d.rs, at
 spacing 0.1; this file uses {CYLINDER_H}).
 Run:  cargo run --release -- run examples/cylinder3d.in"
             ),
@@ -252,7 +252,7 @@ top from the summit by 2.5 in 25 steps, over ten master vertices, tilting by 15 
 plane strain, neo-Hookean, large deformation, node-to-segment with multipliers.
 Reference: frictionless contact, so the drag force is the press force times the slope of the
 bump under the contact's centre; hertz: within 0.1 % at every step, Newton quadratic,
-at most 3 iterations per step (tests/contact3d.rs).
+at most 3 iterations per step (tests/suite/contact3d.rs).
 Run:  cargo run --release -- run examples/large_sliding.in"
             ),
             input: LargeSliding {
@@ -274,7 +274,7 @@ the die's lowest point 0.03 above the slab at x = -2.7; its two ends pressed dow
 t in [0, 1] (10 steps), then moved along x by {slide} over t in [1, 5] (40 steps); the slab's
 bottom held. Mortar contact with multipliers, the slab's top the slave side, mu = {mu}.
 {n} x 1 die elements, {nx} x {ny} slab elements.
-No closed form. Checks (tests/friction.rs): the die's reaction balances the slab's, every
+No closed form. Checks (tests/suite/friction.rs): the die's reaction balances the slab's, every
 slipping slave node carries mu times its normal force, in sliding Fx/Fy > mu (friction plus
 the slab pushed ahead of the die); every step converges without a cut-back.
 hertz: Fy = 1.837 at t = 1 (slab meshes 20 x 3: 2.481, 60 x 8: 1.661); Fx/Fy 0.313-0.373 in
@@ -307,7 +307,7 @@ Published: vertical force at t = 1 in 268-332 N, Fx/Fy at t = 1.5 in 0.30-0.53.
 hertz: Fy = 316.2 N at t = 1 (frictionless 309.6), Fx/Fy = 0.325 at t = 1.5 (block 80 x 14:
 317.4 and 0.327; 60 x 10 with slide steps of 0.05: 318.6 and 0.324); 1-5 Newton iterations
 per step up to t = 1.87, then 3-7 as the die nears the block's end, no cut-back. Checked in
-tests/friction.rs. Force histories: hertz plot shallow_ironing.steps.csv --chart load --time
+tests/suite/friction.rs. Force histories: hertz plot shallow_ironing.steps.csv --chart load --time
 Run:  cargo run --release -- run examples/shallow_ironing.in",
                 slides = ((SHALLOW_IRONING.end - 1.0) / SHALLOW_IRONING.slide_dt).round(),
                 mu = SHALLOW_IRONING.mu,

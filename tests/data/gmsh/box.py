@@ -1,4 +1,4 @@
-"""Regenerate the Gmsh test meshes of tests/gmsh.rs (pip install gmsh; python3 box.py).
+"""Regenerate the Gmsh test meshes of tests/suite/gmsh.rs (pip install gmsh; python3 box.py).
 
 Unit cube in hexahedra, tetrahedra and prisms; unit square in quadrangles, triangles,
 6-node triangles and 8-node quadrangles. Physical groups: the body (1), faces/edges x = 0 (2), y = 0 (3), z = 0 or
@@ -57,7 +57,7 @@ def square(name, kind):
         gmsh.model.mesh.setOrder(2)
     gmsh.write(name + ".msh")
     if name == "square_tri":
-        # The same mesh in the other format: tests/gmsh.rs compares the two conversions.
+        # The same mesh in the other format: tests/suite/gmsh.rs compares the two conversions.
         gmsh.option.setNumber("Mesh.MshFileVersion", 2.2)
         gmsh.write(name + "_v22.msh")
         gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)

@@ -1,6 +1,6 @@
 //! 3D node-to-face contact through the whole program, against exact solutions.
 
-mod common;
+use crate::common;
 
 use hertz::analytic::{compare_hertz_sphere, contact_modulus};
 use hertz::bench::mesh::{hex_face_on, Solid};

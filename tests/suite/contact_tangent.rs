@@ -10,7 +10,7 @@
 //! tangent over the multipliers too. A penalty point's tangent with a held force (the solver's
 //! `ContactPoint::hold_force`) is checked against the residual ε·g·v written as ε·v ⊗ ∇g − λ·∂v.
 
-mod common;
+use crate::common;
 
 use common::{face_input, label_of_slave, strip, LM, PEN};
 
@@ -764,7 +764,7 @@ fn mortar_tangents_are_jacobians_of_residuals() {
 /// in large deformation, where the geometric part λ ∂B is not zero ([`mortar2d_cases`]: straight
 /// and quadratic edges, a rigid circle moving with a node). The penalty laws drop the geometric
 /// part there (`geometric_tangent_is_dropped_only_beyond_a_pressure_of_e`,
-/// tests/contact_geometry.rs).
+/// tests/suite/contact_geometry.rs).
 #[test]
 fn multiplier_tangent_keeps_its_geometric_part_beyond_a_pressure_of_e() {
     let law = "s2slagrangianmultipliercontact 4 loadTimeFunction 1 slavesegment 1 segmentset 1 2";

@@ -2,7 +2,7 @@
 //! uniform pressure transferred exactly, where node-to-segment contact is not and refinement does
 //! not help), and the exactness of its tangent.
 
-mod common;
+use crate::common;
 
 use hertz::bench::mesh::Solid;
 use hertz::bench::suite::Law;

@@ -4,7 +4,7 @@
 //! * Free uniaxial stress (rollers on three faces, the x = 1 face moved by 0.2): the lateral
 //!   stretch λt and the axial force P11 = reaction over the unit area, quadratic Newton.
 
-mod common;
+use crate::common;
 
 use hertz::fem::shape::HEXA8_CORNERS;
 use hertz::solve::run_analysis;

@@ -1,7 +1,7 @@
 //! Newton driver: quadratic convergence of full Newton on a geometrically nonlinear problem,
 //! step cut-back when an iteration limit is hit, and a clear error when cutting cannot help.
 
-mod common;
+use crate::common;
 
 use hertz::solve::run_analysis;
 use std::path::PathBuf;

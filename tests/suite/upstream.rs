@@ -3,7 +3,7 @@
 //! `../shared/spec/oofem-upstream-contact.md` §5 (tests/data/upstream), against the figures the
 //! upstream binary gives where it is right.
 
-mod common;
+use crate::common;
 
 use hertz::solve::run_analysis;
 use std::path::Path;

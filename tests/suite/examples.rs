@@ -1,6 +1,6 @@
 //! Examples are verifications: each runs and meets its analytical reference.
 
-mod common;
+use crate::common;
 
 use hertz::app::{run_file, RunOptions};
 use hertz::output::check::RuleKind;

@@ -3,7 +3,7 @@
 //! file formats, with mirrored elements turned right; `hertz import` writes what `@gmsh` reads;
 //! the Hertz example meshed in Gmsh meets the analytical solution.
 
-mod common;
+use crate::common;
 
 use hertz::mesh::gmsh::{convert, Plane};
 use hertz::output::vtu::VtuFormat;

@@ -3,7 +3,7 @@
 //! and with multipliers, and the penalty answer equals its multiplier twin within the penalty's
 //! own error (estimated from a run with a tenth of the penalty, Richardson's rule).
 
-mod common;
+use crate::common;
 
 use hertz::bench::suite::{self, setups, twin_mismatch, Law};
 

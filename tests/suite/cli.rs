@@ -2,7 +2,7 @@
 //! (tests/data/bad, expectations in tests/data/bad/EXPECTED.txt): each must give its specific
 //! message with file:line, exit code 2, and write nothing.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

@@ -3,7 +3,7 @@
 //! tests (a linear displacement field prescribed on the boundary of a distorted patch is
 //! reproduced exactly inside, small strain and total Lagrangian alike) for every element type.
 
-mod common;
+use crate::common;
 
 use hertz::fem::shape::HEXA8_CORNERS;
 use hertz::fem::{rule, Shape};

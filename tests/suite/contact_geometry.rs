@@ -9,7 +9,7 @@
 //! * deep inside a curved rigid master (a pressure above E) the assembled tangent is the exact one
 //!   without its geometric part; at any reachable state it is exact.
 
-mod common;
+use crate::common;
 
 use common::{face_input, label_of_slave, strip, PEN};
 use hertz::assembly::DofMap;

@@ -2,7 +2,7 @@
 //! (examples/coulomb_block.in, Code_Aster SSNV503 style), the force a sliding block transmits,
 //! and the friction history restored when a step is cut back.
 
-mod common;
+use crate::common;
 
 use hertz::solve::{run_analysis, SolveParams};
 use std::path::Path;

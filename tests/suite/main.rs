@@ -1,0 +1,24 @@
+//! hertz's integration tests, one binary (one link step) with a module per area. `cargo test
+//! --release` runs the everyday suite; the long group (ironing histories, 3D series, the largest
+//! finite-difference checks) is marked `#[ignore = "long: ..."]` and runs with `-- --ignored`.
+//! One area: `cargo test --release --test suite friction::`.
+
+mod common;
+
+mod cli;
+mod condensed;
+mod contact3d;
+mod contact_geometry;
+mod contact_suite;
+mod contact_tangent;
+mod elements;
+mod examples;
+mod friction;
+mod gmsh;
+mod hyperelastic;
+mod mortar;
+mod newton;
+mod oofem_suite;
+mod plot;
+mod robustness;
+mod upstream;
