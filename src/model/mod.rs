@@ -3,6 +3,7 @@
 
 pub mod contact;
 pub mod functions;
+pub mod queries;
 pub use contact::{ContactCondition, ContactLaw, ContactSegment, Friction, Pairing, SegmentKind};
 pub use functions::TimeFunction;
 

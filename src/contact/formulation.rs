@@ -1,0 +1,360 @@
+//! The vocabulary every contact formulation shares: what a node is paired with ([`Partner`]),
+//! its state after an evaluation ([`SlotState`]) and friction history ([`Anchor`]), how partners
+//! are searched ([`Search`]), the state a formulation is evaluated at ([`Ctx`]) and the local
+//! unknowns of a point ([`Local`]), the [`Formulation`] trait, and the glue from a law to a
+//! point ([`apply_law`]).
+
+use super::dual::{self, DVec, Dual};
+use super::law::{self, Laws};
+use super::point::ContactPoint;
+use crate::assembly::DofMap;
+use crate::error::{Error, Result};
+use crate::model::queries::model_size;
+use crate::model::{ContactLaw, Model};
+
+/// What a contact node is paired with at the current state (the contact point itself is
+/// recomputed at every evaluation).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Partner {
+    None,
+    /// A fixed master node (node-to-node).
+    Node(usize),
+    /// An edge of the condition's master surface (index into its edges).
+    Edge(usize),
+    /// A face of the condition's master surface (index into its faces).
+    Face(usize),
+    /// A rigid segment (model segment index).
+    Rigid(usize),
+}
+
+/// Contact state of one contact node after an evaluation.
+#[derive(Debug, Clone)]
+pub struct SlotState {
+    /// BC record number of the condition.
+    pub condition: usize,
+    pub node: usize,
+    pub partner: Partner,
+    /// Contact point parameters on the partner (edge s ∈ [0, 1], face (ξ, η), polynomial
+    /// abscissa; unused ones 0).
+    pub xi: [f64; 2],
+    /// Signed gap (NaN without a partner).
+    pub gap: f64,
+    /// Normal contact force on the node (≥ 0 in compression).
+    pub force: f64,
+    pub pressure: f64,
+    pub active: bool,
+    /// Current node position.
+    pub x: [f64; 3],
+    /// Boundary weight of the contact point (1 on its partner, less past an open end or edge).
+    pub weight: f64,
+    /// Its constraint repeats one of another condition (two-pass contact with multipliers) and
+    /// is dropped.
+    pub repeated: bool,
+    /// Friction of a closed point: stick (else slip) and the friction force's magnitude.
+    pub friction: Option<(bool, f64)>,
+    /// Friction history this state leaves if it is the converged one: the anchor for the next
+    /// step (None: no partner, or no friction).
+    pub anchor: Option<Anchor>,
+}
+
+impl SlotState {
+    /// The state of condition `condition`'s contact node `node` at `x` before its evaluation:
+    /// no partner, no force.
+    pub fn unpaired(condition: usize, node: usize, x: [f64; 3]) -> SlotState {
+        SlotState {
+            condition,
+            node,
+            partner: Partner::None,
+            xi: [f64::NAN; 2],
+            gap: f64::NAN,
+            force: 0.0,
+            pressure: 0.0,
+            active: false,
+            x,
+            weight: 1.0,
+            repeated: false,
+            friction: None,
+            anchor: None,
+        }
+    }
+}
+
+/// The master's material point a frictional contact node sticks to (the friction history).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Anchor {
+    /// The partner the point belongs to (an edge, or a rigid segment).
+    pub partner: Partner,
+    /// Its parameter on an edge.
+    pub xi: [f64; 2],
+    /// Its position relative to a rigid segment's origin (which moves with the segment's node).
+    pub offset: [f64; 3],
+}
+
+/// How partners are found in an evaluation.
+#[derive(Debug, Clone, Copy)]
+pub enum Search<'a> {
+    /// Search every node.
+    Fresh,
+    /// Search, but keep a node's previous partner while it remains valid (hysteresis: a node on a
+    /// vertex does not alternate between the two edges).
+    Hint(&'a [SlotState]),
+    /// Keep the given partners (the finite-difference tests: the tangent is the derivative of the
+    /// residual at fixed partners, with the contact point still moving).
+    Frozen(&'a [SlotState]),
+}
+
+impl<'a> Search<'a> {
+    /// The same search restricted to one formulation's states.
+    pub(super) fn slice(&self, range: std::ops::Range<usize>) -> Search<'a> {
+        match *self {
+            Search::Fresh => Search::Fresh,
+            Search::Hint(s) => Search::Hint(&s[range]),
+            Search::Frozen(s) => Search::Frozen(&s[range]),
+        }
+    }
+
+    /// Previous partner and parameter of slot k, and whether it must be kept.
+    pub fn previous(&self, k: usize) -> Option<(Partner, [f64; 2], bool)> {
+        match self {
+            Search::Fresh => None,
+            Search::Hint(s) => s.get(k).map(|s| (s.partner, s.xi, false)),
+            Search::Frozen(s) => s.get(k).map(|s| (s.partner, s.xi, true)),
+        }
+    }
+}
+
+/// The state a formulation is evaluated at.
+pub struct Ctx<'a> {
+    pub model: &'a Model,
+    pub dofs: &'a DofMap,
+    pub u: &'a [f64],
+    pub dim: usize,
+    pub laws: &'a Laws,
+    /// The primary state of the last converged step (the friction history's), if given.
+    pub start: Option<&'a [f64]>,
+}
+
+/// The friction history: the contact states of the last converged step and its primary state.
+#[derive(Debug, Clone, Copy)]
+pub struct History<'a> {
+    pub states: &'a [SlotState],
+    pub u: &'a [f64],
+}
+
+impl Ctx<'_> {
+    /// A node's position at the last converged step (its reference position without one).
+    pub fn start_position(&self, n: usize) -> [f64; 3] {
+        let mut x = self.model.nodes[n].coords;
+        if let Some(u) = self.start {
+            for (d, xd) in x.iter_mut().enumerate().take(self.dim) {
+                if let Some(code) = self.dofs.code(n, d as u8 + 1) {
+                    *xd += self.dofs.value(u, code);
+                }
+            }
+        }
+        x
+    }
+
+    /// Current position of a node and the location codes of its displacement DOFs.
+    pub fn position(&self, n: usize) -> Result<([f64; 3], [usize; 3])> {
+        let mut x = self.model.nodes[n].coords;
+        let mut codes = [0; 3];
+        for d in 0..self.dim {
+            let code = self.dofs.code(n, d as u8 + 1).ok_or_else(|| {
+                Error::Solve(format!(
+                    "contact node {} has no DOF {}",
+                    self.model.nodes[n].label,
+                    d + 1
+                ))
+            })?;
+            x[d] += self.dofs.value(self.u, code);
+            codes[d] = code;
+        }
+        Ok((x, codes))
+    }
+}
+
+/// The local unknowns of one contact point: the positions of its nodes.
+pub struct Local {
+    pub nodes: Vec<usize>,
+    pub codes: Vec<usize>,
+    vals: Vec<f64>,
+    pub(super) dim: usize,
+}
+
+impl Local {
+    pub fn new(dim: usize) -> Local {
+        Local {
+            nodes: Vec::new(),
+            codes: Vec::new(),
+            vals: Vec::new(),
+            dim,
+        }
+    }
+
+    /// Add a node (once); returns its local index.
+    pub fn add(&mut self, ctx: &Ctx, n: usize) -> Result<usize> {
+        if let Some(k) = self.nodes.iter().position(|&m| m == n) {
+            return Ok(k);
+        }
+        let (x, codes) = ctx.position(n)?;
+        self.nodes.push(n);
+        self.codes.extend_from_slice(&codes[..self.dim]);
+        self.vals.extend_from_slice(&x[..self.dim]);
+        Ok(self.nodes.len() - 1)
+    }
+
+    pub fn index(&self, n: usize) -> usize {
+        self.nodes
+            .iter()
+            .position(|&m| m == n)
+            .expect("node added to the local unknowns")
+    }
+
+    /// Current positions of the local nodes, node after node.
+    pub fn values(&self) -> &[f64] {
+        &self.vals
+    }
+
+    /// Number of local displacement unknowns.
+    pub fn m(&self) -> usize {
+        self.vals.len()
+    }
+
+    /// The node positions as dual vectors (each coordinate an unknown).
+    pub fn seed(&self) -> Vec<DVec> {
+        let m = self.m();
+        assert!(m <= dual::MAXV, "contact pair with {m} unknowns");
+        let q = dual::seed(&self.vals, m);
+        (0..self.nodes.len())
+            .map(|k| {
+                let mut v = [Dual::constant(0.0, m); 3];
+                v[..self.dim].copy_from_slice(&q[k * self.dim..(k + 1) * self.dim]);
+                v
+            })
+            .collect()
+    }
+
+    /// B = Σ_k c_k n placed at node k's unknowns, for coefficients per local node.
+    pub fn distribute(&self, coeffs: &[(usize, Dual)], n: &DVec) -> Vec<Dual> {
+        let m = self.m();
+        let mut b = vec![Dual::constant(0.0, m); m];
+        for &(k, c) in coeffs {
+            for i in 0..self.dim {
+                b[k * self.dim + i] = b[k * self.dim + i] + c * n[i];
+            }
+        }
+        b
+    }
+
+    /// [`Local::distribute`] as jets over the local unknowns.
+    pub fn distribute_jets(&self, coeffs: &[(usize, Dual)], n: &DVec) -> Vec<dual::Jet> {
+        self.distribute(coeffs, n)
+            .into_iter()
+            .map(dual::Jet::from)
+            .collect()
+    }
+}
+
+/// A contact formulation (one condition of the input).
+pub trait Formulation {
+    /// Number of contact points (slots): one per contact node.
+    fn n_slots(&self) -> usize;
+    /// Lagrange multipliers it adds (numbered after all displacement equations).
+    fn n_multipliers(&self) -> usize;
+    /// Nodes that must carry displacement DOFs even without elements.
+    fn nodes_needing_dofs(&self) -> Vec<usize>;
+    /// The nodes whose DOFs its contributions can touch from the state `ctx` on, as far as
+    /// the geometry tells (the contact nodes, and the master nodes near them).
+    fn candidate_nodes(&self, ctx: &Ctx) -> Result<Vec<usize>>;
+    /// Whether its tangent is symmetric (B = ∇g at every contact point).
+    fn symmetric(&self) -> bool;
+    /// The master nodes of a partner (an edge's or a face's nodes; none for others).
+    fn partner_nodes(&self, _partner: Partner) -> &[usize] {
+        &[]
+    }
+    /// Evaluate every slot at `ctx`; `first_lambda` is the equation of its first multiplier,
+    /// `history` the converged states of the last step (the friction history), if any.
+    /// Returns the seconds spent searching partners.
+    fn evaluate(
+        &self,
+        ctx: &Ctx,
+        first_lambda: usize,
+        search: Search,
+        history: Option<&[SlotState]>,
+        points: &mut Vec<ContactPoint>,
+        states: &mut Vec<SlotState>,
+    ) -> Result<f64>;
+}
+
+/// The modulus of friction's c_T at a slave node of modulus `slave` against a master of modulus
+/// `master`: the two in series, E_s E_m / (E_s + E_m), as the tangential compliance of the
+/// contact is the sum of the two bodies'. With the slave's alone, c_T of a stiff slave on a
+/// soft master (the shallow ironing's die, ten times the block's E) is ten times the contact's
+/// stiffness, and the stick/slip iteration cycled at nodes on the stick–slip boundary.
+pub fn friction_modulus(slave: f64, master: f64) -> f64 {
+    if master.is_infinite() || !(master > 0.0) {
+        slave
+    } else {
+        slave * master / (slave + master)
+    }
+}
+/// The area a contact node stands for in the laws: its tributary area, or for a node on no
+/// contact surface (an isolated node) that of a tenth of the model's size.
+pub fn law_area(tributary: f64, model: &Model) -> f64 {
+    if tributary > 0.0 {
+        tributary
+    } else {
+        (0.1 * model_size(model)).powi(model.domain.nsd() as i32 - 1)
+    }
+}
+
+/// Apply a condition's law to the kinematics of one contact point and complete its state.
+/// `lambda_eqs`: the equations of the point's multipliers (the friction force's components, if
+/// any, then the normal force).
+pub fn apply_law(
+    ctx: &Ctx,
+    law: ContactLaw,
+    lambda_eqs: Option<std::ops::Range<usize>>,
+    local: &Local,
+    kin: &law::PointKinematics,
+    area: f64,
+    state: &mut SlotState,
+) -> ContactPoint {
+    let codes = local.codes.clone();
+    let multipliers = law == ContactLaw::Multiplier;
+    let (point, penalty) = match (law, lambda_eqs) {
+        (ContactLaw::Penalty(p), None) => (law::penalty::evaluate(ctx.laws, p, codes, kin), p),
+        (law, Some(eqs)) => {
+            // A penalty with its forces as unknowns: its compliance 1/ε.
+            let compliance = match law {
+                ContactLaw::Penalty(p) => 1.0 / p,
+                ContactLaw::Multiplier => 0.0,
+            };
+            let lambdas = &ctx.u[eqs.clone()];
+            let (point, friction) =
+                law::multiplier::evaluate(ctx.laws, lambdas, codes, eqs, kin, compliance);
+            if let Some(s) = &kin.slip {
+                state.friction = friction;
+                // A sticking node keeps its anchor; a sliding one leaves it behind by its
+                // elastic slip (none without a penalty: where it is now, as an open one, the
+                // state's anchor from the kinematics).
+                match friction {
+                    Some((true, _)) => state.anchor = Some(s.kept),
+                    Some((false, _)) if s.slid.is_some() => state.anchor = s.slid,
+                    _ => {}
+                }
+            }
+            (point, 0.0)
+        }
+        (ContactLaw::Multiplier, None) => unreachable!("multiplier points have equations"),
+    };
+    state.force = law::normal_force(&point, kin, penalty);
+    state.active = point.closed && (multipliers || kin.gap.v < 0.0);
+    state.pressure = if area > 0.0 {
+        state.force / area
+    } else {
+        f64::NAN
+    };
+    point
+}

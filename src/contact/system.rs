@@ -1,0 +1,308 @@
+//! [`ContactSystem`]: every contact condition of a model, evaluated together, with two-pass
+//! pairing (a constraint two conditions repeat is dropped once).
+
+use super::formulation::*;
+use super::law::Laws;
+use super::point::ContactPoint;
+use super::{mortar, n2n, n2s};
+use crate::assembly::{DofMap, ExtraDofs};
+use crate::error::Result;
+use crate::model::queries::model_size;
+use crate::model::{Model, Pairing};
+
+/// All contact conditions of a model.
+pub struct ContactSystem {
+    formulations: Vec<Box<dyn Formulation + Send + Sync>>,
+    laws: Laws,
+    dim: usize,
+    /// Seconds spent in evaluations since the last [`ContactSystem::take_times`]: (searching,
+    /// in all).
+    clock: std::sync::Mutex<(f64, f64)>,
+    /// Some condition has friction.
+    frictional: bool,
+}
+
+impl ContactSystem {
+    /// The model's contact conditions, checked (a node paired with itself is an input error).
+    pub fn new(model: &Model) -> Result<ContactSystem> {
+        let mut formulations: Vec<Box<dyn Formulation + Send + Sync>> = Vec::new();
+        for (ci, c) in model.contacts.iter().enumerate() {
+            match &c.pairing {
+                Pairing::NodeToNode { .. } => {
+                    formulations.push(Box::new(n2n::NodeToNode::new(model, ci)?))
+                }
+                Pairing::NodeToSegment { .. } => {
+                    formulations.push(Box::new(n2s::NodeToSegment::new(model, ci)?))
+                }
+                Pairing::Mortar { .. } => formulations.push(mortar::new(model, ci)?),
+            }
+        }
+        let young = model
+            .materials
+            .iter()
+            .map(|m| m.young())
+            .fold(0.0f64, f64::max)
+            .max(1e-30);
+        Ok(ContactSystem {
+            formulations,
+            laws: Laws {
+                c: young,
+                gap_tol: 1e-12 * model_size(model),
+                pressure_limit: young,
+            },
+            dim: model.domain.nsd(),
+            clock: Default::default(),
+            frictional: model.contacts.iter().any(|c| c.friction.is_some()),
+        })
+    }
+
+    /// Seconds spent (searching partners, evaluating in all) since the last call.
+    pub fn take_times(&self) -> (f64, f64) {
+        std::mem::take(&mut *self.clock.lock().expect("clock"))
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.formulations.is_empty()
+    }
+
+    /// Number of contact points (one per contact node of every condition).
+    pub fn n_slots(&self) -> usize {
+        self.formulations.iter().map(|f| f.n_slots()).sum()
+    }
+
+    pub fn n_multipliers(&self) -> usize {
+        self.formulations.iter().map(|f| f.n_multipliers()).sum()
+    }
+
+    /// Whether every contact tangent is symmetric: friction's is not where a point slides (its
+    /// force follows the slip, its size the normal force), whatever the formulation's normal
+    /// part. (Taken as symmetric before, a node sliding on a rigid shape had its slip tangent
+    /// cut to one triangle.)
+    pub fn symmetric(&self) -> bool {
+        !self.frictional && self.formulations.iter().all(|f| f.symmetric())
+    }
+
+    /// What the DOF numbering must provide for the contact conditions.
+    pub fn extra_dofs(&self) -> ExtraDofs {
+        ExtraDofs {
+            nodes: self
+                .formulations
+                .iter()
+                .flat_map(|f| f.nodes_needing_dofs())
+                .collect(),
+            n_multipliers: self.n_multipliers(),
+        }
+    }
+
+    /// Free equations that contact contributions can touch from the state `u` on (through
+    /// slave-node weights), sorted; the multipliers are not among them.
+    pub fn candidate_equations(
+        &self,
+        model: &Model,
+        dofs: &DofMap,
+        u: &[f64],
+    ) -> Result<Vec<usize>> {
+        let ctx = Ctx {
+            model,
+            dofs,
+            u,
+            dim: self.dim,
+            laws: &self.laws,
+            start: None,
+        };
+        let mut nodes = Vec::new();
+        for f in &self.formulations {
+            nodes.extend(f.candidate_nodes(&ctx)?);
+        }
+        let mut eqs: Vec<usize> = nodes
+            .into_iter()
+            .flat_map(|n| {
+                dofs.node_dofs[n]
+                    .iter()
+                    .flat_map(|&(_, c)| dofs.entries(c).map(|(p, _)| p))
+            })
+            .filter(|&p| p < dofs.n_free - dofs.n_lambda)
+            .collect();
+        eqs.sort_unstable();
+        eqs.dedup();
+        Ok(eqs)
+    }
+
+    /// Set the contact pressure above which the geometric tangent part is dropped (see
+    /// [`Laws::geometric_allowed`]); `f64::INFINITY` always assembles the exact tangent.
+    pub fn set_pressure_limit(&mut self, limit: f64) {
+        self.laws.pressure_limit = limit;
+    }
+
+    /// Whether any condition has friction (whose history the solver must keep).
+    pub fn has_friction(&self) -> bool {
+        self.frictional
+    }
+
+    /// Evaluate every contact point at the primary state `u` without friction history: the
+    /// points (whose [`contribution`](ContactPoint::contribution) is the current residual and
+    /// tangent) and their states.
+    pub fn evaluate(
+        &self,
+        model: &Model,
+        dofs: &DofMap,
+        u: &[f64],
+        search: Search,
+    ) -> Result<(Vec<ContactPoint>, Vec<SlotState>)> {
+        self.evaluate_with_history(model, dofs, u, search, None)
+    }
+
+    /// [`ContactSystem::evaluate`] with the friction history: the converged states of the last
+    /// step (their anchors) and its primary state.
+    pub fn evaluate_with_history(
+        &self,
+        model: &Model,
+        dofs: &DofMap,
+        u: &[f64],
+        search: Search,
+        history: Option<History>,
+    ) -> Result<(Vec<ContactPoint>, Vec<SlotState>)> {
+        let ctx = Ctx {
+            model,
+            dofs,
+            u,
+            dim: self.dim,
+            laws: &self.laws,
+            start: history.map(|h| h.u),
+        };
+        let history = history.map(|h| h.states);
+        let start = std::time::Instant::now();
+        let mut points = Vec::new();
+        let mut states = Vec::new();
+        let mut lambda = dofs.n_free - dofs.n_lambda;
+        let mut slot = 0;
+        let mut searching = 0.0;
+        for f in &self.formulations {
+            let n = f.n_slots();
+            searching += f.evaluate(
+                &ctx,
+                lambda,
+                search.slice(slot..slot + n),
+                history.map(|h| &h[slot..slot + n]),
+                &mut points,
+                &mut states,
+            )?;
+            lambda += f.n_multipliers();
+            slot += n;
+        }
+        let previous = match search {
+            Search::Fresh => None,
+            Search::Hint(s) | Search::Frozen(s) => Some(s),
+        };
+        self.drop_repeated_constraints(&mut points, &mut states, previous);
+        let mut clock = self.clock.lock().expect("clock");
+        clock.0 += searching;
+        clock.1 += start.elapsed().as_secs_f64();
+        Ok((points, states))
+    }
+}
+
+impl ContactSystem {
+    /// Two-pass contact: where a node a of one condition meets the other surface at (nearly) the
+    /// place of a node b of it, and b meets a's surface near a, both constraints hold the same
+    /// motion. Multipliers cannot share it (the constraints are dependent or nearly so, and
+    /// Newton's active set chatters between them); a penalty would double its stiffness there,
+    /// and in the limit of a large penalty over-constrain the surfaces as the multipliers would.
+    /// So one of the two is dropped, for both laws alike (the penalty answer then tends to the
+    /// multipliers' one): it exerts no force (its multiplier is held at zero), and its node
+    /// penetrates the other surface by at most a second-order amount. "Nearly": a is closer to b than a quarter of the distance
+    /// from b to its nearest neighbour on its surface (a third, if the pair was one at the
+    /// previous state: a band, so that a pair at the limit does not alternate). The one dropped
+    /// is the one past an open end of its partner (a node beside a corner, whose constraint is
+    /// the extension of the surface) when the other lies on its partner (the corner on the
+    /// surface); else the one of the condition listed later, or the one dropped before. Pairs
+    /// are formed closest first, each node in one pair at most.
+    fn drop_repeated_constraints(
+        &self,
+        points: &mut [ContactPoint],
+        states: &mut [SlotState],
+        previous: Option<&[SlotState]>,
+    ) {
+        // The formulation of every slot.
+        let mut owner: Vec<usize> = Vec::with_capacity(states.len());
+        for (f, form) in self.formulations.iter().enumerate() {
+            owner.extend(std::iter::repeat_n(f, form.n_slots()));
+        }
+        let mut by_node: std::collections::HashMap<usize, Vec<usize>> = Default::default();
+        for (k, s) in states.iter().enumerate() {
+            if s.partner != Partner::None && points[k].can_close() {
+                by_node.entry(s.node).or_default().push(k);
+            }
+        }
+        if by_node.len() < 2 {
+            return;
+        }
+        let position: std::collections::HashMap<usize, [f64; 3]> =
+            states.iter().map(|s| (s.node, s.x)).collect();
+        let dist = |a: &[f64; 3], b: &[f64; 3]| {
+            ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+        };
+        let was_repeated = |k: usize| previous.and_then(|p| p.get(k)).is_some_and(|p| p.repeated);
+        // Candidate pairs (distance, i, j), i of the earlier condition.
+        let mut pairs = Vec::new();
+        for (i, &fi) in owner.iter().enumerate() {
+            if states[i].partner == Partner::None || !points[i].can_close() {
+                continue;
+            }
+            let partner = self.formulations[fi].partner_nodes(states[i].partner);
+            for &b in partner {
+                for &j in by_node.get(&b).into_iter().flatten() {
+                    let fj = owner[j];
+                    let back = self.formulations[fj].partner_nodes(states[j].partner);
+                    if fj <= fi || !back.contains(&states[i].node) {
+                        continue;
+                    }
+                    // b's nearest neighbour on its own surface (a's partner nodes other than b,
+                    // wherever they are: with or without a partner of their own).
+                    let xb = states[j].x;
+                    let spacing = partner
+                        .iter()
+                        .filter(|&&n| n != b)
+                        .filter_map(|&n| position.get(&n))
+                        .map(|x| dist(x, &xb))
+                        .fold(f64::INFINITY, f64::min);
+                    if !spacing.is_finite() {
+                        continue;
+                    }
+                    let before = was_repeated(i) || was_repeated(j);
+                    let limit = if before { 1.0 / 3.0 } else { 0.25 };
+                    let d = dist(&states[i].x, &xb);
+                    if d < limit * spacing {
+                        pairs.push((d, i, j));
+                    }
+                }
+            }
+        }
+        pairs.sort_by(|p, q| p.0.total_cmp(&q.0));
+        let mut used = vec![false; states.len()];
+        for (_, i, j) in pairs {
+            if used[i] || used[j] {
+                continue;
+            }
+            used[i] = true;
+            used[j] = true;
+            let beside = |k: usize| states[k].weight < 1.0;
+            let drop = if was_repeated(i) && !was_repeated(j) {
+                i
+            } else if was_repeated(j) && !was_repeated(i) {
+                j
+            } else if beside(i) && !beside(j) {
+                i
+            } else {
+                j
+            };
+            points[drop].disable();
+            let s = &mut states[drop];
+            s.active = false;
+            s.force = 0.0;
+            s.pressure = 0.0;
+            s.repeated = true;
+            s.friction = None;
+        }
+    }
+}

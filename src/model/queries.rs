@@ -1,0 +1,45 @@
+//! Questions about a model that several parts ask: its size, the stiffness of its elements.
+
+use super::{Model, SegmentKind};
+
+/// Diagonal of the model's bounding box (a length scale for tolerances).
+pub fn model_size(model: &Model) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for n in &model.nodes {
+        for i in 0..3 {
+            lo[i] = lo[i].min(n.coords[i]);
+            hi[i] = hi[i].max(n.coords[i]);
+        }
+    }
+    let d2: f64 = (0..3).map(|i| (hi[i] - lo[i]).max(0.0).powi(2)).sum();
+    d2.sqrt().max(1e-300)
+}
+/// Young's modulus of the stiffest element on the master segments `segments` (infinite when one
+/// is rigid): with the slave's, the modulus of the friction law's c_T.
+pub fn master_young(model: &Model, segments: &[usize]) -> f64 {
+    let mut young = 0.0f64;
+    for &g in segments {
+        match &model.segments[g].kind {
+            SegmentKind::Edges { edges: sides } | SegmentKind::Faces { faces: sides } => {
+                for &(e, _) in sides {
+                    young = young.max(model.materials[model.elements[e].material].young());
+                }
+            }
+            _ => return f64::INFINITY,
+        }
+    }
+    young
+}
+/// Young's modulus of the stiffest element at each node (penalties chosen from the mesh).
+pub fn stiffest_young(model: &Model) -> std::collections::HashMap<usize, f64> {
+    let mut young = std::collections::HashMap::new();
+    for el in &model.elements {
+        let e = model.materials[el.material].young();
+        for &n in &el.nodes {
+            let v = young.entry(n).or_insert(0.0f64);
+            *v = v.max(e);
+        }
+    }
+    young
+}
