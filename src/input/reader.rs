@@ -981,16 +981,6 @@ fn model_from_lines(
                 e.label
             )));
         }
-        if e.nlgeo
-            && e.etype.mode() == StressMode::PlaneStress
-            && matches!(materials[mat - 1].law, MaterialLaw::Hyperelastic(_))
-        {
-            return Err(span_err(format!(
-                "element {} is a plane-stress element with `nlgeo 1` and a hyperelastic material \
-                 {mat}: not supported (use a plane-strain or 3D element; upstream OOFEM aborts too)",
-                e.label
-            )));
-        }
         if e.etype.is_truss() && csr.area == 0.0 {
             c.warnings.push(format!(
                 "{}:{}: bar element {} has no cross-section area (cross section {csn} gives no \

@@ -20,6 +20,9 @@ pub enum Constitutive {
     Linear(Elasticity),
     /// P(F) and ∂P/∂F (large deformation only).
     Hyper(Hyperelastic),
+    /// The same in plane stress: the out-of-plane stretch is solved at each point from
+    /// P₃₃ = 0 and condensed out of the tangent.
+    HyperPlaneStress(Hyperelastic),
 }
 
 impl Constitutive {
@@ -28,6 +31,9 @@ impl Constitutive {
     /// elasticity with its small-strain moduli (upstream OOFEM aborts there).
     pub fn new(m: &Material, mode: StressMode, nlgeo: bool) -> Constitutive {
         match &m.law {
+            MaterialLaw::Hyperelastic(h) if nlgeo && mode == StressMode::PlaneStress => {
+                Constitutive::HyperPlaneStress(h.clone())
+            }
             MaterialLaw::Hyperelastic(h) if nlgeo => Constitutive::Hyper(h.clone()),
             _ => Constitutive::Linear(Elasticity::new(m.young(), m.poisson(), mode)),
         }

@@ -126,10 +126,51 @@ impl ContinuumKernel<'_> {
                 Constitutive::Hyper(h) => self
                     .hyperelastic_point(h, &point, fe, ke.as_deref_mut(), states.as_deref_mut())
                     .map_err(|msg| KernelError { gp: g + 1, msg })?,
+                Constitutive::HyperPlaneStress(h) => {
+                    let mut point = point;
+                    let stretch = plane_stress_stretch(h, &point.f)
+                        .map_err(|msg| KernelError { gp: g + 1, msg })?;
+                    point.f[2][2] = stretch;
+                    point.e[2][2] = 0.5 * (stretch * stretch - 1.0);
+                    self.hyperelastic_point(h, &point, fe, ke.as_deref_mut(), states.as_deref_mut())
+                        .map_err(|msg| KernelError { gp: g + 1, msg })?
+                }
             }
         }
         Ok(())
     }
+}
+
+/// The out-of-plane stretch F₃₃ of a plane-stress point whose in-plane deformation is `f` (its
+/// F₃₃ ignored): the root of P₃₃(F₃₃) = 0, by Newton's method from the stretch that keeps the
+/// volume, with steps halved to keep F₃₃ positive.
+fn plane_stress_stretch(h: &Hyperelastic, f: &[[f64; 3]; 3]) -> Result<f64, String> {
+    let det2 = f[0][0] * f[1][1] - f[0][1] * f[1][0];
+    if !(det2 > 0.0) {
+        return Err(format!("element inverted (in-plane det F = {det2:.3e})"));
+    }
+    let mut g = *f;
+    g[2][2] = 1.0 / det2.sqrt();
+    let mut scale = 0.0f64;
+    for _ in 0..60 {
+        let (p, a) = h
+            .pk1(&g)
+            .map_err(|det| format!("element inverted (det F = {det:.3e})"))?;
+        scale = scale.max(p.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs())));
+        let r = p[2][2];
+        if r.abs() <= 1e-14 * scale.max(f64::MIN_POSITIVE) {
+            return Ok(g[2][2]);
+        }
+        let mut step = -r / a[2][2][2][2];
+        while g[2][2] + step <= 0.0 {
+            step *= 0.5;
+        }
+        g[2][2] += step;
+        if step.abs() <= 1e-15 * g[2][2] {
+            return Ok(g[2][2]);
+        }
+    }
+    Err("plane stress: the out-of-plane stretch did not converge".into())
 }
 
 /// ∫ N_a dV for each node of an element (for body forces), `thick` in 2D.
@@ -295,9 +336,27 @@ impl ContinuumKernel<'_> {
     ) -> Result<(), String> {
         let (nsd, nn, jxw, dndx, f) = (self.nsd, pt.nn, pt.jxw, pt.dndx, pt.f);
         let ndof = nn * nsd;
-        let (p, a) = h
+        let (p, mut a) = h
             .pk1(&f)
             .map_err(|det| format!("element inverted (det F = {det:.3e})"))?;
+        if matches!(self.material, Constitutive::HyperPlaneStress(_)) {
+            // F₃₃ follows the in-plane F through P₃₃ = 0: dF₃₃ = −A₃₃kL dF_kL / A₃₃₃₃, so the
+            // in-plane tangent is A_iJkL − A_iJ33 A_33kL / A₃₃₃₃.
+            let a33 = a[2][2][2][2];
+            let col: [[f64; 2]; 2] =
+                std::array::from_fn(|i| std::array::from_fn(|j| a[i][j][2][2]));
+            let row: [[f64; 2]; 2] =
+                std::array::from_fn(|k| std::array::from_fn(|l| a[2][2][k][l]));
+            for i in 0..2 {
+                for j in 0..2 {
+                    for k in 0..2 {
+                        for l in 0..2 {
+                            a[i][j][k][l] -= col[i][j] * row[k][l] / a33;
+                        }
+                    }
+                }
+            }
+        }
         for n in 0..nn {
             for i in 0..nsd {
                 fe[n * nsd + i] += jxw * (0..nsd).map(|jj| p[i][jj] * dndx[n][jj]).sum::<f64>();

@@ -17,25 +17,29 @@ use std::fmt::Write;
 const YOUNG: f64 = 100.0;
 const POISSON: f64 = 0.3;
 
-/// The laws an element is checked with: linear elasticity, and in large deformation of plane
-/// strain and 3D elements the hyperelastic laws.
+/// The laws an element is checked with: linear elasticity, and in large deformation the
+/// hyperelastic laws (in plane stress with the out-of-plane stretch solved at each point).
 fn laws(mode: StressMode, nlgeo: bool) -> Vec<Constitutive> {
     let mut v = vec![Constitutive::Linear(Elasticity::new(YOUNG, POISSON, mode))];
-    if nlgeo && mode != StressMode::PlaneStress {
-        v.push(Constitutive::Hyper(Hyperelastic::MooneyRivlin {
+    if nlgeo {
+        let wrap = |h| {
+            if mode == StressMode::PlaneStress {
+                Constitutive::HyperPlaneStress(h)
+            } else {
+                Constitutive::Hyper(h)
+            }
+        };
+        v.push(wrap(Hyperelastic::MooneyRivlin {
             c1: 20.0,
             c2: 5.0,
             k: 80.0,
         }));
-        v.push(Constitutive::Hyper(Hyperelastic::Ogden {
+        v.push(wrap(Hyperelastic::Ogden {
             alpha: vec![1.3, -2.0],
             mu: vec![30.0, -10.0],
             k: 80.0,
         }));
-        v.push(Constitutive::Hyper(Hyperelastic::SimoPister {
-            g: 40.0,
-            k: 80.0,
-        }));
+        v.push(wrap(Hyperelastic::SimoPister { g: 40.0, k: 80.0 }));
     }
     v
 }
@@ -846,4 +850,83 @@ fn a_load_on_interior_boundaries_is_warned_about() {
     let read = hertz::input::read_model(&path).unwrap();
     std::fs::remove_file(&path).ok();
     assert!(read.warnings.is_empty(), "{:?}", read.warnings);
+}
+
+/// A plane-stress Mooney–Rivlin sheet (2 × 1, four PlaneStress2d, `nlgeo 1`) stretched by 30 %
+/// and compressed by 20 % along x on rollers is in uniaxial stress: its nominal stress is the
+/// closed form's at that stretch (P₂₂ = P₃₃ = 0) and its width follows the lateral stretch.
+#[test]
+fn plane_stress_hyperelastic_sheet_is_in_uniaxial_stress() {
+    use hertz::bench::verify::uniaxial_stress;
+    let law = Hyperelastic::MooneyRivlin {
+        c1: 20.0,
+        c2: 5.0,
+        k: 80.0,
+    };
+    for stretch in [1.3, 0.8] {
+        let text = format!(
+            "sheet.out\nsheet\nNonLinearStatic nsteps 4 controlmode 1 rtolf 1e-12 maxiter 20\n\
+             domain 2dPlaneStress\nOutputManager\n\
+             ndofman 15 nelem 8 ncrosssect 1 nmat 1 nbc 3 nic 0 nltf 1 nset 4\n{}{}\
+             SimpleCS 1 thick 0.5 material 1 set 1\n\
+             MooneyRivlinCompressibleMat 1 d 0 c1 20 c2 5 k 80\n\
+             BoundaryCondition 1 loadTimeFunction 1 dofs 1 1 values 1 0 set 2\n\
+             BoundaryCondition 2 loadTimeFunction 1 dofs 1 2 values 1 0 set 3\n\
+             BoundaryCondition 3 loadTimeFunction 1 dofs 1 1 values 1 {} set 4\n\
+             PiecewiseLinFunction 1 npoints 2 t 2 0 3 f(t) 2 0 1\n\
+             Set 1 allelements\nSet 2 nodes 3 1 6 11\nSet 3 nodes 5 1 2 3 4 5\n\
+             Set 4 nodes 3 5 10 15\n",
+            (0..15)
+                .map(|k| format!(
+                    "node {} coords 2 {} {}\n",
+                    k + 1,
+                    0.5 * (k % 5) as f64,
+                    0.5 * (k / 5) as f64
+                ))
+                .collect::<String>(),
+            (0..8)
+                .map(|e| {
+                    let (i, j) = (e % 4, e / 4);
+                    let n = |i: usize, j: usize| j * 5 + i + 1;
+                    format!(
+                        "PlaneStress2d {} nodes 4 {} {} {} {} nlgeo 1\n",
+                        e + 1,
+                        n(i + 1, j + 1),
+                        n(i, j + 1),
+                        n(i, j),
+                        n(i + 1, j)
+                    )
+                })
+                .collect::<String>(),
+            2.0 * (stretch - 1.0)
+        );
+        let model = common::model_from_text(&text).unwrap_or_else(|e| panic!("{e}"));
+        let (lateral, nominal) = uniaxial_stress(&law, stretch);
+        let mut last = (0.0, 0.0);
+        run_analysis(&model, &common::quiet(), |r| {
+            // The pulled edge's reaction over the reference section (height 1, thickness 0.5).
+            let pulled: f64 = r
+                .dofs
+                .prescribed
+                .iter()
+                .zip(r.reactions)
+                .filter(|((_, d, bc), _)| *d == 1 && model.dirichlet[*bc].number == 3)
+                .map(|(_, f)| f)
+                .sum();
+            let top = model.nodes.iter().position(|n| n.label == 15).unwrap();
+            last = (pulled / 0.5, 1.0 + r.displacement(top, 2).unwrap());
+            Ok(())
+        })
+        .unwrap();
+        assert!(
+            (last.0 - nominal).abs() < 1e-8 * nominal.abs(),
+            "{stretch}: P {} vs {nominal}",
+            last.0
+        );
+        assert!(
+            (last.1 - lateral).abs() < 1e-10,
+            "{stretch}: width {} vs {lateral}",
+            last.1
+        );
+    }
 }
