@@ -1,7 +1,7 @@
 //! A dense LU with partial pivoting behind [`LinearSolver`]: the reference against which the
 //! sparse solvers are checked, and a solver for small systems. O(n³): not for large models.
 
-use super::{LinearSolver, SolverStats, PIVOT_RATIO};
+use super::{singular, singular_at, LinearSolver, SolverStats, PIVOT_RATIO};
 use crate::assembly::Pattern;
 use crate::error::{Error, Result};
 use faer::linalg::solvers::{PartialPivLu, SolveCore};
@@ -41,11 +41,7 @@ impl LinearSolver for DenseLu {
         let max = (0..n).map(|i| u[(i, i)].abs()).fold(0.0, f64::max);
         if let Some(k) = (0..n).find(|&i| !(u[(i, i)].abs() > PIVOT_RATIO * max)) {
             // Partial pivoting permutes rows only: pivot k is equation k's column.
-            return Err(Error::Singular(format!(
-                "the stiffness matrix is singular at {}: a mechanism or an unrestrained \
-                 rigid-body motion (check the supports and the elements connected there)",
-                describe_eq(k)
-            )));
+            return Err(singular_at(&format!(" at {}", describe_eq(k))));
         }
         self.lu = Some(lu);
         self.stats = SolverStats {
@@ -69,9 +65,7 @@ impl LinearSolver for DenseLu {
         lu.solve_in_place_with_conj(faer::Conj::No, m);
         self.stats.solve_seconds = t.elapsed().as_secs_f64();
         if rhs.iter().any(|v| !v.is_finite()) {
-            return Err(Error::Singular(
-                "the tangent matrix is singular: are all rigid-body motions restrained?".into(),
-            ));
+            return Err(singular());
         }
         Ok(())
     }

@@ -9,7 +9,7 @@
 //! it came from: L_jj² < [`PIVOT_RATIO`]·A_jj means column j is a linear combination of the
 //! columns before it, i.e. a mechanism.
 
-use super::{LinearSolver, SolverSettings, SolverStats};
+use super::{singular, singular_at, LinearSolver, SolverSettings, SolverStats};
 use crate::assembly::Pattern;
 use crate::error::{Error, Result};
 use crate::solve::krylov::{gmres, matvec, SymmetricPart};
@@ -108,11 +108,7 @@ impl GeneralLu {
                 MemStack::new(&mut mem),
                 Default::default(),
             )
-            .map_err(|_| {
-                Error::Singular(
-                    "the tangent matrix is singular: are all rigid-body motions restrained?".into(),
-                )
-            })?;
+            .map_err(|_| singular())?;
         Ok(())
     }
 
@@ -280,13 +276,6 @@ fn smallest_pivot_ratio(
     worst
 }
 
-fn singular_message(at: &str) -> String {
-    format!(
-        "the stiffness matrix is singular{at}: a mechanism or an unrestrained rigid-body motion \
-         (check the supports and the elements connected there)"
-    )
-}
-
 impl FaerSolver {
     /// Factorize the matrix given by its values on `pattern` (upper triangle of a symmetric
     /// matrix, or all entries of a general one). When a symmetric matrix must be positive definite
@@ -397,7 +386,7 @@ impl FaerSolver {
                 let at = eq
                     .map(|e| format!(" at {}", describe_eq(e)))
                     .unwrap_or_default();
-                return Err(Error::Singular(singular_message(&at)));
+                return Err(singular_at(&at));
             }
             Some(_) if self.settings.preconditioner => {
                 self.factorize_ldlt(pattern, values, describe_eq)?
@@ -474,7 +463,7 @@ impl FaerSolver {
             .map(|(k, _)| original(k));
         if let Some(e) = mechanism {
             let at = format!(" at {}", describe_eq(e));
-            return Err(Error::Singular(singular_message(&at)));
+            return Err(singular_at(&at));
         }
         self.factor = Factor::Ldlt(l_values);
         self.stats.used_lu = false;
@@ -613,9 +602,7 @@ impl FaerSolver {
         }
         self.stats.solve_seconds = t.elapsed().as_secs_f64();
         if rhs.iter().any(|v| !v.is_finite()) {
-            return Err(Error::Singular(
-                "the tangent matrix is singular: are all rigid-body motions restrained?".into(),
-            ));
+            return Err(singular());
         }
         Ok(())
     }

@@ -19,7 +19,21 @@ pub use faer_direct::{FaerSolver, KRYLOV_MIN_UNKNOWNS, PIVOT_RATIO};
 
 use super::ordering::OrderingKind;
 use crate::assembly::Pattern;
-use crate::error::Result;
+use crate::error::{Error, Result};
+
+/// The error for a singular matrix whose dependent equation is known (`at`: " at node N DOF d",
+/// or empty).
+pub(crate) fn singular_at(at: &str) -> Error {
+    Error::Singular(format!(
+        "the stiffness matrix is singular{at}: a mechanism or an unrestrained rigid-body motion \
+         (check the supports and the elements connected there)"
+    ))
+}
+
+/// The error for a singular matrix found only by a failed factorization or solve.
+pub(crate) fn singular() -> Error {
+    Error::Singular("the tangent matrix is singular: are all rigid-body motions restrained?".into())
+}
 
 /// Timings and sizes of the last factorization (for logs and benchmarks).
 #[derive(Debug, Clone, Default)]
