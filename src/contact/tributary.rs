@@ -124,10 +124,9 @@ pub fn tributaries(model: &Model, nodes: &[usize]) -> Vec<Tributary> {
 /// deformation and the engineering one in small, for every formulation alike.
 #[derive(Debug, Clone)]
 pub struct PressureAreas {
-    /// The contact nodes (model indices), in the condition's order.
-    nodes: Vec<usize>,
-    /// Their surface's facets in large deformation (the others keep their reference measure).
-    moving: Vec<Facet>,
+    /// Their surface's facets in large deformation (the others keep their reference measure),
+    /// each with the position of its nodes among the contact nodes.
+    moving: Vec<(Facet, Vec<usize>)>,
     /// Each node's measure in the reference configuration, less the moving facets' shares.
     fixed: Vec<f64>,
 }
@@ -139,20 +138,17 @@ impl PressureAreas {
         let mut fixed = vec![0.0; nodes.len()];
         let mut moving = Vec::new();
         for f in facets(model, nodes) {
+            let slots: Vec<usize> = f.nodes.iter().map(|n| index[n]).collect();
             if f.nlgeo {
-                moving.push(f);
+                moving.push((f, slots));
                 continue;
             }
             let x: Vec<[f64; 3]> = f.nodes.iter().map(|&n| model.nodes[n].coords).collect();
-            for (&n, s) in f.nodes.iter().zip(f.shares(&x)) {
-                fixed[index[&n]] += s;
+            for (&k, s) in slots.iter().zip(f.shares(&x)) {
+                fixed[k] += s;
             }
         }
-        PressureAreas {
-            nodes: nodes.to_vec(),
-            moving,
-            fixed,
-        }
+        PressureAreas { moving, fixed }
     }
 
     /// The areas with the nodes at `position(n)`.
@@ -161,23 +157,14 @@ impl PressureAreas {
         mut position: impl FnMut(usize) -> crate::error::Result<[f64; 3]>,
     ) -> crate::error::Result<Vec<f64>> {
         let mut out = self.fixed.clone();
-        if self.moving.is_empty() {
-            return Ok(out);
-        }
-        let index: HashMap<usize, usize> = self
-            .nodes
-            .iter()
-            .enumerate()
-            .map(|(k, &n)| (n, k))
-            .collect();
-        for f in &self.moving {
+        for (f, slots) in &self.moving {
             let x = f
                 .nodes
                 .iter()
                 .map(|&n| position(n))
                 .collect::<crate::error::Result<Vec<_>>>()?;
-            for (&n, s) in f.nodes.iter().zip(f.shares(&x)) {
-                out[index[&n]] += s;
+            for (&k, s) in slots.iter().zip(f.shares(&x)) {
+                out[k] += s;
             }
         }
         Ok(out)
