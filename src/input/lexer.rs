@@ -45,10 +45,8 @@ pub fn meshes_without_groups(lines: &[Line], sources: &[PathBuf]) -> Vec<PathBuf
         .iter()
         .filter(|p| {
             let converted = PathBuf::from(format!("{} [converted]", p.display()));
-            lines.iter().any(|l| *l.file == converted)
-                && !lines
-                    .iter()
-                    .any(|l| *l.file == converted && l.text.starts_with("Set "))
+            let mut spliced = lines.iter().filter(|l| *l.file == converted).peekable();
+            spliced.peek().is_some() && !spliced.any(|l| l.text.starts_with("Set "))
         })
         .cloned()
         .collect()

@@ -278,7 +278,6 @@ fn model_from_lines(
     sources: Vec<PathBuf>,
     warnings: &mut Vec<String>,
 ) -> Result<ReadResult> {
-    let groupless = meshes_without_groups(&lines, &sources);
     let file = path.display().to_string();
     if lines.len() < 2 {
         return Err(Error::InputFile {
@@ -611,7 +610,7 @@ fn model_from_lines(
     let mut sets: Option<Vec<Set>> = None;
     if nset > 0 && c.peek_keyword().as_deref() == Some("set") {
         sets =
-            Some(read_sets(&mut c, nset, &refs).map_err(|e| explain_missing_sets(e, &groupless))?);
+            Some(read_sets(&mut c, nset, &refs).map_err(|e| explain_missing_sets(e, &lines, &sources))?);
         c.sets_read_early = true;
     }
 
@@ -919,7 +918,7 @@ fn model_from_lines(
 
     let sets = match sets {
         Some(s) => s,
-        None => read_sets(&mut c, nset, &refs).map_err(|e| explain_missing_sets(e, &groupless))?,
+        None => read_sets(&mut c, nset, &refs).map_err(|e| explain_missing_sets(e, &lines, &sources))?,
     };
 
     if let Some(line) = c.lines.get(c.pos) {
@@ -1231,8 +1230,13 @@ struct Refs<'a> {
     contact_elements: &'a HashMap<usize, usize>,
 }
 
-/// A missing set record, when a spliced Gmsh mesh has no physical groups: say that this is why.
-fn explain_missing_sets(e: Error, groupless: &[PathBuf]) -> Error {
+/// A missing set record, when a spliced Gmsh mesh (of the input's `lines` from `sources`) has no
+/// physical groups: say that this is why.
+fn explain_missing_sets(e: Error, lines: &[Line], sources: &[PathBuf]) -> Error {
+    if !e.to_string().contains("expected set record") {
+        return e;
+    }
+    let groupless = meshes_without_groups(lines, sources);
     let Some(mesh) = groupless.first() else {
         return e;
     };
