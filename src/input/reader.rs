@@ -609,8 +609,10 @@ fn model_from_lines(
     };
     let mut sets: Option<Vec<Set>> = None;
     if nset > 0 && c.peek_keyword().as_deref() == Some("set") {
-        sets =
-            Some(read_sets(&mut c, nset, &refs).map_err(|e| explain_missing_sets(e, &lines, &sources))?);
+        sets = Some(
+            read_sets(&mut c, nset, &refs)
+                .map_err(|e| explain_missing_sets(e, &lines, &sources))?,
+        );
         c.sets_read_early = true;
     }
 
@@ -918,7 +920,9 @@ fn model_from_lines(
 
     let sets = match sets {
         Some(s) => s,
-        None => read_sets(&mut c, nset, &refs).map_err(|e| explain_missing_sets(e, &lines, &sources))?,
+        None => {
+            read_sets(&mut c, nset, &refs).map_err(|e| explain_missing_sets(e, &lines, &sources))?
+        }
     };
 
     if let Some(line) = c.lines.get(c.pos) {
@@ -997,7 +1001,7 @@ fn model_from_lines(
         let s = &sets[l.set - 1];
         let why = match l.boundaries(s, &model_elements) {
             Err(msg) => Some(msg),
-            Ok(_) => l.acts_on_nothing(s, &model_elements),
+            Ok(b) => l.acts_on_nothing(s, &b),
         };
         if let Some(msg) = why {
             return Err(Error::Input {
@@ -1436,76 +1440,76 @@ fn interior_boundary_warnings(
     sets: &[Set],
 ) -> Vec<String> {
     use crate::model::SegmentKind;
+    // What each load and contact segment lies on: (record, what it is, its boundaries).
+    let mut named: Vec<(&crate::error::Span, String, Vec<(usize, &[usize])>)> = Vec::new();
+    for l in loads {
+        if let Ok(list) = l.boundaries(&sets[l.set - 1], elements) {
+            let what = format!("{} {}", l.kind.record_name(), l.number);
+            named.push((&l.span, what, list));
+        }
+    }
+    for g in segments {
+        if let SegmentKind::Edges { edges: b } | SegmentKind::Faces { faces: b } = &g.kind {
+            let list = b
+                .iter()
+                .map(|&(e, k)| (e, elements[e].etype.shape().boundaries()[k - 1]))
+                .collect();
+            named.push((&g.span, format!("contact segment {}", g.number), list));
+        }
+    }
+    named.retain(|(_, _, list)| !list.is_empty());
+    if named.is_empty() {
+        return Vec::new();
+    }
     let key = |e: usize, local: &[usize]| {
         let el = &elements[e];
         let mut k: Vec<usize> = local.iter().map(|&a| el.nodes[a]).collect();
         k.sort_unstable();
         k
     };
-    let mut uses: HashMap<Vec<usize>, usize> = HashMap::new();
+    // How many elements have each of those boundaries.
+    let mut uses: HashMap<Vec<usize>, usize> = named
+        .iter()
+        .flat_map(|(_, _, list)| list.iter().map(|&(e, local)| (key(e, local), 0)))
+        .collect();
     for (e, el) in elements.iter().enumerate() {
         if el.etype.is_truss() {
             continue;
         }
         for local in el.etype.shape().boundaries() {
-            *uses.entry(key(e, local)).or_default() += 1;
+            if let Some(n) = uses.get_mut(&key(e, local)) {
+                *n += 1;
+            }
         }
     }
-    let interior = |list: &[(usize, &[usize])]| {
-        let found: Vec<usize> = list
-            .iter()
-            .filter(|(e, local)| uses.get(&key(*e, local)).is_some_and(|&n| n > 1))
-            .map(|(e, _)| elements[*e].label)
-            .collect();
-        (!found.is_empty()).then_some(found)
-    };
-    let say = |span: &crate::error::Span, what: String, labels: Vec<usize>| {
-        let shown: Vec<String> = labels.iter().take(5).map(|l| l.to_string()).collect();
-        format!(
-            "{}:{}: {what} lies on {} element {} shared by two elements (inside the mesh: \
-             glued parts?), of element(s) {}{}",
-            span.file.display(),
-            span.line,
-            labels.len(),
-            if labels.len() == 1 {
-                "boundary"
-            } else {
-                "boundaries"
-            },
-            shown.join(" "),
-            if labels.len() > 5 { " .." } else { "" }
-        )
-    };
-    let mut out = Vec::new();
-    for l in loads {
-        let Ok(list) = l.boundaries(&sets[l.set - 1], elements) else {
-            continue;
-        };
-        if let Some(labels) = interior(&list) {
-            out.push(say(
-                &l.span,
-                format!("{} {}", l.kind.record_name(), l.number),
-                labels,
-            ));
-        }
-    }
-    for g in segments {
-        let list: Vec<(usize, &[usize])> = match &g.kind {
-            SegmentKind::Edges { edges: b } | SegmentKind::Faces { faces: b } => b
+    named
+        .into_iter()
+        .filter_map(|(span, what, list)| {
+            let labels: Vec<usize> = list
                 .iter()
-                .map(|&(e, k)| (e, elements[e].etype.shape().boundaries()[k - 1]))
-                .collect(),
-            _ => continue,
-        };
-        if let Some(labels) = interior(&list) {
-            out.push(say(
-                &g.span,
-                format!("contact segment {}", g.number),
-                labels,
-            ));
-        }
-    }
-    out
+                .filter(|(e, local)| uses.get(&key(*e, local)).is_some_and(|&n| n > 1))
+                .map(|(e, _)| elements[*e].label)
+                .collect();
+            if labels.is_empty() {
+                return None;
+            }
+            let shown: Vec<String> = labels.iter().take(5).map(|l| l.to_string()).collect();
+            Some(format!(
+                "{}:{}: {what} lies on {} element {} shared by two elements (inside the mesh: \
+                 glued parts?), of element(s) {}{}",
+                span.file.display(),
+                span.line,
+                labels.len(),
+                if labels.len() == 1 {
+                    "boundary"
+                } else {
+                    "boundaries"
+                },
+                shown.join(" "),
+                if labels.len() > 5 { " .." } else { "" }
+            ))
+        })
+        .collect()
 }
 
 fn check_geometry(coords: &[[f64; 3]], elements: &[Element]) -> Result<()> {

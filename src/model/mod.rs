@@ -470,16 +470,21 @@ impl Load {
     }
 
     /// Why this load would act on nothing, if it would: its set has none of what it acts on.
-    pub fn acts_on_nothing(&self, set: &Set, elements: &[Element]) -> Option<String> {
+    /// `boundaries`: what [`Load::boundaries`] found in `set`.
+    pub fn acts_on_nothing(
+        &self,
+        set: &Set,
+        boundaries: &[(usize, &'static [usize])],
+    ) -> Option<String> {
         let (empty, what) = match self.kind {
             LoadKind::Nodal => (set.nodes.is_empty(), "no nodes"),
             LoadKind::DeadWeight => (set.elements.is_empty(), "no elements"),
             LoadKind::Edge => (
-                self.boundaries(set, elements).is_ok_and(|b| b.is_empty()),
+                boundaries.is_empty(),
                 "no element edges (`elementedges`, or `elementboundaries` of 2D elements)",
             ),
             LoadKind::Surface => (
-                self.boundaries(set, elements).is_ok_and(|b| b.is_empty()),
+                boundaries.is_empty(),
                 "no element faces (`elementboundaries` or `elementsurfaces` of 3D elements)",
             ),
         };
