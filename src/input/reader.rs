@@ -1441,7 +1441,12 @@ fn interior_boundary_warnings(
 ) -> Vec<String> {
     use crate::model::SegmentKind;
     // What each load and contact segment lies on: (record, what it is, its boundaries).
-    let mut named: Vec<(&crate::error::Span, String, Vec<(usize, &[usize])>)> = Vec::new();
+    type Named<'a> = (
+        &'a crate::error::Span,
+        String,
+        Vec<(usize, &'static [usize])>,
+    );
+    let mut named: Vec<Named> = Vec::new();
     for l in loads {
         if let Ok(list) = l.boundaries(&sets[l.set - 1], elements) {
             let what = format!("{} {}", l.kind.record_name(), l.number);
