@@ -32,6 +32,11 @@ pub struct Setup {
     pub class: &'static str,
     /// The penalty of the penalty twin.
     pub penalty: f64,
+    /// The order r of the penalty's displacement error, ε^(−r): 1 for nodes held by a force
+    /// against a surface; lower where a node is held by the fall of its weight w ≈ 3τ² at the
+    /// end of an open master (ε·w·(−g) = its force: r = 1/2, and 1/3 for a node at the master's
+    /// corner, g ∝ τ there).
+    pub order: f64,
     make: Box<dyn Fn(Law) -> String + Send + Sync>,
 }
 
@@ -46,8 +51,26 @@ impl Setup {
             name: name.into(),
             class,
             penalty,
+            order: 1.0,
             make: Box::new(make),
         }
+    }
+
+    /// The factor 10^r − 1 by which the penalty's error is its difference to the ε/10 run
+    /// (Richardson's rule for an error ε^(−r)).
+    pub fn richardson(&self) -> f64 {
+        10f64.powf(self.order) - 1.0
+    }
+
+    /// [`twin_mismatch`] of this setup's twins.
+    pub fn mismatch(&self, t: &Twins) -> (f64, f64) {
+        twin_mismatch(
+            self.penalty,
+            self.richardson(),
+            &t.penalty,
+            &t.penalty10,
+            &t.multipliers,
+        )
     }
 
     /// The input text of the twin with `law`.
@@ -444,6 +467,86 @@ pub fn cylinder_on_block(h: f64, law: Law, nlgeo: bool) -> String {
     inp.render("suite", &analysis(1), "PlaneStrain")
 }
 
+/// The penalty of [`die_as_wide_as_the_block`]'s twin: 10³ times the block's modulus (90/31).
+pub const DIE_PENALTY: f64 = 3e3;
+
+/// A neo-Hookean block [0, 1]^dim (8 elements a side in 2D, 5 in 3D; c1 = 0.5, k = 10)
+/// compressed 30 % in ten steps of large deformation by a die exactly as wide and a thousand
+/// times stiffer (two layers over the block, 0.2 thick), the block's top nodes the slave side:
+/// its sides bulge past the die's edges and the corners away from the held one curl up past the
+/// die's end (`tools/gen_die_as_wide.py` writes the 2D mortar twins).
+pub fn die_as_wide_as_the_block(dim: usize, law: Law) -> String {
+    let mut inp = Input::default();
+    let (block, die) = if dim == 2 {
+        let xs = uniform(0.0, 1.0, 8);
+        let block = inp.block2d(Kind::Q4, &xs, &|_| xs.clone(), "mat 1 crossSect 1 nlgeo 1");
+        let die = inp.block2d(
+            Kind::Q4,
+            &xs,
+            &|_| uniform(1.0, 1.2, 2),
+            "mat 2 crossSect 1 nlgeo 1",
+        );
+        (block, die)
+    } else {
+        let g = uniform(0.0, 1.0, 5);
+        let block = inp.block3d(&g, &g, &g, "mat 1 crossSect 1 nlgeo 1");
+        let die = inp.block3d(&g, &g, &uniform(1.0, 1.2, 2), "mat 2 crossSect 1 nlgeo 1");
+        (block, die)
+    };
+    let kind = if dim == 2 {
+        "linear2delementedgecontactsegment"
+    } else {
+        "linear3delementsurfacecontactsegment"
+    };
+    inp.segments
+        .push(format!("{kind} 1 edgeset {}", inp.sets.len() + 1));
+    let faces = if dim == 2 {
+        die.bottom_edges.clone()
+    } else {
+        inp.faces_where(&die, &|x| (x[2] - 1.0).abs() < 1e-9)
+    };
+    inp.boundary_set(&faces);
+    inp.sections.push("SimpleCS 1 thick 1.0".into());
+    inp.materials
+        .push("MooneyRivlinCompressibleMat 1 d 0 c1 0.5 c2 0 k 10".into());
+    inp.materials
+        .push("MooneyRivlinCompressibleMat 2 d 0 c1 500 c2 0 k 10000".into());
+    // The bottom slides on its plane; the corner at the origin is held, and in 3D its
+    // neighbour along x against turning about z.
+    let bottom = inp.node_set(&block.bottom);
+    let corner = inp.node_set(&block.bottom[..1]);
+    inp.bcs.push(format!(
+        "BoundaryCondition 1 loadTimeFunction 1 dofs 1 {dim} values 1 0 set {bottom}"
+    ));
+    inp.bcs.push(format!(
+        "BoundaryCondition 2 loadTimeFunction 1 dofs {n} {dofs} values {n} {zeros} set {corner}",
+        n = dim - 1,
+        dofs = if dim == 2 { "1" } else { "1 2" },
+        zeros = if dim == 2 { "0" } else { "0 0" },
+    ));
+    let top = inp.node_set(&die.top);
+    let down = if dim == 2 { "0 -0.3" } else { "0 0 -0.3" };
+    let dofs = if dim == 2 { "1 2" } else { "1 2 3" };
+    inp.bcs.push(format!(
+        "BoundaryCondition 3 loadTimeFunction 1 dofs {dim} {dofs} values {dim} {down} set {top}"
+    ));
+    if dim == 3 {
+        let turn = inp.node_set(&block.bottom[1..2]);
+        inp.bcs.push(format!(
+            "BoundaryCondition 4 loadTimeFunction 1 dofs 1 2 values 1 0 set {turn}"
+        ));
+    }
+    inp.bcs
+        .push(n2s(inp.bcs.len() + 1, law, &block.top, &[1], ""));
+    let steps: Vec<f64> = (1..=10).map(|i| i as f64 / 10.0).collect();
+    inp.functions.push(history(&steps));
+    inp.render(
+        "suite",
+        &analysis(steps.len()),
+        if dim == 2 { "PlaneStrain" } else { "3d" },
+    )
+}
+
 /// Every setup of the suite.
 pub fn setups() -> Vec<Setup> {
     let mut out = Vec::new();
@@ -647,6 +750,17 @@ pub fn setups() -> Vec<Setup> {
             ..base.clone()
         },
     );
+    // Nodes that slide off the master's end: the block's corners bulge past a die as wide as it.
+    // Its last step holds a corner at the die's corner: a penalty error of order 1/3.
+    out.push(Setup {
+        order: 1.0 / 3.0,
+        ..Setup::new(
+            "die as wide as the block, nlgeo",
+            "sliding",
+            DIE_PENALTY,
+            |l| die_as_wide_as_the_block(2, l),
+        )
+    });
     // Large penalties (1e12 with E = 1000, as OOFEM's inputs use).
     for (name, drive) in [
         ("penalty 1e12, displacement", base.drive),
@@ -821,13 +935,19 @@ pub fn run(text: &str) -> Result<Outcome> {
 }
 
 /// How far a penalty run (penalty p) is from its multiplier twin, against the penalty's own
-/// error. That error is O(1/p): a second run with p/10 estimates it by Richardson's rule,
-/// e ≈ |q(p/10) − q(p)| / 9. For the node displacements (largest difference) and the total
+/// error. That error is O(p^(−r)): a second run with p/10 estimates it by Richardson's rule,
+/// e ≈ |q(p/10) − q(p)| / `richardson` (10^r − 1, 9 for r = 1). For the node displacements (largest difference) and the total
 /// contact force of every step, the ratio |q(p) − q_multipliers| / tolerance is returned
 /// (displacement, force), both ≤ 1 when the twins agree. The tolerance is 2 e, plus 10⁻⁶ of the
 /// largest value over the steps, plus for the force the round-off of the penalty forces (ε·p·L
 /// per closed node, L the model size).
-pub fn twin_mismatch(penalty: f64, pen: &Outcome, tenth: &Outcome, lm: &Outcome) -> (f64, f64) {
+pub fn twin_mismatch(
+    penalty: f64,
+    richardson: f64,
+    pen: &Outcome,
+    tenth: &Outcome,
+    lm: &Outcome,
+) -> (f64, f64) {
     let (mut ru, mut rf) = (0.0f64, 0.0f64);
     let max_diff = |a: &[[f64; 3]], b: &[[f64; 3]]| {
         a.iter()
@@ -848,10 +968,10 @@ pub fn twin_mismatch(penalty: f64, pen: &Outcome, tenth: &Outcome, lm: &Outcome)
         .min(tenth.displacement.len())
         .min(lm.displacement.len());
     for s in 0..steps {
-        let e = max_diff(&pen.displacement[s], &tenth.displacement[s]) / 9.0;
+        let e = max_diff(&pen.displacement[s], &tenth.displacement[s]) / richardson;
         let d = max_diff(&pen.displacement[s], &lm.displacement[s]);
         ru = ru.max(d / (2.0 * e + 1e-6 * umax + 1e-300));
-        let ef = (pen.force[s] - tenth.force[s]).abs() / 9.0;
+        let ef = (pen.force[s] - tenth.force[s]).abs() / richardson;
         let floor = f64::EPSILON * penalty * pen.size * pen.closed[s] as f64;
         let df = (pen.force[s] - lm.force[s]).abs();
         rf = rf.max(df / (2.0 * ef + 1e-6 * fmax + floor + 1e-300));
@@ -884,7 +1004,7 @@ pub fn print_table() -> Result<()> {
     println!("|---|---|---|---|---|---|---|");
     for s in setups() {
         let t = s.run_twins()?;
-        let (ru, rf) = twin_mismatch(s.penalty, &t.penalty, &t.penalty10, &t.multipliers);
+        let (ru, rf) = s.mismatch(&t);
         let its = |o: &Outcome| {
             o.iterations
                 .iter()

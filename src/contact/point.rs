@@ -51,8 +51,9 @@ pub struct ContactPoint {
     /// point cannot close (no partner, zero weight).
     pub closed_fe: Vec<f64>,
     pub closed_ke: Vec<f64>,
-    /// Gap and its gradient over the displacement codes (a penalty in multiplier form: the
-    /// weighted gap w·g its normal row holds).
+    /// Gap and its gradient over the displacement codes: the constraint the normal row holds
+    /// (a penalty in multiplier form: the weighted gap w·g; multipliers near an open end:
+    /// max(g, e), see [`crate::contact::law::multiplier`]).
     pub gap: f64,
     pub gap_grad: Vec<f64>,
     /// Branch of the current state.

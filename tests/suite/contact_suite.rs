@@ -5,7 +5,7 @@
 
 use crate::common;
 
-use hertz::bench::suite::{self, setups, twin_mismatch, Law};
+use hertz::bench::suite::{self, setups, Law};
 
 #[test]
 fn every_setup_converges_quickly_and_penalty_matches_multipliers() {
@@ -45,7 +45,7 @@ fn every_setup_converges_quickly_and_penalty_matches_multipliers() {
                 ));
             }
         }
-        let (ru, rf) = twin_mismatch(s.penalty, &t.penalty, &t.penalty10, &t.multipliers);
+        let (ru, rf) = s.mismatch(&t);
         if !(ru <= 1.0 && rf <= 1.0) {
             failures.push(format!(
                 "{}: penalty vs multipliers {ru:.2} (displacement), {rf:.2} (force) times the penalty error",
@@ -54,6 +54,8 @@ fn every_setup_converges_quickly_and_penalty_matches_multipliers() {
         }
         // Penalty forces converge to the multipliers' as 1/p: the penalty run is off by about
         // 10/9 of its distance to the p/10 run (more than a third of it, unless at round-off).
+        // So do the total forces of setups whose displacements converge more slowly (a node
+        // held at the end of its weight's ramp moves, the die's load hardly).
         let last = t.multipliers.force.len() - 1;
         let (fp, ft, fm) = (
             t.penalty.force[last],
@@ -158,5 +160,81 @@ fn failing_contact_steps_say_why() {
     assert!(
         msg.contains("contact nodes went back and forth between states (chattering): "),
         "{msg}"
+    );
+}
+
+/// One-pass multipliers hold a slave node that a die as wide as the block presses past its end
+/// at the end of the node's weight ramp (e = d − a = 0, below the die's line, with a force): the
+/// infinite-penalty limit. Before, such a node was held on the die's line while its weight was
+/// above zero and let go at zero, and the 2D corner chattered between the two until the step
+/// failed.
+#[test]
+fn multipliers_hold_a_corner_pressed_past_the_masters_end_at_its_ramp_end() {
+    let o = suite::run(&suite::die_as_wide_as_the_block(2, Law::Multiplier)).unwrap();
+    assert!(o.substeps.iter().all(|&n| n == 1), "{:?}", o.substeps);
+    assert!(o.iterations.iter().all(|&n| n <= 6), "{:?}", o.iterations);
+    // Node ids run up the columns, the block's 9 × 9, then the die's 9 × 3: the block's top
+    // right corner is 81 (index 80), the die's bottom right corner 106 (index 105), and the
+    // die's end edge runs from 103 to 106. The corner's ramp: half its spacing 1/8 behind it.
+    let x = |s: usize, n: usize, r: [f64; 2]| {
+        let u = o.displacement[s][n];
+        [r[0] + u[0], r[1] + u[1]]
+    };
+    let mut held = 0;
+    for s in 0..o.displacement.len() {
+        let (c, e1, e0) = (
+            x(s, 80, [1.0, 1.0]),
+            x(s, 105, [1.0, 1.0]),
+            x(s, 102, [0.875, 1.0]),
+        );
+        let len = ((e1[0] - e0[0]).powi(2) + (e1[1] - e0[1]).powi(2)).sqrt();
+        let out = [(e1[0] - e0[0]) / len, (e1[1] - e0[1]) / len];
+        let d = (c[0] - e1[0]) * out[0] + (c[1] - e1[1]) * out[1];
+        // The gap to the end edge's line (continued): < 0 above it, inside the die's extension.
+        let g = (c[0] - e1[0]) * out[1] - (c[1] - e1[1]) * out[0];
+        if (d - 0.0625).abs() < 1e-3 && g < -1e-3 {
+            assert!(
+                (d - 0.0625).abs() < 1e-9,
+                "step {s}: d − a = {}",
+                d - 0.0625
+            );
+            held += 1;
+        }
+    }
+    assert!(
+        held >= 1,
+        "the corner is held at its ramp's end in some step"
+    );
+}
+
+/// The same in 3D, where a whole row of top nodes along two sides is held at the ends of their
+/// ramps: the multipliers converge in a handful of iterations, and the penalty twins (which need
+/// cut-backs there, a penalty defect left open) tend to their answer.
+#[test]
+#[ignore = "long: runs with `cargo test --release -- --ignored` (CI runs both)"]
+fn multipliers_hold_nodes_pressed_past_a_3d_masters_edge() {
+    let lm = suite::run(&suite::die_as_wide_as_the_block(3, Law::Multiplier)).unwrap();
+    assert!(lm.substeps.iter().all(|&n| n == 1), "{:?}", lm.substeps);
+    assert!(lm.iterations.iter().all(|&n| n <= 6), "{:?}", lm.iterations);
+    let p = suite::DIE_PENALTY;
+    let pen = suite::run(&suite::die_as_wide_as_the_block(3, Law::Penalty(p))).unwrap();
+    let tenth = suite::run(&suite::die_as_wide_as_the_block(3, Law::Penalty(0.1 * p))).unwrap();
+    // A node held at its ramp's end by a penalty sits where ε·w·(−g) is its force, w ≈ 3τ²
+    // near the end: τ ∝ ε^(−1/2), so the penalty answer tends to the multipliers' as ε^(−1/2)
+    // (its distance falls by √10 from ε/10 to ε), not as 1/ε elsewhere.
+    let dist = |a: &suite::Outcome| {
+        let last = a.displacement.len() - 1;
+        a.displacement[last]
+            .iter()
+            .zip(&lm.displacement[last])
+            .flat_map(|(x, y)| (0..3).map(move |i| (x[i] - y[i]).abs()))
+            .fold(0.0f64, f64::max)
+    };
+    let ratio = dist(&tenth) / dist(&pen);
+    assert!(
+        (ratio / 10f64.sqrt() - 1.0).abs() < 0.2,
+        "distance to the multipliers {} (ε/10), {} (ε): ratio {ratio}",
+        dist(&tenth),
+        dist(&pen)
     );
 }

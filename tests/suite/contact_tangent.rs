@@ -3,7 +3,8 @@
 //! contact residual, for every law (penalty, multiplier active and inactive) and every partner
 //! (node; straight and quadratic edges in small and large deformation, in the middle of an edge,
 //! on a vertex whose normal is averaged with the neighbouring edge, past the open end of the
-//! master where the force is weighted down; circle, cavity, sphere, polynomial above and below,
+//! master where the force is weighted down and the multipliers hold the gap or the ramp's end;
+//! circle, cavity, sphere, polynomial above and below,
 //! plane, with and without a moving reference node; a prescribed normal). Partners are held fixed
 //! while the contact point moves with the unknowns, as in the linearization. Friction is checked
 //! with multipliers and with a penalty (solved in the multipliers' form, with its compliance), the
@@ -177,12 +178,22 @@ fn edge_cases() -> Vec<EdgeCase> {
             ],
         },
         // Just past the open end of the master: the force is weighted down (0 < w < 1) (an
-        // isolated node: the ramp is 1 % of the end edge long, here 0.01).
+        // isolated node: the ramp is 1 % of the end edge long, here 0.01). The node is 0.002
+        // past the end, e = 0.002 − 0.01 = −0.008 past the ramp's end, and about 0.02 deep (the
+        // end node moved up): the multipliers hold max(g, e) = e, the ramp's end.
         EdgeCase {
             name: "open-end",
             nm: 2,
             pos: (2.0, 1.0),
             ds: [0.002, -0.01, 0.0],
+            dm: vec![(5, [0.01, -0.02, 0.0]), (6, [0.0, 0.01, 0.0])],
+        },
+        // The same about 0.005 deep: the multipliers hold g.
+        EdgeCase {
+            name: "open-end, shallow",
+            nm: 2,
+            pos: (2.0, 1.0),
+            ds: [0.002, 0.005, 0.0],
             dm: vec![(5, [0.01, -0.02, 0.0]), (6, [0.0, 0.01, 0.0])],
         },
     ]

@@ -3,7 +3,8 @@
 //! Glossary (m local displacement unknowns q):
 //! * `gap` g(q) with ∇g: the constraint, g < 0 = penetration;
 //! * `weight` w(q) ∈ [0, 1]: the share of the node's tributary surface that faces the master
-//!   (1 except near the end of an open master);
+//!   (1 except near the end of an open master), and `past_end` e(q) there: how far the node is
+//!   past the end of w's ramp;
 //! * `b` B(q), length m: how the normal force is shared by the unknowns (the slave node gets the
 //!   unit normal n, the master nodes −N_a n); B = ∇g for a closest-point projection, not for a
 //!   smoothed normal field or a prescribed normal, so the tangent need not be symmetric.
@@ -25,6 +26,9 @@ pub struct PointKinematics {
     pub b: Vec<Jet>,
     /// The node's tributary area (2D: length × thickness), or a floor for isolated nodes.
     pub area: f64,
+    /// Near an open boundary of a node-to-segment partner: e, the distance past the far end of
+    /// the weight's ramp (w = 0 for e ≥ 0); the multipliers hold max(g, e) = 0.
+    pub past_end: Option<Jet>,
     /// Slip of the point (conditions with `friction`: the law's friction multipliers act on it).
     pub slip: Option<SlipKinematics>,
 }
@@ -59,6 +63,7 @@ impl PointKinematics {
             weight: weight.into(),
             b: b.iter().map(|&v| v.into()).collect(),
             area,
+            past_end: None,
             slip: None,
         }
     }

@@ -12,7 +12,12 @@
 //! 20 iterations with the residual falling by half in each, 3 with the part kept).
 //!
 //! The weight w only switches the constraint: in the limit of an infinite penalty, the penalty law
-//! holds g = 0 wherever w > 0.
+//! holds g = 0 wherever w > 0, and a node it presses towards the end of w's ramp (e → 0, with e
+//! the distance past the ramp's far end) is held there with a finite force ε·w·(−g) and g < 0.
+//! Holding g = 0 while w > 0 and nothing once w = 0 has no solution for such a node (held, it is
+//! pushed out past the ramp; let go, it comes back in below the master), and Newton alternates
+//! between the two. So near an open end the constraint is h = max(g, e) = 0: g = 0 inside the
+//! ramp, or e = 0 with g < 0 at its end, the force along B in both (as the penalty's).
 //!
 //! Coulomb friction without a penalty: the friction force λ_T (a vector in Cartesian components,
 //! the internal force on the node; its equations hold n·λ_T = 0) is a multiplier too, spread like
@@ -72,10 +77,10 @@ pub fn evaluate(
     let c = capped(laws.c, cn);
     // The constraint the normal row holds: g, or with a penalty's compliance w·g (the penalty's
     // force is ε·w·⟨−g⟩; the weight only switches a multiplier).
-    let h = if cn > 0.0 {
-        k.weight.product(&k.gap)
-    } else {
-        k.gap.clone()
+    let h = match &k.past_end {
+        _ if cn > 0.0 => k.weight.product(&k.gap),
+        Some(e) if e.v > k.gap.v => e.clone(),
+        _ => k.gap.clone(),
     };
     let law = PointLaw::Multiplier {
         lambda,
@@ -85,7 +90,8 @@ pub fn evaluate(
         compliance: cn,
         tol: laws.gap_tol,
     };
-    if !(k.weight.v > 0.0) || k.gap.v.is_nan() {
+    let counts = k.weight.v > 0.0 || (cn == 0.0 && k.past_end.is_some());
+    if !counts || k.gap.v.is_nan() {
         return (point(codes, law, k, None, false), None);
     }
     let mut fe = vec![0.0; mm];
@@ -135,9 +141,7 @@ pub fn evaluate(
     let active = lambda - c * (h.v + cn * lambda) > -c * laws.gap_tol;
     let friction = friction.filter(|_| active);
     let mut p = point(codes, law, k, Some((fe, ke)), active);
-    if cn > 0.0 {
-        (p.gap, p.gap_grad) = (h.v, h.d);
-    }
+    (p.gap, p.gap_grad) = (h.v, h.d);
     (p, friction)
 }
 

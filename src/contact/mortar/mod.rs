@@ -259,6 +259,7 @@ impl SlotLaw {
             weight: Jet::constant(if has { 1.0 } else { 0.0 }, m),
             b,
             area: 1.0,
+            past_end: None,
             slip: None,
         };
         // The multipliers' active-set rule compares a pressure with c·ḡ: c per unit area.

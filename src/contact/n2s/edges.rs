@@ -1,7 +1,7 @@
 //! A node against an edge of a 2D master surface (see [`crate::contact::geometry::edges`]).
 
 use super::{
-    extents, ramp, Current, NodeToSegment, Slot, HYSTERESIS_BAND, INSIDE_TOL, ISOLATED_RAMP,
+    extents, Current, EndWeight, NodeToSegment, Slot, HYSTERESIS_BAND, INSIDE_TOL, ISOLATED_RAMP,
 };
 use crate::contact::dual::{self, DVec, Dual};
 use crate::contact::geometry::edges::{edge_normal, EdgeGeometry, EdgeSurface};
@@ -122,15 +122,15 @@ impl NodeToSegment {
         k: usize,
         geom: &EdgeGeometry<T>,
         xs: [T; 2],
-    ) -> T {
-        let mut w = xs[0].cst(1.0);
+    ) -> EndWeight<T> {
+        let mut w = EndWeight::new(xs[0].cst(1.0));
         for e in 0..2 {
             if !geom.open[e] {
                 continue;
             }
             let (out, xe) = geom.end_direction(e);
             let d = (xs[0] - xe[0]) * out[0] + (xs[1] - xe[1]) * out[1];
-            w = w * ramp(d, self.edge_ramp(model, slot, k, e));
+            w.boundary(d, self.edge_ramp(model, slot, k, e));
         }
         w
     }
@@ -150,7 +150,8 @@ impl NodeToSegment {
         let s = geom.project(xs2)?;
         let past_open = (s < 0.0 && geom.open[0]) || (s > 1.0 && geom.open[1]);
         let inside = if past_open {
-            self.edge_weight(model, slot, k, &geom, xs2) > 0.0
+            self.edge_weight(model, slot, k, &geom, xs2)
+                .counts(self.multipliers(slot))
         } else {
             (-INSIDE_TOL..=1.0 + INSIDE_TOL).contains(&s)
         };
@@ -218,9 +219,10 @@ impl NodeToSegment {
             coeffs.push((local.index(n), -c[a]));
         }
         let b = local.distribute(&coeffs, &dir);
-        let weight = self.edge_weight(ctx.model, slot, k, &geom, xs);
+        let end = self.edge_weight(ctx.model, slot, k, &geom, xs);
         let area = crate::contact::law_area(slot.area, ctx.model);
-        let mut kin = PointKinematics::from_duals(gap, weight, &b, area);
+        let mut kin = PointKinematics::from_duals(gap, end.w, &b, area);
+        kin.past_end = end.past.map(|(e, _)| e.into());
         let mut next = None;
         if let Some(law) = slot.friction(self.friction) {
             let xs3 = [xs[0], xs[1], Dual::constant(0.0, m)];

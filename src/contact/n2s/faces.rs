@@ -9,7 +9,7 @@
 //! the mesh.
 
 use super::ISOLATED_RAMP;
-use super::{extents, ramp, Current, NodeToSegment, Slot, HYSTERESIS_BAND, INSIDE_TOL};
+use super::{extents, Current, EndWeight, NodeToSegment, Slot, HYSTERESIS_BAND, INSIDE_TOL};
 use crate::contact::dual::{self, Dual, Jet};
 use crate::contact::geometry::faces::{edge_excess, FaceGeometry, NodalNormal};
 use crate::contact::geometry::scalar::Scalar;
@@ -79,12 +79,12 @@ impl NodeToSegment {
         k: usize,
         geom: &FaceGeometry<T>,
         xs: &[T; 3],
-    ) -> T {
+    ) -> EndWeight<T> {
         let face = &self.faces.faces[k];
-        let mut w = xs[0].cst(1.0);
+        let mut w = EndWeight::new(xs[0].cst(1.0));
         for e in 0..face.nodes.len() {
             if face.open[e] {
-                w = w * ramp(geom.past_edge(xs, e), self.face_ramp(model, slot, k, e));
+                w.boundary(geom.past_edge(xs, e), self.face_ramp(model, slot, k, e));
             }
         }
         w
@@ -115,7 +115,10 @@ impl NodeToSegment {
         // Past a shared edge, the neighbouring face is the surface (but a previous partner is
         // kept within the band); past an open edge, the node counts while its weight does.
         if past_shared > HYSTERESIS_BAND
-            || (past_open && !(self.face_weight(model, slot, k, &geom, &xs) > 0.0))
+            || (past_open
+                && !self
+                    .face_weight(model, slot, k, &geom, &xs)
+                    .counts(self.multipliers(slot)))
         {
             return None;
         }
@@ -235,7 +238,7 @@ impl NodeToSegment {
         for ca in c.iter().take(nc) {
             b.extend(dir.iter().map(|&d| -(*ca * d)));
         }
-        let weight = self.face_weight(ctx.model, slot, k, &geom, &xs);
+        let end = self.face_weight(ctx.model, slot, k, &geom, &xs);
         // ∂z/∂q: identity on the positions, the nodal normals' derivatives after them.
         let mut dz: Vec<Vec<(usize, f64)>> = (0..npos).map(|i| vec![(i, 1.0)]).collect();
         for nn in &normals {
@@ -257,10 +260,10 @@ impl NodeToSegment {
         bj.resize(m, Jet::constant(0.0, m));
         let mut kin = PointKinematics {
             gap: chain(&gap),
-            weight: chain(&weight),
+            weight: chain(&end.w),
             b: bj,
             area: crate::contact::law_area(slot.area, ctx.model),
-
+            past_end: end.past.as_ref().map(|(e, _)| chain(e)),
             slip: None,
         };
         let mut next = None;

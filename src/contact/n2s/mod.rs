@@ -16,7 +16,12 @@
 //! master (a smoothstep of (a − d)/(a + b), with d the distance past the boundary and a, b the
 //! node's tributary extents behind and ahead). A node on the boundary with its surface behind it
 //! keeps its full force, a node whose whole tributary extent is past it has none, and nothing jumps
-//! in between. The multiplier law enforces g = 0 wherever w > 0 (the infinite-penalty limit).
+//! in between. The multiplier law is the infinite-penalty limit: g = 0 wherever w > 0, and where
+//! holding the node there would push it past the ramp's far end while, let go, it would come
+//! back into the ramp below the master (a corner bulging past a die's edge), the node is held
+//! at the ramp's end, e = d − a = 0, with g < 0: the state a penalty force ε·w·(−g) tends to as
+//! ε grows (w → 0 there while the force stays finite). The constraint is max(g, e) = 0, see
+//! [`crate::contact::law::multiplier`].
 
 mod edges;
 mod faces;
@@ -208,7 +213,44 @@ fn ramp<T: Scalar>(d: T, (a, b): (f64, f64)) -> T {
     smoothstep((-d + a) * (1.0 / (a + b)))
 }
 
+/// Where a node stands against the open boundaries of its partner.
+struct EndWeight<T> {
+    /// w: the product of the boundaries' ramps.
+    w: T,
+    /// The distance d − a past the far end of the nearest ramp (w = 0 from 0 on), with that
+    /// ramp's length a + b; None without an open boundary.
+    past: Option<(T, f64)>,
+}
+
+impl<T: Scalar> EndWeight<T> {
+    fn new(one: T) -> EndWeight<T> {
+        EndWeight { w: one, past: None }
+    }
+
+    /// Takes in open boundary at distance `d` past it with tributary extents `ab`.
+    fn boundary(&mut self, d: T, ab: (f64, f64)) {
+        self.w = self.w * ramp(d, ab);
+        let e = d - ab.0;
+        if self.past.as_ref().is_none_or(|(p, _)| e.val() > p.val()) {
+            self.past = Some((e, ab.0 + ab.1));
+        }
+    }
+
+    /// Whether the boundary still counts the node as the partner's: inside its ramp, or with
+    /// `multipliers` (whose end state holds e = 0, which an iterate overshoots) within a ramp's
+    /// length past it.
+    fn counts(&self, multipliers: bool) -> bool {
+        self.w.val() > 0.0
+            || (multipliers && self.past.as_ref().is_some_and(|(e, len)| e.val() < *len))
+    }
+}
+
 impl NodeToSegment {
+    /// Whether `slot` is held by Lagrange multipliers (not a penalty in any form).
+    fn multipliers(&self, slot: &Slot) -> bool {
+        matches!(slot.law(self.law), ContactLaw::Multiplier)
+    }
+
     pub fn new(model: &Model, ci: usize) -> Result<NodeToSegment> {
         let c = &model.contacts[ci];
         let Pairing::NodeToSegment { nodes, segments } = &c.pairing else {
