@@ -673,6 +673,15 @@ impl NewtonContext<'_> {
     }
 
     /// Tangent predictor for prescribed increments `dup`: K Δu_f = −K_fp Δu_p at the current state.
+    ///
+    /// The elements' part is linearized; the contact is evaluated at the prescribed values
+    /// already moved (a rigid indenter's reference node, or driven nodes of either body), so
+    /// the step's branch search sees the gaps the move makes. Linearizing the contact's part
+    /// too (−K_fp Δu_p of its closed branches) left the search blind to it: the free nodes'
+    /// linear gaps, without the indenter's move, predicted the pressed nodes open, and the
+    /// step kept the closed branches' push without their stiffness (a neo-Hookean block
+    /// pressed by a plane moving with a node: an element inverted in the first step even in
+    /// 32 substeps).
     fn predict(&mut self, u: &mut [f64], dup: &[f64]) -> Result<()> {
         let nf = self.dofs.n_free;
         let has_contact = !self.contact.is_empty();
@@ -680,20 +689,39 @@ impl NewtonContext<'_> {
             Some(s) => Search::Hint(s),
             None => Search::Fresh,
         };
-        let (points, _) = self.evaluate_contact(u, search)?;
-        let contribs: Vec<Contribution> = points.iter().map(|p| p.contribution()).collect();
         let need_k = !self.factor_valid && !has_contact;
-        // K_fp Δu_p of elements and contact (a rigid indenter's prescribed reference node).
         let t = Instant::now();
-        let ev = self.asm.evaluate(u, need_k, false, Some(dup), &contribs)?;
+        let ev = self.asm.evaluate(u, need_k, false, Some(dup), &[])?;
         self.times.assembly += since(t);
-        let rhs: Vec<f64> = ev
+        let mut rhs: Vec<f64> = ev
             .k_fp_dup
             .as_ref()
             .expect("requested")
             .iter()
             .map(|v| -v)
             .collect();
+        let mut moved = u.to_vec();
+        for (i, d) in dup.iter().enumerate() {
+            moved[nf + i] += d;
+        }
+        let points = if has_contact {
+            // The contact's change of residual from the move: −(f_c(moved) − f_c(u)).
+            let (before, _) = self.evaluate_contact(u, search)?;
+            let (after, _) = self.evaluate_contact(&moved, search)?;
+            let mut change = vec![0.0; self.dofs.n_primary()];
+            let contribs = |ps: &[ContactPoint]| -> Vec<Contribution> {
+                ps.iter().map(|p| p.contribution()).collect()
+            };
+            self.asm.add_residuals(&mut change, &contribs(&after));
+            let mut old = vec![0.0; self.dofs.n_primary()];
+            self.asm.add_residuals(&mut old, &contribs(&before));
+            for i in 0..nf {
+                rhs[i] -= change[i] - old[i];
+            }
+            after
+        } else {
+            Vec::new()
+        };
         let step = if has_contact {
             // The structural tangent of the condensed solve is the element part only.
             let need_ks = match self.condensed {

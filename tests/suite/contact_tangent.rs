@@ -188,12 +188,12 @@ fn edge_cases() -> Vec<EdgeCase> {
             ds: [0.002, -0.01, 0.0],
             dm: vec![(5, [0.01, -0.02, 0.0]), (6, [0.0, 0.01, 0.0])],
         },
-        // The same about 0.005 deep: the multipliers hold g.
+        // The same about 0.004 deep: the multipliers hold g.
         EdgeCase {
             name: "open-end, shallow",
             nm: 2,
             pos: (2.0, 1.0),
-            ds: [0.002, 0.005, 0.0],
+            ds: [0.002, -0.002, 0.0],
             dm: vec![(5, [0.01, -0.02, 0.0]), (6, [0.0, 0.01, 0.0])],
         },
     ]
