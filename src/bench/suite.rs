@@ -467,6 +467,45 @@ pub fn cylinder_on_block(h: f64, law: Law, nlgeo: bool) -> String {
     inp.render("suite", &analysis(1), "PlaneStrain")
 }
 
+/// A block [0, 1]² (6 × 6, `nlgeo 1`) fixed at its bottom and compressed 50 % in ten steps by a
+/// rigid plane (`circle`: false) or a circle of radius 2 whose reference node is driven down.
+/// `neo_hooke`: a neo-Hookean material of E = 1000, ν = 0.3; else `IsoLE` of the same moduli, the
+/// St. Venant–Kirchhoff law, which softens past a stretch of 1/√3 (see
+/// [`crate::solve::softening`]).
+pub fn compressed_by_a_moving_rigid(circle: bool, neo_hooke: bool, law: Law) -> String {
+    let mut inp = Input::default();
+    let xs = uniform(0.0, 1.0, 6);
+    let block = inp.block2d(Kind::Q4, &xs, &|_| xs.clone(), "mat 1 crossSect 1 nlgeo 1");
+    let r = inp.node(0.5, 1.0, 0.0);
+    inp.segments.push(if circle {
+        format!("circlecontactsegment 1 centerpoint 2 0.5 3.0 radius 2.0 node {r}")
+    } else {
+        format!("planecontactsegment 1 point 2 0.5 1.0 normal 2 0 -1 node {r}")
+    });
+    inp.sections.push("SimpleCS 1 thick 1.0".into());
+    inp.materials.push(if neo_hooke {
+        let (mu, k) = (E / (2.0 * (1.0 + NU)), E / (3.0 * (1.0 - 2.0 * NU)));
+        format!(
+            "MooneyRivlinCompressibleMat 1 d 0 c1 {} c2 0 k {k}",
+            mu / 2.0
+        )
+    } else {
+        format!("IsoLE 1 d 0 E {E} n {NU} tAlpha 0")
+    });
+    let fixed = inp.node_set(&block.bottom);
+    let refset = inp.node_set(&[r]);
+    inp.bcs.push(format!(
+        "BoundaryCondition 1 loadTimeFunction 1 dofs 2 1 2 values 2 0 0 set {fixed}"
+    ));
+    inp.bcs.push(format!(
+        "BoundaryCondition 2 loadTimeFunction 1 dofs 2 1 2 values 2 0 -0.5 set {refset}"
+    ));
+    inp.bcs.push(n2s(3, law, &block.top, &[1], ""));
+    let steps: Vec<f64> = (1..=10).map(|i| i as f64 / 10.0).collect();
+    inp.functions.push(history(&steps));
+    inp.render("suite", &analysis(steps.len()), "PlaneStrain")
+}
+
 /// The penalty of [`die_as_wide_as_the_block`]'s twin: 10³ times the block's modulus (90/31).
 pub const DIE_PENALTY: f64 = 3e3;
 
@@ -761,6 +800,15 @@ pub fn setups() -> Vec<Setup> {
             |l| die_as_wide_as_the_block(2, l),
         )
     });
+    // A rigid plane and circle moving with a node compress a neo-Hookean block 50 %.
+    for (circle, name) in [(false, "plane"), (true, "circle")] {
+        out.push(Setup::new(
+            format!("{name} moving with a node, 50 %, nlgeo"),
+            "large deformation",
+            PENALTY,
+            move |l| compressed_by_a_moving_rigid(circle, true, l),
+        ));
+    }
     // Large penalties (1e12 with E = 1000, as OOFEM's inputs use).
     for (name, drive) in [
         ("penalty 1e12, displacement", base.drive),

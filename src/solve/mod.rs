@@ -8,6 +8,7 @@ pub mod multipliers;
 pub mod newton;
 pub mod ordering;
 pub mod report;
+pub mod softening;
 pub mod stepping;
 
 pub use report::{IterationReport, Observer, Phase, Silent, StepReport};

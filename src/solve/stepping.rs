@@ -246,6 +246,8 @@ pub fn run_analysis_observed(
         let start_states = ctx.converged_states.clone();
         let mut done = false;
         let mut diagnosis = None;
+        // The furthest state any substep converged to (for a failure's diagnosis).
+        let mut furthest = (0.0, start_u.clone());
         for level in 0..=params.max_cutbacks {
             let nsub = 1usize << level;
             u.copy_from_slice(&start_u);
@@ -262,7 +264,11 @@ pub fn run_analysis_observed(
                     .map(|i| start_u[nf + i] + alpha * (up_target[i] - start_u[nf + i]))
                     .collect();
                 match ctx.newton(&mut u, &f_sub, &up_sub, a, &mut info) {
-                    Ok(true) => {}
+                    Ok(true) => {
+                        if alpha > furthest.0 && alpha < 1.0 {
+                            furthest = (alpha, u.clone());
+                        }
+                    }
                     Ok(false) => {
                         diagnosis = ctx.diagnosis();
                         ok = false;
@@ -272,6 +278,15 @@ pub fn run_analysis_observed(
                         observer.retry(&format!("step {step}: {msg}; cutting the step"));
                         ok = false;
                         break;
+                    }
+                    Err(Error::Solve(msg)) => {
+                        let softening =
+                            super::softening::softening_hint(model, &ctx.asm, &furthest.1);
+                        return Err(Error::Solve(format!(
+                            "step {step} (t = {t}): {msg}, even after {} step halvings{}",
+                            params.max_cutbacks,
+                            softening.map(|d| format!("; {d}")).unwrap_or_default()
+                        )));
                     }
                     // No smaller step helps a mechanism: say at which step it showed.
                     Err(Error::Singular(msg)) => {
@@ -299,14 +314,16 @@ pub fn run_analysis_observed(
             }
         }
         if !done {
+            let softening = super::softening::softening_hint(model, &ctx.asm, &furthest.1);
             return Err(Error::Solve(format!(
                 "step {step} (t = {t}) did not converge within {} iterations even after {} step halvings; \
-                 last residual {:.3e} (rtolf {:.1e}){}",
+                 last residual {:.3e} (rtolf {:.1e}){}{}",
                 a.maxiter,
                 params.max_cutbacks,
                 info.residual_history.last().copied().unwrap_or(f64::NAN),
                 a.rtolf,
-                diagnosis.map(|d| format!("; {d}")).unwrap_or_default()
+                diagnosis.map(|d| format!("; {d}")).unwrap_or_default(),
+                softening.map(|d| format!("; {d}")).unwrap_or_default()
             )));
         }
         applied = target;
