@@ -1,7 +1,7 @@
 //! Error messages for a terminal: `error: file:line: message`, then the offending record with a
 //! caret under the token the message names (rendered by miette).
 
-use crate::error::{Error, Span};
+use hertz::error::{Error, Span};
 use miette::{GraphicalReportHandler, GraphicalTheme, MietteSpanContents, SourceCode, SourceSpan};
 
 /// The record text of an input error, shown at its line of the file.

@@ -2,12 +2,11 @@
 //! 2 bad input or usage, 3 solver failure, 4 output failure.
 
 use clap::{CommandFactory, Parser, Subcommand};
-mod cli;
 
-use cli::observer::{CliObserver, Level};
 use hertz::app::{run_file_observed, RunOptions};
 use hertz::output::check::describe_failure;
 use hertz::output::vtu::VtuFormat;
+use hertz_cli::cli::observer::{CliObserver, Level};
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -59,7 +58,7 @@ enum Command {
         output: Option<PathBuf>,
         /// How the .vtu arrays are stored: text, or raw binary appended to the XML (smaller,
         /// exact, faster to write and to load in ParaView)
-        #[arg(long, value_enum, default_value_t = VtuFormat::Ascii)]
+        #[arg(long, default_value = "ascii", value_parser = hertz_cli::import::vtu_parser())]
         vtu: VtuFormat,
         #[command(flatten)]
         verbosity: Verbosity,
@@ -72,11 +71,11 @@ enum Command {
         verbosity: Verbosity,
     },
     /// Convert a Gmsh mesh (.msh 2.2 or 4.1) to OOFEM node, element and set records
-    Import(hertz::mesh::gmsh::ImportArgs),
+    Import(hertz_cli::import::ImportArgs),
     /// Plot a run's results: contact pressure, load-displacement, Newton residuals (SVG or PNG)
-    Plot(hertz::plot::PlotArgs),
+    Plot(hertz_cli::plot::PlotArgs),
     /// Generated benchmark problems: sizes, phase times, errors against exact solutions
-    Bench(hertz::bench::BenchArgs),
+    Bench(hertz_cli::bench::BenchArgs),
     /// Print a shell completion script (bash, zsh, fish, elvish, powershell)
     Completions {
         #[arg(value_enum)]
@@ -102,15 +101,15 @@ fn main() -> ExitCode {
         } => run_or_check(file, Some((output, vtu)), &verbosity),
         Command::Check { file, verbosity } => run_or_check(file, None, &verbosity),
         Command::Import(args) => report(
-            hertz::mesh::gmsh::import_command(&args)
+            hertz::mesh::gmsh::import_command(&args.options())
                 .map(|lines| lines.iter().for_each(|l| eprintln!("{l}"))),
         ),
-        Command::Plot(args) => report(hertz::plot::plot_files(&args).map(|files| {
+        Command::Plot(args) => report(hertz_cli::plot::plot_files(&args).map(|files| {
             files
                 .iter()
                 .for_each(|p| eprintln!("wrote {}", p.display()))
         })),
-        Command::Bench(args) => hertz::bench::main(args),
+        Command::Bench(args) => hertz_cli::bench::main(args),
         Command::Completions { shell } => {
             clap_complete::generate(shell, &mut Cli::command(), "hertz", &mut std::io::stdout());
             ExitCode::SUCCESS
@@ -126,7 +125,7 @@ fn report(result: hertz::error::Result<()>) -> ExitCode {
         Err(e) => {
             eprintln!(
                 "{}",
-                hertz::diagnostic::render(&e, std::io::stderr().is_terminal())
+                hertz_cli::diagnostic::render(&e, std::io::stderr().is_terminal())
             );
             ExitCode::from(e.exit_code() as u8)
         }

@@ -6,7 +6,7 @@
 //!   prescribed value over the steps (`STEM.steps.csv`);
 //! - the Newton residual per iteration, one line per step (`STEM.newton.csv`).
 
-use crate::error::{Error, Result};
+use hertz::error::{Error, Result};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
@@ -672,7 +672,7 @@ mod tests {
         let points = [(0.0, 0.0, 9.0), (0.3, 0.4, 7.0), (1.2, 0.5, 3.0)];
         let mut radii = Vec::new();
         for axis in [1, 2] {
-            let mut csv = format!("{}\n", crate::output::outfile::CONTACT_CSV_HEADER);
+            let mut csv = format!("{}\n", hertz::output::outfile::CONTACT_CSV_HEADER);
             for (k, &(u, v, p)) in points.iter().enumerate() {
                 let (y, z) = if axis == 2 { (v, 1.0) } else { (1.0, v) };
                 csv.push_str(&format!("1,1,{k},{u},{y},{z},0,{p},{p},1,0,0\n"));

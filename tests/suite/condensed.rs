@@ -16,7 +16,7 @@ fn compare(multipliers: bool, friction: bool) {
         "hertz-condensed-{}-{multipliers}-{friction}.in",
         std::process::id()
     ));
-    hertz::bench::write_contact_block_input(&path, 8, 0.4, multipliers).unwrap();
+    hertz_bench::write_contact_block_input(&path, 8, 0.4, multipliers).unwrap();
     if friction {
         let text = std::fs::read_to_string(&path).unwrap();
         let text = text.replace(" nodeset ", " friction 0.3 nodeset ");

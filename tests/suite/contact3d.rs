@@ -3,14 +3,14 @@
 use crate::common;
 
 use hertz::analytic::{compare_hertz_sphere, contact_modulus};
-use hertz::bench::mesh::{hex_face_on, Solid};
-use hertz::bench::suite::Law;
-use hertz::bench::verify::{
+use hertz::contact::SlotState;
+use hertz::solve::{run_analysis, SolveParams};
+use hertz_bench::mesh::{hex_face_on, Solid};
+use hertz_bench::suite::Law;
+use hertz_bench::verify::{
     neo_hookean_law, uniaxial_stress, HertzSphere, Patch, TwoBeams, BEAM_G, BEAM_H, BEAM_L, BEAM_S,
     E, HERTZ_R, NU, PATCH_H,
 };
-use hertz::contact::SlotState;
-use hertz::solve::{run_analysis, SolveParams};
 
 /// Solve `text`; the contact states and Newton iterations of every step.
 fn solve(text: &str) -> (Vec<SlotState>, Vec<usize>) {
@@ -374,8 +374,8 @@ fn two_beams_in_two_pass_contact() {
 /// penalty acts per node, and three node rows share the depth: a different penalty per area).
 #[test]
 fn extruded_cylinder_matches_the_2d_section() {
-    use hertz::bench::suite::cylinder_on_block;
-    use hertz::bench::verify::ExtrudedCylinder;
+    use hertz_bench::suite::cylinder_on_block;
+    use hertz_bench::verify::ExtrudedCylinder;
     let h = 0.1;
     for law in [Law::Multiplier, Law::Penalty(1e6)] {
         let (states2d, _) = solve(&cylinder_on_block(h, law, false));
@@ -405,7 +405,7 @@ fn extruded_cylinder_matches_the_2d_section() {
 /// to round-off).
 #[test]
 fn wedge_pressed_onto_a_brick() {
-    use hertz::bench::verify::WedgeOnBrick;
+    use hertz_bench::verify::WedgeOnBrick;
     for nlgeo in [false, true] {
         let mut forces = Vec::new();
         for law in [Law::Multiplier, Law::Penalty(1e6)] {
@@ -510,7 +510,7 @@ fn wedge_pressed_onto_a_brick() {
 /// times the slope of the bump under the contact's centre, within 0.1 %.
 #[test]
 fn large_sliding_over_a_curved_master() {
-    use hertz::bench::verify::{LargeSliding, SLIDE_R};
+    use hertz_bench::verify::{LargeSliding, SLIDE_R};
     let force = 20.0;
     for (law, most) in [(Law::Multiplier, 3), (Law::Penalty(1e5), 5)] {
         let ls = LargeSliding {

@@ -13,9 +13,9 @@ use crate::common;
 
 use common::{face_input, label_of_slave, strip, PEN};
 use hertz::assembly::DofMap;
-use hertz::bench::mesh::Solid;
 use hertz::contact::{ContactSystem, Partner, Search, SlotState};
 use hertz::model::Model;
+use hertz_bench::mesh::Solid;
 
 struct Probe {
     model: Model,

@@ -1,11 +1,11 @@
-//! The contact robustness suite (`hertz::bench::suite`, `hertz bench --suite`): every everyday
+//! The contact robustness suite (`hertz_bench::suite`, `hertz bench --suite`): every everyday
 //! setup converges with at most 25 Newton iterations per step and no step cut-back, with penalty
 //! and with multipliers, and the penalty answer equals its multiplier twin within the penalty's
 //! own error (estimated from a run with a tenth of the penalty, Richardson's rule).
 
 use crate::common;
 
-use hertz::bench::suite::{self, setups, Law};
+use hertz_bench::suite::{self, setups, Law};
 
 #[test]
 fn every_setup_converges_quickly_and_penalty_matches_multipliers() {
@@ -149,7 +149,7 @@ fn failing_contact_steps_say_why() {
     // of sliding, t = 2.5 (not solved; with multipliers that step takes 10 iterations, with the
     // mesh's penalty 9). Shallow ironing with the mesh's penalty chattered here until friction
     // with a penalty was solved in multiplier form, and now converges.
-    let text = hertz::bench::examples::IRONING.input().replace(
+    let text = hertz_bench::examples::IRONING.input().replace(
         "s2slagrangianmultipliercontact 4 loadTimeFunction 1",
         "s2spenaltycontact 4 loadTimeFunction 1 penalty 1e5",
     );

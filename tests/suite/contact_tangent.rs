@@ -15,9 +15,9 @@ use crate::common;
 
 use common::{face_input, label_of_slave, strip, LM, PEN};
 
-use hertz::bench::mesh::Solid;
 use hertz::contact::{ContactSystem, History, Search};
 use hertz::fem::shape::HEXA8_CORNERS;
+use hertz_bench::mesh::Solid;
 
 struct Case {
     name: String,
@@ -699,11 +699,11 @@ fn mortar2d_cases(nlgeo: u8, law: &str) -> Vec<(String, String, Disp, usize)> {
 /// slave block sunk and sheared so that the overlaps move, the master's top nodes moved out of
 /// plane.
 fn mortar3d_case(
-    kind: hertz::bench::mesh::Solid,
+    kind: hertz_bench::mesh::Solid,
     nlgeo: bool,
-    law: hertz::bench::suite::Law,
+    law: hertz_bench::suite::Law,
 ) -> (String, Disp) {
-    let text = hertz::bench::verify::Patch {
+    let text = hertz_bench::verify::Patch {
         kind,
         slave_kind: None,
         sym: 0,
@@ -814,8 +814,8 @@ fn multiplier_tangent_keeps_its_geometric_part_beyond_a_pressure_of_e() {
 #[test]
 #[ignore = "long: runs with `cargo test --release -- --ignored` (CI runs both)"]
 fn mortar_tangents_in_3d_are_jacobians_of_residuals() {
-    use hertz::bench::mesh::Solid;
-    use hertz::bench::suite::Law;
+    use hertz_bench::mesh::Solid;
+    use hertz_bench::suite::Law;
     for kind in [Solid::Hex, Solid::Tet, Solid::Wedge] {
         for nlgeo in [false, true] {
             for (law, lambda) in [(Law::Penalty(1e4), 0.0), (Law::Multiplier, 3.0)] {
@@ -833,8 +833,8 @@ fn mortar_tangents_in_3d_are_jacobians_of_residuals() {
 /// multipliers.
 #[test]
 fn mortar_tangents_against_rigid_shapes_in_3d_are_jacobians_of_residuals() {
-    use hertz::bench::mesh::Solid;
-    use hertz::bench::suite::Law;
+    use hertz_bench::mesh::Solid;
+    use hertz_bench::suite::Law;
     for kind in [Solid::Hex, Solid::Tet, Solid::Wedge] {
         for nlgeo in [false, true] {
             for (law, lambda) in [(Law::Penalty(1e4), 0.0), (Law::Multiplier, 3.0)] {
@@ -907,8 +907,8 @@ fn check_mortar3d(name: &str, text: &str, disp: Disp, lambda: f64) {
 #[test]
 #[ignore = "long: runs with `cargo test --release -- --ignored` (CI runs both)"]
 fn mortar_friction_tangents_are_jacobians_in_stick_and_slip() {
-    use hertz::bench::mesh::Solid;
-    use hertz::bench::suite::Law;
+    use hertz_bench::mesh::Solid;
+    use hertz_bench::suite::Law;
     let laws = [
         (
             "s2spenaltycontact 4 loadTimeFunction 1 penalty 1e4 slavesegment 1 segmentset 1 2",

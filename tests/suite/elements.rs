@@ -856,7 +856,7 @@ fn a_load_on_interior_boundaries_is_warned_about() {
 /// closed form's at that stretch (P₂₂ = P₃₃ = 0) and its width follows the lateral stretch.
 #[test]
 fn plane_stress_hyperelastic_sheet_is_in_uniaxial_stress() {
-    use hertz::bench::verify::uniaxial_stress;
+    use hertz_bench::verify::uniaxial_stress;
     let law = Hyperelastic::MooneyRivlin {
         c1: 20.0,
         c2: 5.0,

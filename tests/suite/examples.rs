@@ -175,7 +175,7 @@ fn contact_csv_has_the_documented_header_and_rows() {
 /// The committed verification examples are exactly what `hertz bench --examples DIR` writes.
 #[test]
 fn verification_examples_are_the_generated_ones() {
-    for ex in hertz::bench::examples::all() {
+    for ex in hertz_bench::examples::all() {
         let committed = std::fs::read_to_string(example(ex.file)).expect("example committed");
         assert!(
             committed == ex.text(),
@@ -228,8 +228,8 @@ fn reaction(
 /// round-off, in ≤ 3 iterations.
 #[test]
 fn patch3d_example_transmits_the_exact_pressure() {
-    use hertz::bench::verify::{neo_hookean_law, uniaxial_stress, PATCH_H};
-    let stretch = 1.0 - hertz::bench::examples::PATCH_DELTA / (2.0 * PATCH_H);
+    use hertz_bench::verify::{neo_hookean_law, uniaxial_stress, PATCH_H};
+    let stretch = 1.0 - hertz_bench::examples::PATCH_DELTA / (2.0 * PATCH_H);
     let (lateral, nominal) = uniaxial_stress(&neo_hookean_law(), stretch);
     let exact = -nominal / (lateral * lateral);
     let mut worst = 0.0f64;
@@ -250,7 +250,7 @@ fn patch3d_example_transmits_the_exact_pressure() {
 /// Run a Hertz sphere example: its comparison with Hertz for the computed force.
 fn hertz_sphere_example(file: &str) -> hertz::analytic::HertzComparison {
     use hertz::analytic::{compare_hertz_sphere, contact_modulus};
-    use hertz::bench::verify::{E, HERTZ_R, NU};
+    use hertz_bench::verify::{E, HERTZ_R, NU};
     let mut c = None;
     run_example(file, |model, r| {
         c = compare_hertz_sphere(model, r.contact, HERTZ_R, contact_modulus(E, NU, E, NU));
@@ -284,7 +284,7 @@ fn hertz_sphere_mortar_example_matches_hertz() {
 /// is the header's −0.626077.
 #[test]
 fn two_beams_example_balances_and_gives_the_tabulated_force() {
-    use hertz::bench::verify::{BEAM_L, BEAM_S};
+    use hertz_bench::verify::{BEAM_L, BEAM_S};
     let mut out = (0.0, 0.0);
     run_example("two_beams.in", |model, r| {
         let lower = reaction(model, r, 2, |p| p[0] < 1.0);
@@ -292,7 +292,7 @@ fn two_beams_example_balances_and_gives_the_tabulated_force() {
         out = (lower, upper);
         r.info.iterations
     });
-    let f = hertz::bench::examples::BEAMS_FORCE;
+    let f = hertz_bench::examples::BEAMS_FORCE;
     println!("two beams: clamp forces {:.8} {:.8}", out.0, out.1);
     // Each end force f; the lower clamp holds −f minus the contact, the upper +f plus it.
     assert!((out.0 + out.1).abs() < 1e-8 * f, "{out:?}");
@@ -335,8 +335,8 @@ fn extruded_cylinder_example_matches_its_section() {
 /// force times the slope under the contact's centre within 0.1 %.
 #[test]
 fn large_sliding_example_drags_by_the_slope() {
-    use hertz::bench::verify::SLIDE_R;
-    let force = hertz::bench::examples::SLIDING_FORCE;
+    use hertz_bench::verify::SLIDE_R;
+    let force = hertz_bench::examples::SLIDING_FORCE;
     let mut last = (0.0, 0.0);
     let its = run_example("large_sliding.in", |model, r| {
         let drag = reaction(model, r, 1, |p| p[1] > 0.4);

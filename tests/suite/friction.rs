@@ -498,7 +498,7 @@ fn mortar_friction_passes_the_shear_patch_test() {
 /// little). Node-to-face contact, with the penalty law and with multipliers.
 #[test]
 fn brick_pushed_obliquely_transmits_mu_n_along_the_push() {
-    use hertz::bench::mesh::{uniform, Input};
+    use hertz_bench::mesh::{uniform, Input};
     for law in [
         "n2spenaltycontact 3 loadTimeFunction 1 penalty 1e4 friction 0.3",
         "n2slagrangianmultipliercontact 3 loadTimeFunction 1 friction 0.3",
@@ -670,7 +670,7 @@ fn die_reaction_balanced(
 #[test]
 #[ignore = "long: runs with `cargo test --release -- --ignored` (CI runs both)"]
 fn shallow_ironing_gives_the_published_forces() {
-    use hertz::bench::examples::SHALLOW_IRONING;
+    use hertz_bench::examples::SHALLOW_IRONING;
     shallow_ironing(&SHALLOW_IRONING.input(), 6, 7);
 }
 
@@ -683,7 +683,7 @@ fn shallow_ironing_gives_the_published_forces() {
 #[test]
 #[ignore = "long: runs with `cargo test --release -- --ignored` (CI runs both)"]
 fn shallow_ironing_with_a_penalty_gives_the_published_forces() {
-    use hertz::bench::examples::SHALLOW_IRONING;
+    use hertz_bench::examples::SHALLOW_IRONING;
     let text = SHALLOW_IRONING.input().replace(
         "s2slagrangianmultipliercontact 4 loadTimeFunction 1",
         "s2spenaltycontact 4 loadTimeFunction 1 penalty 1e4",
@@ -762,7 +762,7 @@ fn shallow_ironing_as_penalty(multipliers: &str, penalty: &str) -> (f64, f64, Ve
 #[test]
 #[ignore = "long: runs with `cargo test --release -- --ignored` (CI runs both)"]
 fn a_stiff_penalty_irons_like_the_multipliers() {
-    use hertz::bench::examples::SHALLOW_IRONING;
+    use hertz_bench::examples::SHALLOW_IRONING;
     let multipliers = SHALLOW_IRONING.input().replace(" friction 0.3", "");
     let (fy_m, fx_fy_m, _) = shallow_ironing_run(&multipliers);
     for penalty in ["", "penalty 1e6 "] {
@@ -795,7 +795,7 @@ fn a_stiff_penalty_irons_like_the_multipliers() {
 #[test]
 #[ignore = "long: runs with `cargo test --release -- --ignored` (CI runs both)"]
 fn a_stiff_penalty_with_friction_irons_like_the_multipliers() {
-    use hertz::bench::examples::SHALLOW_IRONING;
+    use hertz_bench::examples::SHALLOW_IRONING;
     let multipliers = SHALLOW_IRONING.input();
     let (fy_m, fx_fy_m, _) = shallow_ironing_run(&multipliers);
     for (penalty, tol) in [("", 1e-3), ("penalty 1e5 ", 1e-2)] {

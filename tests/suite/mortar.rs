@@ -4,10 +4,10 @@
 
 use crate::common;
 
-use hertz::bench::mesh::Solid;
-use hertz::bench::suite::Law;
-use hertz::bench::verify::{Patch, E, PATCH_H};
 use hertz::solve::run_analysis;
+use hertz_bench::mesh::Solid;
+use hertz_bench::suite::Law;
+use hertz_bench::verify::{Patch, E, PATCH_H};
 
 /// The pressure on the top of `common::mortar_blocks`.
 const P: f64 = 10.0;
@@ -130,7 +130,7 @@ fn hertz_case(file: &str, radius: f64) {
     assert!(residuals.len() - 1 <= 5);
 }
 
-/// The 3D patch of `hertz::bench::verify::Patch` with `n` elements across the master and
+/// The 3D patch of `hertz_bench::verify::Patch` with `n` elements across the master and
 /// `slave_n` across the slave (cube symmetry `sym` applied to every element): the worst
 /// deviation of σ_zz over every integration point and of the active slave nodes' pressures from
 /// the exact uniform pressure, relative to it, and the Newton iterations. The exact pressure is
@@ -291,7 +291,7 @@ fn mortar_against_a_rigid_plane_passes_the_patch_test_in_3d() {
 }
 
 /// Hertz in 3D with mortar: the elastic sphere on the elastic block of
-/// `hertz::bench::verify::HertzSphere` (quarter model, mortar between the cap's bottom faces and
+/// `hertz_bench::verify::HertzSphere` (quarter model, mortar between the cap's bottom faces and
 /// the block's top), multipliers and the penalty from the mesh: p0 (the pressure of the node on
 /// the axis) and a within 2 % of Hertz for the computed force on hexahedra and wedges; on
 /// tetrahedra a within 3 % and the largest pressure within 1 % of Hertz's p0, while the node on
@@ -303,7 +303,7 @@ fn mortar_against_a_rigid_plane_passes_the_patch_test_in_3d() {
 #[ignore = "long: runs with `cargo test --release -- --ignored` (CI runs both)"]
 fn hertz_sphere_with_mortar_meets_hertz() {
     use hertz::analytic::{compare_hertz_sphere, contact_modulus};
-    use hertz::bench::verify::{HertzSphere, HERTZ_R, NU};
+    use hertz_bench::verify::{HertzSphere, HERTZ_R, NU};
     for (kind, h, p0_bound, a_bound) in [
         (Solid::Hex, 0.2, 0.02, 0.02),
         (Solid::Wedge, 0.15, 0.02, 0.02),
@@ -390,8 +390,8 @@ fn sunk_sphere_warns(text: &str, r: f64) {
 #[test]
 fn rigid_sphere_with_mortar_meets_hertz() {
     use hertz::analytic::{compare_hertz_sphere, contact_modulus};
-    use hertz::bench::mesh::{graded, Input};
-    use hertz::bench::verify::NU;
+    use hertz_bench::mesh::{graded, Input};
+    use hertz_bench::verify::NU;
     const R: f64 = 10.0;
     for (kind, h, p0_bound) in [(Solid::Hex, 0.2, 0.02), (Solid::Wedge, 0.15, 0.03)] {
         for law in [
@@ -487,7 +487,7 @@ fn rigid_sphere_with_mortar_meets_hertz() {
 #[test]
 #[ignore = "long: runs with `cargo test --release -- --ignored` (CI runs both)"]
 fn mortar_passes_the_contact_patch_test_in_large_deformation_3d() {
-    use hertz::bench::verify::{neo_hookean_law, uniaxial_stress};
+    use hertz_bench::verify::{neo_hookean_law, uniaxial_stress};
     let (lateral, nominal) = uniaxial_stress(&neo_hookean_law(), 1.0 - 0.2 / (2.0 * PATCH_H));
     let cauchy = -nominal / (lateral * lateral);
     for kind in [Solid::Hex, Solid::Tet, Solid::Wedge] {
@@ -685,7 +685,7 @@ fn mortar_gap_is_exact_on_slave_edges_past_the_master_end() {
 /// Small and large deformation.
 #[test]
 fn mortar_gap_is_exact_on_slave_faces_past_the_master_end() {
-    use hertz::bench::mesh::{uniform, Input};
+    use hertz_bench::mesh::{uniform, Input};
     let height = |x: f64, y: f64| 0.05 + 0.02 * (x - 1.3) + 0.01 * y;
     let stretch = (1.0f64 + 0.02 * 0.02 + 0.01 * 0.01).sqrt();
     for (nlgeo, law) in [0, 1].into_iter().flat_map(|g| {

@@ -163,20 +163,20 @@ pub fn label_of_slave(text: &str) -> usize {
 /// whose bottom nodes are the contact nodes; its middle bottom node (the returned label) is at
 /// `pos`, the others 0.25 away in x and y.
 pub fn face_input(
-    kind: hertz::bench::mesh::Solid,
+    kind: hertz_bench::mesh::Solid,
     sym: usize,
     nlgeo: u8,
     pos: [f64; 3],
     condition: &str,
 ) -> (String, usize) {
-    let mut inp = hertz::bench::mesh::Input::default();
+    let mut inp = hertz_bench::mesh::Input::default();
     let extra = format!("mat 1 crossSect 1 nlgeo {nlgeo}");
-    let g = hertz::bench::mesh::uniform(0.0, 2.0, 2);
+    let g = hertz_bench::mesh::uniform(0.0, 2.0, 2);
     let master = inp.solid3d(
         kind,
         &g,
         &g,
-        &hertz::bench::mesh::uniform(0.0, 1.0, 1),
+        &hertz_bench::mesh::uniform(0.0, 1.0, 1),
         &extra,
         sym,
     );
@@ -487,7 +487,7 @@ pub fn sheared_blocks(n_low: usize, n_up: usize, p: f64, tau: f64, condition: &s
         + &format!("Set 8 elementedges 8 {left}\nSet 9 elementedges 8 {right}\n")
 }
 
-/// A 3D patch input (`hertz::bench::verify::Patch`) with its master faces (segment 1) replaced
+/// A 3D patch input (`hertz_bench::verify::Patch`) with its master faces (segment 1) replaced
 /// by the rigid shape `record` (segment 1 as well); a shape moving with `node 999` gets that
 /// node at `reference`.
 pub fn with_rigid_master(text: &str, record: &str, reference: [f64; 3]) -> String {

@@ -1,24 +1,29 @@
-//! `hertz bench`: a generated linear-elastic block (2D plane-strain quads or 3D bricks) under a
-//! uniform traction, solved once with the production code path; prints sizes, the time of every
-//! phase and the peak memory. The block has roller supports on the faces x = 0, y = 0 (z = 0),
-//! so the exact solution is the uniform uniaxial-stress field: the maximum nodal error is printed
-//! as a self-check.
+//! Generated hertz problems, for the tests and `hertz bench`: meshes of blocks ([`mesh`]), the
+//! contact robustness suite ([`suite`]), the 3D verification problems in any element kind and
+//! orientation ([`verify`]) and the inputs of `examples/` ([`examples`]); and the benchmark
+//! block: a generated linear-elastic block (2D plane-strain quads or 3D bricks) under a uniform
+//! traction, solved once with the production code path, with sizes, the time of every phase and
+//! the peak memory. The block has roller supports on the faces x = 0, y = 0 (z = 0), so the
+//! exact solution is the uniform uniaxial-stress field: its maximum nodal error is the
+//! benchmark's self-check.
 
-use crate::assembly::Assembler;
+// Mesh generators index several arrays with one loop variable.
+#![allow(clippy::needless_range_loop)]
+
+use hertz::assembly::Assembler;
 pub mod examples;
 pub mod mesh;
 pub mod suite;
 pub mod verify;
 
-use crate::error::{Error, Result};
-use crate::fem::shape::HEXA8_CORNERS;
-use crate::input::read_model;
-use crate::solve::linear::{FaerSolver, LinearSolver, SolverSettings};
-use crate::solve::ordering::OrderingKind;
-use crate::solve::stepping::reference_load_vectors;
+use hertz::error::{Error, Result};
+use hertz::fem::shape::HEXA8_CORNERS;
+use hertz::input::read_model;
+use hertz::solve::linear::{FaerSolver, LinearSolver, SolverSettings};
+use hertz::solve::ordering::OrderingKind;
+use hertz::solve::stepping::reference_load_vectors;
 use std::fmt::Write as _;
 use std::path::Path;
-use std::process::ExitCode;
 use std::time::Instant;
 
 /// Material and load of the bench block.
@@ -235,7 +240,7 @@ pub fn write_contact_block_input(
 }
 
 /// Read a generated input file and remove it, whether it reads or not.
-fn read_generated(path: &Path) -> Result<crate::model::Model> {
+fn read_generated(path: &Path) -> Result<hertz::model::Model> {
     let read = read_model(path);
     let _ = std::fs::remove_file(path);
     Ok(read?.model)
@@ -259,9 +264,9 @@ pub fn run_contact(n: usize, multipliers: bool) -> Result<ContactBenchFigures> {
     let model = read_generated(&path)?;
     let mut f = ContactBenchFigures::default();
     let t = Instant::now();
-    crate::solve::run_analysis(
+    hertz::solve::run_analysis(
         &model,
-        &crate::solve::SolveParams {
+        &hertz::solve::SolveParams {
             ..Default::default()
         },
         |r| {
@@ -349,15 +354,15 @@ impl Model3d {
     /// Relative errors against the exact solution, named.
     fn errors(
         self,
-        model: &crate::model::Model,
-        states: &[crate::contact::SlotState],
+        model: &hertz::model::Model,
+        states: &[hertz::contact::SlotState],
     ) -> Result<Vec<(&'static str, f64)>> {
         Ok(match self {
             Model3d::Sphere(_) => {
                 let (e, nu) = (verify::E, verify::NU);
-                let e_star = crate::analytic::contact_modulus(e, nu, e, nu);
+                let e_star = hertz::analytic::contact_modulus(e, nu, e, nu);
                 let c =
-                    crate::analytic::compare_hertz_sphere(model, states, verify::HERTZ_R, e_star)
+                    hertz::analytic::compare_hertz_sphere(model, states, verify::HERTZ_R, e_star)
                         .ok_or_else(|| Error::Solve("the sphere made no contact".into()))?;
                 vec![("p0 vs Hertz", c.p0_error()), ("a vs Hertz", c.a_error())]
             }
@@ -380,7 +385,7 @@ pub struct Contact3dFigures {
     pub contact_nodes: usize,
     pub active: usize,
     pub iterations: usize,
-    pub times: crate::solve::stepping::PhaseTimes,
+    pub times: hertz::solve::stepping::PhaseTimes,
     /// GMRES iterations of the last linear solve (0: direct).
     pub krylov_iterations: usize,
     pub solve_s: f64,
@@ -397,9 +402,9 @@ pub fn run_contact3d(m: Model3d, law: suite::Law) -> Result<Contact3dFigures> {
     let mut f = Contact3dFigures::default();
     let mut states = Vec::new();
     let t = Instant::now();
-    crate::solve::run_analysis(
+    hertz::solve::run_analysis(
         &model,
-        &crate::solve::SolveParams {
+        &hertz::solve::SolveParams {
             ..Default::default()
         },
         |r| {
@@ -419,7 +424,7 @@ pub fn run_contact3d(m: Model3d, law: suite::Law) -> Result<Contact3dFigures> {
     Ok(f)
 }
 
-fn print_contact3d(m: Model3d, law: suite::Law, f: &Contact3dFigures) {
+pub fn print_contact3d(m: Model3d, law: suite::Law, f: &Contact3dFigures) {
     println!(
         "{}, {} (threads {})",
         m.describe(),
@@ -483,7 +488,7 @@ pub fn run(dim: usize, n: usize, ordering: OrderingKind) -> Result<BenchFigures>
     let model = read_generated(&path)?;
     f.read_s = t.elapsed().as_secs_f64();
     let t = Instant::now();
-    let dofs = crate::solve::number_dofs(&model)?;
+    let dofs = hertz::solve::number_dofs(&model)?;
     let asm = Assembler::new(&model, &dofs)?;
     f.pattern_s = t.elapsed().as_secs_f64();
     f.unknowns = dofs.n_free;
@@ -548,220 +553,6 @@ pub fn peak_rss_mb() -> f64 {
         })
         .map(|kb| kb / 1024.0)
         .unwrap_or(0.0)
-}
-
-/// Orderings `hertz bench --ordering` accepts.
-#[derive(Clone, Copy, Debug, clap::ValueEnum)]
-pub enum OrderingArg {
-    Auto,
-    Amd,
-    Metis,
-}
-
-/// `hertz bench`: generated problems with sizes, phase times and errors against exact solutions.
-#[derive(Debug, clap::Args)]
-#[command(group(clap::ArgGroup::new("problem").args(["contact", "sphere", "patch", "suite", "examples"])))]
-pub struct BenchArgs {
-    /// Dimension of the linear-elastic block
-    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(2..=3))]
-    pub dim: u8,
-    /// Elements per side of the block (2D: 2N x N for --contact)
-    #[arg(long = "n", default_value_t = 100, value_parser = clap::value_parser!(u64).range(1..=100_000))]
-    pub n: u64,
-    /// Fill-reducing ordering of the sparse factorization
-    #[arg(long, value_enum, default_value = "auto")]
-    pub ordering: OrderingArg,
-    /// The 2D contact benchmark: a 2N x N block pushed against a rigid circle (node-to-segment)
-    #[arg(long)]
-    pub contact: bool,
-    /// Lagrange multipliers instead of a penalty (--contact, --sphere, --patch)
-    #[arg(long)]
-    pub multipliers: bool,
-    /// 3D Hertz sphere on a block in bricks of spacing H under the contact (0.085: 10^5 unknowns)
-    #[arg(long, value_name = "H")]
-    pub sphere: Option<f64>,
-    /// 3D contact patch test with N x N master bricks ((2N+1)^2 contact nodes)
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=100))]
-    pub patch: Option<u64>,
-    /// The robustness suite's table of setups
-    #[arg(long)]
-    pub suite: bool,
-    /// Write the verification examples of examples/ to DIR
-    #[arg(long, value_name = "DIR")]
-    pub examples: Option<String>,
-    /// Write the generated input(s) to DIR instead of solving (--contact, --sphere, --patch, --suite)
-    #[arg(long, value_name = "DIR")]
-    pub write: Option<String>,
-}
-
-/// Largest generated problem `hertz bench` accepts, in unknowns (2D, 3D): the direct solver's
-/// memory grows faster in 3D.
-const MAX_BENCH_UNKNOWNS: [f64; 2] = [2e7, 1e6];
-
-/// CLI entry of `hertz bench` (see `hertz bench --help`).
-pub fn main(args: BenchArgs) -> ExitCode {
-    let (dim, n) = (args.dim as usize, args.n as usize);
-    let ordering = match args.ordering {
-        OrderingArg::Auto => OrderingKind::Auto,
-        OrderingArg::Amd => OrderingKind::Amd,
-        OrderingArg::Metis => OrderingKind::Metis,
-    };
-    let (contact, multipliers, suite, write, examples) = (
-        args.contact,
-        args.multipliers,
-        args.suite,
-        args.write,
-        args.examples,
-    );
-    let model3d = match (args.sphere, args.patch) {
-        // Spacing 0.03: about 10^6 unknowns.
-        (Some(h), _) if !(0.03..=1.0).contains(&h) => {
-            eprintln!("error: --sphere H takes 0.03 <= H <= 1, got {h}");
-            return ExitCode::from(2);
-        }
-        (Some(h), _) => Some(Model3d::Sphere(h)),
-        (_, Some(p)) => Some(Model3d::Patch(p as usize)),
-        _ => None,
-    };
-    if let Some(dir) = examples {
-        return match examples::write_all(Path::new(&dir)) {
-            Ok(files) => {
-                println!("wrote {} example files to {dir}", files.len());
-                ExitCode::SUCCESS
-            }
-            Err(e) => {
-                eprintln!("error: {e}");
-                ExitCode::from(e.exit_code() as u8)
-            }
-        };
-    }
-    if let Some(m) = model3d {
-        let law = if multipliers {
-            suite::Law::Multiplier
-        } else {
-            suite::Law::Penalty(m.penalty())
-        };
-        if let Some(dir) = &write {
-            let path = Path::new(dir).join(m.file());
-            return match std::fs::create_dir_all(dir)
-                .and_then(|()| std::fs::write(&path, m.input(law)))
-            {
-                Ok(()) => {
-                    println!("wrote {}", path.display());
-                    ExitCode::SUCCESS
-                }
-                Err(e) => {
-                    eprintln!("error: cannot write {}: {e}", path.display());
-                    ExitCode::from(4)
-                }
-            };
-        }
-        return match run_contact3d(m, law) {
-            Ok(f) => {
-                print_contact3d(m, law, &f);
-                ExitCode::SUCCESS
-            }
-            Err(e) => {
-                eprintln!("error: {e}");
-                ExitCode::from(e.exit_code() as u8)
-            }
-        };
-    }
-    if suite {
-        let result = match &write {
-            Some(dir) => suite::write_inputs(Path::new(dir)).map(|files| {
-                println!("wrote {} input files to {dir}", files.len());
-            }),
-            None => suite::print_table(),
-        };
-        return match result {
-            Ok(()) => ExitCode::SUCCESS,
-            Err(e) => {
-                eprintln!("error: {e}");
-                ExitCode::from(e.exit_code() as u8)
-            }
-        };
-    }
-    // Refuse sizes that cannot fit before generating anything.
-    let (unknowns, limit) = if dim == 3 && !contact {
-        (3.0 * (n as f64 + 1.0).powi(3), MAX_BENCH_UNKNOWNS[1])
-    } else {
-        (4.0 * (n as f64 + 1.0).powi(2), MAX_BENCH_UNKNOWNS[0])
-    };
-    if unknowns > limit {
-        eprintln!(
-            "error: bench --n {n} means about {unknowns:.1e} unknowns in {}D; the largest accepted \
-             is {limit:.0e}",
-            if contact { 2 } else { dim }
-        );
-        return ExitCode::from(2);
-    }
-    if let (true, Some(dir)) = (contact, &write) {
-        let path = Path::new(dir).join(format!("contact_block_{n}.in"));
-        let written = std::fs::create_dir_all(dir)
-            .map_err(|e| Error::Output(format!("cannot create {dir}: {e}")))
-            .and_then(|()| write_contact_block_input(&path, n, n as f64 / 40.0, multipliers));
-        return match written {
-            Ok(()) => {
-                println!("wrote {}", path.display());
-                ExitCode::SUCCESS
-            }
-            Err(e) => {
-                eprintln!("error: {e}");
-                ExitCode::from(e.exit_code() as u8)
-            }
-        };
-    }
-    if contact {
-        return match run_contact(n, multipliers) {
-            Ok(f) => {
-                println!(
-                    "contact block {}x{n}, rigid circle, node-to-segment {} on the top nodes",
-                    2 * n,
-                    if multipliers {
-                        "multipliers"
-                    } else {
-                        "penalty"
-                    }
-                );
-                println!("unknowns           {:>12}", f.unknowns);
-                println!("Newton iterations  {:>12}", f.iterations);
-                println!("active contacts    {:>12}", f.active);
-                println!("solve (all steps)  {:>12.3} s", f.solve_s);
-                println!("residuals          {:?}", f.residual_history);
-                ExitCode::SUCCESS
-            }
-            Err(e) => {
-                eprintln!("error: {e}");
-                ExitCode::from(e.exit_code() as u8)
-            }
-        };
-    }
-    match run(dim, n, ordering) {
-        Ok(f) => {
-            println!("dim {dim}  n {n}  threads {}", rayon::current_num_threads());
-            println!("unknowns           {:>12}", f.unknowns);
-            println!("matrix nonzeros    {:>12}", f.matrix_nnz);
-            println!(
-                "factor nonzeros    {:>12}   ({} ordering)",
-                f.factor_nnz, f.ordering
-            );
-            println!("read input         {:>12.3} s", f.read_s);
-            println!("pattern            {:>12.3} s", f.pattern_s);
-            println!("assembly           {:>12.3} s", f.assembly_s);
-            println!("ordering           {:>12.3} s", f.ordering_s);
-            println!("symbolic           {:>12.3} s", f.symbolic_s);
-            println!("numeric factor     {:>12.3} s", f.numeric_s);
-            println!("solve              {:>12.3} s", f.solve_s);
-            println!("peak memory        {:>12.1} MiB", f.peak_rss_mb);
-            println!("max error vs exact {:>12.2e} (relative)", f.max_rel_error);
-            ExitCode::SUCCESS
-        }
-        Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::from(e.exit_code() as u8)
-        }
-    }
 }
 
 #[cfg(test)]

@@ -160,9 +160,9 @@ impl Patch {
 }
 
 /// The law of [`neo_hookean`].
-pub fn neo_hookean_law() -> crate::material::hyperelastic::Hyperelastic {
+pub fn neo_hookean_law() -> hertz::material::hyperelastic::Hyperelastic {
     let mu = E / (2.0 * (1.0 + NU));
-    crate::material::hyperelastic::Hyperelastic::MooneyRivlin {
+    hertz::material::hyperelastic::Hyperelastic::MooneyRivlin {
         c1: 0.5 * mu,
         c2: 0.0,
         k: E / (3.0 * (1.0 - 2.0 * NU)),
@@ -172,7 +172,7 @@ pub fn neo_hookean_law() -> crate::material::hyperelastic::Hyperelastic {
 /// Homogeneous uniaxial stress along z at axial stretch `stretch`: the lateral stretch (where
 /// the lateral nominal stress vanishes, by Newton on a secant) and the axial nominal stress P_zz.
 pub fn uniaxial_stress(
-    law: &crate::material::hyperelastic::Hyperelastic,
+    law: &hertz::material::hyperelastic::Hyperelastic,
     stretch: f64,
 ) -> (f64, f64) {
     let p = |lt: f64| {
@@ -466,7 +466,7 @@ impl WedgeOnBrick {
         ));
         let mut cells = bottom.clone();
         cells.extend(&top);
-        inp.cells.push((crate::fem::shape::Shape::Wedge6, cells));
+        inp.cells.push((hertz::fem::shape::Shape::Wedge6, cells));
         contact_faces_and_material(&mut inp, &brick, 1.0, self.nlgeo);
         let base = inp.node_set(&brick.bottom);
         let pin = inp.nodes_where(&|p| p[0] == 0.0 && p[1] == 0.0 && p[2] == 0.0);
@@ -587,7 +587,7 @@ const IRONING_CENTRE: [f64; 2] = [-2.7, 3.03];
 impl Ironing {
     pub fn input(&self) -> String {
         use super::mesh::Kind;
-        use crate::fem::shape::Shape;
+        use hertz::fem::shape::Shape;
         let mut inp = Input::default();
         let (ri, ro) = IRONING_RADII;
         let [xc, yc] = IRONING_CENTRE;

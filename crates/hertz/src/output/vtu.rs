@@ -28,7 +28,7 @@ fn vtk_cell(shape: Shape) -> (u8, &'static [usize]) {
 }
 
 /// How the `.vtu` arrays are stored.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub enum VtuFormat {
     /// Numbers as text (shortest digits that read back to the same doubles).
     #[default]

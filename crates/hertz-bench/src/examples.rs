@@ -9,7 +9,7 @@ use super::verify::{
     neo_hookean_law, uniaxial_stress, ExtrudedCylinder, HertzSphere, Ironing, LargeSliding, Patch,
     ShallowIroning, TwoBeams, WedgeOnBrick, E, NU, PATCH_H,
 };
-use crate::error::{Error, Result};
+use hertz::error::{Error, Result};
 use std::path::{Path, PathBuf};
 
 /// One example file: its name, title, header comment and generated input.
@@ -79,7 +79,7 @@ pub fn all() -> Vec<Example> {
     let p = -nominal;
     let sigma = p / (lateral * lateral);
     let (c1, k) = match law {
-        crate::material::hyperelastic::Hyperelastic::MooneyRivlin { c1, k, .. } => (c1, k),
+        hertz::material::hyperelastic::Hyperelastic::MooneyRivlin { c1, k, .. } => (c1, k),
         _ => unreachable!("neo-Hookean is Mooney-Rivlin with c2 = 0"),
     };
     // The Hertz sphere of examples/hertz_sphere.in (node-to-face) and hertz_sphere_mortar.in.
@@ -328,7 +328,7 @@ pub fn write_all(dir: &Path) -> Result<Vec<PathBuf>> {
     let mut out = Vec::new();
     for ex in all() {
         let path = dir.join(ex.file);
-        crate::output::write_atomic(&path, ex.text().as_bytes())?;
+        hertz::output::write_atomic(&path, ex.text().as_bytes())?;
         out.push(path);
     }
     Ok(out)

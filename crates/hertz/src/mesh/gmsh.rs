@@ -59,7 +59,7 @@ pub struct Converted {
 }
 
 /// How 2D elements are named.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub enum Plane {
     /// PlaneStress2d, TrPlaneStress2d, QPlaneStress2d, QTrPlStr
     #[default]
@@ -106,17 +106,14 @@ fn refuse_to_overwrite_a_users_file(out: &Path, mesh: &Path) -> Result<()> {
     })
 }
 
-/// `hertz import`: arguments.
-#[derive(Debug, clap::Args)]
-pub struct ImportArgs {
-    /// Gmsh mesh (.msh 2.2 or 4.1, ASCII)
+/// What `hertz import` converts and where it writes.
+#[derive(Debug, Clone)]
+pub struct ImportOptions {
+    /// Gmsh mesh (.msh 2.2 or 4.1, ASCII).
     pub mesh: PathBuf,
-    /// Output file (default: MESH with the extension .in, e.g. disk.msh -> disk.in); an existing
-    /// file is overwritten only if `hertz import` wrote it
-    #[arg(short, long, value_name = "FILE")]
+    /// Output file (default: the mesh's path with the extension .in).
     pub output: Option<PathBuf>,
-    /// 2D element types: plane stress or plane strain
-    #[arg(long, value_enum, default_value = "stress")]
+    /// How 2D elements are named.
     pub plane: Plane,
 }
 
@@ -747,7 +744,7 @@ impl Converted {
 
 /// `hertz import MESH [-o FILE] [--plane stress|strain]`: write the records; returns what to
 /// tell the user (the file, the counts, the sets, and a warning line if the mesh has no groups).
-pub fn import_command(args: &ImportArgs) -> Result<Vec<String>> {
+pub fn import_command(args: &ImportOptions) -> Result<Vec<String>> {
     let c = convert(&args.mesh, args.plane)?;
     let out = args
         .output

@@ -9,8 +9,8 @@
 //! answer equals its multiplier twin within the penalty's own error.
 
 use super::mesh::{graded, uniform, Input, Kind};
-use crate::error::{Error, Result};
-use crate::solve::{run_analysis, SolveParams};
+use hertz::error::{Error, Result};
+use hertz::solve::{run_analysis, SolveParams};
 use std::time::Instant;
 
 /// Young's modulus of the suite's bodies (the slave's may differ).
@@ -471,7 +471,7 @@ pub fn cylinder_on_block(h: f64, law: Law, nlgeo: bool) -> String {
 /// rigid plane (`circle`: false) or a circle of radius 2 whose reference node is driven down.
 /// `neo_hooke`: a neo-Hookean material of E = 1000, ν = 0.3; else `IsoLE` of the same moduli, the
 /// St. Venant–Kirchhoff law, which softens past a stretch of 1/√3 (see
-/// [`crate::solve::softening`]).
+/// [`hertz::solve::softening`]).
 pub fn compressed_by_a_moving_rigid(circle: bool, neo_hooke: bool, law: Law) -> String {
     let mut inp = Input::default();
     let xs = uniform(0.0, 1.0, 6);
@@ -938,11 +938,11 @@ pub fn run(text: &str) -> Result<Outcome> {
     let path = std::env::temp_dir().join(format!("hertz-suite-{}-{k}.in", std::process::id()));
     std::fs::write(&path, text)
         .map_err(|e| Error::Output(format!("cannot write {}: {e}", path.display())))?;
-    let read = crate::input::read_model(&path);
+    let read = hertz::input::read_model(&path);
     let _ = std::fs::remove_file(&path);
     let model = read?.model;
     let mut o = Outcome {
-        size: crate::contact::model_size(&model),
+        size: hertz::contact::model_size(&model),
         ..Default::default()
     };
     let t = Instant::now();

@@ -1,7 +1,7 @@
 //! A small builder of OOFEM input text for generated problems: structured blocks of 2D quads
 //! (linear or quadratic) or bricks, graded coordinates, and the records around them.
 
-use crate::fem::shape::Shape;
+use hertz::fem::shape::Shape;
 use std::fmt::Write as _;
 
 /// Element kinds the builder makes.
@@ -30,7 +30,7 @@ impl Solid {
     /// The record name, the shape, and the elements of the unit cell as corner lists (node
     /// order of the element).
     fn reference_cells(self) -> (&'static str, Shape, Vec<Vec<[usize; 3]>>) {
-        use crate::fem::shape::HEXA8_CORNERS;
+        use hertz::fem::shape::HEXA8_CORNERS;
         match self {
             Solid::Hex => ("LSpace", Shape::Hexa8, vec![HEXA8_CORNERS.to_vec()]),
             Solid::Tet => {
@@ -96,7 +96,7 @@ pub fn cube_symmetry(sym: usize, c: [usize; 3]) -> [usize; 3] {
 /// The boundary number (1-based) of an LSpace numbered by cube symmetry `sym` that lies on the
 /// z = 1 side of its cell (`top`) or the z = 0 side.
 pub fn hex_face_on(sym: usize, top: bool) -> usize {
-    use crate::fem::shape::HEXA8_CORNERS;
+    use hertz::fem::shape::HEXA8_CORNERS;
     let z = usize::from(top);
     Shape::Hexa8
         .boundaries()

@@ -1,0 +1,224 @@
+//! `hertz bench`: its arguments and the command, over the generators of `hertz-bench`.
+
+use hertz::error::Error;
+use hertz::solve::ordering::OrderingKind;
+use hertz_bench::{
+    examples, print_contact3d, run, run_contact, run_contact3d, suite, write_contact_block_input,
+    Model3d,
+};
+use std::path::Path;
+use std::process::ExitCode;
+
+/// Orderings `hertz bench --ordering` accepts.
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+pub enum OrderingArg {
+    Auto,
+    Amd,
+    Metis,
+}
+
+/// `hertz bench`: generated problems with sizes, phase times and errors against exact solutions.
+#[derive(Debug, clap::Args)]
+#[command(group(clap::ArgGroup::new("problem").args(["contact", "sphere", "patch", "suite", "examples"])))]
+pub struct BenchArgs {
+    /// Dimension of the linear-elastic block
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(2..=3))]
+    pub dim: u8,
+    /// Elements per side of the block (2D: 2N x N for --contact)
+    #[arg(long = "n", default_value_t = 100, value_parser = clap::value_parser!(u64).range(1..=100_000))]
+    pub n: u64,
+    /// Fill-reducing ordering of the sparse factorization
+    #[arg(long, value_enum, default_value = "auto")]
+    pub ordering: OrderingArg,
+    /// The 2D contact benchmark: a 2N x N block pushed against a rigid circle (node-to-segment)
+    #[arg(long)]
+    pub contact: bool,
+    /// Lagrange multipliers instead of a penalty (--contact, --sphere, --patch)
+    #[arg(long)]
+    pub multipliers: bool,
+    /// 3D Hertz sphere on a block in bricks of spacing H under the contact (0.085: 10^5 unknowns)
+    #[arg(long, value_name = "H")]
+    pub sphere: Option<f64>,
+    /// 3D contact patch test with N x N master bricks ((2N+1)^2 contact nodes)
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=100))]
+    pub patch: Option<u64>,
+    /// The robustness suite's table of setups
+    #[arg(long)]
+    pub suite: bool,
+    /// Write the verification examples of examples/ to DIR
+    #[arg(long, value_name = "DIR")]
+    pub examples: Option<String>,
+    /// Write the generated input(s) to DIR instead of solving (--contact, --sphere, --patch, --suite)
+    #[arg(long, value_name = "DIR")]
+    pub write: Option<String>,
+}
+
+/// Largest generated problem `hertz bench` accepts, in unknowns (2D, 3D): the direct solver's
+/// memory grows faster in 3D.
+const MAX_BENCH_UNKNOWNS: [f64; 2] = [2e7, 1e6];
+
+/// CLI entry of `hertz bench` (see `hertz bench --help`).
+pub fn main(args: BenchArgs) -> ExitCode {
+    let (dim, n) = (args.dim as usize, args.n as usize);
+    let ordering = match args.ordering {
+        OrderingArg::Auto => OrderingKind::Auto,
+        OrderingArg::Amd => OrderingKind::Amd,
+        OrderingArg::Metis => OrderingKind::Metis,
+    };
+    let (contact, multipliers, suite, write, examples) = (
+        args.contact,
+        args.multipliers,
+        args.suite,
+        args.write,
+        args.examples,
+    );
+    let model3d = match (args.sphere, args.patch) {
+        // Spacing 0.03: about 10^6 unknowns.
+        (Some(h), _) if !(0.03..=1.0).contains(&h) => {
+            eprintln!("error: --sphere H takes 0.03 <= H <= 1, got {h}");
+            return ExitCode::from(2);
+        }
+        (Some(h), _) => Some(Model3d::Sphere(h)),
+        (_, Some(p)) => Some(Model3d::Patch(p as usize)),
+        _ => None,
+    };
+    if let Some(dir) = examples {
+        return match examples::write_all(Path::new(&dir)) {
+            Ok(files) => {
+                println!("wrote {} example files to {dir}", files.len());
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::from(e.exit_code() as u8)
+            }
+        };
+    }
+    if let Some(m) = model3d {
+        let law = if multipliers {
+            suite::Law::Multiplier
+        } else {
+            suite::Law::Penalty(m.penalty())
+        };
+        if let Some(dir) = &write {
+            let path = Path::new(dir).join(m.file());
+            return match std::fs::create_dir_all(dir)
+                .and_then(|()| std::fs::write(&path, m.input(law)))
+            {
+                Ok(()) => {
+                    println!("wrote {}", path.display());
+                    ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("error: cannot write {}: {e}", path.display());
+                    ExitCode::from(4)
+                }
+            };
+        }
+        return match run_contact3d(m, law) {
+            Ok(f) => {
+                print_contact3d(m, law, &f);
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::from(e.exit_code() as u8)
+            }
+        };
+    }
+    if suite {
+        let result = match &write {
+            Some(dir) => suite::write_inputs(Path::new(dir)).map(|files| {
+                println!("wrote {} input files to {dir}", files.len());
+            }),
+            None => suite::print_table(),
+        };
+        return match result {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::from(e.exit_code() as u8)
+            }
+        };
+    }
+    // Refuse sizes that cannot fit before generating anything.
+    let (unknowns, limit) = if dim == 3 && !contact {
+        (3.0 * (n as f64 + 1.0).powi(3), MAX_BENCH_UNKNOWNS[1])
+    } else {
+        (4.0 * (n as f64 + 1.0).powi(2), MAX_BENCH_UNKNOWNS[0])
+    };
+    if unknowns > limit {
+        eprintln!(
+            "error: bench --n {n} means about {unknowns:.1e} unknowns in {}D; the largest accepted \
+             is {limit:.0e}",
+            if contact { 2 } else { dim }
+        );
+        return ExitCode::from(2);
+    }
+    if let (true, Some(dir)) = (contact, &write) {
+        let path = Path::new(dir).join(format!("contact_block_{n}.in"));
+        let written = std::fs::create_dir_all(dir)
+            .map_err(|e| Error::Output(format!("cannot create {dir}: {e}")))
+            .and_then(|()| write_contact_block_input(&path, n, n as f64 / 40.0, multipliers));
+        return match written {
+            Ok(()) => {
+                println!("wrote {}", path.display());
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::from(e.exit_code() as u8)
+            }
+        };
+    }
+    if contact {
+        return match run_contact(n, multipliers) {
+            Ok(f) => {
+                println!(
+                    "contact block {}x{n}, rigid circle, node-to-segment {} on the top nodes",
+                    2 * n,
+                    if multipliers {
+                        "multipliers"
+                    } else {
+                        "penalty"
+                    }
+                );
+                println!("unknowns           {:>12}", f.unknowns);
+                println!("Newton iterations  {:>12}", f.iterations);
+                println!("active contacts    {:>12}", f.active);
+                println!("solve (all steps)  {:>12.3} s", f.solve_s);
+                println!("residuals          {:?}", f.residual_history);
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::from(e.exit_code() as u8)
+            }
+        };
+    }
+    match run(dim, n, ordering) {
+        Ok(f) => {
+            println!("dim {dim}  n {n}  threads {}", rayon::current_num_threads());
+            println!("unknowns           {:>12}", f.unknowns);
+            println!("matrix nonzeros    {:>12}", f.matrix_nnz);
+            println!(
+                "factor nonzeros    {:>12}   ({} ordering)",
+                f.factor_nnz, f.ordering
+            );
+            println!("read input         {:>12.3} s", f.read_s);
+            println!("pattern            {:>12.3} s", f.pattern_s);
+            println!("assembly           {:>12.3} s", f.assembly_s);
+            println!("ordering           {:>12.3} s", f.ordering_s);
+            println!("symbolic           {:>12.3} s", f.symbolic_s);
+            println!("numeric factor     {:>12.3} s", f.numeric_s);
+            println!("solve              {:>12.3} s", f.solve_s);
+            println!("peak memory        {:>12.1} MiB", f.peak_rss_mb);
+            println!("max error vs exact {:>12.2e} (relative)", f.max_rel_error);
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(e.exit_code() as u8)
+        }
+    }
+}
