@@ -19,6 +19,7 @@ mod hyperelastic;
 mod mortar;
 mod newton;
 mod oofem_suite;
+mod plasticity;
 mod plot;
 mod robustness;
 mod upstream;

@@ -4,7 +4,8 @@
 //! Static problems on trusses, 2D plane stress/strain and 3D solids (bricks, tetrahedra, wedges)
 //! in small strain or total-Lagrangian large deformation, read from the OOFEM text format, solved
 //! by Newton–Raphson on a sparse direct solver, and checked by the `#%BEGIN_CHECK%` rules the
-//! files carry. Not in scope: dynamics, plasticity, shells and beams, arc-length control.
+//! files carry; materials with a state per integration point (von Mises plasticity of bars).
+//! Not in scope: dynamics, plasticity of continua, shells and beams, arc-length control.
 //!
 //! # Layers
 //! [`fem`] knows reference elements only (shape functions, quadrature, Jacobians); [`solid`]

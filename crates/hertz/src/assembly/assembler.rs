@@ -87,6 +87,11 @@ pub struct Assembler<'m> {
     small_strain: bool,
     /// Element stiffness values on the current pattern when no element has `nlgeo` (constant).
     linear_k: std::sync::Mutex<Option<Vec<f64>>>,
+    /// Where each element's material state starts in `material_state` (one more entry at the
+    /// end): its integration points' states in turn.
+    state_at: Vec<usize>,
+    /// The material state committed with the last converged step (or substep).
+    material_state: Vec<f64>,
 }
 
 const CHUNK: usize = 2048;
@@ -148,6 +153,20 @@ impl<'m> Assembler<'m> {
                 thick,
             });
         }
+        let mut state_at = Vec::with_capacity(elems.len() + 1);
+        state_at.push(0);
+        let mut material_state = Vec::new();
+        for info in &elems {
+            let law = &laws[info.law];
+            let sl = law.state_len();
+            let npts = if sl == 0 { 0 } else { rules[info.rule].len() };
+            for _ in 0..npts {
+                let at = material_state.len();
+                material_state.resize(at + sl, 0.0);
+                law.initial_state(&mut material_state[at..]);
+            }
+            state_at.push(material_state.len());
+        }
         let mut a = Assembler {
             model,
             dofs,
@@ -163,10 +182,44 @@ impl<'m> Assembler<'m> {
             laws,
             couplings: Vec::new(),
             linear_k: std::sync::Mutex::new(None),
-            small_strain: !model.elements.iter().any(|e| e.nlgeo),
+            small_strain: model.constant_element_stiffness(),
+            state_at,
+            material_state,
         };
         a.pattern = a.build_pattern();
         Ok(a)
+    }
+
+    /// Whether any element's material keeps a state (plasticity).
+    pub fn has_material_state(&self) -> bool {
+        !self.material_state.is_empty()
+    }
+
+    /// The material state committed with the last converged step: every stateful element's
+    /// integration points in turn.
+    pub fn material_state(&self) -> &[f64] {
+        &self.material_state
+    }
+
+    /// Put back a state [`Assembler::material_state`] gave (a cut-back restarts the step from
+    /// the state it began with).
+    pub fn restore_material_state(&mut self, state: &[f64]) {
+        self.material_state.copy_from_slice(state);
+    }
+
+    /// Commit the state the deformation `u` leaves (a converged step or substep): every later
+    /// evaluation starts from it.
+    pub fn commit_material_state(&mut self, u: &[f64]) -> Result<()> {
+        let mut next = self.material_state.clone();
+        let mut fe = vec![0.0; MAX_DOFS];
+        for e in 0..self.elems.len() {
+            let (a, b) = (self.state_at[e], self.state_at[e + 1]);
+            if a < b {
+                self.element(e, u, &mut fe, None, None, Some(&mut next[a..b]))?;
+            }
+        }
+        self.material_state = next;
+        Ok(())
     }
 
     /// Sorted free equations behind a list of location codes.
@@ -258,7 +311,9 @@ impl<'m> Assembler<'m> {
         }
     }
 
-    /// Evaluate one element at the primary state `u` into `fe`, `ke` (row-major) and states.
+    /// Evaluate one element at the primary state `u` into `fe`, `ke` (row-major) and states,
+    /// from its committed material state; the state the deformation leaves goes to `trial`
+    /// (if given).
     fn element(
         &self,
         e: usize,
@@ -266,7 +321,17 @@ impl<'m> Assembler<'m> {
         fe: &mut [f64],
         ke: Option<&mut [f64]>,
         states: Option<&mut Vec<GpState>>,
+        trial: Option<&mut [f64]>,
     ) -> Result<()> {
+        let old = &self.material_state[self.state_at[e]..self.state_at[e + 1]];
+        let mut scratch = Vec::new();
+        let new = match trial {
+            Some(t) => t,
+            None => {
+                scratch.resize(old.len(), 0.0);
+                &mut scratch[..]
+            }
+        };
         let el = &self.model.elements[e];
         let info = &self.elems[e];
         let mut ue = [0.0; MAX_DOFS];
@@ -280,12 +345,15 @@ impl<'m> Assembler<'m> {
             |gp: usize, msg: String| Error::Solve(format!("element {} (gp {gp}): {msg}", el.label));
         if el.etype.is_truss() {
             let dim = el.dof_ids().len();
-            let young = self.model.materials[el.material].young();
+            let Constitutive::Small(law) = &self.laws[info.law] else {
+                unreachable!("bars have small-strain laws")
+            };
             truss::evaluate_into(
                 dim,
                 truss_coords(self.model, e),
                 &ue,
-                young,
+                law.as_ref(),
+                (old, new),
                 info.thick,
                 fe,
                 ke,
@@ -307,7 +375,7 @@ impl<'m> Assembler<'m> {
                 nlgeo: el.nlgeo,
             };
             kernel
-                .evaluate_into(&x[..el.nodes.len()], &ue, fe, ke, states)
+                .evaluate_into(&x[..el.nodes.len()], &ue, (old, new), fe, ke, states)
                 .map_err(|k| fail(k.gp, k.msg))
         }
     }
@@ -457,6 +525,7 @@ impl<'m> Assembler<'m> {
                             fe,
                             elem_k.then_some(ke),
                             want_states.then_some(&mut st),
+                            None,
                         )?;
                         buf.states.push(st);
                     }

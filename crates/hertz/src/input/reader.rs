@@ -88,8 +88,9 @@ enum Block {
     Set,
 }
 
-const MATERIAL_KEYWORDS: [&str; 4] = [
+const MATERIAL_KEYWORDS: [&str; 5] = [
     "isole",
+    "misesmat",
     "mooneyrivlincompressiblemat",
     "ogdencompressiblemat",
     "simopistermat",
@@ -972,6 +973,13 @@ fn model_from_lines(
                 e.label
             )));
         }
+        if matches!(materials[mat - 1].law, MaterialLaw::Mises { .. }) && !e.etype.is_truss() {
+            return Err(span_err(format!(
+                "element {} has material {mat}, a MisesMat: plasticity is implemented for bars \
+                 (Truss1d, Truss2d) only",
+                e.label
+            )));
+        }
         if matches!(materials[mat - 1].law, MaterialLaw::Dummy) {
             return Err(span_err(format!(
                 "element {} has material {mat}, a DummyMat (for contact elements only)",
@@ -1591,6 +1599,37 @@ fn read_material(r: &Record) -> Result<Material> {
             }
             MaterialLaw::LinearElastic { young, poisson }
         }
+        "misesmat" => {
+            let young = positive("E", r.float("e")?)?;
+            let poisson = r.float("n")?;
+            r.opt_float("talpha")?;
+            let yield_stress = positive("sig0", r.float("sig0")?)?;
+            let hardening = r.opt_float("h")?.unwrap_or(0.0);
+            if !(hardening >= 0.0) {
+                return Err(r.error(format!(
+                    "the hardening modulus H must not be negative, found {hardening}"
+                )));
+            }
+            for (key, what) in [
+                ("omega_crit", "damage"),
+                ("siginf", "saturation hardening"),
+                ("kappa1", "piecewise hardening"),
+            ] {
+                if r.opt_float(key)?.is_some_and(|v| v != 0.0) {
+                    return Err(r.error(format!(
+                        "`{key}` ({what}) is not supported: MisesMat here has linear isotropic \
+                         hardening only (sig0, H)"
+                    )));
+                }
+            }
+            r.opt_float("a")?;
+            MaterialLaw::Mises {
+                young,
+                poisson,
+                yield_stress,
+                hardening,
+            }
+        }
         "mooneyrivlincompressiblemat" => {
             let (c1, c2) = (r.float("c1")?, r.float("c2")?);
             let k = positive("k", r.float("k")?)?;
@@ -1630,8 +1669,9 @@ fn read_material(r: &Record) -> Result<Material> {
         }),
         other => {
             return Err(r.error(format!(
-                "unsupported material `{other}`; supported: IsoLE, MooneyRivlinCompressibleMat, \
-                 OgdenCompressibleMat, SimoPisterMat (or is a count before nmat wrong?)"
+                "unsupported material `{other}`; supported: IsoLE, MisesMat (bars), \
+                 MooneyRivlinCompressibleMat, OgdenCompressibleMat, SimoPisterMat (or is a count \
+                 before nmat wrong?)"
             )))
         }
     };

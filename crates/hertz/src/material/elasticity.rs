@@ -13,6 +13,17 @@ pub fn voigt_components(mode: StressMode) -> &'static [usize] {
     }
 }
 
+/// The components of the reduced Voigt form with `n` components (1, 3, 4 or 6: uniaxial, plane
+/// stress, plane strain, 3D).
+pub fn voigt_components_of(n: usize) -> &'static [usize] {
+    match n {
+        1 => voigt_components(StressMode::Uniaxial),
+        3 => voigt_components(StressMode::PlaneStress),
+        4 => voigt_components(StressMode::PlaneStrain),
+        _ => voigt_components(StressMode::ThreeD),
+    }
+}
+
 /// Tensor indices (I, J) of each full Voigt component.
 pub const VOIGT_PAIRS: [(usize, usize); 6] = [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)];
 
@@ -67,6 +78,28 @@ impl Elasticity {
     pub fn stress(&self, strain: &[f64], stress: &mut [f64]) {
         for i in 0..self.n {
             stress[i] = (0..self.n).map(|j| self.d[i][j] * strain[j]).sum();
+        }
+    }
+}
+
+impl super::law::PointLaw for Elasticity {
+    fn components(&self) -> usize {
+        self.n
+    }
+
+    fn respond(
+        &self,
+        strain: &[f64],
+        _old: &[f64],
+        stress: &mut [f64],
+        tangent: &mut [f64],
+        _new: &mut [f64],
+    ) {
+        self.stress(strain, stress);
+        for i in 0..self.n {
+            for j in 0..self.n {
+                tangent[i * self.n + j] = self.d[i][j];
+            }
         }
     }
 }

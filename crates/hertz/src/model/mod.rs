@@ -306,6 +306,14 @@ pub enum MaterialLaw {
     LinearElastic { young: f64, poisson: f64 },
     /// `mooneyrivlincompressiblemat`, `ogdencompressiblemat`, `simopistermat`.
     Hyperelastic(crate::material::Hyperelastic),
+    /// `MisesMat` (bars only): von Mises plasticity, yield stress `sig0`, linear isotropic
+    /// hardening modulus `H`.
+    Mises {
+        young: f64,
+        poisson: f64,
+        yield_stress: f64,
+        hardening: f64,
+    },
     /// Upstream OOFEM's `DummyMat` of contact elements: no mechanical law (a bulk element with
     /// it is an input error).
     Dummy,
@@ -315,7 +323,7 @@ impl Material {
     /// Young's modulus (of the small-strain limit for a hyperelastic law).
     pub fn young(&self) -> f64 {
         match &self.law {
-            MaterialLaw::LinearElastic { young, .. } => *young,
+            MaterialLaw::LinearElastic { young, .. } | MaterialLaw::Mises { young, .. } => *young,
             MaterialLaw::Hyperelastic(h) => {
                 let (g, k) = h.moduli();
                 9.0 * k * g / (3.0 * k + g)
@@ -327,7 +335,9 @@ impl Material {
     /// Poisson's ratio (of the small-strain limit for a hyperelastic law).
     pub fn poisson(&self) -> f64 {
         match &self.law {
-            MaterialLaw::LinearElastic { poisson, .. } => *poisson,
+            MaterialLaw::LinearElastic { poisson, .. } | MaterialLaw::Mises { poisson, .. } => {
+                *poisson
+            }
             MaterialLaw::Hyperelastic(h) => {
                 let (g, k) = h.moduli();
                 (3.0 * k - 2.0 * g) / (2.0 * (3.0 * k + g))

@@ -9,8 +9,7 @@
 
 use crate::fem::geometry::{det3, inverse3, map_derivatives};
 use crate::fem::{QuadPoint, Shape};
-use crate::material::{voigt_components, Constitutive, Elasticity, Hyperelastic, VOIGT_PAIRS};
-use crate::model::StressMode;
+use crate::material::{voigt_components_of, Constitutive, Hyperelastic, PointLaw, VOIGT_PAIRS};
 
 /// Maximum nodes and DOFs per element.
 pub const MAX_NODES: usize = 8;
@@ -49,15 +48,18 @@ pub struct KernelError {
 
 impl ContinuumKernel<'_> {
     /// Internal force `fe` (len nnode·nsd) and, if requested, tangent `ke` (row-major square)
-    /// and integration-point states.
+    /// and integration-point states; `old` the material's committed state of every integration
+    /// point in turn (its `state_len` numbers each), `new` the state this deformation leaves.
     pub fn evaluate_into(
         &self,
         x_ref: &[[f64; 3]],
         u: &[f64],
+        (old, new): (&[f64], &mut [f64]),
         fe: &mut [f64],
         mut ke: Option<&mut [f64]>,
         mut states: Option<&mut Vec<GpState>>,
     ) -> Result<(), KernelError> {
+        let sl = self.material.state_len();
         let nsd = self.nsd;
         let nn = self.shape.n_nodes();
         let ndof = nn * nsd;
@@ -115,8 +117,9 @@ impl ContinuumKernel<'_> {
                 nn,
             };
             match self.material {
-                Constitutive::Linear(el) => self.linear_point(
-                    el,
+                Constitutive::Small(law) => self.linear_point(
+                    law.as_ref(),
+                    (&old[g * sl..(g + 1) * sl], &mut new[g * sl..(g + 1) * sl]),
                     &point,
                     fe,
                     ke.as_deref_mut(),
@@ -211,10 +214,12 @@ struct Point<'a> {
 }
 
 impl ContinuumKernel<'_> {
-    /// Linear elasticity at a point: σ = D:ε, or S = D:E with the geometric stiffness.
+    /// A point law of the strain: σ(ε), or S(E) with the geometric stiffness.
+    #[allow(clippy::too_many_arguments)]
     fn linear_point(
         &self,
-        el: &Elasticity,
+        law: &dyn PointLaw,
+        (old, new): (&[f64], &mut [f64]),
         pt: &Point,
         fe: &mut [f64],
         ke: Option<&mut [f64]>,
@@ -223,14 +228,15 @@ impl ContinuumKernel<'_> {
     ) {
         let (nsd, nn, jxw, dndx, f, e) = (self.nsd, pt.nn, pt.jxw, pt.dndx, pt.f, pt.e);
         let ndof = nn * nsd;
-        let comps = voigt_components(el.mode);
+        let nc = law.components();
+        let comps = voigt_components_of(nc);
         let mut strain = [0.0; 6];
         for (k, &c) in comps.iter().enumerate() {
             let (i, j) = VOIGT_PAIRS[c];
             strain[k] = if i == j { e[i][j] } else { 2.0 * e[i][j] };
         }
-        let mut sv = [0.0; 6];
-        el.stress(&strain[..el.n], &mut sv[..el.n]);
+        let (mut sv, mut d) = ([0.0; 6], [0.0; 36]);
+        law.respond(&strain[..nc], old, &mut sv[..nc], &mut d[..nc * nc], new);
         let mut s = [[0.0; 3]; 3];
         for (k, &c) in comps.iter().enumerate() {
             let (i, j) = VOIGT_PAIRS[c];
@@ -268,11 +274,10 @@ impl ContinuumKernel<'_> {
                     }
                 }
             }
-            let nc = el.n;
             let mut db = [[0.0; MAX_DOFS]; 6];
             for r in 0..nc {
                 for q in 0..ndof {
-                    db[r][q] = (0..nc).map(|t| el.d[r][t] * b[t][q]).sum::<f64>() * jxw;
+                    db[r][q] = (0..nc).map(|t| d[r * nc + t] * b[t][q]).sum::<f64>() * jxw;
                 }
             }
             for p in 0..ndof {
@@ -307,7 +312,8 @@ impl ContinuumKernel<'_> {
                 full_e[c] = strain[k];
                 full_s[c] = sv[k];
             }
-            if el.mode == StressMode::PlaneStrain {
+            if nc == 4 {
+                // Plane strain: ε_zz = 0 whatever the reduced vector carries.
                 full_e[2] = 0.0;
             }
             let mut p = [[0.0; 3]; 3];

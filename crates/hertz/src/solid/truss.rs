@@ -1,10 +1,13 @@
 //! Two-node bar in small strain (Truss1d, Truss2d). B is built on the initial geometry
-//! (spec §1.9): ε = e·(u₂ − u₁)/L, σ = Eε, N = Aσ.
+//! (spec §1.9): ε = e·(u₂ − u₁)/L, σ = σ(ε; state) from the material's point law (E·ε for
+//! `IsoLE`), N = Aσ, tangent A·(dσ/dε)/L.
 //!
 //! Glossary: `x_ref` end coordinates in the element's plane (1 or 2 components used), `u` end
-//! displacements (u₁, u₂ per component), `area` A, `young` E.
+//! displacements (u₁, u₂ per component), `area` A, `old`/`new` the point's committed state and
+//! the state this strain leaves.
 
 use super::GpState;
+use crate::material::PointLaw;
 
 /// Internal force `fe`, tangent `ke` (row-major) and the single GP state of a bar.
 #[allow(clippy::too_many_arguments)]
@@ -12,7 +15,8 @@ pub fn evaluate_into(
     dim: usize,
     x_ref: [[f64; 2]; 2],
     u: &[f64],
-    young: f64,
+    law: &dyn PointLaw,
+    (old, new): (&[f64], &mut [f64]),
     area: f64,
     fe: &mut [f64],
     ke: Option<&mut [f64]>,
@@ -32,14 +36,16 @@ pub fn evaluate_into(
         *v /= len;
     }
     let strain: f64 = (0..dim).map(|i| e[i] * (u[dim + i] - u[i])).sum::<f64>() / len;
-    let stress = young * strain;
+    let (mut stress, mut tangent) = ([0.0], [0.0]);
+    law.respond(&[strain], old, &mut stress, &mut tangent, new);
+    let (stress, tangent) = (stress[0], tangent[0]);
     let force = area * stress;
     for i in 0..dim {
         fe[i] = -force * e[i];
         fe[dim + i] = force * e[i];
     }
     if let Some(k) = ke {
-        let c = young * area / len;
+        let c = tangent * area / len;
         let nd = 2 * dim;
         for a in 0..2 {
             for b in 0..2 {

@@ -161,7 +161,7 @@ pub fn run_analysis_observed(
             .collect()
     };
     let a = &model.analysis;
-    let small_strain = !model.elements.iter().any(|e| e.nlgeo);
+    let small_strain = model.constant_element_stiffness();
     let linear = small_strain && contact.is_empty();
     // Contact: Newton systems condensed on the contact equations (see `condensed`).
     let condensed = if contact.is_empty() || !params.condensed_contact {
@@ -248,10 +248,18 @@ pub fn run_analysis_observed(
         let mut diagnosis = None;
         // The furthest state any substep converged to (for a failure's diagnosis).
         let mut furthest = (0.0, start_u.clone());
+        // Materials with a state: a cut-back restarts from the state the step began with.
+        let start_material = ctx
+            .asm
+            .has_material_state()
+            .then(|| ctx.asm.material_state().to_vec());
         for level in 0..=params.max_cutbacks {
             let nsub = 1usize << level;
             u.copy_from_slice(&start_u);
             ctx.converged_states.clone_from(&start_states);
+            if let Some(m) = &start_material {
+                ctx.asm.restore_material_state(m);
+            }
             let mut ok = true;
             for s in 1..=nsub {
                 let alpha = s as f64 / nsub as f64;
@@ -265,6 +273,9 @@ pub fn run_analysis_observed(
                     .collect();
                 match ctx.newton(&mut u, &f_sub, &up_sub, a, &mut info) {
                     Ok(true) => {
+                        if start_material.is_some() {
+                            ctx.asm.commit_material_state(&u)?;
+                        }
                         if alpha > furthest.0 && alpha < 1.0 {
                             furthest = (alpha, u.clone());
                         }
