@@ -9,9 +9,9 @@ use crate::error::{Error, Result};
 use crate::fem::{rule, QuadPoint};
 use crate::material::Constitutive;
 use crate::model::Model;
-use crate::solid::continuum::{ContinuumKernel, MAX_DOFS};
-use crate::solid::loads::{element_thickness, truss_coords};
-use crate::solid::{truss, GpState};
+use crate::solid::continuum::{ContinuumKernel, MAX_DOFS, MAX_NODES};
+use crate::solid::loads::{element_thickness, truss_axes};
+use crate::solid::{ElementKernel, GpState, TrussKernel};
 use rayon::prelude::*;
 use std::collections::HashMap;
 
@@ -343,41 +343,37 @@ impl<'m> Assembler<'m> {
         }
         let fail =
             |gp: usize, msg: String| Error::Solve(format!("element {} (gp {gp}): {msg}", el.label));
-        if el.etype.is_truss() {
-            let dim = el.dof_ids().len();
-            let Constitutive::Small(law) = &self.laws[info.law] else {
+        let mut x = [[0.0; 3]; MAX_NODES];
+        for (a, &n) in el.nodes.iter().enumerate() {
+            x[a] = self.model.nodes[n].coords;
+        }
+        let x = &x[..el.nodes.len()];
+        let law = &self.laws[info.law];
+        let ue = &ue[..info.ndof];
+        let result = if el.etype.is_truss() {
+            let Constitutive::Small(law) = law else {
                 unreachable!("bars have small-strain laws")
             };
-            truss::evaluate_into(
-                dim,
-                truss_coords(self.model, e),
-                &ue,
-                law.as_ref(),
-                (old, new),
-                info.thick,
-                fe,
-                ke,
-                states,
-            )
-            .map_err(|m| fail(1, m))
+            let kernel = TrussKernel {
+                dim: el.dof_ids().len(),
+                axes: truss_axes(el),
+                area: info.thick,
+                law: law.as_ref(),
+            };
+            kernel.evaluate_into(x, ue, (old, new), fe, ke, states)
         } else {
             let shape = el.etype.shape();
-            let mut x = [[0.0; 3]; 8];
-            for (a, &n) in el.nodes.iter().enumerate() {
-                x[a] = self.model.nodes[n].coords;
-            }
             let kernel = ContinuumKernel {
                 shape,
                 nsd: shape.dim(),
                 rule: &self.rules[info.rule],
-                material: &self.laws[info.law],
+                material: law,
                 thick: info.thick,
                 nlgeo: el.nlgeo,
             };
-            kernel
-                .evaluate_into(&x[..el.nodes.len()], &ue, (old, new), fe, ke, states)
-                .map_err(|k| fail(k.gp, k.msg))
-        }
+            kernel.evaluate_into(x, ue, (old, new), fe, ke, states)
+        };
+        result.map_err(|k| fail(k.gp, k.msg))
     }
 
     /// Add one local contribution (location codes, residual, row-major tangent) to the sink.

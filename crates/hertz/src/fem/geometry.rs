@@ -59,9 +59,9 @@ pub fn inverse3(m: &[[f64; 3]; 3], det: f64) -> [[f64; 3]; 3] {
 /// det J of the reference map at every point of `rule`, for an element with node coordinates `x`.
 pub fn jacobian_dets(shape: super::Shape, x: &[[f64; 3]], rule: &[super::QuadPoint]) -> Vec<f64> {
     let nn = shape.n_nodes();
-    let mut n = [0.0; 8];
-    let mut dn = [[0.0; 3]; 8];
-    let mut dndx = [[0.0; 3]; 8];
+    let mut n = [0.0; super::MAX_NODES];
+    let mut dn = [[0.0; 3]; super::MAX_NODES];
+    let mut dndx = [[0.0; 3]; super::MAX_NODES];
     rule.iter()
         .map(|q| {
             shape.eval(q.xi, &mut n, &mut dn);

@@ -7,3 +7,7 @@ pub mod shape;
 
 pub use quadrature::{gauss_line, rule, QuadPoint};
 pub use shape::Shape;
+
+/// The most nodes an element may have: room for the 20-node brick and the 27-node one, so that a
+/// new shape needs no change of the kernels' buffers.
+pub const MAX_NODES: usize = 27;

@@ -12,8 +12,8 @@ use crate::fem::{QuadPoint, Shape};
 use crate::material::{voigt_components_of, Constitutive, Hyperelastic, PointLaw, VOIGT_PAIRS};
 
 /// Maximum nodes and DOFs per element.
-pub const MAX_NODES: usize = 8;
-pub const MAX_DOFS: usize = 24;
+pub use crate::fem::MAX_NODES;
+pub const MAX_DOFS: usize = 3 * MAX_NODES;
 
 /// Results at one integration point, in full 6-component Voigt form (spec §1.17).
 #[derive(Debug, Clone, Copy, Default)]

@@ -142,12 +142,7 @@ fn element_shape_integrals(model: &Model, e: usize) -> Result<Vec<f64>> {
 /// End coordinates of a bar in its own plane (Truss1d: x; Truss2d cs 0: x–z, 1: x–y, 2: y–z).
 pub fn truss_coords(model: &Model, e: usize) -> [[f64; 2]; 2] {
     let el = &model.elements[e];
-    let axes: [usize; 2] = match (el.etype, el.truss_plane) {
-        (crate::model::ElementType::Truss1d, _) => [0, 0],
-        (_, 1) => [0, 1],
-        (_, 2) => [1, 2],
-        _ => [0, 2],
-    };
+    let axes = truss_axes(el);
     let mut out = [[0.0; 2]; 2];
     for (k, &n) in el.nodes.iter().enumerate() {
         let c = model.nodes[n].coords;
@@ -161,4 +156,14 @@ pub fn truss_coords(model: &Model, e: usize) -> [[f64; 2]; 2] {
         ];
     }
     out
+}
+
+/// The global axes of a bar's plane: x for Truss1d; x–z (default), x–y or y–z for Truss2d.
+pub fn truss_axes(el: &crate::model::Element) -> [usize; 2] {
+    match (el.etype, el.truss_plane) {
+        (crate::model::ElementType::Truss1d, _) => [0, 0],
+        (_, 1) => [0, 1],
+        (_, 2) => [1, 2],
+        _ => [0, 2],
+    }
 }
