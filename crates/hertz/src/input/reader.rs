@@ -296,7 +296,134 @@ fn model_from_lines(
         sets_read_early: false,
     };
 
-    // Engineering model record.
+    let (analysis, domain, output) = read_header(&mut c)?;
+
+    let n = read_counts(&mut c)?;
+    let (nelem, nic, nset, ncontactseg, ncontactsurf) =
+        (n.nelem, n.nic, n.nset, n.ncontactseg, n.ncontactsurf);
+
+    let (nodes, node_index) = read_nodes(&mut c, n.ndofman)?;
+
+    let mut block = read_elements(&mut c, nelem, &node_index, &domain)?;
+
+    let refs = Refs {
+        nodes: &node_index,
+        elements: &block.elem_index,
+        element_list: &block.elements,
+        contact_elements: &block.contact_index,
+    };
+    let mut sets: Option<Vec<Set>> = None;
+    if nset > 0 && c.peek_keyword().as_deref() == Some("set") {
+        sets = Some(
+            read_sets(&mut c, nset, &refs)
+                .map_err(|e| explain_missing_sets(e, &lines, &sources))?,
+        );
+        c.sets_read_early = true;
+    }
+
+    let mut pending_segments = Numbered::new("contact segment", ncontactseg);
+    for i in 0..ncontactseg {
+        let r = c.next_of(Block::Segment, i, ncontactseg)?;
+        let seg = super::contact::read_segment(&r, &node_index, domain.nsd(), nset)?;
+        pending_segments.put(&r, seg)?;
+        c.finish(&r);
+    }
+    let pending_segments = pending_segments.finish();
+    let mut surfaces = Numbered::new("contact surface", ncontactsurf);
+    for i in 0..ncontactsurf {
+        let r = c.next_of(Block::ContactSurface, i, ncontactsurf)?;
+        surfaces.put(&r, super::upstream::read_surface(&r, nset)?)?;
+        c.finish(&r);
+    }
+    let surfaces = surfaces.finish();
+
+    let cross_sections = read_cross_sections(&mut c, &n)?;
+
+    let materials = read_materials(&mut c, n.nmat)?;
+
+    let Conditions {
+        dirichlet,
+        loads,
+        pending_penalty_bcs,
+        pending_contacts,
+    } = read_conditions(&mut c, &n, &analysis, &domain, &node_index)?;
+
+    if nic > 0 {
+        let r = c.next("initial-condition record 1")?;
+        return Err(r.error("initial conditions are not supported (set nic 0)"));
+    }
+
+    let functions = read_time_functions(&mut c, n.nltf)?;
+
+    let sets = match sets {
+        Some(s) => s,
+        None => {
+            read_sets(&mut c, nset, &refs).map_err(|e| explain_missing_sets(e, &lines, &sources))?
+        }
+    };
+
+    if let Some(line) = c.lines.get(c.pos) {
+        let r = Record::new(line.clone());
+        return Err(r.error(format!(
+            "{} record(s) left after the last expected record: is a count (nset, nltf, nbc, ...) too small?",
+            c.lines.len() - c.pos
+        )));
+    }
+
+    let contact_elements = std::mem::take(&mut block.contact_elements);
+    let model_elements =
+        resolve_elements(block, &n, &cross_sections, &materials, &sets, c.warnings)?;
+    check_loads_act(&loads, &dirichlet, &sets, &model_elements)?;
+
+    check_geometry(&elements_ref_nodes(&nodes), &model_elements)?;
+    let (mut segments, mut contacts) =
+        super::contact::resolve(pending_segments, pending_contacts, &sets, &model_elements)?;
+    let (upstream_segments, upstream_contacts) = super::upstream::resolve(
+        pending_penalty_bcs,
+        &surfaces,
+        &sets,
+        &contact_elements,
+        &model_elements,
+        segments.len(),
+    )?;
+    segments.extend(upstream_segments);
+    contacts.extend(upstream_contacts);
+    c.warnings.extend(interior_boundary_warnings(
+        &model_elements,
+        &loads,
+        &segments,
+        &sets,
+    ));
+    let model = Model {
+        input_path: path.to_path_buf(),
+        output_name,
+        description,
+        analysis,
+        domain,
+        output,
+        nodes,
+        elements: model_elements,
+        cross_sections,
+        materials,
+        dirichlet,
+        loads,
+        functions,
+        sets,
+        segments,
+        contacts,
+    };
+    warn_early_function_times(&model, c.warnings);
+    Ok(ReadResult {
+        model,
+        warnings: Vec::new(),
+        sources,
+    })
+}
+
+/// The records before the counts: the engineering model (with its modules), the domain and the
+/// output manager.
+fn read_header(c: &mut Cursor) -> Result<(Analysis, DomainKind, OutputSelection)> {
+    let file = c.file.clone();
     let r = c.next("the engineering-model record (e.g. StaticStructural nsteps 1)")?;
     let (mut analysis, nmodules, ninit, nmonitors) = read_analysis(&r)?;
     c.finish(&r);
@@ -369,31 +496,51 @@ fn model_from_lines(
     };
     c.finish(&r);
 
-    // Counts record.
+    Ok((analysis, domain, output))
+}
+
+/// The counts record: how many records of each block follow.
+struct Counts {
+    ndofman: usize,
+    nelem: usize,
+    ncs: usize,
+    nmat: usize,
+    nbc: usize,
+    nic: usize,
+    nltf: usize,
+    nset: usize,
+    ncontactseg: usize,
+    ncontactsurf: usize,
+}
+
+/// The counts record, each count checked against the records left.
+fn read_counts(c: &mut Cursor) -> Result<Counts> {
     let r = c.next("the counts record (ndofman nelem ncrosssect nmat nbc nic nltf ...)")?;
     r.keyword();
-    let ndofman = r.usize("ndofman")?;
-    let nelem = r.usize("nelem")?;
-    let ncs = r.usize("ncrosssect")?;
-    let nmat = r.usize("nmat")?;
-    let nbc = r.usize("nbc")?;
-    let nic = r.usize("nic")?;
-    let nltf = r.usize("nltf")?;
-    let nset = r.opt_usize("nset")?.unwrap_or(0);
-    let ncontactseg = r.opt_usize("ncontactseg")?.unwrap_or(0);
-    let ncontactsurf = r.opt_usize("ncontactsurf")?.unwrap_or(0);
+    let n = Counts {
+        ndofman: r.usize("ndofman")?,
+        nelem: r.usize("nelem")?,
+        ncs: r.usize("ncrosssect")?,
+        nmat: r.usize("nmat")?,
+        nbc: r.usize("nbc")?,
+        nic: r.usize("nic")?,
+        nltf: r.usize("nltf")?,
+        nset: r.opt_usize("nset")?.unwrap_or(0),
+        ncontactseg: r.opt_usize("ncontactseg")?.unwrap_or(0),
+        ncontactsurf: r.opt_usize("ncontactsurf")?.unwrap_or(0),
+    };
     let left = c.lines.len() - c.pos;
     for (k, v) in [
-        ("ndofman", ndofman),
-        ("nelem", nelem),
-        ("ncrosssect", ncs),
-        ("nmat", nmat),
-        ("nbc", nbc),
-        ("nic", nic),
-        ("nltf", nltf),
-        ("nset", nset),
-        ("ncontactseg", ncontactseg),
-        ("ncontactsurf", ncontactsurf),
+        ("ndofman", n.ndofman),
+        ("nelem", n.nelem),
+        ("ncrosssect", n.ncs),
+        ("nmat", n.nmat),
+        ("nbc", n.nbc),
+        ("nic", n.nic),
+        ("nltf", n.nltf),
+        ("nset", n.nset),
+        ("ncontactseg", n.ncontactseg),
+        ("ncontactsurf", n.ncontactsurf),
     ] {
         if v > left {
             return Err(r.error(format!(
@@ -409,7 +556,11 @@ fn model_from_lines(
     r.flag("axisymm");
     c.finish(&r);
 
-    // Nodes.
+    Ok(n)
+}
+
+/// The node records (`Node`, `SlaveNode`), with the index of each label.
+fn read_nodes(c: &mut Cursor, ndofman: usize) -> Result<(Vec<Node>, HashMap<usize, usize>)> {
     let mut nodes = Vec::with_capacity(ndofman);
     let mut node_index: HashMap<usize, usize> = HashMap::new();
     // (slave node index, master labels, weights, record) resolved once all nodes are known.
@@ -499,7 +650,27 @@ fn model_from_lines(
         }
     }
 
-    // Elements.
+    Ok((nodes, node_index))
+}
+
+/// The element records: bulk elements (their cross section and material numbers as given,
+/// resolved later) and upstream OOFEM's contact elements.
+struct ElementBlock {
+    elements: Vec<Element>,
+    elem_index: HashMap<usize, usize>,
+    elem_cs: Vec<Option<usize>>,
+    elem_mat: Vec<Option<usize>>,
+    contact_elements: Vec<super::upstream::ContactElement>,
+    contact_index: HashMap<usize, usize>,
+}
+
+/// The element records.
+fn read_elements(
+    c: &mut Cursor,
+    nelem: usize,
+    node_index: &HashMap<usize, usize>,
+    domain: &DomainKind,
+) -> Result<ElementBlock> {
     let mut elements = Vec::with_capacity(nelem);
     let mut elem_index: HashMap<usize, usize> = HashMap::new();
     let mut elem_cs: Vec<Option<usize>> = Vec::with_capacity(nelem);
@@ -510,7 +681,7 @@ fn model_from_lines(
         let r = c.next_of(Block::Element, i, nelem)?;
         let kw = r.keyword().to_string();
         if kw.starts_with("structuralcontactelement_") {
-            let ce = super::upstream::read_contact_element(&r, &node_index, domain.nsd())?;
+            let ce = super::upstream::read_contact_element(&r, node_index, domain.nsd())?;
             if elem_index.contains_key(&ce.label)
                 || contact_index
                     .insert(ce.label, contact_elements.len())
@@ -602,40 +773,19 @@ fn model_from_lines(
         c.finish(&r);
     }
 
-    let refs = Refs {
-        nodes: &node_index,
-        elements: &elem_index,
-        element_list: &elements,
-        contact_elements: &contact_index,
-    };
-    let mut sets: Option<Vec<Set>> = None;
-    if nset > 0 && c.peek_keyword().as_deref() == Some("set") {
-        sets = Some(
-            read_sets(&mut c, nset, &refs)
-                .map_err(|e| explain_missing_sets(e, &lines, &sources))?,
-        );
-        c.sets_read_early = true;
-    }
+    Ok(ElementBlock {
+        elements,
+        elem_index,
+        elem_cs,
+        elem_mat,
+        contact_elements,
+        contact_index,
+    })
+}
 
-    let mut pending_segments = Numbered::new("contact segment", ncontactseg);
-    for i in 0..ncontactseg {
-        let r = c.next_of(Block::Segment, i, ncontactseg)?;
-        let seg = super::contact::read_segment(&r, &node_index, domain.nsd(), nset)?;
-        pending_segments.put(&r, seg)?;
-        c.finish(&r);
-    }
-    let pending_segments = pending_segments.finish();
-    let mut surfaces = Numbered::new("contact surface", ncontactsurf);
-    for i in 0..ncontactsurf {
-        let r = c.next_of(Block::ContactSurface, i, ncontactsurf)?;
-        surfaces.put(&r, super::upstream::read_surface(&r, nset)?)?;
-        c.finish(&r);
-    }
-    let surfaces = surfaces.finish();
-    let mut pending_penalty_bcs = Vec::new();
-    let mut pending_contacts = Vec::new();
-
-    // Cross sections.
+/// The cross-section records (`SimpleCS`, upstream's `DummyCS`).
+fn read_cross_sections(c: &mut Cursor, n: &Counts) -> Result<Vec<CrossSection>> {
+    let (ncs, nmat, nset) = (n.ncs, n.nmat, n.nset);
     let mut cs = Numbered::new("cross section", ncs);
     for i in 0..ncs {
         let r = c.next_of(Block::CrossSection, i, ncs)?;
@@ -698,7 +848,11 @@ fn model_from_lines(
     }
     let cross_sections = cs.finish();
 
-    // Materials.
+    Ok(cross_sections)
+}
+
+/// The material records.
+fn read_materials(c: &mut Cursor, nmat: usize) -> Result<Vec<Material>> {
     let mut mats = Numbered::new("material", nmat);
     for i in 0..nmat {
         let r = c.next_of(Block::Material, i, nmat)?;
@@ -716,7 +870,30 @@ fn model_from_lines(
     }
     let materials = mats.finish();
 
-    // Boundary conditions and loads.
+    Ok(materials)
+}
+
+/// The boundary-condition block: Dirichlet conditions, loads, and contact conditions still to be
+/// resolved against sets and segments.
+struct Conditions {
+    dirichlet: Vec<Dirichlet>,
+    loads: Vec<Load>,
+    pending_penalty_bcs: Vec<super::upstream::PendingPenaltyBc>,
+    pending_contacts: Vec<super::contact::PendingCondition>,
+}
+
+/// The boundary-condition, load and contact-condition records.
+fn read_conditions(
+    c: &mut Cursor,
+    n: &Counts,
+    analysis: &Analysis,
+    domain: &DomainKind,
+    node_index: &HashMap<usize, usize>,
+) -> Result<Conditions> {
+    let (nbc, nltf, nset, ncontactsurf, ncontactseg) =
+        (n.nbc, n.nltf, n.nset, n.ncontactsurf, n.ncontactseg);
+    let mut pending_penalty_bcs = Vec::new();
+    let mut pending_contacts = Vec::new();
     let mut bcs: Numbered<Option<Dirichlet>> = Numbered::new("boundary condition", nbc);
     let mut loads = Vec::new();
     for i in 0..nbc {
@@ -735,104 +912,17 @@ fn model_from_lines(
             return Err(r.error("`isImposedTimeFunction` is not supported"));
         }
         r.opt_usize("valtype")?;
-        let read_dofs = |r: &Record| -> Result<Option<Vec<DofId>>> {
-            match r.opt_int_array("dofs")? {
-                None => Ok(None),
-                Some(v) => v
-                    .iter()
-                    .map(|&d| {
-                        if (1..=3).contains(&d) {
-                            Ok(d as DofId)
-                        } else {
-                            Err(r
-                                .error(format!("DOF id {d} is not a displacement DOF (1, 2 or 3)")))
-                        }
-                    })
-                    .collect::<Result<Vec<_>>>()
-                    .map(Some),
-            }
-        };
         match kw.as_str() {
             "boundarycondition" => {
-                let dofs = read_dofs(&r)?.unwrap_or_else(|| domain.default_dofs().to_vec());
-                let values = match r.opt_float_array("values")? {
-                    Some(v) => v,
-                    None => {
-                        let v = match r.opt_float("prescribedvalue")? {
-                            Some(v) => v,
-                            None => r
-                                .opt_float("d")?
-                                .ok_or_else(|| r.error("BoundaryCondition needs `values`"))?,
-                        };
-                        vec![v; dofs.len()]
-                    }
-                };
-                if values.len() != dofs.len() {
-                    return Err(r.error(format!(
-                        "`values` has {} entries for {} dofs",
-                        values.len(),
-                        dofs.len()
-                    )));
-                }
-                bcs.put(
-                    &r,
-                    Some(Dirichlet {
-                        number,
-                        function,
-                        dofs,
-                        values,
-                        set: Some(set).filter(|&s| s > 0),
-                        span: r.span(),
-                    }),
-                )?;
+                let d = read_dirichlet(&r, number, function, set, domain)?;
+                bcs.put(&r, Some(d))?;
             }
             "nodalload"
             | "constantedgeload"
             | "constantsurfaceload"
             | "constantpressureload"
             | "deadweight" => {
-                let kind = match kw.as_str() {
-                    "nodalload" => LoadKind::Nodal,
-                    "constantedgeload" => LoadKind::Edge,
-                    "deadweight" => LoadKind::DeadWeight,
-                    _ => LoadKind::Surface,
-                };
-                if kw == "constantpressureload" {
-                    return Err(
-                        r.error("ConstantPressureLoad is not supported; use ConstantSurfaceLoad")
-                    );
-                }
-                let components = r.float_array("components")?;
-                let dofs = match (&kind, read_dofs(&r)?) {
-                    (_, Some(d)) => d,
-                    (LoadKind::DeadWeight, None) => (1..=components.len() as DofId).collect(),
-                    (_, None) => domain.default_dofs().to_vec(),
-                };
-                if components.len() != dofs.len() {
-                    return Err(r.error(format!(
-                        "`components` has {} entries for {} dofs",
-                        components.len(),
-                        dofs.len()
-                    )));
-                }
-                if r.opt_int("cstype")?.unwrap_or(0) != 0 {
-                    return Err(r.error("`cstype 1` (local load coordinates) is not supported"));
-                }
-                r.opt_int("loadtype")?;
-                if set == 0 {
-                    return Err(r.error(format!(
-                        "{kw} needs `set` (legacy element boundaryloads are not supported)"
-                    )));
-                }
-                loads.push(Load {
-                    number,
-                    kind,
-                    function,
-                    dofs,
-                    components,
-                    set,
-                    span: r.span(),
-                });
+                loads.push(read_load(&r, &kw, number, function, set, domain)?);
                 bcs.put(&r, None)?;
             }
             "structuralpenaltycontactbc" => {
@@ -856,7 +946,7 @@ fn model_from_lines(
                 }
                 pending_contacts.push(super::contact::read_condition(
                     &r,
-                    &node_index,
+                    node_index,
                     domain.nsd(),
                     nset,
                     ncontactseg,
@@ -874,12 +964,123 @@ fn model_from_lines(
     }
     let dirichlet: Vec<Dirichlet> = bcs.finish().into_iter().flatten().collect();
 
-    if nic > 0 {
-        let r = c.next("initial-condition record 1")?;
-        return Err(r.error("initial conditions are not supported (set nic 0)"));
-    }
+    Ok(Conditions {
+        dirichlet,
+        loads,
+        pending_penalty_bcs,
+        pending_contacts,
+    })
+}
 
-    // Time functions.
+/// The DOF ids a `dofs` array names (displacements only), if it is there.
+fn read_dofs(r: &Record) -> Result<Option<Vec<DofId>>> {
+    match r.opt_int_array("dofs")? {
+        None => Ok(None),
+        Some(v) => v
+            .iter()
+            .map(|&d| {
+                if (1..=3).contains(&d) {
+                    Ok(d as DofId)
+                } else {
+                    Err(r.error(format!("DOF id {d} is not a displacement DOF (1, 2 or 3)")))
+                }
+            })
+            .collect::<Result<Vec<_>>>()
+            .map(Some),
+    }
+}
+
+/// A `BoundaryCondition` record: prescribed values of DOFs on a set's nodes.
+fn read_dirichlet(
+    r: &Record,
+    number: usize,
+    function: usize,
+    set: usize,
+    domain: &DomainKind,
+) -> Result<Dirichlet> {
+    let dofs = read_dofs(r)?.unwrap_or_else(|| domain.default_dofs().to_vec());
+    let values = match r.opt_float_array("values")? {
+        Some(v) => v,
+        None => {
+            let v = match r.opt_float("prescribedvalue")? {
+                Some(v) => v,
+                None => r
+                    .opt_float("d")?
+                    .ok_or_else(|| r.error("BoundaryCondition needs `values`"))?,
+            };
+            vec![v; dofs.len()]
+        }
+    };
+    if values.len() != dofs.len() {
+        return Err(r.error(format!(
+            "`values` has {} entries for {} dofs",
+            values.len(),
+            dofs.len()
+        )));
+    }
+    Ok(Dirichlet {
+        number,
+        function,
+        dofs,
+        values,
+        set: Some(set).filter(|&s| s > 0),
+        span: r.span(),
+    })
+}
+
+/// A load record (`NodalLoad`, `ConstantEdgeLoad`, `ConstantSurfaceLoad`, `DeadWeight`).
+fn read_load(
+    r: &Record,
+    kw: &str,
+    number: usize,
+    function: usize,
+    set: usize,
+    domain: &DomainKind,
+) -> Result<Load> {
+    let kind = match kw {
+        "nodalload" => LoadKind::Nodal,
+        "constantedgeload" => LoadKind::Edge,
+        "deadweight" => LoadKind::DeadWeight,
+        _ => LoadKind::Surface,
+    };
+    if kw == "constantpressureload" {
+        return Err(r.error("ConstantPressureLoad is not supported; use ConstantSurfaceLoad"));
+    }
+    let components = r.float_array("components")?;
+    let dofs = match (&kind, read_dofs(r)?) {
+        (_, Some(d)) => d,
+        (LoadKind::DeadWeight, None) => (1..=components.len() as DofId).collect(),
+        (_, None) => domain.default_dofs().to_vec(),
+    };
+    if components.len() != dofs.len() {
+        return Err(r.error(format!(
+            "`components` has {} entries for {} dofs",
+            components.len(),
+            dofs.len()
+        )));
+    }
+    if r.opt_int("cstype")?.unwrap_or(0) != 0 {
+        return Err(r.error("`cstype 1` (local load coordinates) is not supported"));
+    }
+    r.opt_int("loadtype")?;
+    if set == 0 {
+        return Err(r.error(format!(
+            "{kw} needs `set` (legacy element boundaryloads are not supported)"
+        )));
+    }
+    Ok(Load {
+        number,
+        kind,
+        function,
+        dofs,
+        components,
+        set,
+        span: r.span(),
+    })
+}
+
+/// The time-function records.
+fn read_time_functions(c: &mut Cursor, nltf: usize) -> Result<Vec<TimeFunction>> {
     let mut funcs = Numbered::new("time function", nltf);
     for i in 0..nltf {
         let r = c.next_of(Block::TimeFunction, i, nltf)?;
@@ -919,23 +1120,23 @@ fn model_from_lines(
     }
     let functions = funcs.finish();
 
-    let sets = match sets {
-        Some(s) => s,
-        None => {
-            read_sets(&mut c, nset, &refs).map_err(|e| explain_missing_sets(e, &lines, &sources))?
-        }
-    };
+    Ok(functions)
+}
 
-    if let Some(line) = c.lines.get(c.pos) {
-        let r = Record::new(line.clone());
-        return Err(r.error(format!(
-            "{} record(s) left after the last expected record: is a count (nset, nltf, nbc, ...) too small?",
-            c.lines.len() - c.pos
-        )));
-    }
-
-    // Resolve cross sections and materials of elements.
-    let mut model_elements = elements;
+/// Each element's cross section and material (from its record or a cross section's set),
+/// checked against each other.
+fn resolve_elements(
+    block: ElementBlock,
+    n: &Counts,
+    cross_sections: &[CrossSection],
+    materials: &[Material],
+    sets: &[Set],
+    warnings: &mut Vec<String>,
+) -> Result<Vec<Element>> {
+    let mut model_elements = block.elements;
+    let mut elem_cs = block.elem_cs;
+    let elem_mat = block.elem_mat;
+    let (ncs, nmat) = (n.ncs, n.nmat);
     for (ci, cs) in cross_sections.iter().enumerate() {
         if let Some(s) = cs.set {
             for &e in &sets[s - 1].elements {
@@ -993,7 +1194,7 @@ fn model_from_lines(
             )));
         }
         if e.etype.is_truss() && csr.area == 0.0 {
-            c.warnings.push(format!(
+            warnings.push(format!(
                 "{}:{}: bar element {} has no cross-section area (cross section {csn} gives no \
                  `area`): it carries no force",
                 e.span.file.display(),
@@ -1004,10 +1205,20 @@ fn model_from_lines(
         e.cross_section = csn - 1;
         e.material = mat - 1;
     }
+    Ok(model_elements)
+}
+
+/// A load or condition whose set gives it nothing to act on.
+fn check_loads_act(
+    loads: &[Load],
+    dirichlet: &[Dirichlet],
+    sets: &[Set],
+    elements: &[Element],
+) -> Result<()> {
     // A load or condition that would act on nothing is an input error, never a silent no-op.
-    for l in &loads {
+    for l in loads {
         let s = &sets[l.set - 1];
-        let why = match l.boundaries(s, &model_elements) {
+        let why = match l.boundaries(s, elements) {
             Err(msg) => Some(msg),
             Ok(b) => l.acts_on_nothing(s, &b),
         };
@@ -1018,7 +1229,7 @@ fn model_from_lines(
             });
         }
     }
-    for d in &dirichlet {
+    for d in dirichlet {
         if let Some(s) = d.set.filter(|&s| sets[s - 1].nodes.is_empty()) {
             return Err(Error::Input {
                 span: d.span.clone(),
@@ -1030,43 +1241,11 @@ fn model_from_lines(
         }
     }
 
-    check_geometry(&elements_ref_nodes(&nodes), &model_elements)?;
-    let (mut segments, mut contacts) =
-        super::contact::resolve(pending_segments, pending_contacts, &sets, &model_elements)?;
-    let (upstream_segments, upstream_contacts) = super::upstream::resolve(
-        pending_penalty_bcs,
-        &surfaces,
-        &sets,
-        &contact_elements,
-        &model_elements,
-        segments.len(),
-    )?;
-    segments.extend(upstream_segments);
-    contacts.extend(upstream_contacts);
-    c.warnings.extend(interior_boundary_warnings(
-        &model_elements,
-        &loads,
-        &segments,
-        &sets,
-    ));
-    let model = Model {
-        input_path: path.to_path_buf(),
-        output_name,
-        description,
-        analysis,
-        domain,
-        output,
-        nodes,
-        elements: model_elements,
-        cross_sections,
-        materials,
-        dirichlet,
-        loads,
-        functions,
-        sets,
-        segments,
-        contacts,
-    };
+    Ok(())
+}
+
+/// Warn of time functions evaluated before their first point.
+fn warn_early_function_times(model: &Model, warnings: &mut Vec<String>) {
     // Earliest time a function is evaluated at: the first step, or one Δt before it for the
     // incremental loads of NonLinearStatic `refloadmode 1`.
     let a = &model.analysis;
@@ -1076,18 +1255,13 @@ fn model_from_lines(
     }
     for (i, f) in model.functions.iter().enumerate() {
         if f.first_time().is_some_and(|t0| first_t < t0) {
-            c.warnings.push(format!(
+            warnings.push(format!(
                 "time function {} is evaluated before its first point (t = {first_t}); hertz uses the first value \
                  (OOFEM would return the first time instead)",
                 i + 1
             ));
         }
     }
-    Ok(ReadResult {
-        model,
-        warnings: Vec::new(),
-        sources,
-    })
 }
 
 fn check_ref(r: &Record, what: &str, n: Option<usize>, count: usize) -> Result<()> {
