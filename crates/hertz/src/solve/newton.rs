@@ -15,16 +15,15 @@
 
 use super::branches::{BranchSearch, ContactStep, OnCycle};
 use super::condensed::CondensedContact;
-use super::linear::LinearSolver;
+use super::linear::{DenseLu, FaerSolver, LinearSolver, SolverSettings};
 use super::multipliers::{Group, MultiplierElimination};
 use super::report::{IterationReport, Observer, Phase};
-use super::stepping::PhaseTimes;
-use super::stepping::StepInfo;
+use super::stepping::{PhaseTimes, SolveParams, SolverChoice, StepInfo};
 use crate::assembly::{Assembler, Contribution, DofMap, Evaluation};
 use crate::contact::point::Branch;
 use crate::contact::{ContactPoint, ContactSystem, History, PointLaw, Search, SlotState};
 use crate::error::{Error, Result};
-use crate::model::Analysis;
+use crate::model::{Analysis, Model};
 use std::time::Instant;
 
 /// How Newton systems with contact are solved.
@@ -122,7 +121,91 @@ fn describe_eq(model: &crate::model::Model, dofs: &DofMap, eq: usize) -> String 
     format!("multiplier equation {eq}")
 }
 
-impl NewtonContext<'_> {
+impl<'a> NewtonContext<'a> {
+    /// The solver state of `model` with its DOF map `dofs` and contact `contact`: the assembler,
+    /// the linear solver `params` choose, the contact's initial states. Returns the warnings
+    /// about the starting contact (also told to `observer`).
+    pub fn new(
+        model: &'a Model,
+        dofs: &'a DofMap,
+        contact: ContactSystem,
+        params: &SolveParams,
+        observer: &'a dyn Observer,
+    ) -> Result<(NewtonContext<'a>, Vec<String>)> {
+        let asm = Assembler::new(model, dofs)?;
+        let np = dofs.n_primary();
+        let small_strain = model.constant_element_stiffness();
+        let linear = small_strain && contact.is_empty();
+        // Contact: Newton systems condensed on the contact equations (see `condensed`).
+        let condensed = if contact.is_empty() || !params.condensed_contact {
+            Condensed::Off
+        } else {
+            Condensed::Pending(contact.candidate_equations(model, dofs, &vec![0.0; np])?)
+        };
+        let initial_states = contact
+            .evaluate(model, dofs, &vec![0.0; np], Search::Fresh)?
+            .1;
+        let initial_warnings = crate::contact::initial_warnings(model, &initial_states);
+        for w in &initial_warnings {
+            observer.warning(w);
+        }
+        let slot_nodes: Vec<usize> = initial_states.iter().map(|s| s.node).collect();
+        let groups = Some(dofs.free_eq_nodes());
+        let solver: Box<dyn LinearSolver> = match params.solver {
+            SolverChoice::Sparse => Box::new(FaerSolver::new(SolverSettings {
+                groups: groups.clone(),
+                krylov_min: params.krylov_min_unknowns,
+                ..Default::default()
+            })),
+            SolverChoice::Dense => Box::new(DenseLu::default()),
+        };
+        let mut ctx = NewtonContext {
+            asm,
+            contact,
+            dofs,
+            solver,
+            groups,
+            krylov_min: params.krylov_min_unknowns,
+            factor_valid: false,
+            linear,
+            small_strain,
+            observer,
+            step: 0,
+            condensed,
+            converged_states: None,
+            initial_states,
+            history: None,
+            flips: vec![0; slot_nodes.len()],
+            floor_dominated: None,
+            slot_nodes,
+            floor_warned: false,
+            times: PhaseTimes::default(),
+            regrowths: 0,
+            eliminate: MultiplierElimination::new(params.krylov_min_unknowns),
+        };
+        if !ctx.contact.is_empty() && !params.condensed_contact {
+            ctx.condense_off();
+        }
+        Ok((ctx, initial_warnings))
+    }
+
+    /// Fill a converged step's `info` with what the solvers did: the multipliers eliminated,
+    /// the linear solver's statistics and the phase times.
+    pub fn finish_step_info(&mut self, info: &mut StepInfo) {
+        info.multipliers_eliminated = (self.eliminate.eliminated, self.eliminate.kept);
+        info.solver = if self.eliminate.eliminated + self.eliminate.kept > 0 {
+            self.eliminate.stats().clone()
+        } else {
+            self.solver.stats().clone()
+        };
+        let (searching, contact) = self.contact.take_times();
+        info.times = PhaseTimes {
+            search: searching,
+            contact: contact - searching,
+            ..self.times
+        };
+    }
+
     /// The report of iteration `it`: its residual, and the contact nodes that closed, opened or
     /// changed between stick and slip since the previous iteration's `prev`.
     fn iteration_report(

@@ -7,12 +7,11 @@
 //! A step that does not converge is restarted in 2, 4, … substeps (loads and prescribed values
 //! interpolated linearly); after `max_cutbacks` halvings the run stops with an error.
 
-use super::linear::{DenseLu, FaerSolver, LinearSolver, SolverSettings, SolverStats};
-use super::multipliers::MultiplierElimination;
-use super::newton::{Condensed, NewtonContext};
+use super::linear::SolverStats;
+use super::newton::NewtonContext;
 use super::report::{Observer, Phase, Silent, StepReport};
-use crate::assembly::{Assembler, DofMap};
-use crate::contact::{ContactSystem, Search, SlotState};
+use crate::assembly::DofMap;
+use crate::contact::{ContactSystem, SlotState};
 use crate::error::{Error, Result};
 use crate::model::{AnalysisKind, Model};
 use crate::solid::loads::reference_contributions;
@@ -135,208 +134,33 @@ pub fn run_analysis_observed(
         unknowns: dofs.n_free,
         steps: model.step_times().len(),
     });
-    let asm = Assembler::new(model, &dofs)?;
-    let nf = dofs.n_free;
+    let history = LoadHistory::new(model, &dofs)?;
+    let (mut ctx, mut initial_warnings) =
+        NewtonContext::new(model, &dofs, contact, params, observer)?;
     let np = dofs.n_primary();
-    let ref_loads = reference_load_vectors(model, &dofs)?;
-    let external = |scale: &dyn Fn(usize) -> f64| -> Vec<f64> {
-        let mut f = vec![0.0; np];
-        for (func, v) in &ref_loads {
-            let s = scale(*func);
-            if s != 0.0 {
-                for (a, b) in f.iter_mut().zip(v) {
-                    *a += s * b;
-                }
-            }
-        }
-        f
-    };
-    let prescribed_at = |t: f64| -> Vec<f64> {
-        dofs.prescribed
-            .iter()
-            .map(|&(_, d, bi)| {
-                let bc = &model.dirichlet[bi];
-                bc.value_for(d) * model.functions[bc.function - 1].eval(t)
-            })
-            .collect()
-    };
-    let a = &model.analysis;
-    let small_strain = model.constant_element_stiffness();
-    let linear = small_strain && contact.is_empty();
-    // Contact: Newton systems condensed on the contact equations (see `condensed`).
-    let condensed = if contact.is_empty() || !params.condensed_contact {
-        Condensed::Off
-    } else {
-        Condensed::Pending(contact.candidate_equations(model, &dofs, &vec![0.0; np])?)
-    };
-    let initial_states = contact
-        .evaluate(model, &dofs, &vec![0.0; np], Search::Fresh)?
-        .1;
-    let mut initial_warnings = crate::contact::initial_warnings(model, &initial_states);
-    for w in &initial_warnings {
-        observer.warning(w);
-    }
-    let slot_nodes: Vec<usize> = initial_states.iter().map(|s| s.node).collect();
-    let groups = Some(dofs.free_eq_nodes());
-    let solver: Box<dyn LinearSolver> = match params.solver {
-        SolverChoice::Sparse => Box::new(FaerSolver::new(SolverSettings {
-            groups: groups.clone(),
-            krylov_min: params.krylov_min_unknowns,
-            ..Default::default()
-        })),
-        SolverChoice::Dense => Box::new(DenseLu::default()),
-    };
-    let mut ctx = NewtonContext {
-        asm,
-        contact,
-        dofs: &dofs,
-        solver,
-        groups,
-        krylov_min: params.krylov_min_unknowns,
-        factor_valid: false,
-        linear,
-        small_strain,
-        observer,
-        step: 0,
-        condensed,
-        converged_states: None,
-        initial_states: initial_states.clone(),
-        history: None,
-        flips: vec![0; slot_nodes.len()],
-        floor_dominated: None,
-        slot_nodes,
-        floor_warned: false,
-        times: PhaseTimes::default(),
-        regrowths: 0,
-        eliminate: MultiplierElimination::new(params.krylov_min_unknowns),
-    };
-    if !ctx.contact.is_empty() && !params.condensed_contact {
-        ctx.condense_off();
-    }
+    let nf = dofs.n_free;
     let mut u = vec![0.0; np];
     let mut applied = vec![0.0; np];
     let times = model.step_times();
-    let nsteps = times.len();
     for (k, &t) in times.iter().enumerate() {
         let clock = Instant::now();
         ctx.times = PhaseTimes::default();
         ctx.contact.take_times();
         let step = k + 1;
         ctx.step = step;
-        let target = match a.kind {
-            AnalysisKind::NonLinearStatic => {
-                let r = external(&|f| {
-                    let func = &model.functions[f];
-                    if a.refloadmode == 1 {
-                        func.eval(t) - func.eval(t - a.deltat)
-                    } else {
-                        func.eval(t)
-                    }
-                });
-                applied.iter().zip(&r).map(|(x, y)| x + y).collect()
-            }
-            _ => external(&|f| model.functions[f].eval(t)),
-        };
-        let up_target = prescribed_at(t);
+        let target = history.external_at(t, &applied);
         let mut info = StepInfo {
             warnings: std::mem::take(&mut initial_warnings),
             ..Default::default()
         };
-        let start_u = u.clone();
-        let start_states = ctx.converged_states.clone();
-        let mut done = false;
-        let mut diagnosis = None;
-        // The furthest state any substep converged to (for a failure's diagnosis).
-        let mut furthest = (0.0, start_u.clone());
-        // Materials with a state: a cut-back restarts from the state the step began with.
-        let start_material = ctx
-            .asm
-            .has_material_state()
-            .then(|| ctx.asm.material_state().to_vec());
-        for level in 0..=params.max_cutbacks {
-            let nsub = 1usize << level;
-            u.copy_from_slice(&start_u);
-            ctx.converged_states.clone_from(&start_states);
-            if let Some(m) = &start_material {
-                ctx.asm.restore_material_state(m);
-            }
-            let mut ok = true;
-            for s in 1..=nsub {
-                let alpha = s as f64 / nsub as f64;
-                let f_sub: Vec<f64> = applied
-                    .iter()
-                    .zip(&target)
-                    .map(|(a0, a1)| a0 + alpha * (a1 - a0))
-                    .collect();
-                let up_sub: Vec<f64> = (0..dofs.n_prescribed)
-                    .map(|i| start_u[nf + i] + alpha * (up_target[i] - start_u[nf + i]))
-                    .collect();
-                match ctx.newton(&mut u, &f_sub, &up_sub, a, &mut info) {
-                    Ok(true) => {
-                        if start_material.is_some() {
-                            ctx.asm.commit_material_state(&u)?;
-                        }
-                        if alpha > furthest.0 && alpha < 1.0 {
-                            furthest = (alpha, u.clone());
-                        }
-                    }
-                    Ok(false) => {
-                        diagnosis = ctx.diagnosis();
-                        ok = false;
-                        break;
-                    }
-                    Err(Error::Solve(msg)) if level < params.max_cutbacks => {
-                        observer.retry(&format!("step {step}: {msg}; cutting the step"));
-                        ok = false;
-                        break;
-                    }
-                    Err(Error::Solve(msg)) => {
-                        let softening =
-                            super::softening::softening_hint(model, &ctx.asm, &furthest.1);
-                        return Err(Error::Solve(format!(
-                            "step {step} (t = {t}): {msg}, even after {} step halvings{}",
-                            params.max_cutbacks,
-                            softening.map(|d| format!("; {d}")).unwrap_or_default()
-                        )));
-                    }
-                    // No smaller step helps a mechanism: say at which step it showed.
-                    Err(Error::Singular(msg)) => {
-                        return Err(Error::Singular(format!("step {step} (t = {t}): {msg}")))
-                    }
-                    Err(e) => return Err(e),
-                }
-            }
-            if ok {
-                info.substeps = nsub;
-                done = true;
-                break;
-            }
-            ctx.factor_valid = false;
-            if level < params.max_cutbacks {
-                observer.retry(&format!(
-                    "step {step}: no convergence in {} iterations{}; retrying in {} substeps",
-                    a.maxiter,
-                    diagnosis
-                        .as_ref()
-                        .map(|d| format!(" ({d})"))
-                        .unwrap_or_default(),
-                    2 * nsub
-                ));
-            }
-        }
-        if !done {
-            let softening = super::softening::softening_hint(model, &ctx.asm, &furthest.1);
-            return Err(Error::Solve(format!(
-                "step {step} (t = {t}) did not converge within {} iterations even after {} step halvings; \
-                 last residual {:.3e} (rtolf {:.1e}){}{}",
-                a.maxiter,
-                params.max_cutbacks,
-                info.residual_history.last().copied().unwrap_or(f64::NAN),
-                a.rtolf,
-                diagnosis.map(|d| format!("; {d}")).unwrap_or_default(),
-                softening.map(|d| format!("; {d}")).unwrap_or_default()
-            )));
-        }
+        let goal = StepGoal {
+            step,
+            t,
+            from: &applied,
+            to: &target,
+            prescribed: &history.prescribed_at(t),
+        };
+        step_with_cutbacks(&mut ctx, &mut u, &goal, params, &mut info)?;
         applied = target;
         let (ev, contact_states) = ctx.evaluate_states(&u)?;
         ctx.converged_states = Some(contact_states.clone());
@@ -344,21 +168,10 @@ pub fn run_analysis_observed(
             .map(|i| ev.f_int[nf + i] - applied[nf + i])
             .collect();
         info.wall_seconds = clock.elapsed().as_secs_f64();
-        info.multipliers_eliminated = (ctx.eliminate.eliminated, ctx.eliminate.kept);
-        info.solver = if ctx.eliminate.eliminated + ctx.eliminate.kept > 0 {
-            ctx.eliminate.stats().clone()
-        } else {
-            ctx.solver.stats().clone()
-        };
-        let (searching, contact) = ctx.contact.take_times();
-        info.times = PhaseTimes {
-            search: searching,
-            contact: contact - searching,
-            ..ctx.times
-        };
+        ctx.finish_step_info(&mut info);
         observer.step(&StepReport {
             step,
-            n_steps: nsteps,
+            n_steps: times.len(),
             time: t,
             iterations: info.iterations,
             residual: info.residual_history.last().copied().unwrap_or(0.0),
@@ -380,6 +193,187 @@ pub fn run_analysis_observed(
         })?;
     }
     Ok(())
+}
+
+/// The loads and prescribed values of a model over time.
+struct LoadHistory<'a> {
+    model: &'a Model,
+    dofs: &'a DofMap,
+    /// Per time function, the load vector it scales.
+    reference: Vec<(usize, Vec<f64>)>,
+}
+
+impl<'a> LoadHistory<'a> {
+    fn new(model: &'a Model, dofs: &'a DofMap) -> Result<LoadHistory<'a>> {
+        Ok(LoadHistory {
+            model,
+            dofs,
+            reference: reference_load_vectors(model, dofs)?,
+        })
+    }
+
+    /// Σ scale(f)·(load vector of f).
+    fn external(&self, scale: &dyn Fn(usize) -> f64) -> Vec<f64> {
+        let mut f = vec![0.0; self.dofs.n_primary()];
+        for (func, v) in &self.reference {
+            let s = scale(*func);
+            if s != 0.0 {
+                for (a, b) in f.iter_mut().zip(v) {
+                    *a += s * b;
+                }
+            }
+        }
+        f
+    }
+
+    /// The external forces at time `t`, `applied` those of the last step (NonLinearStatic
+    /// `refloadmode 1` adds the increment to them).
+    fn external_at(&self, t: f64, applied: &[f64]) -> Vec<f64> {
+        let (model, a) = (self.model, &self.model.analysis);
+        match a.kind {
+            AnalysisKind::NonLinearStatic => {
+                let r = self.external(&|f| {
+                    let func = &model.functions[f];
+                    if a.refloadmode == 1 {
+                        func.eval(t) - func.eval(t - a.deltat)
+                    } else {
+                        func.eval(t)
+                    }
+                });
+                applied.iter().zip(&r).map(|(x, y)| x + y).collect()
+            }
+            _ => self.external(&|f| model.functions[f].eval(t)),
+        }
+    }
+
+    /// The prescribed values at time `t`.
+    fn prescribed_at(&self, t: f64) -> Vec<f64> {
+        self.dofs
+            .prescribed
+            .iter()
+            .map(|&(_, d, bi)| {
+                let bc = &self.model.dirichlet[bi];
+                bc.value_for(d) * self.model.functions[bc.function - 1].eval(t)
+            })
+            .collect()
+    }
+}
+
+/// What a load step goes to: step number and time, external forces from and to, the prescribed
+/// values at its end.
+struct StepGoal<'g> {
+    step: usize,
+    t: f64,
+    from: &'g [f64],
+    to: &'g [f64],
+    prescribed: &'g [f64],
+}
+
+/// Solve one load step from `u`, halving it up to `params.max_cutbacks` times when Newton does
+/// not converge; the contact and material states restart from the step's start at each retry.
+fn step_with_cutbacks(
+    ctx: &mut NewtonContext,
+    u: &mut [f64],
+    goal: &StepGoal,
+    params: &SolveParams,
+    info: &mut StepInfo,
+) -> Result<()> {
+    let model = ctx.asm.model;
+    let a = &model.analysis;
+    let (nf, np) = (ctx.dofs.n_free, ctx.dofs.n_prescribed);
+    let (step, t) = (goal.step, goal.t);
+    let start_u = u.to_vec();
+    let start_states = ctx.converged_states.clone();
+    let mut diagnosis = None;
+    // The furthest state any substep converged to (for a failure's diagnosis).
+    let mut furthest = (0.0, start_u.clone());
+    // Materials with a state: a cut-back restarts from the state the step began with.
+    let start_material = ctx
+        .asm
+        .has_material_state()
+        .then(|| ctx.asm.material_state().to_vec());
+    for level in 0..=params.max_cutbacks {
+        let nsub = 1usize << level;
+        u.copy_from_slice(&start_u);
+        ctx.converged_states.clone_from(&start_states);
+        if let Some(m) = &start_material {
+            ctx.asm.restore_material_state(m);
+        }
+        let mut ok = true;
+        for s in 1..=nsub {
+            let alpha = s as f64 / nsub as f64;
+            let f_sub: Vec<f64> = goal
+                .from
+                .iter()
+                .zip(goal.to)
+                .map(|(a0, a1)| a0 + alpha * (a1 - a0))
+                .collect();
+            let up_sub: Vec<f64> = (0..np)
+                .map(|i| start_u[nf + i] + alpha * (goal.prescribed[i] - start_u[nf + i]))
+                .collect();
+            match ctx.newton(u, &f_sub, &up_sub, a, info) {
+                Ok(true) => {
+                    if start_material.is_some() {
+                        ctx.asm.commit_material_state(u)?;
+                    }
+                    if alpha > furthest.0 && alpha < 1.0 {
+                        furthest = (alpha, u.to_vec());
+                    }
+                }
+                Ok(false) => {
+                    diagnosis = ctx.diagnosis();
+                    ok = false;
+                    break;
+                }
+                Err(Error::Solve(msg)) if level < params.max_cutbacks => {
+                    ctx.observer
+                        .retry(&format!("step {step}: {msg}; cutting the step"));
+                    ok = false;
+                    break;
+                }
+                Err(Error::Solve(msg)) => {
+                    let softening = super::softening::softening_hint(model, &ctx.asm, &furthest.1);
+                    return Err(Error::Solve(format!(
+                        "step {step} (t = {t}): {msg}, even after {} step halvings{}",
+                        params.max_cutbacks,
+                        softening.map(|d| format!("; {d}")).unwrap_or_default()
+                    )));
+                }
+                // No smaller step helps a mechanism: say at which step it showed.
+                Err(Error::Singular(msg)) => {
+                    return Err(Error::Singular(format!("step {step} (t = {t}): {msg}")))
+                }
+                Err(e) => return Err(e),
+            }
+        }
+        if ok {
+            info.substeps = nsub;
+            return Ok(());
+        }
+        ctx.factor_valid = false;
+        if level < params.max_cutbacks {
+            ctx.observer.retry(&format!(
+                "step {step}: no convergence in {} iterations{}; retrying in {} substeps",
+                a.maxiter,
+                diagnosis
+                    .as_ref()
+                    .map(|d| format!(" ({d})"))
+                    .unwrap_or_default(),
+                2 * nsub
+            ));
+        }
+    }
+    let softening = super::softening::softening_hint(model, &ctx.asm, &furthest.1);
+    Err(Error::Solve(format!(
+        "step {step} (t = {t}) did not converge within {} iterations even after {} step halvings; \
+         last residual {:.3e} (rtolf {:.1e}){}{}",
+        a.maxiter,
+        params.max_cutbacks,
+        info.residual_history.last().copied().unwrap_or(f64::NAN),
+        a.rtolf,
+        diagnosis.map(|d| format!("; {d}")).unwrap_or_default(),
+        softening.map(|d| format!("; {d}")).unwrap_or_default()
+    )))
 }
 
 /// Reference load vector of every load (components at f = 1) in primary numbering, with the
