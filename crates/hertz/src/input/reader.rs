@@ -1445,6 +1445,34 @@ fn explain_missing_sets(e: Error, lines: &[Line], sources: &[PathBuf]) -> Error 
     }
 }
 
+/// The nodes of an unordered set: those `listed`, of its `elements` and of its element
+/// boundaries, edges and surfaces (in that order of `sides`), sorted, once each.
+fn member_nodes(
+    mut all: Vec<usize>,
+    elements: &[usize],
+    sides: [&[(usize, usize)]; 3],
+    refs: &Refs,
+) -> Vec<usize> {
+    for &e in elements {
+        all.extend(&refs.element_list[e].nodes);
+    }
+    for (list, edge) in sides.into_iter().zip([false, true, false]) {
+        for &(e, b) in list {
+            let el = &refs.element_list[e];
+            let shape = el.etype.shape();
+            let local = if edge {
+                shape.edges()[b - 1]
+            } else {
+                shape.boundaries()[b - 1]
+            };
+            all.extend(local.iter().map(|&a| el.nodes[a]));
+        }
+    }
+    all.sort_unstable();
+    all.dedup();
+    all
+}
+
 fn read_sets(c: &mut Cursor, nset: usize, refs: &Refs) -> Result<Vec<Set>> {
     let mut sets = Numbered::new("set", nset);
     for i in 0..nset {
@@ -1554,25 +1582,8 @@ fn read_sets(c: &mut Cursor, nset: usize, refs: &Refs) -> Result<Vec<Set>> {
             sorted.dedup();
             explicit.into_iter().chain(sorted).collect()
         } else {
-            let mut all: Vec<usize> = explicit.into_iter().chain(ranges).collect();
-            for &e in &elements {
-                all.extend(&refs.element_list[e].nodes);
-            }
-            for (list, edge) in [(&boundaries, false), (&edges, true), (&surfaces, false)] {
-                for &(e, b) in list {
-                    let el = &refs.element_list[e];
-                    let shape = el.etype.shape();
-                    let local = if edge {
-                        shape.edges()[b - 1]
-                    } else {
-                        shape.boundaries()[b - 1]
-                    };
-                    all.extend(local.iter().map(|&a| el.nodes[a]));
-                }
-            }
-            all.sort_unstable();
-            all.dedup();
-            all
+            let listed = explicit.into_iter().chain(ranges).collect();
+            member_nodes(listed, &elements, [&boundaries, &edges, &surfaces], refs)
         };
         elements.sort_unstable();
         elements.dedup();

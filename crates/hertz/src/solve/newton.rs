@@ -669,23 +669,7 @@ impl<'a> NewtonContext<'a> {
                 prev.as_deref(),
             ));
             if check.converged && (it > 0 || check.worst == 0.0) {
-                if let (0, false, false, Some(kv)) =
-                    (it, has_contact, self.factor_valid, ev.k_values.as_ref())
-                {
-                    // An unloaded step needs no solve, but a model must not pass as solved when
-                    // its stiffness is singular (an unloaded mechanism): factorize once.
-                    self.factorize(kv)?;
-                }
-                if let Some(r) = check.floor_ratio.filter(|_| !self.floor_warned) {
-                    let w = penalty_warning(self.asm.model, r, a.rtolf);
-                    self.observer.warning(&w);
-                    info.warnings.push(w);
-                    self.floor_warned = true;
-                }
-                if has_contact {
-                    self.converged_states = Some(states);
-                }
-                info.iterations -= 1;
+                self.accept(it, &ev, check.floor_ratio, states, a, info)?;
                 return Ok(true);
             }
             if !check.worst.is_finite() {
@@ -696,35 +680,19 @@ impl<'a> NewtonContext<'a> {
                 break;
             }
             let (step, updates, cycled) = if has_contact {
-                let ks = need_ks.then_some(&ev);
-                let guess = self.branch_guess(&points);
-                let mut points = points;
-                for (p, h) in points.iter_mut().zip(&held) {
-                    if let Some(force) = *h {
-                        p.hold_force(force);
-                    }
-                }
                 // A cycled search whose step did not lower the residual takes the earliest of
                 // its equal guesses next time.
-                let stalled = last_cycled
-                    && info.residual_history.len() >= 2
-                    && check.worst >= 0.99 * info.residual_history[info.residual_history.len() - 2];
-                let cycle = if stalled {
-                    OnCycle::FewestMissesEarliest
-                } else {
-                    OnCycle::FewestMisses
-                };
-                let s = self.solve_step(u, rhs, &points, &guess, ks, cycle)?;
+                let h = &info.residual_history;
+                let stalled = last_cycled && h.len() >= 2 && check.worst >= 0.99 * h[h.len() - 2];
+                let s = self.contact_newton_step(
+                    u,
+                    rhs,
+                    points,
+                    need_ks.then_some(&ev),
+                    &mut held,
+                    stalled,
+                )?;
                 last_cycled = s.cycled;
-                held = points
-                    .iter()
-                    .zip(&s.closed)
-                    .map(|(p, b)| {
-                        b.closed
-                            .then(|| p.held_force(&self.local_change(p, &s.du)))
-                            .flatten()
-                    })
-                    .collect();
                 (s.du, s.updates, s.cycled)
             } else {
                 if want_k {
@@ -737,13 +705,13 @@ impl<'a> NewtonContext<'a> {
                 (x, 0, false)
             };
             if updates > 0 {
+                let back = if cycled {
+                    " and came back to a guess"
+                } else {
+                    ""
+                };
                 self.observer.detail(&format!(
-                    "contact branches updated {updates} times on the linearized problem{}",
-                    if cycled {
-                        " and came back to a guess"
-                    } else {
-                        ""
-                    }
+                    "contact branches updated {updates} times on the linearized problem{back}"
                 ));
             }
             for i in 0..nf {
@@ -753,6 +721,74 @@ impl<'a> NewtonContext<'a> {
             prev2 = prev.replace(states);
         }
         Ok(false)
+    }
+
+    /// A converged iterate: a model whose first iterate is converged is factorized once all the
+    /// same (an unloaded mechanism must not pass), the penalty floor is warned of once, the
+    /// contact states are kept.
+    fn accept(
+        &mut self,
+        it: usize,
+        ev: &Evaluation,
+        floor_ratio: Option<f64>,
+        states: Vec<SlotState>,
+        a: &Analysis,
+        info: &mut StepInfo,
+    ) -> Result<()> {
+        let has_contact = !self.contact.is_empty();
+        if let (0, false, false, Some(kv)) =
+            (it, has_contact, self.factor_valid, ev.k_values.as_ref())
+        {
+            self.factorize(kv)?;
+        }
+        if let Some(r) = floor_ratio.filter(|_| !self.floor_warned) {
+            let w = penalty_warning(self.asm.model, r, a.rtolf);
+            self.observer.warning(&w);
+            info.warnings.push(w);
+            self.floor_warned = true;
+        }
+        if has_contact {
+            self.converged_states = Some(states);
+        }
+        info.iterations -= 1;
+        Ok(())
+    }
+
+    /// The Newton step of a model with contact: the branches searched on the linearized problem
+    /// from the first guess, penalty points' geometric parts taken with the forces `held` from
+    /// the last step's linear model (updated here for the next step), the earliest of equal
+    /// guesses taken after a `stalled` cycle.
+    fn contact_newton_step(
+        &mut self,
+        u: &[f64],
+        rhs: Vec<f64>,
+        mut points: Vec<ContactPoint>,
+        ks: Option<&Evaluation>,
+        held: &mut Vec<Option<f64>>,
+        stalled: bool,
+    ) -> Result<ContactStep> {
+        let guess = self.branch_guess(&points);
+        for (p, h) in points.iter_mut().zip(held.iter()) {
+            if let Some(force) = *h {
+                p.hold_force(force);
+            }
+        }
+        let cycle = if stalled {
+            OnCycle::FewestMissesEarliest
+        } else {
+            OnCycle::FewestMisses
+        };
+        let s = self.solve_step(u, rhs, &points, &guess, ks, cycle)?;
+        *held = points
+            .iter()
+            .zip(&s.closed)
+            .map(|(p, b)| {
+                b.closed
+                    .then(|| p.held_force(&self.local_change(p, &s.du)))
+                    .flatten()
+            })
+            .collect();
+        Ok(s)
     }
 
     /// Tangent predictor for prescribed increments `dup`: K Δu_f = −K_fp Δu_p at the current state.
