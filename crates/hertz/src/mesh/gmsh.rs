@@ -251,6 +251,144 @@ fn gmsh_type(t: usize) -> Option<(usize, usize, &'static str)> {
     })
 }
 
+/// `$Entities` (format 4.1): each entity's physical tags.
+fn read_entities(
+    t: &mut Tokens,
+    entity_physical: &mut HashMap<(usize, usize), Vec<usize>>,
+) -> Result<()> {
+    let counts: Vec<usize> = (0..4)
+        .map(|_| t.num("an entity count"))
+        .collect::<Result<_>>()?;
+    for (dim, &count) in counts.iter().enumerate() {
+        for _ in 0..count {
+            let tag: usize = t.num("an entity tag")?;
+            let n_box = if dim == 0 { 3 } else { 6 };
+            for _ in 0..n_box {
+                t.num::<f64>("an entity bounding box")?;
+            }
+            let n_phys: usize = t.num("the number of physical tags")?;
+            let phys = (0..n_phys)
+                .map(|_| {
+                    t.num::<i64>("a physical tag")
+                        .map(|p| p.unsigned_abs() as usize)
+                })
+                .collect::<Result<Vec<_>>>()?;
+            entity_physical.insert((dim, tag), phys);
+            if dim > 0 {
+                let n_b: usize = t.num("the number of bounding entities")?;
+                for _ in 0..n_b {
+                    t.num::<i64>("a bounding entity")?;
+                }
+            }
+        }
+    }
+    t.expect("$EndEntities")?;
+    Ok(())
+}
+
+/// `$Nodes` in format 2.2.
+fn read_nodes_v2(t: &mut Tokens, mesh: &mut RawMesh) -> Result<()> {
+    let n: usize = t.num("the number of nodes")?;
+    for _ in 0..n {
+        let tag = t.num("a node tag")?;
+        let x = [t.coord("x")?, t.coord("y")?, t.coord("z")?];
+        mesh.nodes.push((tag, x));
+    }
+    t.expect("$EndNodes")?;
+    Ok(())
+}
+
+/// `$Nodes` in format 4.1: blocks of tags, then their coordinates.
+fn read_nodes_v4(t: &mut Tokens, mesh: &mut RawMesh) -> Result<()> {
+    let blocks: usize = t.num("the number of node blocks")?;
+    let _n: usize = t.num("the number of nodes")?;
+    t.num::<usize>("the minimum node tag")?;
+    t.num::<usize>("the maximum node tag")?;
+    for _ in 0..blocks {
+        let _dim: usize = t.num("an entity dimension")?;
+        let _tag: usize = t.num("an entity tag")?;
+        let parametric: usize = t.num("the parametric flag")?;
+        let n: usize = t.num("the nodes in a block")?;
+        let tags = (0..n)
+            .map(|_| t.num("a node tag"))
+            .collect::<Result<Vec<usize>>>()?;
+        for tag in tags {
+            let x = [t.coord("x")?, t.coord("y")?, t.coord("z")?];
+            if parametric == 1 {
+                return Err(err(t.path, t.line, "parametric node coordinates are not read; save without them (Mesh.SaveParametric = 0)"));
+            }
+            mesh.nodes.push((tag, x));
+        }
+    }
+    t.expect("$EndNodes")?;
+    Ok(())
+}
+
+/// `$Elements` in format 2.2: the physical group is each element's first tag.
+fn read_elements_v2(t: &mut Tokens, mesh: &mut RawMesh) -> Result<()> {
+    let n: usize = t.num("the number of elements")?;
+    for _ in 0..n {
+        t.num::<usize>("an element tag")?;
+        let ty: usize = t.num("an element type")?;
+        let nn = t.nodes_of_type(ty)?;
+        let ntags: usize = t.num("the number of element tags")?;
+        let tags = (0..ntags)
+            .map(|_| t.num::<i64>("an element tag"))
+            .collect::<Result<Vec<_>>>()?;
+        let physical = tags
+            .first()
+            .filter(|&&p| p > 0)
+            .map(|&p| vec![p as usize])
+            .unwrap_or_default();
+        let nodes = (0..nn)
+            .map(|_| t.num("a node tag"))
+            .collect::<Result<Vec<usize>>>()?;
+        mesh.elements.push(RawElement {
+            gmsh_type: ty,
+            physical,
+            nodes,
+        });
+    }
+    t.expect("$EndElements")?;
+    Ok(())
+}
+
+/// `$Elements` in format 4.1: blocks per entity, whose physical groups `entity_physical` gives.
+fn read_elements_v4(
+    t: &mut Tokens,
+    mesh: &mut RawMesh,
+    entity_physical: &HashMap<(usize, usize), Vec<usize>>,
+) -> Result<()> {
+    let blocks: usize = t.num("the number of element blocks")?;
+    t.num::<usize>("the number of elements")?;
+    t.num::<usize>("the minimum element tag")?;
+    t.num::<usize>("the maximum element tag")?;
+    for _ in 0..blocks {
+        let dim: usize = t.num("an entity dimension")?;
+        let tag: usize = t.num("an entity tag")?;
+        let ty: usize = t.num("an element type")?;
+        let n: usize = t.num("the elements in a block")?;
+        let nn = t.nodes_of_type(ty)?;
+        let physical = entity_physical
+            .get(&(dim, tag))
+            .cloned()
+            .unwrap_or_default();
+        for _ in 0..n {
+            t.num::<usize>("an element tag")?;
+            let nodes = (0..nn)
+                .map(|_| t.num("a node tag"))
+                .collect::<Result<Vec<usize>>>()?;
+            mesh.elements.push(RawElement {
+                gmsh_type: ty,
+                physical: physical.clone(),
+                nodes,
+            });
+        }
+    }
+    t.expect("$EndElements")?;
+    Ok(())
+}
+
 fn read_raw(path: &Path) -> Result<RawMesh> {
     let bytes = std::fs::read(path).map_err(|e| err(path, 0, format!("cannot read file: {e}")))?;
     let text = std::str::from_utf8(&bytes).map_err(|_| {
@@ -297,126 +435,15 @@ fn read_raw(path: &Path) -> Result<RawMesh> {
                 }
                 t.expect("$EndPhysicalNames")?;
             }
-            "$Entities" if version == Some(4) => {
-                let counts: Vec<usize> = (0..4)
-                    .map(|_| t.num("an entity count"))
-                    .collect::<Result<_>>()?;
-                for (dim, &count) in counts.iter().enumerate() {
-                    for _ in 0..count {
-                        let tag: usize = t.num("an entity tag")?;
-                        let n_box = if dim == 0 { 3 } else { 6 };
-                        for _ in 0..n_box {
-                            t.num::<f64>("an entity bounding box")?;
-                        }
-                        let n_phys: usize = t.num("the number of physical tags")?;
-                        let phys = (0..n_phys)
-                            .map(|_| {
-                                t.num::<i64>("a physical tag")
-                                    .map(|p| p.unsigned_abs() as usize)
-                            })
-                            .collect::<Result<Vec<_>>>()?;
-                        entity_physical.insert((dim, tag), phys);
-                        if dim > 0 {
-                            let n_b: usize = t.num("the number of bounding entities")?;
-                            for _ in 0..n_b {
-                                t.num::<i64>("a bounding entity")?;
-                            }
-                        }
-                    }
-                }
-                t.expect("$EndEntities")?;
-            }
+            "$Entities" if version == Some(4) => read_entities(&mut t, &mut entity_physical)?,
             "$Nodes" => match version {
-                Some(2) => {
-                    let n: usize = t.num("the number of nodes")?;
-                    for _ in 0..n {
-                        let tag = t.num("a node tag")?;
-                        let x = [t.coord("x")?, t.coord("y")?, t.coord("z")?];
-                        mesh.nodes.push((tag, x));
-                    }
-                    t.expect("$EndNodes")?;
-                }
-                Some(4) => {
-                    let blocks: usize = t.num("the number of node blocks")?;
-                    let _n: usize = t.num("the number of nodes")?;
-                    t.num::<usize>("the minimum node tag")?;
-                    t.num::<usize>("the maximum node tag")?;
-                    for _ in 0..blocks {
-                        let _dim: usize = t.num("an entity dimension")?;
-                        let _tag: usize = t.num("an entity tag")?;
-                        let parametric: usize = t.num("the parametric flag")?;
-                        let n: usize = t.num("the nodes in a block")?;
-                        let tags = (0..n)
-                            .map(|_| t.num("a node tag"))
-                            .collect::<Result<Vec<usize>>>()?;
-                        for tag in tags {
-                            let x = [t.coord("x")?, t.coord("y")?, t.coord("z")?];
-                            if parametric == 1 {
-                                return Err(err(path, t.line, "parametric node coordinates are not read; save without them (Mesh.SaveParametric = 0)"));
-                            }
-                            mesh.nodes.push((tag, x));
-                        }
-                    }
-                    t.expect("$EndNodes")?;
-                }
+                Some(2) => read_nodes_v2(&mut t, &mut mesh)?,
+                Some(4) => read_nodes_v4(&mut t, &mut mesh)?,
                 _ => return Err(err(path, t.line, "$Nodes before $MeshFormat")),
             },
             "$Elements" => match version {
-                Some(2) => {
-                    let n: usize = t.num("the number of elements")?;
-                    for _ in 0..n {
-                        t.num::<usize>("an element tag")?;
-                        let ty: usize = t.num("an element type")?;
-                        let nn = t.nodes_of_type(ty)?;
-                        let ntags: usize = t.num("the number of element tags")?;
-                        let tags = (0..ntags)
-                            .map(|_| t.num::<i64>("an element tag"))
-                            .collect::<Result<Vec<_>>>()?;
-                        let physical = tags
-                            .first()
-                            .filter(|&&p| p > 0)
-                            .map(|&p| vec![p as usize])
-                            .unwrap_or_default();
-                        let nodes = (0..nn)
-                            .map(|_| t.num("a node tag"))
-                            .collect::<Result<Vec<usize>>>()?;
-                        mesh.elements.push(RawElement {
-                            gmsh_type: ty,
-                            physical,
-                            nodes,
-                        });
-                    }
-                    t.expect("$EndElements")?;
-                }
-                Some(4) => {
-                    let blocks: usize = t.num("the number of element blocks")?;
-                    t.num::<usize>("the number of elements")?;
-                    t.num::<usize>("the minimum element tag")?;
-                    t.num::<usize>("the maximum element tag")?;
-                    for _ in 0..blocks {
-                        let dim: usize = t.num("an entity dimension")?;
-                        let tag: usize = t.num("an entity tag")?;
-                        let ty: usize = t.num("an element type")?;
-                        let n: usize = t.num("the elements in a block")?;
-                        let nn = t.nodes_of_type(ty)?;
-                        let physical = entity_physical
-                            .get(&(dim, tag))
-                            .cloned()
-                            .unwrap_or_default();
-                        for _ in 0..n {
-                            t.num::<usize>("an element tag")?;
-                            let nodes = (0..nn)
-                                .map(|_| t.num("a node tag"))
-                                .collect::<Result<Vec<usize>>>()?;
-                            mesh.elements.push(RawElement {
-                                gmsh_type: ty,
-                                physical: physical.clone(),
-                                nodes,
-                            });
-                        }
-                    }
-                    t.expect("$EndElements")?;
-                }
+                Some(2) => read_elements_v2(&mut t, &mut mesh)?,
+                Some(4) => read_elements_v4(&mut t, &mut mesh, &entity_physical)?,
                 _ => return Err(err(path, t.line, "$Elements before $MeshFormat")),
             },
             s if s.starts_with('$') && !s.starts_with("$End") => {
