@@ -298,16 +298,46 @@ impl MultiplierElimination {
         for (k, &i) in kept.iter().enumerate() {
             x[i] = b[k];
         }
-        for el in &eliminated {
+        let solved = Solved {
+            rows: &rows,
+            gone: &gone,
+            rhs,
+        };
+        solved.eliminated_multipliers(&eliminated, &mut x);
+        solved.decoupled_multipliers(&decoupled, groups, &mut x, describe)?;
+        rhs.copy_from_slice(&x);
+        self.eliminated = eliminated.iter().map(|e| e.lambdas.len()).sum::<usize>()
+            + decoupled
+                .iter()
+                .map(|&g| groups[g].lambdas.len())
+                .sum::<usize>();
+        self.kept = groups.iter().map(|g| g.lambdas.len()).sum::<usize>() - self.eliminated;
+        Ok(())
+    }
+}
+
+/// The reduced system's solution and what recovers the multipliers from it.
+struct Solved<'a> {
+    rows: &'a Rows,
+    /// Unknowns that left the reduced system.
+    gone: &'a [bool],
+    rhs: &'a [f64],
+}
+
+impl Solved<'_> {
+    /// Each eliminated group's multipliers λ = E (b_S − K_S x), x the kept unknowns.
+    fn eliminated_multipliers(&self, eliminated: &[Eliminated], x: &mut [f64]) {
+        for el in eliminated {
             let r = el.slave.len();
             let res: Vec<f64> = el
                 .slave
                 .iter()
                 .map(|&s| {
-                    rhs[s]
-                        - rows
+                    self.rhs[s]
+                        - self
+                            .rows
                             .row(s)
-                            .filter(|(c, _)| !gone[*c])
+                            .filter(|(c, _)| !self.gone[*c])
                             .map(|(c, v)| v * x[c])
                             .sum::<f64>()
                 })
@@ -316,17 +346,26 @@ impl MultiplierElimination {
                 x[l] = (0..r).map(|s| el.e[a * r + s] * res[s]).sum();
             }
         }
-        for &g in &decoupled {
+    }
+
+    /// Each decoupled group's multipliers from its own rows: T_LL λ = b_L − T_LK x.
+    fn decoupled_multipliers(
+        &self,
+        decoupled: &[usize],
+        groups: &[Group],
+        x: &mut [f64],
+        describe: &dyn Fn(usize) -> String,
+    ) -> Result<()> {
+        for &g in decoupled {
             let l = &groups[g].lambdas;
             let p = l.len();
-            // T_LL λ = b_L − T_LK x, a p × p system.
             let mut a = vec![0.0; p * p];
-            let mut f: Vec<f64> = l.iter().map(|&i| rhs[i]).collect();
+            let mut f: Vec<f64> = l.iter().map(|&i| self.rhs[i]).collect();
             for (ai, &i) in l.iter().enumerate() {
-                for (c, v) in rows.row(i) {
+                for (c, v) in self.rows.row(i) {
                     match l.iter().position(|&x| x == c) {
                         Some(b) => a[ai * p + b] += v,
-                        None if !gone[c] => f[ai] -= v * x[c],
+                        None if !self.gone[c] => f[ai] -= v * x[c],
                         None => {}
                     }
                 }
@@ -341,13 +380,6 @@ impl MultiplierElimination {
                 x[i] = v;
             }
         }
-        rhs.copy_from_slice(&x);
-        self.eliminated = eliminated.iter().map(|e| e.lambdas.len()).sum::<usize>()
-            + decoupled
-                .iter()
-                .map(|&g| groups[g].lambdas.len())
-                .sum::<usize>();
-        self.kept = groups.iter().map(|g| g.lambdas.len()).sum::<usize>() - self.eliminated;
         Ok(())
     }
 }
