@@ -59,6 +59,9 @@ pub struct CondensedContact {
     shift: Vec<f64>,
 }
 
+/// A point's local codes, each as the (candidate position, weight) pairs it stands for.
+type PointLocs = Vec<Vec<(usize, f64)>>;
+
 impl CondensedContact {
     /// Factorize K_s (the upper triangle `values` on the symmetric `pattern`) with the candidate
     /// displacement equations and the multipliers `lambdas` last. Ok(None) when the factor does
@@ -185,25 +188,9 @@ impl CondensedContact {
     ) -> Result<Option<ContactStep>> {
         let nf = dofs.n_free;
         // Candidate positions and weights of every point's local codes.
-        let mut locs: Vec<Vec<Vec<(usize, f64)>>> = Vec::with_capacity(points.len());
-        for p in points {
-            let mut l = Vec::with_capacity(p.codes.len());
-            for &code in &p.codes {
-                let mut entries = Vec::new();
-                for (e, w) in dofs.entries(code) {
-                    if e >= nf {
-                        continue;
-                    }
-                    let k = self.pos[e];
-                    if k == usize::MAX {
-                        return Ok(None);
-                    }
-                    entries.push((k, w));
-                }
-                l.push(entries);
-            }
-            locs.push(l);
-        }
+        let Some(locs) = self.candidate_locs(points, dofs) else {
+            return Ok(None);
+        };
         let mut w = r.to_vec();
         self.base.solve_in_place(&mut w)?;
         let mdim = self.cand.len();
@@ -222,31 +209,9 @@ impl CondensedContact {
             .iter()
             .map(|p| [p.branch(p.guess(false)).1, p.branch(p.guess(true)).1])
             .collect();
-        let tangent = |i: usize, b: Branch| &tangents[i][usize::from(b.closed)];
         loop {
             // Equations of the dense system: those of closed points and the shifted ones.
-            let mut in_a = vec![usize::MAX; mdim];
-            let mut a: Vec<usize> = Vec::new();
-            let mut add = |k: usize, a: &mut Vec<usize>| {
-                if in_a[k] == usize::MAX {
-                    in_a[k] = a.len();
-                    a.push(k);
-                }
-            };
-            for (k, &s) in self.shift.iter().enumerate() {
-                if s != 0.0 && !self.is_lambda(k, dofs) {
-                    add(k, &mut a);
-                }
-            }
-            for (i, l) in locs.iter().enumerate() {
-                if closed[i].closed && points[i].can_close() {
-                    for entries in l {
-                        for &(k, _) in entries {
-                            add(k, &mut a);
-                        }
-                    }
-                }
-            }
+            let (a, in_a) = self.dense_equations(points, &closed, &locs, dofs);
             let na = a.len();
             let mut c = Mat::<f64>::zeros(na, na);
             let none_closed = !(0..points.len()).any(|i| closed[i].closed && points[i].can_close());
@@ -255,58 +220,15 @@ impl CondensedContact {
                     c[(in_a[k], in_a[k])] -= self.shift[k];
                 }
             }
-            // δ: the residual change of points whose branch differs from their current one.
-            let mut delta = vec![0.0; mdim];
-            for (i, l) in locs.iter().enumerate() {
-                let ke = tangent(i, closed[i]);
-                let nd = l.len();
-                if let Some(change) = points[i].branch_change(closed[i]) {
-                    for (entries, d) in l.iter().zip(change) {
-                        for &(k, wk) in entries {
-                            delta[k] -= wk * d;
-                        }
-                    }
-                }
-                if ke.is_empty() {
-                    continue;
-                }
-                for (a_, ea) in l.iter().enumerate() {
-                    for &(ka, wa) in ea {
-                        let Some(ia) = (in_a[ka] != usize::MAX).then(|| in_a[ka]) else {
-                            continue;
-                        };
-                        for (b_, eb) in l.iter().enumerate() {
-                            let kab = ke[a_ * nd + b_];
-                            if kab == 0.0 {
-                                continue;
-                            }
-                            for &(kb, wb) in eb {
-                                if in_a[kb] != usize::MAX {
-                                    c[(ia, in_a[kb])] += wa * wb * kab;
-                                }
-                            }
-                        }
-                    }
-                }
-            }
+            // δ: the residual change of points whose branch differs from their current one, and
+            // their tangents on A into C.
+            let delta = branch_changes(points, &closed, &locs, &tangents, &in_a, &mut c, mdim);
             // Active multipliers may constrain the same motion twice (a node in two conditions
             // on the same surface): their rows of the dense system are then dependent. A
             // compliance 1e-10 times the structure's on their diagonal keeps it regular (the
             // dependent multipliers share the force); only the step is regularized, not the
             // residual, so Newton still converges to the exact constraints.
-            let flex: Vec<f64> = a
-                .iter()
-                .filter(|&&k| !self.is_lambda(k, dofs))
-                .map(|&k| self.m[(k, k)])
-                .collect();
-            if !flex.is_empty() {
-                let eps = REDUNDANCY_COMPLIANCE * flex.iter().sum::<f64>() / flex.len() as f64;
-                for &k in &a {
-                    if self.is_lambda(k, dofs) {
-                        c[(in_a[k], in_a[k])] -= eps;
-                    }
-                }
-            }
+            self.regularize_redundant(&a, &in_a, &mut c, dofs);
             // w_c = (K_s⁻¹(r + Pᵀδ))_c; on A the stiffness form of Woodbury's identity,
             //   (S_A + C) Δu_A = S_A w_A,  S_A = (M_AA)⁻¹ (the Schur complement of K_s on A),
             // keeps a large penalty from amplifying round-off; the contact force increment is
@@ -314,28 +236,7 @@ impl CondensedContact {
             let w_c: Vec<f64> = (0..mdim)
                 .map(|k| wc[k] + (0..mdim).map(|j| self.m[(k, j)] * delta[j]).sum::<f64>())
                 .collect();
-            let mut f_a = vec![0.0; na];
-            let mut mechanism: Option<usize> = None;
-            if na > 0 {
-                let m_aa = Mat::<f64>::from_fn(na, na, |i, j| self.m[(a[i], a[j])]);
-                let s_a = m_aa.as_ref().partial_piv_lu().inverse();
-                let w_a = Mat::<f64>::from_fn(na, 1, |i, _| w_c[a[i]]);
-                let mut x = &s_a * &w_a;
-                let sys = &s_a + &c;
-                let lu = sys.as_ref().partial_piv_lu();
-                // A guess that leaves a body free along a motion its load drives (a guess
-                // without closed points is singular by design: see `hold` below).
-                if shifted && !none_closed {
-                    mechanism =
-                        driven_mechanism(sys.as_ref(), lu.U(), x.col(0)).map(|i| self.cand[a[i]]);
-                }
-                lu.solve_in_place(x.as_mut());
-                let diff = Mat::<f64>::from_fn(na, 1, |i, _| w_a[(i, 0)] - x[(i, 0)]);
-                let f = &s_a * &diff;
-                for i in 0..na {
-                    f_a[i] = f[(i, 0)];
-                }
-            }
+            let (f_a, mechanism) = self.force_increment(&a, &c, &w_c, shifted && !none_closed);
             // corr = δ − Pᵀ f_A, and the predicted Δu on the candidates.
             let mut corr = delta;
             for i in 0..na {
@@ -351,17 +252,7 @@ impl CondensedContact {
                 ));
             }
             // Predict every point's branch from the linearized step.
-            let predicted: Vec<Branch> = points
-                .iter()
-                .zip(&locs)
-                .map(|(p, l)| {
-                    let dq: Vec<f64> = l
-                        .iter()
-                        .map(|entries| entries.iter().map(|&(k, wk)| wk * du_c[k]).sum())
-                        .collect();
-                    p.predicts(&dq)
-                })
-                .collect();
+            let predicted = predict_branches(points, &locs, &du_c);
             let misses = closed
                 .iter()
                 .zip(&predicted)
@@ -395,15 +286,7 @@ impl CondensedContact {
             // The step's own branches leave a body free along a motion its load drives: there
             // is no Newton step, and no smaller load step makes one.
             if let Some(eq) = mechanism {
-                return Err(Error::Singular(format!(
-                    "the tangent with the contact's stiffness is singular at {}: a mechanism, a \
-                     motion of a body that contact alone holds which nothing resists (sideways \
-                     on frictionless contact, or sliding where the tangential load exceeds what \
-                     friction holds, mu times the normal force), and the load drives it: no \
-                     equilibrium exists; restrain that motion (a support, a symmetry condition, \
-                     friction) or lower the tangential load",
-                    describe(eq)
-                )));
+                return Err(mechanism_error(&describe(eq)));
             }
             let updates = search.updates;
             // The whole step: Δu = w + K_s⁻¹ (δ − Pᵀ C Δu_A).
@@ -437,6 +320,197 @@ impl CondensedContact {
     fn is_lambda(&self, k: usize, dofs: &DofMap) -> bool {
         self.cand[k] >= dofs.n_free - dofs.n_lambda
     }
+
+    /// Each point's local codes as (candidate position, weight) lists; None when a code's
+    /// equation is not a candidate (the condensed system must grow).
+    fn candidate_locs(&self, points: &[ContactPoint], dofs: &DofMap) -> Option<Vec<PointLocs>> {
+        let nf = dofs.n_free;
+        let mut locs = Vec::with_capacity(points.len());
+        for p in points {
+            let mut l = Vec::with_capacity(p.codes.len());
+            for &code in &p.codes {
+                let mut entries = Vec::new();
+                for (e, w) in dofs.entries(code) {
+                    if e >= nf {
+                        continue;
+                    }
+                    let k = self.pos[e];
+                    if k == usize::MAX {
+                        return None;
+                    }
+                    entries.push((k, w));
+                }
+                l.push(entries);
+            }
+            locs.push(l);
+        }
+        Some(locs)
+    }
+
+    /// The candidates of the dense system (the set A): the shifted equations and those of
+    /// closed points; and each candidate's place in A (usize::MAX: not in it).
+    fn dense_equations(
+        &self,
+        points: &[ContactPoint],
+        closed: &[Branch],
+        locs: &[PointLocs],
+        dofs: &DofMap,
+    ) -> (Vec<usize>, Vec<usize>) {
+        let mut in_a = vec![usize::MAX; self.cand.len()];
+        let mut a: Vec<usize> = Vec::new();
+        let mut add = |k: usize, a: &mut Vec<usize>| {
+            if in_a[k] == usize::MAX {
+                in_a[k] = a.len();
+                a.push(k);
+            }
+        };
+        for (k, &s) in self.shift.iter().enumerate() {
+            if s != 0.0 && !self.is_lambda(k, dofs) {
+                add(k, &mut a);
+            }
+        }
+        for (i, l) in locs.iter().enumerate() {
+            if closed[i].closed && points[i].can_close() {
+                for entries in l {
+                    for &(k, _) in entries {
+                        add(k, &mut a);
+                    }
+                }
+            }
+        }
+        (a, in_a)
+    }
+
+    /// Active multipliers may constrain the same motion twice (a node in two conditions on the
+    /// same surface): their rows of the dense system are then dependent. A compliance 1e-10
+    /// times the structure's on their diagonal keeps it regular (the dependent multipliers
+    /// share the force); only the step is regularized, not the residual, so Newton still
+    /// converges to the exact constraints.
+    fn regularize_redundant(&self, a: &[usize], in_a: &[usize], c: &mut Mat<f64>, dofs: &DofMap) {
+        let flex: Vec<f64> = a
+            .iter()
+            .filter(|&&k| !self.is_lambda(k, dofs))
+            .map(|&k| self.m[(k, k)])
+            .collect();
+        if !flex.is_empty() {
+            let eps = REDUNDANCY_COMPLIANCE * flex.iter().sum::<f64>() / flex.len() as f64;
+            for &k in a {
+                if self.is_lambda(k, dofs) {
+                    c[(in_a[k], in_a[k])] -= eps;
+                }
+            }
+        }
+    }
+
+    /// The contact force increment on A, f_A = S_A (w_A − Δu_A) with (S_A + C) Δu_A = S_A w_A,
+    /// S_A = (M_AA)⁻¹; and, if `check`, the candidate along which the dense system leaves a
+    /// body free that its load drives (see [`driven_mechanism`]).
+    fn force_increment(
+        &self,
+        a: &[usize],
+        c: &Mat<f64>,
+        w_c: &[f64],
+        check: bool,
+    ) -> (Vec<f64>, Option<usize>) {
+        let na = a.len();
+        let mut f_a = vec![0.0; na];
+        let mut mechanism = None;
+        if na > 0 {
+            let m_aa = Mat::<f64>::from_fn(na, na, |i, j| self.m[(a[i], a[j])]);
+            let s_a = m_aa.as_ref().partial_piv_lu().inverse();
+            let w_a = Mat::<f64>::from_fn(na, 1, |i, _| w_c[a[i]]);
+            let mut x = &s_a * &w_a;
+            let sys = &s_a + c;
+            let lu = sys.as_ref().partial_piv_lu();
+            if check {
+                mechanism =
+                    driven_mechanism(sys.as_ref(), lu.U(), x.col(0)).map(|i| self.cand[a[i]]);
+            }
+            lu.solve_in_place(x.as_mut());
+            let diff = Mat::<f64>::from_fn(na, 1, |i, _| w_a[(i, 0)] - x[(i, 0)]);
+            let f = &s_a * &diff;
+            for i in 0..na {
+                f_a[i] = f[(i, 0)];
+            }
+        }
+        (f_a, mechanism)
+    }
+}
+
+/// The residual change δ of the points whose branch `closed` differs from their current one
+/// (over the candidates), their branch tangents (`tangents[i]`: open, closed) added to C on
+/// the dense equations (`in_a`).
+fn branch_changes(
+    points: &[ContactPoint],
+    closed: &[Branch],
+    locs: &[PointLocs],
+    tangents: &[[Vec<f64>; 2]],
+    in_a: &[usize],
+    c: &mut Mat<f64>,
+    mdim: usize,
+) -> Vec<f64> {
+    let mut delta = vec![0.0; mdim];
+    for (i, l) in locs.iter().enumerate() {
+        let ke = &tangents[i][usize::from(closed[i].closed)];
+        let nd = l.len();
+        if let Some(change) = points[i].branch_change(closed[i]) {
+            for (entries, d) in l.iter().zip(change) {
+                for &(k, wk) in entries {
+                    delta[k] -= wk * d;
+                }
+            }
+        }
+        if ke.is_empty() {
+            continue;
+        }
+        for (a_, ea) in l.iter().enumerate() {
+            for &(ka, wa) in ea {
+                let Some(ia) = (in_a[ka] != usize::MAX).then(|| in_a[ka]) else {
+                    continue;
+                };
+                for (b_, eb) in l.iter().enumerate() {
+                    let kab = ke[a_ * nd + b_];
+                    if kab == 0.0 {
+                        continue;
+                    }
+                    for &(kb, wb) in eb {
+                        if in_a[kb] != usize::MAX {
+                            c[(ia, in_a[kb])] += wa * wb * kab;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    delta
+}
+
+/// Every point's branch after the linearized step `du_c` (over the candidates).
+fn predict_branches(points: &[ContactPoint], locs: &[PointLocs], du_c: &[f64]) -> Vec<Branch> {
+    points
+        .iter()
+        .zip(locs)
+        .map(|(p, l)| {
+            let dq: Vec<f64> = l
+                .iter()
+                .map(|entries| entries.iter().map(|&(k, wk)| wk * du_c[k]).sum())
+                .collect();
+            p.predicts(&dq)
+        })
+        .collect()
+}
+
+/// The step's own branches leave a body free along a motion its load drives (at equation
+/// `at`): there is no Newton step, and no smaller load step makes one.
+fn mechanism_error(at: &str) -> Error {
+    Error::Singular(format!(
+        "the tangent with the contact's stiffness is singular at {at}: a mechanism, a \
+         motion of a body that contact alone holds which nothing resists (sideways \
+         on frictionless contact, or sliding where the tangential load exceeds what \
+         friction holds, mu times the normal force), and the load drives it: no \
+         equilibrium exists; restrain that motion (a support, a symmetry condition, \
+         friction) or lower the tangential load"
+    ))
 }
 
 /// Relative size of a pivot below which a dense contact system counts as singular.
