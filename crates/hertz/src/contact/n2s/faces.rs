@@ -188,24 +188,14 @@ impl NodeToSegment {
                     .collect()
             })
             .unwrap_or_default();
-        let nanchor = extra.len();
-        let nz = npos + if moving { 3 * nc } else { 0 } + 3 * nanchor;
+        let (zvals, zanchor) = dual_values(&local, npos, &normals, &extra);
+        let nz = zvals.len();
         if nz > dual::MAXV {
             return Err(crate::error::Error::Solve(format!(
                 "contact node {} with friction: {nz} variables for one pair, at most {}",
                 ctx.model.nodes[slot.node].label,
                 dual::MAXV
             )));
-        }
-        let mut zvals = local.values()[..npos].to_vec();
-        for nn in &normals {
-            zvals.extend_from_slice(&nn.n);
-        }
-        // Then the anchor face's other corners.
-        let zanchor = zvals.len();
-        for &n in &extra {
-            let i = 3 * local.index(n);
-            zvals.extend_from_slice(&local.values()[i..i + 3]);
         }
         let z = dual::seed(&zvals, nz);
         let v3 = |i: usize| [z[3 * i], z[3 * i + 1], z[3 * i + 2]];
@@ -239,22 +229,7 @@ impl NodeToSegment {
             b.extend(dir.iter().map(|&d| -(*ca * d)));
         }
         let end = self.face_weight(ctx.model, slot, k, &geom, &xs);
-        // ∂z/∂q: identity on the positions, the nodal normals' derivatives after them.
-        let mut dz: Vec<Vec<(usize, f64)>> = (0..npos).map(|i| vec![(i, 1.0)]).collect();
-        for nn in &normals {
-            for i in 0..3 {
-                let mut row = Vec::with_capacity(3 * nn.jac.len());
-                for (node, d) in &nn.jac {
-                    let base = 3 * local.index(*node);
-                    row.extend((0..3).map(|j| (base + j, d[i][j])));
-                }
-                dz.push(row);
-            }
-        }
-        for &n in &extra {
-            let base = 3 * local.index(n);
-            dz.extend((0..3).map(|j| vec![(base + j, 1.0)]));
-        }
+        let dz = dual_map(&local, npos, &normals, &extra);
         let chain = |x: &Dual| Jet::chain(x, &dz, m);
         let mut bj: Vec<Jet> = b.iter().map(chain).collect();
         bj.resize(m, Jet::constant(0.0, m));
@@ -275,31 +250,7 @@ impl NodeToSegment {
             };
             next = Some(at_point);
             if let Some((ka, xia)) = anchor_face {
-                let fa = &self.faces.faces[ka];
-                // A corner's variables: those of face k's corner, or its own.
-                let ya: Vec<[Dual; 3]> = fa
-                    .nodes
-                    .iter()
-                    .map(|n| match face.nodes.iter().position(|m| m == n) {
-                        Some(a) => v3(1 + a),
-                        None => {
-                            let e = extra.iter().position(|m| m == n).expect("an extra corner");
-                            std::array::from_fn(|i| z[zanchor + 3 * e + i])
-                        }
-                    })
-                    .collect();
-                let ga = FaceGeometry {
-                    kind: fa.kind,
-                    n: ya.clone(),
-                    x: ya,
-                };
-                let ca = ga.coefficients(Dual::constant(xia[0], nz), Dual::constant(xia[1], nz));
-                let mut xa = [Dual::constant(0.0, nz); 3];
-                for (a, y) in ga.x.iter().enumerate() {
-                    for i in 0..3 {
-                        xa[i] = xa[i] + ca[a] * y[i];
-                    }
-                }
+                let xa = self.anchor_point(k, (ka, xia), &z, (&extra, zanchor));
                 next = Some(self.point_friction(
                     slot,
                     law,
@@ -332,10 +283,98 @@ impl NodeToSegment {
         }
         Ok((local, kin, next))
     }
+
+    /// The anchor's material point (partner face `ka` at `xia`) in the dual variables `z` of
+    /// face `k`'s kinematics: a corner shared with face `k` takes that corner's variables, any
+    /// other (in `extra`) its own from `zanchor` on.
+    fn anchor_point(
+        &self,
+        k: usize,
+        (ka, xia): (usize, [f64; 2]),
+        z: &[Dual],
+        (extra, zanchor): (&[usize], usize),
+    ) -> [Dual; 3] {
+        let (face, fa) = (&self.faces.faces[k], &self.faces.faces[ka]);
+        let nz = z.len();
+        let ya: Vec<[Dual; 3]> = fa
+            .nodes
+            .iter()
+            .map(|n| {
+                let first = match face.nodes.iter().position(|m| m == n) {
+                    Some(a) => 3 * (1 + a),
+                    None => {
+                        let e = extra.iter().position(|m| m == n).expect("an extra corner");
+                        zanchor + 3 * e
+                    }
+                };
+                std::array::from_fn(|i| z[first + i])
+            })
+            .collect();
+        let ga = FaceGeometry {
+            kind: fa.kind,
+            n: ya.clone(),
+            x: ya,
+        };
+        let ca = ga.coefficients(Dual::constant(xia[0], nz), Dual::constant(xia[1], nz));
+        let mut xa = [Dual::constant(0.0, nz); 3];
+        for (a, y) in ga.x.iter().enumerate() {
+            for i in 0..3 {
+                xa[i] = xa[i] + ca[a] * y[i];
+            }
+        }
+        xa
+    }
 }
 
 /// The current position of the first local node (the contact node).
 fn cur_point(local: &Local) -> [f64; 3] {
     let v = local.values();
     [v[0], v[1], v[2]]
+}
+
+/// ∂z/∂q of a face pair's dual variables z over its local unknowns q: the identity on the first
+/// `npos` (the node's and the corners' positions), the moving corners' nodal normals'
+/// derivatives after them, then the identity on the anchor's `extra` corners.
+fn dual_map(
+    local: &Local,
+    npos: usize,
+    normals: &[&NodalNormal],
+    extra: &[usize],
+) -> Vec<Vec<(usize, f64)>> {
+    let mut dz: Vec<Vec<(usize, f64)>> = (0..npos).map(|i| vec![(i, 1.0)]).collect();
+    for nn in normals {
+        for i in 0..3 {
+            let mut row = Vec::with_capacity(3 * nn.jac.len());
+            for (node, d) in &nn.jac {
+                let base = 3 * local.index(*node);
+                row.extend((0..3).map(|j| (base + j, d[i][j])));
+            }
+            dz.push(row);
+        }
+    }
+    for &n in extra {
+        let base = 3 * local.index(n);
+        dz.extend((0..3).map(|j| vec![(base + j, 1.0)]));
+    }
+    dz
+}
+
+/// The values of a face pair's dual variables z (see [`dual_map`]): the positions, the moving
+/// corners' nodal normals, the anchor's `extra` corners; and where the last begin.
+fn dual_values(
+    local: &Local,
+    npos: usize,
+    normals: &[&NodalNormal],
+    extra: &[usize],
+) -> (Vec<f64>, usize) {
+    let mut zvals = local.values()[..npos].to_vec();
+    for nn in normals {
+        zvals.extend_from_slice(&nn.n);
+    }
+    let zanchor = zvals.len();
+    for &n in extra {
+        let i = 3 * local.index(n);
+        zvals.extend_from_slice(&local.values()[i..i + 3]);
+    }
+    (zvals, zanchor)
 }
