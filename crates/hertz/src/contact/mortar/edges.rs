@@ -340,34 +340,8 @@ impl Mortar {
         overlaps: &[Vec<usize>],
         j: usize,
     ) -> Result<(Local, Integrals)> {
-        let (node, edges) = &self.slots[j];
-        let mut local = Local::new(2);
-        local.add(ctx, *node)?;
-        for n in self.rigid.iter().filter_map(|&g| rigid_node(ctx.model, g)) {
-            local.add(ctx, n)?;
-        }
-        let mut pairs: Vec<(usize, &[usize])> = Vec::new();
-        for &k in edges {
-            for &n in &self.slave.edges[k].nodes {
-                local.add(ctx, n)?;
-            }
-            let over = &overlaps[k];
-            for &mi in over {
-                for &n in &self.master.edges[mi].nodes {
-                    local.add(ctx, n)?;
-                }
-            }
-            pairs.push((k, over));
-        }
-        if local.m() > dual::MAXV {
-            return Err(Error::Solve(format!(
-                "mortar contact: slave node {} overlaps too many master edges ({} unknowns, at \
-                 most {})",
-                ctx.model.nodes[*node].label,
-                local.m(),
-                dual::MAXV
-            )));
-        }
+        let node = &self.slots[j].0;
+        let (local, pairs) = self.pair_unknowns(ctx, overlaps, j)?;
         let q = local.seed();
         let m = local.m();
         let zero = Dual::constant(0.0, m);
@@ -435,37 +409,7 @@ impl Mortar {
             };
             // The overlaps [ξ_lo, ξ_hi] of the master edges (at `geo` positions) with the slave
             // edge.
-            let mut pieces: Vec<(usize, Vec<[Dual; 2]>, Dual, Dual)> = Vec::new();
-            for &mi in over {
-                let me = &self.master.edges[mi];
-                let yg: Vec<[Dual; 2]> = me.nodes.iter().map(|&n| geo(n)).collect();
-                // The master's ends projected on the slave edge: (y − x(ξ))·x'(ξ) = 0.
-                let project = |y: [Dual; 2]| {
-                    let chord = [xg[1][0] - xg[0][0], xg[1][1] - xg[0][1]];
-                    let s0 = ((y[0].v - xg[0][0].v) * chord[0].v
-                        + (y[1].v - xg[0][1].v) * chord[1].v)
-                        / (chord[0].v * chord[0].v + chord[1].v * chord[1].v);
-                    solve(s0, m, xg.len() == 2, |s| {
-                        let (x, t, t2) = curve(&xg, s);
-                        let r = [y[0] - x[0], y[1] - x[1]];
-                        (
-                            r[0] * t[0] + r[1] * t[1],
-                            r[0] * t2[0] + r[1] * t2[1] - (t[0] * t[0] + t[1] * t[1]),
-                        )
-                    })
-                };
-                let (pa, pb) = (project(yg[0]), project(yg[1]));
-                let (mut lo, mut hi) = if pa.v < pb.v { (pa, pb) } else { (pb, pa) };
-                if lo.v < 0.0 {
-                    lo = zero;
-                }
-                if hi.v > 1.0 {
-                    hi = Dual::constant(1.0, m);
-                }
-                if hi.v - lo.v > 1e-12 {
-                    pieces.push((mi, yg, lo, hi));
-                }
-            }
+            let pieces = self.overlap_pieces(over, &xg, &geo, m);
             // The dual basis biorthogonal over the overlap alone: on a slave edge that overlaps
             // the master only in part (at the master's ends), the whole edge's basis can be
             // negative over the overlap and turn the sign of the weighted gap (a node beyond the
@@ -520,6 +464,89 @@ impl Mortar {
             }
         }
         Ok((local, w))
+    }
+
+    /// The local unknowns of slave node `j`'s integrals (the node, rigid segments' nodes, its
+    /// edges and the master edges each overlaps) and its (slave edge, overlapping master edges)
+    /// pairs.
+    fn pair_unknowns<'o>(
+        &self,
+        ctx: &Ctx,
+        overlaps: &'o [Vec<usize>],
+        j: usize,
+    ) -> Result<(Local, Vec<EdgeOverlaps<'o>>)> {
+        let (node, edges) = &self.slots[j];
+        let mut local = Local::new(2);
+        local.add(ctx, *node)?;
+        for n in self.rigid.iter().filter_map(|&g| rigid_node(ctx.model, g)) {
+            local.add(ctx, n)?;
+        }
+        let mut pairs: Vec<(usize, &[usize])> = Vec::new();
+        for &k in edges {
+            for &n in &self.slave.edges[k].nodes {
+                local.add(ctx, n)?;
+            }
+            let over = &overlaps[k];
+            for &mi in over {
+                for &n in &self.master.edges[mi].nodes {
+                    local.add(ctx, n)?;
+                }
+            }
+            pairs.push((k, over));
+        }
+        if local.m() > dual::MAXV {
+            return Err(Error::Solve(format!(
+                "mortar contact: slave node {} overlaps too many master edges ({} unknowns, at \
+                 most {})",
+                ctx.model.nodes[*node].label,
+                local.m(),
+                dual::MAXV
+            )));
+        }
+        Ok((local, pairs))
+    }
+
+    /// The parts [ξ_lo, ξ_hi] of slave edge `xg` that the master edges `over` overlap (the
+    /// master's ends projected on it, (y − x(ξ))·x'(ξ) = 0), with each master edge's nodes.
+    fn overlap_pieces(
+        &self,
+        over: &[usize],
+        xg: &[[Dual; 2]],
+        geo: &dyn Fn(usize) -> [Dual; 2],
+        m: usize,
+    ) -> Vec<(usize, Vec<[Dual; 2]>, Dual, Dual)> {
+        let zero = Dual::constant(0.0, m);
+        let mut pieces: Vec<(usize, Vec<[Dual; 2]>, Dual, Dual)> = Vec::new();
+        for &mi in over {
+            let me = &self.master.edges[mi];
+            let yg: Vec<[Dual; 2]> = me.nodes.iter().map(|&n| geo(n)).collect();
+            // The master's ends projected on the slave edge: (y − x(ξ))·x'(ξ) = 0.
+            let project = |y: [Dual; 2]| {
+                let chord = [xg[1][0] - xg[0][0], xg[1][1] - xg[0][1]];
+                let s0 = ((y[0].v - xg[0][0].v) * chord[0].v + (y[1].v - xg[0][1].v) * chord[1].v)
+                    / (chord[0].v * chord[0].v + chord[1].v * chord[1].v);
+                solve(s0, m, xg.len() == 2, |s| {
+                    let (x, t, t2) = curve(xg, s);
+                    let r = [y[0] - x[0], y[1] - x[1]];
+                    (
+                        r[0] * t[0] + r[1] * t[1],
+                        r[0] * t2[0] + r[1] * t2[1] - (t[0] * t[0] + t[1] * t[1]),
+                    )
+                })
+            };
+            let (pa, pb) = (project(yg[0]), project(yg[1]));
+            let (mut lo, mut hi) = if pa.v < pb.v { (pa, pb) } else { (pb, pa) };
+            if lo.v < 0.0 {
+                lo = zero;
+            }
+            if hi.v > 1.0 {
+                hi = Dual::constant(1.0, m);
+            }
+            if hi.v - lo.v > 1e-12 {
+                pieces.push((mi, yg, lo, hi));
+            }
+        }
+        pieces
     }
 
     /// The smallest gap of a point against the rigid segments, with their outward normal and the
@@ -651,3 +678,6 @@ impl Formulation for Mortar {
         Ok(searching)
     }
 }
+
+/// A slave edge and the master edges that overlap it.
+type EdgeOverlaps<'o> = (usize, &'o [usize]);
