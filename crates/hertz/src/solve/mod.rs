@@ -2,6 +2,7 @@
 
 pub mod branches;
 pub mod condensed;
+pub mod convergence;
 pub mod krylov;
 pub mod linear;
 pub mod multipliers;

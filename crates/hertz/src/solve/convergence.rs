@@ -1,0 +1,161 @@
+//! The convergence test of a Newton iterate: OOFEM's relative force residual per DOF-id group
+//! (spec §1.3), the multipliers' gap rows against rtolf times the largest displacement, and the
+//! round-off floor of penalty forces, below which a residual that no longer falls is accepted.
+
+use crate::assembly::DofMap;
+use crate::contact::{ContactPoint, PointLaw};
+use crate::model::{Analysis, Model};
+
+/// A residual that no longer falls and is within this many times the round-off estimate of the
+/// penalty forces counts as converged.
+const ROUNDOFF_FACTOR: f64 = 16.0;
+
+/// What the test looks at: the free equations' residual and external forces, the element-by-element
+/// force norms per DOF id, the last step and the current state.
+pub struct Residual<'r> {
+    pub rhs: &'r [f64],
+    pub f_ext: &'r [f64],
+    pub ebe: &'r [f64; 4],
+    pub du: &'r [f64],
+    pub u: &'r [f64],
+}
+
+/// The convergence test's verdict on one iteration.
+pub struct Check {
+    /// Largest relative (or absolute) force error over the DOF groups.
+    pub worst: f64,
+    pub converged: bool,
+    /// Not converged, but every group is within its round-off floor.
+    pub on_floor: bool,
+    /// On the floor: the residual over the tolerance.
+    pub floor_ratio: Option<f64>,
+    /// The largest round-off floor estimate over the tolerance.
+    pub floor_excess: f64,
+}
+
+/// OOFEM's convergence test per DOF-id group (spec §1.3), with the round-off floor of penalty
+/// forces; multiplier rows (gaps) against rtolf times the largest displacement.
+pub fn check(
+    model: &Model,
+    dofs: &DofMap,
+    r: &Residual,
+    a: &Analysis,
+    it: usize,
+    points: &[ContactPoint],
+) -> Check {
+    let (rhs, f_ext, ebe, du, u) = (r.rhs, r.f_ext, r.ebe, r.du, r.u);
+    let nf_u = dofs.n_free - dofs.n_lambda;
+    let mut num = [0.0; 4];
+    let mut den = [0.0; 4];
+    let mut dd = [0.0; 4];
+    let mut uu = [0.0; 4];
+    let mut floor = [0.0; 4];
+    let mut present = [false; 4];
+    let mut umax = 0.0f64;
+    for i in 0..nf_u {
+        let g = dofs.primary_dof_id[i] as usize;
+        present[g] = true;
+        num[g] += rhs[i] * rhs[i];
+        den[g] += f_ext[i] * f_ext[i];
+        dd[g] += du[i] * du[i];
+        uu[g] += u[i] * u[i];
+        umax = umax.max(u[i].abs());
+    }
+    // Round-off of closed penalty points: ε·|force row|·X/|g| per entry, X the size of the
+    // coordinates the gap is a difference of.
+    let scale = crate::contact::model_size(model);
+    for p in points
+        .iter()
+        .filter(|p| p.closed && p.law == PointLaw::Penalty)
+    {
+        if p.gap == 0.0 || p.closed_fe.is_empty() {
+            continue;
+        }
+        for (k, &code) in p.codes.iter().enumerate() {
+            let stiff = p.closed_fe[k].abs() / p.gap.abs();
+            for (e, w) in dofs.entries(code) {
+                if e < nf_u {
+                    let g = dofs.primary_dof_id[e] as usize;
+                    floor[g] += (w * stiff * f64::EPSILON * scale).powi(2);
+                }
+            }
+        }
+    }
+    let mut worst: f64 = 0.0;
+    let mut ok = true;
+    let mut within_floor = true;
+    let mut floor_ratio: Option<f64> = None;
+    let mut floor_excess = 0.0f64;
+    // Multiplier rows: the gaps, against rtolf times the largest displacement (and their own
+    // round-off).
+    let gap_tol = (a.rtolf * umax).max(ROUNDOFF_FACTOR * f64::EPSILON * scale);
+    for i in nf_u..dofs.n_free {
+        let e = rhs[i].abs() / gap_tol * a.rtolf;
+        worst = worst.max(e);
+        if !(rhs[i].abs() <= gap_tol) {
+            ok = false;
+            within_floor = false;
+        }
+    }
+    for g in 1..4 {
+        if !present[g] {
+            continue;
+        }
+        let d = den[g] + ebe[g];
+        let reference = if d < 1e-6 { 1.0 } else { d.sqrt() };
+        let fe = num[g].sqrt() / reference;
+        worst = worst.max(fe);
+        let floor_rel = ROUNDOFF_FACTOR * floor[g].sqrt() / reference;
+        // The estimate itself, without the safety factor of the acceptance test.
+        floor_excess = floor_excess.max(floor_rel / ROUNDOFF_FACTOR / a.rtolf);
+        if !(fe <= a.rtolf) {
+            ok = false;
+            if fe <= floor_rel {
+                floor_ratio = Some(floor_ratio.unwrap_or(0.0).max(fe / a.rtolf));
+            } else {
+                within_floor = false;
+            }
+        }
+        if a.rtold > 0.0 && it > 0 {
+            let de = if uu[g] < 1e-6 {
+                dd[g].sqrt()
+            } else {
+                (dd[g] / uu[g]).sqrt()
+            };
+            if !(de <= a.rtold) {
+                ok = false;
+            }
+        }
+    }
+    Check {
+        worst,
+        converged: ok,
+        on_floor: !ok && within_floor && floor_ratio.is_some(),
+        floor_ratio,
+        floor_excess,
+    }
+}
+
+/// The warning for penalty forces whose round-off exceeds the tolerance, with the penalty each
+/// penalty condition could have to stay within it.
+pub fn penalty_warning(model: &crate::model::Model, ratio: f64, rtolf: f64) -> String {
+    let suggestions: Vec<String> = model
+        .contacts
+        .iter()
+        .filter_map(|c| match c.law {
+            crate::model::ContactLaw::Penalty(p) => Some(format!(
+                "condition {}: penalty {p:.0e}, suggested at most {:.0e}",
+                c.number,
+                p / ratio
+            )),
+            _ => None,
+        })
+        .collect();
+    format!(
+        "the residual stalled at {:.1e}, {ratio:.0e} times the tolerance rtolf {rtolf:.0e}, on the \
+         round-off floor of the penalty forces: the penalty is larger than double precision \
+         resolves and the step was accepted there ({})",
+        ratio * rtolf,
+        suggestions.join("; ")
+    )
+}
