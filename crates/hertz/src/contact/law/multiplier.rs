@@ -1,7 +1,8 @@
-//! Lagrange multiplier law (λ > 0 in compression), with a complementarity active set:
-//! active while w > 0 and λ − c·g > −c·gap_tol (so a node that touches, g = 0, with no force
-//! yet, λ = 0, is active — a body that starts touching under a load is held);
-//! * active: r_u = −λ·B, r_λ = −g; K_uu = −λ·∂B (geometric), K_uλ = −B, K_λu = −∇g;
+//! Lagrange multiplier law (λ > 0 in compression), with a complementarity active set on the
+//! constraint h (g, or max(g, e) near an open end: see below): active while the point counts
+//! and λ − c·h > −c·gap_tol (so a node that touches, g = 0, with no force yet, λ = 0, is active
+//! — a body that starts touching under a load is held);
+//! * active: r_u = −λ·B, r_λ = −h; K_uu = −λ·∂B (geometric), K_uλ = −B, K_λu = −∇h;
 //! * inactive: r_λ = λ, K_λλ = 1 (so λ = 0).
 //!
 //! The geometric part is kept at any force, unlike the penalty law's (see
@@ -75,8 +76,8 @@ pub fn evaluate(
     let mut lambda_t = [0.0; 3];
     lambda_t[..nt].copy_from_slice(&lambdas[..nt]);
     let c = capped(laws.c, cn);
-    // The constraint the normal row holds: g, or with a penalty's compliance w·g (the penalty's
-    // force is ε·w·⟨−g⟩; the weight only switches a multiplier).
+    // The constraint the normal row holds: g; near an open end max(g, e); with a penalty's
+    // compliance w·g (the penalty's force is ε·w·⟨−g⟩; the weight only switches a multiplier).
     let h = match &k.past_end {
         _ if cn > 0.0 => k.weight.product(&k.gap),
         Some(e) if e.v > k.gap.v => e.clone(),
