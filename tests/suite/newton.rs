@@ -175,3 +175,72 @@ fn sparse_and_dense_solvers_give_the_same_newton_steps() {
         .to_string();
     assert!(err.contains("singular at node"), "{err}");
 }
+
+/// A tangent sink that is not the assembler's pattern (as a distributed matrix would be) gets
+/// the same matrix: every entry of the assembled tangent of a contact model in large
+/// deformation, elements and contact pairs, added entry by entry into a dense matrix, equals the
+/// pattern's values (which hold one triangle where the tangent is symmetric).
+#[test]
+fn any_tangent_sink_gets_the_assembled_tangent() {
+    use hertz::assembly::{Assembler, Contribution, TangentSink};
+    use hertz::contact::{ContactSystem, Search};
+    struct Dense {
+        n: usize,
+        a: Vec<f64>,
+    }
+    impl TangentSink for Dense {
+        fn add(&mut self, row: usize, col: usize, v: f64) {
+            self.a[row * self.n + col] += v;
+        }
+    }
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples/hertz_cylinder.in");
+    let mut model = hertz::input::read_model(&path).unwrap().model;
+    for e in &mut model.elements {
+        e.nlgeo = true;
+    }
+    let contact = ContactSystem::new(&model).unwrap();
+    let dofs = hertz::assembly::DofMap::new(&model, &contact.extra_dofs()).unwrap();
+    let mut asm = Assembler::new(&model, &dofs).unwrap();
+    // A deformed state: every free DOF moved a little, so elements and contact both contribute.
+    let u: Vec<f64> = (0..dofs.n_primary())
+        .map(|i| 1e-3 * ((i as f64) * 0.37).sin())
+        .collect();
+    let (points, _) = contact.evaluate(&model, &dofs, &u, Search::Fresh).unwrap();
+    let contribs: Vec<Contribution> = points.iter().map(|p| p.contribution()).collect();
+    assert!(
+        contribs.iter().any(|c| !c.ke.is_empty()),
+        "contact contributes"
+    );
+    let couplings: Vec<Vec<usize>> = contribs.iter().map(|c| c.codes.clone()).collect();
+    asm.set_couplings(&couplings);
+    asm.set_symmetric(false);
+    let ev = asm.evaluate(&u, true, false, None, &contribs).unwrap();
+    let kv = ev.k_values.unwrap();
+    let n = dofs.n_free;
+    let mut dense = Dense {
+        n,
+        a: vec![0.0; n * n],
+    };
+    asm.assemble_tangent_into(&u, &contribs, &mut dense)
+        .unwrap();
+    let p = &asm.pattern;
+    let scale = kv.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut on_pattern = 0.0;
+    for col in 0..n {
+        let range = p.col_ptr[col]..p.col_ptr[col + 1];
+        for (&row, &value) in p.row_idx[range.clone()].iter().zip(&kv[range]) {
+            let d = dense.a[row * n + col];
+            assert!(
+                (d - value).abs() <= 1e-12 * scale,
+                "({row}, {col}): sink {d}, pattern {value}"
+            );
+            on_pattern += d.abs();
+        }
+    }
+    // Nothing falls outside the pattern.
+    let total: f64 = dense.a.iter().map(|v| v.abs()).sum();
+    assert!(
+        (total - on_pattern).abs() <= 1e-12 * total,
+        "{total} vs {on_pattern}"
+    );
+}

@@ -5,7 +5,7 @@
 pub mod assembler;
 pub mod dofs;
 
-pub use assembler::{Assembler, Evaluation, Pattern};
+pub use assembler::{Assembler, Evaluation, Pattern, PatternValues, TangentSink};
 pub use dofs::{DofMap, ExtraDofs};
 
 /// A local contribution of something other than an element (a contact pair): location codes, the
