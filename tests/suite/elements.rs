@@ -9,7 +9,7 @@ use hertz::fem::shape::HEXA8_CORNERS;
 use hertz::fem::{rule, Shape};
 use hertz::material::{Constitutive, Elasticity, Hyperelastic};
 use hertz::model::StressMode;
-use hertz::solid::{ContinuumKernel, GpState};
+use hertz::solid::{ContinuumKernel, ElementKernel, GpState};
 use hertz::solve::run_analysis;
 use std::fmt::Write;
 

@@ -46,11 +46,11 @@ pub struct KernelError {
     pub msg: String,
 }
 
-impl ContinuumKernel<'_> {
+impl super::kernel::ElementKernel for ContinuumKernel<'_> {
     /// Internal force `fe` (len nnode·nsd) and, if requested, tangent `ke` (row-major square)
     /// and integration-point states; `old` the material's committed state of every integration
     /// point in turn (its `state_len` numbers each), `new` the state this deformation leaves.
-    pub fn evaluate_into(
+    fn evaluate_into(
         &self,
         x_ref: &[[f64; 3]],
         u: &[f64],

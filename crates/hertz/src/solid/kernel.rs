@@ -2,7 +2,8 @@
 //! element kind implements [`ElementKernel`]; the assembler gathers its nodal data, calls it and
 //! scatters the result.
 
-use super::continuum::{ContinuumKernel, GpState, KernelError};
+use super::continuum::{GpState, KernelError};
+use super::loads::in_bar_plane;
 use super::truss;
 use crate::material::PointLaw;
 
@@ -21,20 +22,6 @@ pub trait ElementKernel {
         ke: Option<&mut [f64]>,
         states: Option<&mut Vec<GpState>>,
     ) -> Result<(), KernelError>;
-}
-
-impl ElementKernel for ContinuumKernel<'_> {
-    fn evaluate_into(
-        &self,
-        x_ref: &[[f64; 3]],
-        u: &[f64],
-        state: (&[f64], &mut [f64]),
-        fe: &mut [f64],
-        ke: Option<&mut [f64]>,
-        states: Option<&mut Vec<GpState>>,
-    ) -> Result<(), KernelError> {
-        ContinuumKernel::evaluate_into(self, x_ref, u, state, fe, ke, states)
-    }
 }
 
 /// A two-node bar: its axes in the element's plane (`axes[0]` alone for a 1D bar), its
@@ -58,12 +45,7 @@ impl ElementKernel for TrussKernel<'_> {
         ke: Option<&mut [f64]>,
         states: Option<&mut Vec<GpState>>,
     ) -> Result<(), KernelError> {
-        let mut x = [[0.0; 2]; 2];
-        for (a, xa) in x.iter_mut().enumerate() {
-            for k in 0..self.dim {
-                xa[k] = x_ref[a][self.axes[k]];
-            }
-        }
+        let x = [0, 1].map(|a| in_bar_plane(x_ref[a], self.axes, self.dim));
         truss::evaluate_into(self.dim, x, u, self.law, state, self.area, fe, ke, states)
             .map_err(|msg| KernelError { gp: 1, msg })
     }

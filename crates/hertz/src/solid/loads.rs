@@ -142,20 +142,18 @@ fn element_shape_integrals(model: &Model, e: usize) -> Result<Vec<f64>> {
 /// End coordinates of a bar in its own plane (Truss1d: x; Truss2d cs 0: x–z, 1: x–y, 2: y–z).
 pub fn truss_coords(model: &Model, e: usize) -> [[f64; 2]; 2] {
     let el = &model.elements[e];
-    let axes = truss_axes(el);
-    let mut out = [[0.0; 2]; 2];
-    for (k, &n) in el.nodes.iter().enumerate() {
-        let c = model.nodes[n].coords;
-        out[k] = [
-            c[axes[0]],
-            if el.etype == crate::model::ElementType::Truss1d {
-                0.0
-            } else {
-                c[axes[1]]
-            },
-        ];
+    let (axes, dim) = (truss_axes(el), el.dof_ids().len());
+    [0, 1].map(|k| in_bar_plane(model.nodes[el.nodes[k]].coords, axes, dim))
+}
+
+/// A point's coordinates in a bar's plane: its components along `axes`, the first `dim` of them
+/// (1 for Truss1d, the second then 0).
+pub fn in_bar_plane(c: [f64; 3], axes: [usize; 2], dim: usize) -> [f64; 2] {
+    let mut x = [0.0; 2];
+    for k in 0..dim {
+        x[k] = c[axes[k]];
     }
-    out
+    x
 }
 
 /// The global axes of a bar's plane: x for Truss1d; x–z (default), x–y or y–z for Truss2d.
