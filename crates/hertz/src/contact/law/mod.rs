@@ -93,11 +93,12 @@ impl Laws {
     }
 }
 
-/// The point's gap, its gradient and the closed branch's (fe, ke) into a [`ContactPoint`].
+/// The constraint `gap` the point's rows hold (with its gradient) and the closed branch's
+/// (fe, ke) into a [`ContactPoint`].
 fn point(
     codes: Vec<usize>,
     law: PointLaw,
-    k: &PointKinematics,
+    gap: &Jet,
     closed: Option<(Vec<f64>, Vec<f64>)>,
     closed_now: bool,
 ) -> ContactPoint {
@@ -107,8 +108,8 @@ fn point(
         law,
         closed_fe,
         closed_ke,
-        gap: k.gap.v,
-        gap_grad: k.gap.d.clone(),
+        gap: gap.v,
+        gap_grad: gap.d.clone(),
         closed: closed_now,
         geometric: None,
     }

@@ -93,7 +93,7 @@ pub fn evaluate(
     };
     let counts = k.weight.v > 0.0 || (cn == 0.0 && k.past_end.is_some());
     if !counts || k.gap.v.is_nan() {
-        return (point(codes, law, k, None, false), None);
+        return (point(codes, law, &k.gap, None, false), None);
     }
     let mut fe = vec![0.0; mm];
     let mut ke = vec![0.0; mm * mm];
@@ -141,9 +141,7 @@ pub fn evaluate(
     }
     let active = lambda - c * (h.v + cn * lambda) > -c * laws.gap_tol;
     let friction = friction.filter(|_| active);
-    let mut p = point(codes, law, k, Some((fe, ke)), active);
-    (p.gap, p.gap_grad) = (h.v, h.d);
-    (p, friction)
+    (point(codes, law, &h, Some((fe, ke)), active), friction)
 }
 
 /// The rows C_T of the friction multipliers over (q, λ_T, λ) (m + nt + 1 unknowns), whether the
