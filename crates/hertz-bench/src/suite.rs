@@ -513,8 +513,9 @@ pub const DIE_PENALTY: f64 = 3e3;
 /// compressed 30 % in ten steps of large deformation by a die exactly as wide and a thousand
 /// times stiffer (two layers over the block, 0.2 thick), the block's top nodes the slave side:
 /// its sides bulge past the die's edges and the corners away from the held one curl up past the
-/// die's end (`tools/gen_die_as_wide.py` writes the 2D mortar twins).
-pub fn die_as_wide_as_the_block(dim: usize, law: Law) -> String {
+/// die's end. `mortar`: the block's top edges (faces) are a mortar condition's slave segment,
+/// else its top nodes a node-to-segment condition's slave nodes.
+pub fn die_as_wide_as_the_block(dim: usize, mortar: bool, law: Law) -> String {
     let mut inp = Input::default();
     let (block, die) = if dim == 2 {
         let xs = uniform(0.0, 1.0, 8);
@@ -575,8 +576,29 @@ pub fn die_as_wide_as_the_block(dim: usize, law: Law) -> String {
             "BoundaryCondition 4 loadTimeFunction 1 dofs 1 2 values 1 0 set {turn}"
         ));
     }
-    inp.bcs
-        .push(n2s(inp.bcs.len() + 1, law, &block.top, &[1], ""));
+    let number = inp.bcs.len() + 1;
+    if mortar {
+        inp.segments
+            .push(format!("{kind} 2 edgeset {}", inp.sets.len() + 1));
+        let faces = if dim == 2 {
+            block.top_edges.clone()
+        } else {
+            inp.faces_where(&block, &|x| (x[2] - 1.0).abs() < 1e-9)
+        };
+        inp.boundary_set(&faces);
+        let head = match law {
+            Law::Penalty(p) => {
+                format!("s2spenaltycontact {number} loadTimeFunction 1 penalty {p:e}")
+            }
+            Law::Multiplier => {
+                format!("s2slagrangianmultipliercontact {number} loadTimeFunction 1")
+            }
+        };
+        inp.bcs
+            .push(format!("{head} slavesegment 2 segmentset 1 1"));
+    } else {
+        inp.bcs.push(n2s(number, law, &block.top, &[1], ""));
+    }
     let steps: Vec<f64> = (1..=10).map(|i| i as f64 / 10.0).collect();
     inp.functions.push(history(&steps));
     inp.render(
@@ -797,7 +819,18 @@ pub fn setups() -> Vec<Setup> {
             "die as wide as the block, nlgeo",
             "sliding",
             DIE_PENALTY,
-            |l| die_as_wide_as_the_block(2, l),
+            |l| die_as_wide_as_the_block(2, false, l),
+        )
+    });
+    // The same with mortar: the corner's support on the die falls as the square of its overlap
+    // (∫ N_j over the sliver), as node-to-segment's weight near the end: the same order.
+    out.push(Setup {
+        order: 1.0 / 3.0,
+        ..Setup::new(
+            "die as wide as the block, mortar, nlgeo",
+            "sliding",
+            DIE_PENALTY,
+            |l| die_as_wide_as_the_block(2, true, l),
         )
     });
     // A rigid plane and circle moving with a node compress a neo-Hookean block 50 %.

@@ -100,18 +100,39 @@ impl Mortar {
         }
         // Without a penalty, h is the mean length of the node's slave edges.
         let nodes: Vec<usize> = slots.iter().map(|s| s.0).collect();
-        let law = SlotLaw::new(model, ci, &nodes, |j| {
-            let edges = &slots[j].1;
-            edges
-                .iter()
-                .map(|&k| {
-                    let (a, b) = (slave.edges[k].nodes[0], slave.edges[k].nodes[1]);
-                    let (x, y) = (model.nodes[a].coords, model.nodes[b].coords);
-                    (0..3).map(|i| (y[i] - x[i]).powi(2)).sum::<f64>().sqrt()
-                })
-                .sum::<f64>()
-                / edges.len() as f64
-        });
+        let length = |k: usize| {
+            let (a, b) = (slave.edges[k].nodes[0], slave.edges[k].nodes[1]);
+            let (x, y) = (model.nodes[a].coords, model.nodes[b].coords);
+            (0..3).map(|i| (y[i] - x[i]).powi(2)).sum::<f64>().sqrt()
+        };
+        // ∫ N_j over a straight edge: L/2 at a 2-node edge's ends, L/6 and 2L/3 on a 3-node one.
+        let full_support = slots
+            .iter()
+            .map(|(n, edges)| {
+                edges
+                    .iter()
+                    .map(|&k| {
+                        let e = &slave.edges[k];
+                        let share = match (e.nodes.len(), e.nodes.iter().position(|m| m == n)) {
+                            (2, _) => 0.5,
+                            (_, Some(2)) => 2.0 / 3.0,
+                            _ => 1.0 / 6.0,
+                        };
+                        share * length(k)
+                    })
+                    .sum()
+            })
+            .collect();
+        let law = SlotLaw::new(
+            model,
+            ci,
+            &nodes,
+            |j| {
+                let edges = &slots[j].1;
+                edges.iter().map(|&k| length(k)).sum::<f64>() / edges.len() as f64
+            },
+            full_support,
+        );
         let nlgeo = slave.edges.iter().any(|e| e.nlgeo);
         let nodes = slave
             .edges

@@ -151,13 +151,30 @@ struct SlotLaw {
     /// [`super::friction_modulus`]; h the size of its slave facets): the friction multipliers'
     /// c_T, per unit area.
     stiffness: Vec<f64>,
+    /// Per slot, the support the node would have if the master covered all its slave facets
+    /// (reference facets, straight edges and flat faces), and the penalty per unit area from the
+    /// mesh: the multipliers fade to it on the last slivers of a master's end (see
+    /// [`SlotLaw::sliver_compliance`]).
+    full_support: Vec<f64>,
+    mesh_penalty: Vec<f64>,
     dim: usize,
 }
 
+/// The share of its full support below which a slave node's multiplier fades into a penalty
+/// (see [`SlotLaw::sliver_compliance`]).
+const SLIVER: f64 = 0.2;
+
 impl SlotLaw {
     /// The per-slot penalty factors: 1, or without a penalty ε_j = factor·E/h, E of the stiffest
-    /// element at the node and h (`size`) the size of its slave facets.
-    fn new(model: &Model, ci: usize, slots: &[usize], size: impl Fn(usize) -> f64) -> SlotLaw {
+    /// element at the node and h (`size`) the size of its slave facets; `full_support` per slot
+    /// as in [`SlotLaw::full_support`].
+    fn new(
+        model: &Model,
+        ci: usize,
+        slots: &[usize],
+        size: impl Fn(usize) -> f64,
+        full_support: Vec<f64>,
+    ) -> SlotLaw {
         let c = &model.contacts[ci];
         let young = super::stiffest_young(model);
         let stiffest = young.values().copied().fold(0.0, f64::max);
@@ -170,10 +187,13 @@ impl SlotLaw {
             crate::model::Pairing::Mortar { segments, .. } => super::master_young(model, segments),
             _ => f64::INFINITY,
         };
+        let mesh_penalty: Vec<f64> = (0..slots.len())
+            .map(|j| super::n2s::DEFAULT_PENALTY_FACTOR * slave[j] / size(j))
+            .collect();
         let scale = (0..slots.len())
             .map(|j| {
                 if c.penalty_from_mesh {
-                    super::n2s::DEFAULT_PENALTY_FACTOR * slave[j] / size(j)
+                    mesh_penalty[j]
                 } else {
                     1.0
                 }
@@ -188,8 +208,38 @@ impl SlotLaw {
             friction: c.friction,
             scale,
             stiffness,
+            full_support,
+            mesh_penalty,
             dim: model.domain.nsd(),
         }
+    }
+
+    /// 1/ε_j(D_j) of a multiplier slot whose support D_j (`area`, over the local unknowns) is
+    /// below [`SLIVER`] of its full support S_j: ε_j(D) = ε_mesh·r/(ρ − r), r = D/S, ρ = SLIVER,
+    /// infinite (the exact constraint, compliance 0) from r = ρ on and falling to zero with D.
+    ///
+    /// Where a slave node's facets slide off a master's end, its support is the sliver the master
+    /// still covers. Held to ḡ_j = 0 there (ḡ_j is then the gap extrapolated to the node), the
+    /// node keeps a finite force λ_j·D_j as D_j → 0 and drops it at once when the master's end
+    /// passes its neighbour: a node the force pushes off has no solution, and Newton chatters
+    /// between the two states (a rubber block's corner bulging past a die as wide as it). A penalty
+    /// has none of this — its force ε·D·(−ḡ) falls with the sliver — so the multiplier does as
+    /// the penalty does there, with a penalty that falls as well, and the node lets go
+    /// continuously. Nodes with at least ρ of their support on the master keep the exact
+    /// constraint, so the patch tests and every fully covered node are untouched.
+    fn sliver_compliance(&self, j: usize, area: &Jet) -> Option<Jet> {
+        let s = self.full_support[j];
+        let r = area.v / s;
+        if !(r > 0.0 && r < SLIVER) {
+            return None;
+        }
+        let eps = self.mesh_penalty[j];
+        // (ρ/r − 1)/ε with ∂ = −ρ/(ε r²)·∂D/S.
+        let slope = -SLIVER / (eps * r * r * s);
+        Some(Jet {
+            v: (SLIVER / r - 1.0) / eps,
+            d: area.d.iter().map(|d| slope * d).collect(),
+        })
     }
 
     /// Whether the law keeps a tangent with B = ∇g̃ symmetric: the penalty's ε B ⊗ ∇ḡ is
@@ -273,11 +323,17 @@ impl SlotLaw {
             ContactLaw::Multiplier => 0.0,
         };
         let multipliers = self.law.forces_are_unknowns(self.friction);
-        // A penalty with its forces as unknowns: its compliance 1/ε (see `law::multiplier`).
-        let compliance = if multipliers && penalty > 0.0 {
+        // A penalty with its forces as unknowns: its compliance 1/ε (see `law::multiplier`);
+        // multipliers on a sliver of a master's end fade into a penalty.
+        let sliver = match self.law {
+            ContactLaw::Multiplier if has => self.sliver_compliance(j, &w.area),
+            _ => None,
+        };
+        let penalty_form = multipliers && penalty > 0.0;
+        let compliance = if penalty_form {
             1.0 / penalty
         } else {
-            0.0
+            sliver.as_ref().map_or(0.0, |c| c.v)
         };
         // Anchors keep the elastic slip of the last converged step (none with multipliers).
         let anchored = |elastic: [f64; 3]| Anchor {
@@ -288,13 +344,13 @@ impl SlotLaw {
         if let (Some(f), Some(slip), true) = (self.friction, &w.slip, has) {
             // With a penalty the slip is measured from the anchor's elastic slip.
             let elastic = match anchor {
-                Some(a) if compliance > 0.0 => a.offset,
+                Some(a) if penalty_form => a.offset,
                 _ => [0.0; 3],
             };
             let u = slip.slip(ctx, local, &w.area, elastic);
             let kept = anchored(elastic);
             let mut sk = slip.kinematics(local, u, kept, f.mu, self.stiffness[j]);
-            if compliance > 0.0 {
+            if penalty_form {
                 sk.compliance = 1.0 / (f.penalty * self.scale[j]);
             }
             kin.slip = Some(sk);
@@ -305,6 +361,13 @@ impl SlotLaw {
             let per = self.multipliers_per_slot();
             let eqs = first_lambda + per * j..first_lambda + per * (j + 1);
             let lambdas = &ctx.u[eqs.clone()];
+            if let Some(c) = &sliver {
+                // The row ḡ + c(q)·λ: the law takes c's value, its variation rides on ḡ's.
+                let lambda = lambdas[per - 1];
+                for (g, d) in kin.gap.d.iter_mut().zip(&c.d) {
+                    *g += lambda * d;
+                }
+            }
             let (point, friction) =
                 law::multiplier::evaluate(&laws, lambdas, codes, eqs, &kin, compliance);
             if let Some(s) = &kin.slip {
