@@ -89,9 +89,11 @@ fn compare(multipliers: bool, friction: bool) {
         .unwrap()
         .k_values
         .unwrap();
-    let cands = contact.candidate_equations(&model, &dofs, &u).unwrap();
+    let mut cands = contact.candidate_equations(&model, &dofs, &u).unwrap();
     let lambdas = dofs.n_free - dofs.n_lambda..dofs.n_free;
-    let mut cc = CondensedContact::new(&asm.pattern, &k_s, &cands, lambdas, None, &|e| {
+    cands.extend(lambdas.clone());
+    let max = hertz::solve::condensed::MAX_CANDIDATES;
+    let mut cc = CondensedContact::new(&asm.pattern, &k_s, &cands, lambdas, max, None, &|e| {
         e.to_string()
     })
     .unwrap()

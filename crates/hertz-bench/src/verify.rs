@@ -216,7 +216,14 @@ pub const HERTZ_CAP: f64 = 4.0;
 pub const HERTZ_BLOCK: f64 = 6.0;
 
 impl HertzSphere {
+    /// The input with the cap's bottom nodes within 1.6 of the axis as the contact's slave side.
     pub fn input(&self) -> String {
+        self.input_within(1.6)
+    }
+
+    /// The input with the cap's bottom nodes within `radius` of the axis as the slave side
+    /// (`HERTZ_CAP`: all of them, as a user meshing the whole face would).
+    pub fn input_within(&self, radius: f64) -> String {
         use super::mesh::graded;
         let mut inp = Input::default();
         let extra = format!("mat 1 crossSect 1 nlgeo {}", u8::from(self.nlgeo));
@@ -239,7 +246,7 @@ impl HertzSphere {
         }
         contact_faces_and_material(&mut inp, &block, 0.0, self.nlgeo);
         rollers_and_push(&mut inp, &block.bottom, &cap.top, self.delta);
-        let near = |p: [f64; 3]| p[0].hypot(p[1]) <= 1.6;
+        let near = |p: [f64; 3]| p[0].hypot(p[1]) <= radius;
         let nodes: Vec<usize> = cap
             .bottom
             .iter()

@@ -22,6 +22,13 @@
 //! point's linearized gap (and multiplier) is predicted; the branches are updated from the
 //! prediction and the dense system solved again, until prediction and choice agree (a
 //! primal-dual active-set search on the linear model: see `contact::point`).
+//!
+//! Where the contact candidates are too many for M (a whole face meshed as the contact surface:
+//! M is m × m, its inverse m³), the candidates are the nearest points' equations instead, the
+//! closed ones first and then by gap, up to half the limit: the cost follows the contact zone,
+//! not the surface. A point outside them stays open in the step (its multipliers keep their unit
+//! diagonal in K_s', the open row's own tangent); a point outside that is closed or guessed
+//! closed makes the caller set the solve up again with it (`solve::newton`).
 
 use super::branches::{BranchSearch, ContactStep, OnCycle};
 use super::linear::{FaerSolver, SolverSettings};
@@ -32,7 +39,7 @@ use crate::error::{Error, Result};
 use faer::linalg::solvers::{DenseSolveCore, Solve};
 use faer::Mat;
 
-/// Largest candidate set handled densely (M is m × m).
+/// Largest candidate set handled densely by default (M is m × m; `SolveParams::max_condensed`).
 pub const MAX_CANDIDATES: usize = 3000;
 
 /// Compliance added to the rows of active multipliers in the dense system, relative to the
@@ -57,6 +64,11 @@ pub struct CondensedContact {
     m: Mat<f64>,
     /// Diagonal shift of every candidate (1 for multipliers, α or 0 for displacements).
     shift: Vec<f64>,
+    /// The multipliers that are not candidates: a unit diagonal in K_s', their open row.
+    unit: Vec<usize>,
+    /// The candidates are the nearest points' only: open points outside them stay open in the
+    /// step (else any point outside them makes the caller set the solve up again).
+    partial: bool,
 }
 
 /// A point's local codes, each as the (candidate position, weight) pairs it stands for.
@@ -64,19 +76,22 @@ type PointLocs = Vec<Vec<(usize, f64)>>;
 
 impl CondensedContact {
     /// Factorize K_s (the upper triangle `values` on the symmetric `pattern`) with the candidate
-    /// displacement equations and the multipliers `lambdas` last. Ok(None) when the factor does
-    /// not have them as a trailing supernodal block (the caller then factorizes full tangents).
+    /// equations `candidates` (displacements and multipliers among `lambdas`) last. Ok(None)
+    /// when they are more than `max` or the factor does not have them as a trailing supernodal
+    /// block (the caller then factorizes full tangents).
     pub fn new(
         pattern: &Pattern,
         values: &[f64],
         candidates: &[usize],
         lambdas: std::ops::Range<usize>,
+        max: usize,
         groups: Option<Vec<usize>>,
         describe: &dyn Fn(usize) -> String,
     ) -> Result<Option<Self>> {
-        let mut cand: Vec<usize> = candidates.to_vec();
-        cand.extend(lambdas.clone());
-        if cand.is_empty() || cand.len() > MAX_CANDIDATES || !pattern.symmetric {
+        let cand: Vec<usize> = candidates.to_vec();
+        let chosen: std::collections::HashSet<usize> = cand.iter().copied().collect();
+        let unit: Vec<usize> = lambdas.clone().filter(|e| !chosen.contains(e)).collect();
+        if cand.is_empty() || cand.len() > max || !pattern.symmetric {
             return Ok(None);
         }
         let base = FaerSolver::new(SolverSettings {
@@ -94,6 +109,8 @@ impl CondensedContact {
             cand,
             m: Mat::zeros(0, 0),
             shift,
+            unit,
+            partial: false,
         };
         match cc.factorize(pattern, values, describe) {
             Ok(true) => Ok(Some(cc)),
@@ -132,6 +149,9 @@ impl CondensedContact {
         let mut shifted = values.to_vec();
         for (&e, &s) in self.cand.iter().zip(&self.shift) {
             shifted[pattern.position(e, e)] += s;
+        }
+        for &e in &self.unit {
+            shifted[pattern.position(e, e)] += 1.0;
         }
         self.base.factorize(pattern, &shifted, true, describe)?;
         let Some((eqs, l22)) = self.base.trailing_factor_block() else {
@@ -188,7 +208,7 @@ impl CondensedContact {
     ) -> Result<Option<ContactStep>> {
         let nf = dofs.n_free;
         // Candidate positions and weights of every point's local codes.
-        let Some(locs) = self.candidate_locs(points, dofs) else {
+        let Some(locs) = self.candidate_locs(points, guess, dofs) else {
             return Ok(None);
         };
         let mut w = r.to_vec();
@@ -312,6 +332,11 @@ impl CondensedContact {
         }
     }
 
+    /// Mark the candidates as the nearest points' only (see the module docs).
+    pub fn set_partial(&mut self) {
+        self.partial = true;
+    }
+
     /// The candidate equations (displacements and multipliers), in the order of M.
     pub fn candidates(&self) -> &[usize] {
         &self.cand
@@ -321,13 +346,22 @@ impl CondensedContact {
         self.cand[k] >= dofs.n_free - dofs.n_lambda
     }
 
-    /// Each point's local codes as (candidate position, weight) lists; None when a code's
-    /// equation is not a candidate (the condensed system must grow).
-    fn candidate_locs(&self, points: &[ContactPoint], dofs: &DofMap) -> Option<Vec<PointLocs>> {
+    /// Each point's local codes as (candidate position, weight) lists; None when a point has
+    /// an equation outside the candidates (the condensed system must grow) — where they are
+    /// the nearest points' only, a point that is closed or guessed closed; an open point
+    /// outside them then gets no entries: it stays open in the step, its linearized gap its
+    /// current one.
+    fn candidate_locs(
+        &self,
+        points: &[ContactPoint],
+        guess: &[bool],
+        dofs: &DofMap,
+    ) -> Option<Vec<PointLocs>> {
         let nf = dofs.n_free;
         let mut locs = Vec::with_capacity(points.len());
-        for p in points {
+        for (i, p) in points.iter().enumerate() {
             let mut l = Vec::with_capacity(p.codes.len());
+            let mut outside = false;
             for &code in &p.codes {
                 let mut entries = Vec::new();
                 for (e, w) in dofs.entries(code) {
@@ -336,11 +370,17 @@ impl CondensedContact {
                     }
                     let k = self.pos[e];
                     if k == usize::MAX {
-                        return None;
+                        outside = true;
                     }
                     entries.push((k, w));
                 }
                 l.push(entries);
+            }
+            if outside {
+                if !self.partial || p.closed || guess.get(i).copied().unwrap_or(false) {
+                    return None;
+                }
+                l.iter_mut().for_each(Vec::clear);
             }
             locs.push(l);
         }

@@ -33,6 +33,9 @@ pub(super) enum Condensed {
     Off,
     /// To be set up at the first solve, with the candidate displacement equations.
     Pending(Vec<usize>),
+    /// To be set up again with these equations (displacements and multipliers): the nearest
+    /// points' grown by those that reached beyond them.
+    Near(Vec<usize>),
     Ready(Box<CondensedContact>),
 }
 
@@ -86,6 +89,8 @@ pub(super) struct NewtonContext<'a> {
     pub times: PhaseTimes,
     /// How often the condensed solve was set up again with more candidates.
     pub regrowths: usize,
+    /// The most equations the condensed step holds densely (`SolveParams::max_condensed`).
+    pub max_condensed: usize,
     /// The full tangent's solve with the multipliers eliminated (see [`super::multipliers`]).
     pub eliminate: MultiplierElimination,
 }
@@ -165,6 +170,7 @@ impl<'a> NewtonContext<'a> {
             floor_warned: false,
             times: PhaseTimes::default(),
             regrowths: 0,
+            max_condensed: params.max_condensed,
             eliminate: MultiplierElimination::new(params.krylov_min_unknowns),
         };
         if !ctx.contact.is_empty() && !params.condensed_contact {
@@ -298,8 +304,12 @@ impl<'a> NewtonContext<'a> {
     ) -> Result<ContactStep> {
         let (model, dofs) = (self.asm.model, self.dofs);
         let describe = |eq: usize| describe_eq(model, dofs, eq);
-        if let Condensed::Pending(cands) = &self.condensed {
-            let cands = cands.clone();
+        let pending = match &self.condensed {
+            Condensed::Pending(c) => Some(self.condensed_equations(c.clone(), points, guess)),
+            Condensed::Near(eqs) => Some((eqs.clone(), true)),
+            _ => None,
+        };
+        if let Some((cands, partial)) = pending {
             let ev;
             let ks = match ks_fresh {
                 Some(e) => e,
@@ -321,12 +331,18 @@ impl<'a> NewtonContext<'a> {
                 ks.k_values.as_ref().expect("requested"),
                 &cands,
                 lambdas,
+                self.max_condensed,
                 self.groups.clone(),
                 &describe,
             );
             self.times.factor += since(t);
             self.condensed = match made {
-                Ok(Some(c)) => Condensed::Ready(Box::new(c)),
+                Ok(Some(mut c)) => {
+                    if partial {
+                        c.set_partial();
+                    }
+                    Condensed::Ready(Box::new(c))
+                }
                 Ok(None) => Condensed::Off,
                 // An indefinite structural tangent: the full tangent's LU takes over.
                 Err(Error::Singular(_)) if !self.small_strain => Condensed::Off,
@@ -383,17 +399,55 @@ impl<'a> NewtonContext<'a> {
                 cands.retain(|&e| e < n_disp);
                 cands.sort_unstable();
                 cands.dedup();
+                // Where those are too many, the nearest points' grow from the ones set up.
+                let next = if cands.len() + self.dofs.n_lambda > self.max_condensed {
+                    let kept = c.candidates().to_vec();
+                    let budget = (kept.len() + self.max_condensed / 4).min(self.max_condensed);
+                    let mut near = nearest_equations(points, guess, self.dofs, budget);
+                    near.extend(kept);
+                    near.sort_unstable();
+                    near.dedup();
+                    Condensed::Near(near)
+                } else {
+                    Condensed::Pending(cands)
+                };
                 self.regrowths += 1;
+                let n = match &next {
+                    Condensed::Near(e) | Condensed::Pending(e) => e.len(),
+                    _ => 0,
+                };
                 self.observer.detail(&format!(
-                    "contact reaches beyond the condensed equations: {} candidates now",
-                    cands.len()
+                    "contact reaches beyond the condensed equations: {n} candidates now"
                 ));
-                self.condensed = Condensed::Pending(cands);
+                self.condensed = next;
                 return self.solve_step(u, rhs, points, guess, None, cycle);
             }
             self.condense_off();
         }
         self.solve_full(u, rhs, points, guess)
+    }
+
+    /// The equations of the condensed solve from the candidate displacement equations `cands`:
+    /// with every multiplier, or where those are more than M can take, the nearest points'
+    /// ([`nearest_equations`]); and whether they are those.
+    fn condensed_equations(
+        &self,
+        cands: Vec<usize>,
+        points: &[ContactPoint],
+        guess: &[bool],
+    ) -> (Vec<usize>, bool) {
+        let lambdas = self.dofs.n_free - self.dofs.n_lambda..self.dofs.n_free;
+        let partial = cands.len() + lambdas.len() > self.max_condensed;
+        let mut eqs = if partial {
+            nearest_equations(points, guess, self.dofs, self.max_condensed / 2)
+        } else {
+            let mut all = cands;
+            all.extend(lambdas);
+            all
+        };
+        eqs.sort_unstable();
+        eqs.dedup();
+        (eqs, partial)
     }
 
     /// The first guess of the branch search: closed where a point is closed now or was active at
@@ -611,7 +665,7 @@ impl<'a> NewtonContext<'a> {
             // full-tangent path evaluates its own.
             let need_ks = has_contact
                 && match self.condensed {
-                    Condensed::Pending(_) => true,
+                    Condensed::Pending(_) | Condensed::Near(_) => true,
                     Condensed::Ready(_) => !self.small_strain,
                     Condensed::Off => false,
                 };
@@ -835,7 +889,7 @@ impl<'a> NewtonContext<'a> {
         let step = if has_contact {
             // The structural tangent of the condensed solve is the element part only.
             let need_ks = match self.condensed {
-                Condensed::Pending(_) => true,
+                Condensed::Pending(_) | Condensed::Near(_) => true,
                 Condensed::Ready(_) => !self.small_strain,
                 Condensed::Off => false,
             };
@@ -899,4 +953,40 @@ impl<'a> NewtonContext<'a> {
         }
         (!why.is_empty()).then(|| why.join("; "))
     }
+}
+
+/// The free equations (displacements and multipliers) of the contact points nearest to closing:
+/// every point closed or guessed closed, then the open ones by increasing gap (none without a
+/// partner), until `budget` equations are reached.
+fn nearest_equations(
+    points: &[ContactPoint],
+    guess: &[bool],
+    dofs: &DofMap,
+    budget: usize,
+) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..points.len())
+        .filter(|&i| {
+            points[i].closed || guess.get(i).copied().unwrap_or(false) || !points[i].gap.is_nan()
+        })
+        .collect();
+    let must = |i: usize| points[i].closed || guess.get(i).copied().unwrap_or(false);
+    order.sort_by(|&a, &b| {
+        must(b)
+            .cmp(&must(a))
+            .then(points[a].gap.total_cmp(&points[b].gap))
+    });
+    let mut eqs = std::collections::BTreeSet::new();
+    for i in order {
+        if !must(i) && eqs.len() >= budget {
+            break;
+        }
+        for &code in &points[i].codes {
+            eqs.extend(
+                dofs.entries(code)
+                    .map(|(e, _)| e)
+                    .filter(|&e| e < dofs.n_free),
+            );
+        }
+    }
+    eqs.into_iter().collect()
 }

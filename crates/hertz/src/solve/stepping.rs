@@ -30,6 +30,10 @@ pub struct SolveParams {
     /// [`super::condensed`]); false: full tangents, the multipliers eliminated through their
     /// slave nodes' rows (see [`super::multipliers`]), as beyond the candidates' limit.
     pub condensed_contact: bool,
+    /// The most candidate equations the condensed step holds in its dense block (M is m × m,
+    /// its inverse m³); beyond, the nearest points' equations, half as many (see
+    /// [`super::condensed`]).
+    pub max_condensed: usize,
     /// The linear solver of the full tangents.
     pub solver: SolverChoice,
 }
@@ -50,6 +54,7 @@ impl Default for SolveParams {
             max_cutbacks: 5,
             krylov_min_unknowns: super::linear::KRYLOV_MIN_UNKNOWNS,
             condensed_contact: true,
+            max_condensed: super::condensed::MAX_CANDIDATES,
             solver: SolverChoice::Sparse,
         }
     }
