@@ -39,6 +39,16 @@ pub struct BenchArgs {
     /// 3D Hertz sphere on a block in bricks of spacing H under the contact (0.085: 10^5 unknowns)
     #[arg(long, value_name = "H")]
     pub sphere: Option<f64>,
+    /// --sphere: tetrahedra instead of hexahedra
+    #[arg(long, requires = "sphere")]
+    pub tet: bool,
+    /// --sphere: mortar contact of the cap's bottom faces instead of node-to-face
+    #[arg(long, requires = "sphere")]
+    pub mortar: bool,
+    /// --sphere: the cap's whole bottom face as the slave side, as a user meshing the whole
+    /// face would (else the part near the axis)
+    #[arg(long, requires = "sphere")]
+    pub whole_face: bool,
     /// 3D contact patch test with N x N master bricks ((2N+1)^2 contact nodes)
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=100))]
     pub patch: Option<u64>,
@@ -78,7 +88,16 @@ pub fn main(args: BenchArgs) -> ExitCode {
             eprintln!("error: --sphere H takes 0.03 <= H <= 1, got {h}");
             return ExitCode::from(2);
         }
-        (Some(h), _) => Some(Model3d::Sphere(h)),
+        (Some(h), _) => Some(Model3d::Sphere(hertz_bench::SphereBench {
+            h,
+            kind: if args.tet {
+                hertz_bench::mesh::Solid::Tet
+            } else {
+                hertz_bench::mesh::Solid::Hex
+            },
+            mortar: args.mortar,
+            whole_face: args.whole_face,
+        })),
         (_, Some(p)) => Some(Model3d::Patch(p as usize)),
         _ => None,
     };

@@ -284,11 +284,24 @@ pub fn run_contact(n: usize, multipliers: bool) -> Result<ContactBenchFigures> {
 /// A 3D contact benchmark model (`hertz bench --sphere H` or `--patch N`).
 #[derive(Debug, Clone, Copy)]
 pub enum Model3d {
-    /// The Hertz sphere of [`verify::HertzSphere`] in hexahedra of spacing h under the contact.
-    Sphere(f64),
+    /// The Hertz sphere of [`verify::HertzSphere`] of spacing h under the contact.
+    Sphere(SphereBench),
     /// The patch test of [`verify::Patch`] (small strain, compressed by 0.01) with n × n × 2
     /// master bricks: a contact zone of (2n + 1)² nodes.
     Patch(usize),
+}
+
+/// The Hertz sphere benchmark's mesh and contact.
+#[derive(Debug, Clone, Copy)]
+pub struct SphereBench {
+    /// Element spacing under the contact.
+    pub h: f64,
+    /// Hexahedra or tetrahedra.
+    pub kind: mesh::Solid,
+    /// Mortar (the cap's bottom faces) instead of node-to-face (its bottom nodes).
+    pub mortar: bool,
+    /// The cap's whole bottom face as the slave side, else its part within 1.6 of the axis.
+    pub whole_face: bool,
 }
 
 /// Compression of the patch benchmark.
@@ -305,16 +318,20 @@ impl Model3d {
 
     pub fn input(self, law: suite::Law) -> String {
         match self {
-            Model3d::Sphere(h) => verify::HertzSphere {
-                kind: mesh::Solid::Hex,
+            Model3d::Sphere(b) => verify::HertzSphere {
+                kind: b.kind,
                 sym: 0,
-                h,
+                h: b.h,
                 delta: 0.15,
                 nlgeo: false,
                 law,
-                mortar: false,
+                mortar: b.mortar,
             }
-            .input(),
+            .input_within(if b.whole_face {
+                verify::HERTZ_CAP
+            } else {
+                verify::HERTZ_NEAR
+            }),
             Model3d::Patch(n) => verify::Patch {
                 kind: mesh::Solid::Hex,
                 slave_kind: None,
@@ -333,9 +350,21 @@ impl Model3d {
 
     fn describe(self) -> String {
         match self {
-            Model3d::Sphere(h) => {
-                format!("Hertz sphere on a block, hexahedra, spacing {h} under the contact")
-            }
+            Model3d::Sphere(b) => format!(
+                "Hertz sphere on a block, {}, spacing {} under the contact, {}{}",
+                if b.kind == mesh::Solid::Tet {
+                    "tetrahedra"
+                } else {
+                    "hexahedra"
+                },
+                b.h,
+                if b.mortar { "mortar" } else { "node-to-face" },
+                if b.whole_face {
+                    ", the whole cap face as slave"
+                } else {
+                    ""
+                }
+            ),
             Model3d::Patch(n) => format!(
                 "contact patch test, {n} x {n} x 2 master bricks, {m} x {m} x 2 slave bricks",
                 m = 2 * n

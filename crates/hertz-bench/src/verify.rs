@@ -210,6 +210,9 @@ pub struct HertzSphere {
     pub mortar: bool,
 }
 
+/// The radius around the axis within which [`HertzSphere::input`] takes the slave side.
+pub const HERTZ_NEAR: f64 = 1.6;
+
 /// Sphere radius, cap height and width, and block size of [`HertzSphere`].
 pub const HERTZ_R: f64 = 10.0;
 pub const HERTZ_CAP: f64 = 4.0;
@@ -218,7 +221,7 @@ pub const HERTZ_BLOCK: f64 = 6.0;
 impl HertzSphere {
     /// The input with the cap's bottom nodes within 1.6 of the axis as the contact's slave side.
     pub fn input(&self) -> String {
-        self.input_within(1.6)
+        self.input_within(HERTZ_NEAR)
     }
 
     /// The input with the cap's bottom nodes within `radius` of the axis as the slave side
