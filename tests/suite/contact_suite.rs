@@ -334,3 +334,45 @@ fn mortar_multipliers_let_a_corner_slide_off_the_masters_end() {
         rel(&tenth.force)
     );
 }
+
+/// The penalty from the mesh is the softer body's: a punch a thousand times stiffer than the
+/// rubber block it indents, its bottom nodes the slave side, gets 10³ times the block's
+/// stiffness E·A/h at each node (interior nodes: force / penetration = 10³ E of the block,
+/// exactly), and the large-deformation indentation converges in a few iterations a step, its
+/// force within the penalty's 0.2 % of the multipliers'. Before, the penalty came from the
+/// punch's own modulus (a ratio of 10³ E of the punch, 1000 times more), which in the ring crush
+/// inverted elements.
+#[test]
+fn the_penalty_from_the_mesh_is_the_softer_bodys() {
+    let text = suite::stiff_punch_on_a_soft_block(Law::Penalty(1.0)).replace(" penalty 1e0", "");
+    assert!(!text.contains(" penalty "));
+    let model = common::model_from_text(&text).unwrap();
+    let mut last = Vec::new();
+    let mut iterations = Vec::new();
+    hertz::solve::run_analysis(&model, &common::quiet(), |r| {
+        last = r.contact.to_vec();
+        iterations.push((r.info.iterations, r.info.substeps));
+        Ok(())
+    })
+    .unwrap();
+    assert!(
+        iterations.iter().all(|&(i, s)| i <= 5 && s == 1),
+        "{iterations:?}"
+    );
+    // The punch's bottom nodes run from x = 0.25 to 0.75 by 0.125: the three interior ones.
+    let block_e = 90.0 / 31.0;
+    let mut checked = 0;
+    for st in last.iter().filter(|s| s.active) {
+        let x = model.nodes[st.node].coords[0];
+        if x > 0.3 && x < 0.7 {
+            let ratio = st.force / (-st.gap) / (1e3 * block_e);
+            assert!((ratio - 1.0).abs() < 1e-9, "node at x = {x}: {ratio}");
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 3);
+    let pen: f64 = last.iter().map(|s| s.force).sum();
+    let lm = suite::run(&suite::stiff_punch_on_a_soft_block(Law::Multiplier)).unwrap();
+    let exact = lm.force[lm.force.len() - 1];
+    assert!((pen / exact - 1.0).abs() < 2e-3, "{pen} vs {exact}");
+}

@@ -608,6 +608,44 @@ pub fn die_as_wide_as_the_block(dim: usize, mortar: bool, law: Law) -> String {
     )
 }
 
+/// A neo-Hookean block [0, 1]² (8 × 8, c1 = 0.5, k = 10, E = 90/31) indented 20 % in ten steps
+/// of large deformation by a punch over its middle half a thousand times stiffer (4 × 2 over
+/// [0.25, 0.75] × [1, 1.2]), the punch's bottom nodes the slave side on the block's top edges: a
+/// stiff slave on a soft master.
+pub fn stiff_punch_on_a_soft_block(law: Law) -> String {
+    let mut inp = Input::default();
+    let xs = uniform(0.0, 1.0, 8);
+    let block = inp.block2d(Kind::Q4, &xs, &|_| xs.clone(), "mat 1 crossSect 1 nlgeo 1");
+    let punch = inp.block2d(
+        Kind::Q4,
+        &uniform(0.25, 0.75, 4),
+        &|_| uniform(1.0, 1.2, 2),
+        "mat 2 crossSect 1 nlgeo 1",
+    );
+    inp.segments.push(format!(
+        "linear2delementedgecontactsegment 1 edgeset {}",
+        inp.sets.len() + 1
+    ));
+    inp.boundary_set(&block.top_edges);
+    inp.sections.push("SimpleCS 1 thick 1.0".into());
+    inp.materials
+        .push("MooneyRivlinCompressibleMat 1 d 0 c1 0.5 c2 0 k 10".into());
+    inp.materials
+        .push("MooneyRivlinCompressibleMat 2 d 0 c1 500 c2 0 k 10000".into());
+    let bottom = inp.node_set(&block.bottom);
+    let top = inp.node_set(&punch.top);
+    inp.bcs.push(format!(
+        "BoundaryCondition 1 loadTimeFunction 1 dofs 2 1 2 values 2 0 0 set {bottom}"
+    ));
+    inp.bcs.push(format!(
+        "BoundaryCondition 2 loadTimeFunction 1 dofs 2 1 2 values 2 0 -0.2 set {top}"
+    ));
+    inp.bcs.push(n2s(3, law, &punch.bottom, &[1], ""));
+    let steps: Vec<f64> = (1..=10).map(|i| i as f64 / 10.0).collect();
+    inp.functions.push(history(&steps));
+    inp.render("suite", &analysis(steps.len()), "PlaneStrain")
+}
+
 /// Every setup of the suite.
 pub fn setups() -> Vec<Setup> {
     let mut out = Vec::new();

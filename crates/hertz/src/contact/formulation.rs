@@ -287,6 +287,18 @@ pub trait Formulation {
     ) -> Result<f64>;
 }
 
+/// The modulus of a penalty from the mesh: the softer of the slave's and the master's (`master`
+/// infinite for a rigid one, 0 when unknown). A stiff slave (a steel plate) on a soft master
+/// (rubber) took its own modulus before, a penalty 10⁴–10⁵ times the rubber's stiffness, and
+/// large-deformation steps inverted elements; the softer body is what the overlap strains.
+pub fn softer(slave: f64, master: f64) -> f64 {
+    if master > 0.0 {
+        slave.min(master)
+    } else {
+        slave
+    }
+}
+
 /// The modulus of friction's c_T at a slave node of modulus `slave` against a master of modulus
 /// `master`: the two in series, E_s E_m / (E_s + E_m), as the tangential compliance of the
 /// contact is the sum of the two bodies'. With the slave's alone, c_T of a stiff slave on a

@@ -53,8 +53,9 @@ const HYSTERESIS_BAND: f64 = 1e-6;
 /// boundary's edge length.
 const ISOLATED_RAMP: f64 = 0.01;
 /// The penalty of a node when the condition gives none: this factor times the stiffness E·A/h
-/// of the elements under it (E their Young's modulus, A its tributary area, h the distance to
-/// its neighbours): 10⁻³ of the elements' own compliance, overlaps of 0.1 % of their strain.
+/// of the elements under it (E the softer of their Young's modulus and the master's, A its
+/// tributary area, h the distance to its neighbours): 10⁻³ of the softer body's compliance,
+/// overlaps of 0.1 % of its strain.
 pub const DEFAULT_PENALTY_FACTOR: f64 = 1e3;
 
 struct Slot {
@@ -326,7 +327,7 @@ impl NodeToSegment {
                 let per_modulus = super::law_area(t.measure, model) / h;
                 let mut scale = c.node_weights.as_ref().map_or(1.0, |w| w[k]);
                 if c.penalty_from_mesh {
-                    scale *= DEFAULT_PENALTY_FACTOR * e * per_modulus;
+                    scale *= DEFAULT_PENALTY_FACTOR * super::softer(e, master) * per_modulus;
                 }
                 let stiffness = super::friction_modulus(e, master) * per_modulus;
                 Slot {
