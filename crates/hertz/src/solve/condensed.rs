@@ -614,3 +614,39 @@ fn null_vector(m: faer::MatRef<'_, f64>) -> Option<Vec<f64>> {
     let b: Vec<f64> = (0..n).map(|i| w[bwd[i]]).collect();
     Some(if residual(&a) <= residual(&b) { a } else { b })
 }
+
+/// The free equations (displacements and multipliers) of the contact points nearest to closing:
+/// every point closed or guessed closed, then the open ones by increasing gap (none without a
+/// partner), until `budget` equations are reached.
+pub fn nearest_equations(
+    points: &[ContactPoint],
+    guess: &[bool],
+    dofs: &DofMap,
+    budget: usize,
+) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..points.len())
+        .filter(|&i| {
+            points[i].closed || guess.get(i).copied().unwrap_or(false) || !points[i].gap.is_nan()
+        })
+        .collect();
+    let must = |i: usize| points[i].closed || guess.get(i).copied().unwrap_or(false);
+    order.sort_by(|&a, &b| {
+        must(b)
+            .cmp(&must(a))
+            .then(points[a].gap.total_cmp(&points[b].gap))
+    });
+    let mut eqs = std::collections::BTreeSet::new();
+    for i in order {
+        if !must(i) && eqs.len() >= budget {
+            break;
+        }
+        for &code in &points[i].codes {
+            eqs.extend(
+                dofs.entries(code)
+                    .map(|(e, _)| e)
+                    .filter(|&e| e < dofs.n_free),
+            );
+        }
+    }
+    eqs.into_iter().collect()
+}

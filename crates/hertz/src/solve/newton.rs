@@ -14,7 +14,7 @@
 //! allows (a warning then says the penalty is larger than double precision resolves).
 
 use super::branches::{BranchSearch, ContactStep, OnCycle};
-use super::condensed::CondensedContact;
+use super::condensed::{nearest_equations, CondensedContact};
 use super::convergence::{check, penalty_warning, Residual};
 use super::linear::{DenseLu, FaerSolver, LinearSolver, SolverSettings};
 use super::multipliers::{Group, MultiplierElimination};
@@ -953,40 +953,4 @@ impl<'a> NewtonContext<'a> {
         }
         (!why.is_empty()).then(|| why.join("; "))
     }
-}
-
-/// The free equations (displacements and multipliers) of the contact points nearest to closing:
-/// every point closed or guessed closed, then the open ones by increasing gap (none without a
-/// partner), until `budget` equations are reached.
-fn nearest_equations(
-    points: &[ContactPoint],
-    guess: &[bool],
-    dofs: &DofMap,
-    budget: usize,
-) -> Vec<usize> {
-    let mut order: Vec<usize> = (0..points.len())
-        .filter(|&i| {
-            points[i].closed || guess.get(i).copied().unwrap_or(false) || !points[i].gap.is_nan()
-        })
-        .collect();
-    let must = |i: usize| points[i].closed || guess.get(i).copied().unwrap_or(false);
-    order.sort_by(|&a, &b| {
-        must(b)
-            .cmp(&must(a))
-            .then(points[a].gap.total_cmp(&points[b].gap))
-    });
-    let mut eqs = std::collections::BTreeSet::new();
-    for i in order {
-        if !must(i) && eqs.len() >= budget {
-            break;
-        }
-        for &code in &points[i].codes {
-            eqs.extend(
-                dofs.entries(code)
-                    .map(|(e, _)| e)
-                    .filter(|&e| e < dofs.n_free),
-            );
-        }
-    }
-    eqs.into_iter().collect()
 }
