@@ -24,6 +24,7 @@ fn every_setup_converges_quickly_and_penalty_matches_multipliers() {
         "large deformation",
         "elastic cylinder",
         "node-to-node",
+        "3D tetrahedra",
     ] {
         assert!(classes.contains(class), "class {class} covered");
     }

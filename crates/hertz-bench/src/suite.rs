@@ -8,7 +8,7 @@
 //! one converges with at most 25 iterations per step and no step cut-back, and that the penalty
 //! answer equals its multiplier twin within the penalty's own error.
 
-use super::mesh::{graded, uniform, Input, Kind};
+use super::mesh::{graded, uniform, Input, Kind, Solid};
 use hertz::error::{Error, Result};
 use hertz::solve::{run_analysis, SolveParams};
 use std::time::Instant;
@@ -980,8 +980,36 @@ pub fn setups() -> Vec<Setup> {
         PENALTY,
         |l| cylinder_on_block(0.05, l, true),
     ));
+    // Tetrahedra on tetrahedra, the cap's whole bottom face the slave side, as a user meshing
+    // both bodies with a tetrahedral mesher would.
+    for (mortar, name, penalty) in [
+        (false, "node-to-face", 1e5),
+        // Per unit area: 10³ E/h.
+        (true, "mortar", 1e3 * crate::verify::E / TET_SPHERE_H),
+    ] {
+        out.push(Setup::new(
+            format!("3D Hertz, tetrahedra, whole face, {name}"),
+            "3D tetrahedra",
+            penalty,
+            move |l| {
+                crate::verify::HertzSphere {
+                    kind: Solid::Tet,
+                    sym: 0,
+                    h: TET_SPHERE_H,
+                    delta: 0.15,
+                    nlgeo: false,
+                    law: l,
+                    mortar,
+                }
+                .input_within(crate::verify::HERTZ_CAP)
+            },
+        ));
+    }
     out
 }
+
+/// Element spacing of the suite's tetrahedral Hertz setups.
+const TET_SPHERE_H: f64 = 0.3;
 
 /// What a run of one twin gave.
 #[derive(Debug, Clone, Default)]
