@@ -506,6 +506,16 @@ pub fn compressed_by_a_moving_rigid(circle: bool, neo_hooke: bool, law: Law) -> 
     inp.render("suite", &analysis(steps.len()), "PlaneStrain")
 }
 
+/// The unit cross-section, the neo-Hookean rubber (material 1: c1 = 0.5, k = 10, E = 90/31)
+/// and a die a thousand times stiffer (material 2) of the die and punch setups.
+fn rubber_and_stiff_die(inp: &mut Input) {
+    inp.sections.push("SimpleCS 1 thick 1.0".into());
+    inp.materials
+        .push("MooneyRivlinCompressibleMat 1 d 0 c1 0.5 c2 0 k 10".into());
+    inp.materials
+        .push("MooneyRivlinCompressibleMat 2 d 0 c1 500 c2 0 k 10000".into());
+}
+
 /// The penalty of [`die_as_wide_as_the_block`]'s twin: 10³ times the block's modulus (90/31).
 pub const DIE_PENALTY: f64 = 3e3;
 
@@ -546,11 +556,7 @@ pub fn die_as_wide_as_the_block(dim: usize, mortar: bool, law: Law) -> String {
         inp.faces_where(&die, &|x| (x[2] - 1.0).abs() < 1e-9)
     };
     inp.boundary_set(&faces);
-    inp.sections.push("SimpleCS 1 thick 1.0".into());
-    inp.materials
-        .push("MooneyRivlinCompressibleMat 1 d 0 c1 0.5 c2 0 k 10".into());
-    inp.materials
-        .push("MooneyRivlinCompressibleMat 2 d 0 c1 500 c2 0 k 10000".into());
+    rubber_and_stiff_die(&mut inp);
     // The bottom slides on its plane; the corner at the origin is held, and in 3D its
     // neighbour along x against turning about z.
     let bottom = inp.node_set(&block.bottom);
@@ -627,11 +633,7 @@ pub fn stiff_punch_on_a_soft_block(law: Law) -> String {
         inp.sets.len() + 1
     ));
     inp.boundary_set(&block.top_edges);
-    inp.sections.push("SimpleCS 1 thick 1.0".into());
-    inp.materials
-        .push("MooneyRivlinCompressibleMat 1 d 0 c1 0.5 c2 0 k 10".into());
-    inp.materials
-        .push("MooneyRivlinCompressibleMat 2 d 0 c1 500 c2 0 k 10000".into());
+    rubber_and_stiff_die(&mut inp);
     let bottom = inp.node_set(&block.bottom);
     let top = inp.node_set(&punch.top);
     inp.bcs.push(format!(

@@ -377,7 +377,7 @@ impl CondensedContact {
                 l.push(entries);
             }
             if outside {
-                if !self.partial || p.closed || guess.get(i).copied().unwrap_or(false) {
+                if !self.partial || closed_or_guessed(points, guess, i) {
                     return None;
                 }
                 l.iter_mut().for_each(Vec::clear);
@@ -624,12 +624,10 @@ pub fn nearest_equations(
     dofs: &DofMap,
     budget: usize,
 ) -> Vec<usize> {
+    let must = |i: usize| closed_or_guessed(points, guess, i);
     let mut order: Vec<usize> = (0..points.len())
-        .filter(|&i| {
-            points[i].closed || guess.get(i).copied().unwrap_or(false) || !points[i].gap.is_nan()
-        })
+        .filter(|&i| must(i) || !points[i].gap.is_nan())
         .collect();
-    let must = |i: usize| points[i].closed || guess.get(i).copied().unwrap_or(false);
     order.sort_by(|&a, &b| {
         must(b)
             .cmp(&must(a))
@@ -649,4 +647,9 @@ pub fn nearest_equations(
         }
     }
     eqs.into_iter().collect()
+}
+
+/// Whether point `i` is closed now or in the branch search's first guess.
+fn closed_or_guessed(points: &[ContactPoint], guess: &[bool], i: usize) -> bool {
+    points[i].closed || guess.get(i).copied().unwrap_or(false)
 }

@@ -141,16 +141,18 @@ impl FaceMortar {
         // Without a penalty, h is the mean size (√area) of the node's slave faces.
         let nodes: Vec<usize> = slots.iter().map(|s| s.0).collect();
         let reference = |n: usize| model.nodes[n].coords;
+        let size: Vec<f64> = slave
+            .faces
+            .iter()
+            .map(|f| Facet::at(f, &reference).size)
+            .collect();
         // ∫ N_j over a flat face: its area over its corner count.
         let full_support = slots
             .iter()
             .map(|(_, faces)| {
                 faces
                     .iter()
-                    .map(|&k| {
-                        let f = &slave.faces[k];
-                        Facet::at(f, &reference).size.powi(2) / f.nodes.len() as f64
-                    })
+                    .map(|&k| size[k].powi(2) / slave.faces[k].nodes.len() as f64)
                     .sum()
             })
             .collect();
@@ -160,11 +162,7 @@ impl FaceMortar {
             &nodes,
             |j| {
                 let faces = &slots[j].1;
-                faces
-                    .iter()
-                    .map(|&k| Facet::at(&slave.faces[k], &reference).size)
-                    .sum::<f64>()
-                    / faces.len() as f64
+                faces.iter().map(|&k| size[k]).sum::<f64>() / faces.len() as f64
             },
             full_support,
         );
