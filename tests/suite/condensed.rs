@@ -4,8 +4,8 @@
 //! and with friction (multipliers, and a penalty solved in their form with its compliance),
 //! some nodes sticking and others slipping.
 
-use hertz::assembly::{Assembler, Contribution};
-use hertz::contact::{ContactSystem, History, Search};
+use hertz::assembly::{Assembler, Contribution, NodalState};
+use hertz::contact::{ContactSystem, Search};
 use hertz::input::read_model;
 use hertz::solve::branches::OnCycle;
 use hertz::solve::condensed::CondensedContact;
@@ -58,15 +58,12 @@ fn compare(multipliers: bool, friction: bool) {
     // The friction history: the states at u = 0.
     let zero = vec![0.0; u.len()];
     let before = contact
-        .evaluate(&model, &dofs, &zero, Search::Fresh)
+        .evaluate(&NodalState::new(&model, &dofs, &zero), Search::Fresh)
         .unwrap()
         .1;
-    let history = History {
-        states: &before,
-        u: &zero,
-    };
+    let nodes = NodalState::new(&model, &dofs, &u).with_start(Some(&zero));
     let (points, states) = contact
-        .evaluate_with_history(&model, &dofs, &u, Search::Fresh, Some(history))
+        .evaluate_with_history(&nodes, Search::Fresh, Some(&before))
         .unwrap();
     let n_active = states.iter().filter(|s| s.active).count();
     assert!(n_active >= 3, "{n_active} active contacts");
@@ -89,7 +86,7 @@ fn compare(multipliers: bool, friction: bool) {
         .unwrap()
         .k_values
         .unwrap();
-    let mut cands = contact.candidate_equations(&model, &dofs, &u).unwrap();
+    let mut cands = contact.candidate_equations(&nodes).unwrap();
     let lambdas = dofs.n_free - dofs.n_lambda..dofs.n_free;
     cands.extend(lambdas.clone());
     let max = hertz::solve::condensed::MAX_CANDIDATES;

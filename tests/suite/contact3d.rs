@@ -181,7 +181,7 @@ fn a_contact_surface_beyond_the_dense_block_is_condensed_on_its_nearest_points()
         let contact = hertz::contact::ContactSystem::new(&model).unwrap();
         let zero = vec![0.0; dofs.n_primary()];
         let every = contact
-            .candidate_equations(&model, &dofs, &zero)
+            .candidate_equations(&hertz::assembly::NodalState::new(&model, &dofs, &zero))
             .unwrap()
             .len()
             + dofs.n_lambda;

@@ -73,7 +73,10 @@ impl Probe {
     fn force3(&self, u: &[f64], slot: usize) -> ([f64; 3], SlotState) {
         let (points, states) = self
             .contact
-            .evaluate(&self.model, &self.dofs, u, Search::Fresh)
+            .evaluate(
+                &hertz::assembly::NodalState::new(&self.model, &self.dofs, u),
+                Search::Fresh,
+            )
             .unwrap();
         let c = points[slot].contribution();
         let f = if c.fe.is_empty() {
@@ -88,7 +91,10 @@ impl Probe {
     fn force(&self, u: &[f64], search: Search) -> ([f64; 2], Vec<SlotState>) {
         let (points, states) = self
             .contact
-            .evaluate(&self.model, &self.dofs, u, search)
+            .evaluate(
+                &hertz::assembly::NodalState::new(&self.model, &self.dofs, u),
+                search,
+            )
             .unwrap();
         let c = points[0].contribution();
         let f = if c.fe.is_empty() {
@@ -210,7 +216,10 @@ fn force_falls_continuously_to_zero_past_the_open_end_of_the_master() {
         ]);
         let (points, states) = probe
             .contact
-            .evaluate(&probe.model, &probe.dofs, &u, Search::Fresh)
+            .evaluate(
+                &hertz::assembly::NodalState::new(&probe.model, &probe.dofs, &u),
+                Search::Fresh,
+            )
             .unwrap();
         let _ = points;
         forces.push((d, states[0].force, states[0].partner));
@@ -252,12 +261,18 @@ fn geometric_tangent_is_dropped_only_beyond_a_pressure_of_e() {
         let u = probe.at(&[(s, [0.3, 0.2 + 0.9 - depth])]);
         let prod = probe
             .contact
-            .evaluate(&probe.model, &probe.dofs, &u, Search::Fresh)
+            .evaluate(
+                &hertz::assembly::NodalState::new(&probe.model, &probe.dofs, &u),
+                Search::Fresh,
+            )
             .unwrap()
             .0[0]
             .clone();
         let full = exact
-            .evaluate(&probe.model, &probe.dofs, &u, Search::Fresh)
+            .evaluate(
+                &hertz::assembly::NodalState::new(&probe.model, &probe.dofs, &u),
+                Search::Fresh,
+            )
             .unwrap()
             .0[0]
             .clone();

@@ -15,7 +15,8 @@ use crate::common;
 
 use common::{face_input, label_of_slave, strip, LM, PEN};
 
-use hertz::contact::{ContactSystem, History, Search};
+use hertz::assembly::NodalState;
+use hertz::contact::{ContactSystem, Search};
 use hertz::fem::shape::HEXA8_CORNERS;
 use hertz_bench::mesh::Solid;
 
@@ -48,15 +49,17 @@ fn fd_error_with_history(
     u: &[f64],
     history: Option<&[hertz::contact::SlotState]>,
 ) -> (f64, Vec<hertz::contact::SlotState>, usize) {
-    let zero = vec![0.0; u.len()];
-    let history = history.map(|states| History { states, u: &zero });
     let (points, states) = contact
-        .evaluate_with_history(model, dofs, u, Search::Fresh, history)
+        .evaluate_with_history(&NodalState::new(model, dofs, u), Search::Fresh, history)
         .unwrap();
     let contribs: Vec<_> = points.iter().map(|p| p.contribution()).collect();
     let point = |u: &[f64], k: usize| {
         contact
-            .evaluate_with_history(model, dofs, u, Search::Frozen(&states), history)
+            .evaluate_with_history(
+                &NodalState::new(model, dofs, u),
+                Search::Frozen(&states),
+                history,
+            )
             .unwrap()
             .0
             .swap_remove(k)
@@ -250,7 +253,10 @@ fn check_friction(
     contact.set_pressure_limit(f64::INFINITY);
     let u0 = vec![0.0; dofs.n_primary()];
     let history = contact
-        .evaluate(&model, &dofs, &u0, Search::Fresh)
+        .evaluate(
+            &hertz::assembly::NodalState::new(&model, &dofs, &u0),
+            Search::Fresh,
+        )
         .unwrap()
         .1;
     assert!(
@@ -557,7 +563,12 @@ fn n2s_penalty_tangent_matches_the_consistent_closed_form_of_the_spec() {
     contact.set_pressure_limit(f64::INFINITY);
     let dofs = hertz::solve::number_dofs(&model).unwrap();
     let u = vec![0.0; dofs.n_primary()];
-    let (points, states) = contact.evaluate(&model, &dofs, &u, Search::Fresh).unwrap();
+    let (points, states) = contact
+        .evaluate(
+            &hertz::assembly::NodalState::new(&model, &dofs, &u),
+            Search::Fresh,
+        )
+        .unwrap();
     let c = &points[0].contribution();
     assert_eq!(c.codes.len(), 6, "node 5, then edge nodes 1 and 2");
     let k_hertz = |i: usize, j: usize| c.ke[i * 6 + j];
@@ -952,7 +963,10 @@ fn mortar_friction_tangents_are_jacobians_in_stick_and_slip() {
                 contact.set_pressure_limit(f64::INFINITY);
                 let u0 = vec![0.0; dofs.n_primary()];
                 let history = contact
-                    .evaluate(&model, &dofs, &u0, Search::Fresh)
+                    .evaluate(
+                        &hertz::assembly::NodalState::new(&model, &dofs, &u0),
+                        Search::Fresh,
+                    )
                     .unwrap()
                     .1;
                 let case = Case {

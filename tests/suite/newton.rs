@@ -205,7 +205,12 @@ fn any_tangent_sink_gets_the_assembled_tangent() {
     let u: Vec<f64> = (0..dofs.n_primary())
         .map(|i| 1e-3 * ((i as f64) * 0.37).sin())
         .collect();
-    let (points, _) = contact.evaluate(&model, &dofs, &u, Search::Fresh).unwrap();
+    let (points, _) = contact
+        .evaluate(
+            &hertz::assembly::NodalState::new(&model, &dofs, &u),
+            Search::Fresh,
+        )
+        .unwrap();
     let contribs: Vec<Contribution> = points.iter().map(|p| p.contribution()).collect();
     assert!(
         contribs.iter().any(|c| !c.ke.is_empty()),

@@ -4,6 +4,7 @@
 //! scatter is serial in element order, so results do not depend on the thread count.
 
 use super::dofs::DofMap;
+use super::nodal::NodalState;
 use super::Contribution;
 use crate::error::{Error, Result};
 use crate::fem::{rule, QuadPoint};
@@ -226,6 +227,14 @@ impl<'m> Assembler<'m> {
         };
         a.pattern = a.build_pattern();
         Ok(a)
+    }
+
+    /// The state `u` as contact sees it: node positions, location codes and multipliers.
+    pub fn nodal_state<'u>(&self, u: &'u [f64]) -> NodalState<'u>
+    where
+        'm: 'u,
+    {
+        NodalState::new(self.model, self.dofs, u)
     }
 
     /// Whether any element's material keeps a state (plasticity).

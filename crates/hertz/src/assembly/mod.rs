@@ -4,9 +4,11 @@
 
 pub mod assembler;
 pub mod dofs;
+pub mod nodal;
 
 pub use assembler::{Assembler, Evaluation, Pattern, PatternValues, TangentSink};
 pub use dofs::{DofMap, ExtraDofs};
+pub use nodal::NodalState;
 
 /// A local contribution of something other than an element (a contact pair): location codes, the
 /// local residual (internal force) and the row-major local tangent. An empty `fe` contributes

@@ -7,8 +7,8 @@
 use super::dual::{self, DVec, Dual};
 use super::law::{self, Laws};
 use super::point::ContactPoint;
-use crate::assembly::DofMap;
-use crate::error::{Error, Result};
+use crate::assembly::NodalState;
+use crate::error::Result;
 use crate::model::queries::model_size;
 use crate::model::{ContactLaw, Model};
 
@@ -126,51 +126,21 @@ impl<'a> Search<'a> {
 /// The state a formulation is evaluated at.
 pub struct Ctx<'a> {
     pub model: &'a Model,
-    pub dofs: &'a DofMap,
-    pub u: &'a [f64],
+    /// The nodes' positions, location codes and the multipliers, as the assembler hands them.
+    pub nodes: NodalState<'a>,
     pub dim: usize,
     pub laws: &'a Laws,
-    /// The primary state of the last converged step (the friction history's), if given.
-    pub start: Option<&'a [f64]>,
-}
-
-/// The friction history: the contact states of the last converged step and its primary state.
-#[derive(Debug, Clone, Copy)]
-pub struct History<'a> {
-    pub states: &'a [SlotState],
-    pub u: &'a [f64],
 }
 
 impl Ctx<'_> {
     /// A node's position at the last converged step (its reference position without one).
     pub fn start_position(&self, n: usize) -> [f64; 3] {
-        let mut x = self.model.nodes[n].coords;
-        if let Some(u) = self.start {
-            for (d, xd) in x.iter_mut().enumerate().take(self.dim) {
-                if let Some(code) = self.dofs.code(n, d as u8 + 1) {
-                    *xd += self.dofs.value(u, code);
-                }
-            }
-        }
-        x
+        self.nodes.start_position(n)
     }
 
     /// Current position of a node and the location codes of its displacement DOFs.
     pub fn position(&self, n: usize) -> Result<([f64; 3], [usize; 3])> {
-        let mut x = self.model.nodes[n].coords;
-        let mut codes = [0; 3];
-        for d in 0..self.dim {
-            let code = self.dofs.code(n, d as u8 + 1).ok_or_else(|| {
-                Error::Solve(format!(
-                    "contact node {} has no DOF {}",
-                    self.model.nodes[n].label,
-                    d + 1
-                ))
-            })?;
-            x[d] += self.dofs.value(self.u, code);
-            codes[d] = code;
-        }
-        Ok((x, codes))
+        self.nodes.position(n)
     }
 }
 
@@ -343,7 +313,7 @@ pub fn apply_law(
                 ContactLaw::Penalty(p) => 1.0 / p,
                 ContactLaw::Multiplier => 0.0,
             };
-            let lambdas = &ctx.u[eqs.clone()];
+            let lambdas = ctx.nodes.multipliers(eqs.clone());
             let (point, friction) =
                 law::multiplier::evaluate(ctx.laws, lambdas, codes, eqs, kin, compliance);
             if let Some(s) = &kin.slip {

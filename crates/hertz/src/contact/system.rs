@@ -5,7 +5,7 @@ use super::formulation::*;
 use super::law::Laws;
 use super::point::ContactPoint;
 use super::{mortar, n2n, n2s};
-use crate::assembly::{DofMap, ExtraDofs};
+use crate::assembly::{ExtraDofs, NodalState};
 use crate::error::Result;
 use crate::model::queries::model_size;
 use crate::model::{Model, Pairing};
@@ -94,38 +94,25 @@ impl ContactSystem {
         }
     }
 
-    /// Free equations that contact contributions can touch from the state `u` on (through
+    /// Free equations that contact contributions can touch from the state `nodes` on (through
     /// slave-node weights), sorted; the multipliers are not among them.
-    pub fn candidate_equations(
-        &self,
-        model: &Model,
-        dofs: &DofMap,
-        u: &[f64],
-    ) -> Result<Vec<usize>> {
-        let ctx = Ctx {
-            model,
-            dofs,
-            u,
+    pub fn candidate_equations(&self, nodes: &NodalState) -> Result<Vec<usize>> {
+        let ctx = self.ctx(nodes);
+        let mut candidates = Vec::new();
+        for f in &self.formulations {
+            candidates.extend(f.candidate_nodes(&ctx)?);
+        }
+        Ok(nodes.displacement_equations(candidates))
+    }
+
+    /// The state the formulations are evaluated at.
+    fn ctx<'a>(&'a self, nodes: &NodalState<'a>) -> Ctx<'a> {
+        Ctx {
+            model: nodes.model(),
+            nodes: *nodes,
             dim: self.dim,
             laws: &self.laws,
-            start: None,
-        };
-        let mut nodes = Vec::new();
-        for f in &self.formulations {
-            nodes.extend(f.candidate_nodes(&ctx)?);
         }
-        let mut eqs: Vec<usize> = nodes
-            .into_iter()
-            .flat_map(|n| {
-                dofs.node_dofs[n]
-                    .iter()
-                    .flat_map(|&(_, c)| dofs.entries(c).map(|(p, _)| p))
-            })
-            .filter(|&p| p < dofs.n_free - dofs.n_lambda)
-            .collect();
-        eqs.sort_unstable();
-        eqs.dedup();
-        Ok(eqs)
     }
 
     /// Set the contact pressure above which the geometric tangent part is dropped (see
@@ -139,42 +126,30 @@ impl ContactSystem {
         self.frictional
     }
 
-    /// Evaluate every contact point at the primary state `u` without friction history: the
-    /// points (whose [`contribution`](ContactPoint::contribution) is the current residual and
-    /// tangent) and their states.
+    /// Evaluate every contact point at the state `nodes` without friction history: the points
+    /// (whose [`contribution`](ContactPoint::contribution) is the current residual and tangent)
+    /// and their states.
     pub fn evaluate(
         &self,
-        model: &Model,
-        dofs: &DofMap,
-        u: &[f64],
+        nodes: &NodalState,
         search: Search,
     ) -> Result<(Vec<ContactPoint>, Vec<SlotState>)> {
-        self.evaluate_with_history(model, dofs, u, search, None)
+        self.evaluate_with_history(nodes, search, None)
     }
 
     /// [`ContactSystem::evaluate`] with the friction history: the converged states of the last
-    /// step (their anchors) and its primary state.
+    /// step (their anchors); its primary state is `nodes`' start state.
     pub fn evaluate_with_history(
         &self,
-        model: &Model,
-        dofs: &DofMap,
-        u: &[f64],
+        nodes: &NodalState,
         search: Search,
-        history: Option<History>,
+        history: Option<&[SlotState]>,
     ) -> Result<(Vec<ContactPoint>, Vec<SlotState>)> {
-        let ctx = Ctx {
-            model,
-            dofs,
-            u,
-            dim: self.dim,
-            laws: &self.laws,
-            start: history.map(|h| h.u),
-        };
-        let history = history.map(|h| h.states);
+        let ctx = self.ctx(nodes);
         let start = std::time::Instant::now();
         let mut points = Vec::new();
         let mut states = Vec::new();
-        let mut lambda = dofs.n_free - dofs.n_lambda;
+        let mut lambda = nodes.first_multiplier();
         let mut slot = 0;
         let mut searching = 0.0;
         for f in &self.formulations {

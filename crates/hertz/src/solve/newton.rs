@@ -20,9 +20,9 @@ use super::linear::{DenseLu, FaerSolver, LinearSolver, SolverSettings};
 use super::multipliers::{Group, MultiplierElimination};
 use super::report::{IterationReport, Observer, Phase};
 use super::stepping::{PhaseTimes, SolveParams, SolverChoice, StepInfo};
-use crate::assembly::{Assembler, Contribution, DofMap, Evaluation};
+use crate::assembly::{Assembler, Contribution, DofMap, Evaluation, NodalState};
 use crate::contact::point::Branch;
-use crate::contact::{ContactPoint, ContactSystem, History, PointLaw, Search, SlotState};
+use crate::contact::{ContactPoint, ContactSystem, PointLaw, Search, SlotState};
 use crate::error::{Error, Result};
 use crate::model::{Analysis, Model};
 use std::time::Instant;
@@ -125,14 +125,15 @@ impl<'a> NewtonContext<'a> {
         let np = dofs.n_primary();
         let small_strain = model.constant_element_stiffness();
         let linear = small_strain && contact.is_empty();
+        let zero = vec![0.0; np];
         // Contact: Newton systems condensed on the contact equations (see `condensed`).
         let condensed = if contact.is_empty() || !params.condensed_contact {
             Condensed::Off
         } else {
-            Condensed::Pending(contact.candidate_equations(model, dofs, &vec![0.0; np])?)
+            Condensed::Pending(contact.candidate_equations(&NodalState::new(model, dofs, &zero))?)
         };
         let initial_states = contact
-            .evaluate(model, dofs, &vec![0.0; np], Search::Fresh)?
+            .evaluate(&NodalState::new(model, dofs, &zero), Search::Fresh)?
             .1;
         let initial_warnings = crate::contact::initial_warnings(model, &initial_states);
         for w in &initial_warnings {
@@ -241,19 +242,13 @@ impl<'a> NewtonContext<'a> {
         u: &[f64],
         search: Search,
     ) -> Result<(Vec<crate::contact::ContactPoint>, Vec<SlotState>)> {
-        let zero;
-        let history = match &self.history {
-            Some((states, u)) => History { states, u },
-            None => {
-                zero = vec![0.0; u.len()];
-                History {
-                    states: &self.initial_states,
-                    u: &zero,
-                }
-            }
+        let nodes = self.asm.nodal_state(u);
+        let (nodes, history) = match &self.history {
+            Some((states, start)) => (nodes.with_start(Some(start)), states),
+            None => (nodes, &self.initial_states),
         };
         self.contact
-            .evaluate_with_history(self.asm.model, self.dofs, u, search, Some(history))
+            .evaluate_with_history(&nodes, search, Some(history))
     }
 
     /// Elements and contact at state `u` for output: the evaluation and the contact states.
@@ -387,10 +382,7 @@ impl<'a> NewtonContext<'a> {
                     .copied()
                     .filter(|&e| e < n_disp)
                     .collect();
-                cands.extend(
-                    self.contact
-                        .candidate_equations(self.asm.model, self.dofs, u)?,
-                );
+                cands.extend(self.contact.candidate_equations(&self.asm.nodal_state(u))?);
                 for p in points {
                     for &code in &p.codes {
                         cands.extend(self.dofs.entries(code).map(|(e, _)| e));

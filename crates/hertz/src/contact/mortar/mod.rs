@@ -362,7 +362,7 @@ impl SlotLaw {
         let point = if multipliers {
             let per = self.multipliers_per_slot();
             let eqs = first_lambda + per * j..first_lambda + per * (j + 1);
-            let lambdas = &ctx.u[eqs.clone()];
+            let lambdas = ctx.nodes.multipliers(eqs.clone());
             if let Some(c) = &sliver {
                 // The row ḡ + c(q)·λ: the law takes c's value, its variation rides on ḡ's.
                 let lambda = lambdas[per - 1];

@@ -583,7 +583,8 @@ impl Formulation for NodeToSegment {
             // The friction force the iteration holds (its multipliers; see `point_friction`).
             let mut held = [0.0; 3];
             if let (Some(eqs), Some(_)) = (&lambda_eqs, self.friction) {
-                held[..self.dim].copy_from_slice(&ctx.u[eqs.start..eqs.start + self.dim]);
+                held[..self.dim]
+                    .copy_from_slice(ctx.nodes.multipliers(eqs.start..eqs.start + self.dim));
             }
             let mut state = SlotState::unpaired(self.number, slot.node, ctx.position(slot.node)?.0);
             let anchor = history
