@@ -46,53 +46,59 @@ const MAX_REGROWTHS: usize = 4;
 /// Largest number of branch updates of a step solved with full tangents (each a factorization).
 const MAX_FULL_UPDATES: usize = 8;
 
+/// The state a cut-back restores (see [`NewtonContext::checkpoint`]).
+pub(super) struct Checkpoint {
+    contact: Option<Vec<SlotState>>,
+    material: Option<Vec<f64>>,
+}
+
 pub(super) struct NewtonContext<'a> {
-    pub asm: Assembler<'a>,
-    pub contact: ContactSystem,
-    pub dofs: &'a DofMap,
-    pub solver: Box<dyn LinearSolver>,
+    asm: Assembler<'a>,
+    contact: ContactSystem,
+    dofs: &'a DofMap,
+    solver: Box<dyn LinearSolver>,
     /// The node of every free equation (the condensed solve's ordering groups them).
-    pub groups: Option<Vec<usize>>,
+    groups: Option<Vec<usize>>,
     /// Unknowns from which non-symmetric tangents go to GMRES (multipliers then stay unknowns).
-    pub krylov_min: usize,
+    krylov_min: usize,
     /// The current factorization is the (constant) tangent of a linear problem.
-    pub factor_valid: bool,
+    factor_valid: bool,
     /// Small strain and no contact: the tangent is constant.
-    pub linear: bool,
+    linear: bool,
     /// No element uses large deformation: the structural tangent is constant.
-    pub small_strain: bool,
+    small_strain: bool,
     /// Told of each phase, iteration and detail (see [`super::report`]).
-    pub observer: &'a dyn Observer,
+    observer: &'a dyn Observer,
     /// The step being solved (for the reports).
-    pub step: usize,
-    pub condensed: Condensed,
+    step: usize,
+    condensed: Condensed,
     /// Contact states of the last converged step (the first hint of the next step's search,
     /// and the friction history: restoring them restores it).
-    pub converged_states: Option<Vec<SlotState>>,
+    converged_states: Option<Vec<SlotState>>,
     /// Contact states at u = 0: the friction history of the first step.
-    pub initial_states: Vec<SlotState>,
+    initial_states: Vec<SlotState>,
     /// The friction history of the current (sub)step: the converged states it started from and
     /// their primary state (still the history when the converged state is evaluated again for
     /// output).
-    pub history: Option<(Vec<SlotState>, Vec<f64>)>,
+    history: Option<(Vec<SlotState>, Vec<f64>)>,
     /// Per contact node: how often in the current attempt its partner and branch went back to
     /// what they were two iterations before (A → B → A: chattering, not sliding on).
-    pub flips: Vec<usize>,
+    flips: Vec<usize>,
     /// How far the estimated round-off floor of penalty forces exceeded the tolerance in the last
     /// iteration of a failed attempt, if it did.
-    pub floor_dominated: Option<f64>,
+    floor_dominated: Option<f64>,
     /// The node of every contact point (for messages).
-    pub slot_nodes: Vec<usize>,
+    slot_nodes: Vec<usize>,
     /// The round-off floor warning was given (once per analysis).
-    pub floor_warned: bool,
+    floor_warned: bool,
     /// Time spent in assembly, factorizations and solves since the step began.
-    pub times: PhaseTimes,
+    times: PhaseTimes,
     /// How often the condensed solve was set up again with more candidates.
-    pub regrowths: usize,
+    regrowths: usize,
     /// The most equations the condensed step holds densely (`SolveParams::max_condensed`).
-    pub max_condensed: usize,
+    max_condensed: usize,
     /// The full tangent's solve with the multipliers eliminated (see [`super::multipliers`]).
-    pub eliminate: MultiplierElimination,
+    eliminate: MultiplierElimination,
 }
 
 /// Seconds since `t`.
@@ -197,6 +203,71 @@ impl<'a> NewtonContext<'a> {
         };
     }
 
+    /// Begin load step `step`: its phase times start from zero.
+    pub fn begin_step(&mut self, step: usize) {
+        self.times = PhaseTimes::default();
+        self.contact.take_times();
+        self.step = step;
+    }
+
+    pub fn model(&self) -> &'a Model {
+        self.asm.model
+    }
+
+    pub fn dofs(&self) -> &'a DofMap {
+        self.dofs
+    }
+
+    pub fn observer(&self) -> &'a dyn Observer {
+        self.observer
+    }
+
+    /// What a cut-back restarts from: the converged contact states (the friction history) and
+    /// the materials' committed state.
+    pub fn checkpoint(&self) -> Checkpoint {
+        Checkpoint {
+            contact: self.converged_states.clone(),
+            material: self
+                .asm
+                .has_material_state()
+                .then(|| self.asm.material_state().to_vec()),
+        }
+    }
+
+    /// Go back to `checkpoint` (the start of an attempt at a step).
+    pub fn rollback(&mut self, checkpoint: &Checkpoint) {
+        self.converged_states.clone_from(&checkpoint.contact);
+        if let Some(m) = &checkpoint.material {
+            self.asm.restore_material_state(m);
+        }
+    }
+
+    /// An attempt at a step failed: factorize afresh in the next.
+    pub fn attempt_failed(&mut self) {
+        self.factor_valid = false;
+    }
+
+    /// A substep converged at `u`: commit the materials' state.
+    pub fn commit_substep(&mut self, u: &[f64]) -> Result<()> {
+        if self.asm.has_material_state() {
+            self.asm.commit_material_state(u)?;
+        }
+        Ok(())
+    }
+
+    /// The load step converged at `u`: its contact states become the next step's history and
+    /// search hint. Returns the evaluation for output and the contact states.
+    pub fn commit_step(&mut self, u: &[f64]) -> Result<(Evaluation, Vec<SlotState>)> {
+        let (ev, states) = self.evaluate_states(u)?;
+        self.converged_states = Some(states.clone());
+        Ok((ev, states))
+    }
+
+    /// Why a failed step may be the material's (see [`super::softening`]), at the state `u`.
+    pub fn softening_hint(&self, u: &[f64]) -> Option<String> {
+        super::softening::softening_hint(self.asm.model, &self.asm, u)
+    }
+
     /// The report of iteration `it`: its residual, and the contact nodes that closed, opened or
     /// changed between stick and slip since the previous iteration's `prev`.
     fn iteration_report(
@@ -252,7 +323,7 @@ impl<'a> NewtonContext<'a> {
     }
 
     /// Elements and contact at state `u` for output: the evaluation and the contact states.
-    pub fn evaluate_states(&mut self, u: &[f64]) -> Result<(Evaluation, Vec<SlotState>)> {
+    fn evaluate_states(&mut self, u: &[f64]) -> Result<(Evaluation, Vec<SlotState>)> {
         let search = match &self.converged_states {
             Some(s) => Search::Hint(s),
             None => Search::Fresh,
@@ -646,12 +717,7 @@ impl<'a> NewtonContext<'a> {
             };
             let (points, states) = self.evaluate_contact(u, search)?;
             if let (Some(p), Some(pp)) = (&prev, &prev2) {
-                let key = |s: &SlotState| (s.partner, s.active);
-                for (k, s) in states.iter().enumerate() {
-                    if key(s) != key(&p[k]) && key(s) == key(&pp[k]) {
-                        self.flips[k] += 1;
-                    }
-                }
+                self.count_flips(&states, p, pp);
             }
             // Structural tangent (elements only) where the condensed solve needs it fresh; the
             // full-tangent path evaluates its own.
@@ -732,14 +798,7 @@ impl<'a> NewtonContext<'a> {
                 last_cycled = s.cycled;
                 (s.du, s.updates, s.cycled)
             } else {
-                if want_k {
-                    self.factorize(ev.k_values.as_ref().expect("requested"))?;
-                }
-                let mut x = rhs;
-                let t = Instant::now();
-                self.solver.solve_in_place(&mut x)?;
-                self.times.solve += since(t);
-                (x, 0, false)
+                (self.structural_step(rhs, want_k.then_some(&ev))?, 0, false)
             };
             if updates > 0 {
                 let back = if cycled {
@@ -758,6 +817,30 @@ impl<'a> NewtonContext<'a> {
             prev2 = prev.replace(states);
         }
         Ok(false)
+    }
+
+    /// Count the contact points whose partner and branch went back to what they were two
+    /// iterations before (`before`), from `last` to `states`.
+    fn count_flips(&mut self, states: &[SlotState], last: &[SlotState], before: &[SlotState]) {
+        let key = |s: &SlotState| (s.partner, s.active);
+        for (k, s) in states.iter().enumerate() {
+            if key(s) != key(&last[k]) && key(s) == key(&before[k]) {
+                self.flips[k] += 1;
+            }
+        }
+    }
+
+    /// The Newton step of a model without contact for the residual `rhs`, factorizing the
+    /// tangent of `ev` if given (else the last factorization is reused).
+    fn structural_step(&mut self, rhs: Vec<f64>, ev: Option<&Evaluation>) -> Result<Vec<f64>> {
+        if let Some(ev) = ev {
+            self.factorize(ev.k_values.as_ref().expect("requested"))?;
+        }
+        let mut x = rhs;
+        let t = Instant::now();
+        self.solver.solve_in_place(&mut x)?;
+        self.times.solve += since(t);
+        Ok(x)
     }
 
     /// A converged iterate: a model whose first iterate is converged is factorized once all the

@@ -149,10 +149,8 @@ pub fn run_analysis_observed(
     let times = model.step_times();
     for (k, &t) in times.iter().enumerate() {
         let clock = Instant::now();
-        ctx.times = PhaseTimes::default();
-        ctx.contact.take_times();
         let step = k + 1;
-        ctx.step = step;
+        ctx.begin_step(step);
         let target = history.external_at(t, &applied);
         let mut info = StepInfo {
             warnings: std::mem::take(&mut initial_warnings),
@@ -167,8 +165,7 @@ pub fn run_analysis_observed(
         };
         step_with_cutbacks(&mut ctx, &mut u, &goal, params, &mut info)?;
         applied = target;
-        let (ev, contact_states) = ctx.evaluate_states(&u)?;
-        ctx.converged_states = Some(contact_states.clone());
+        let (ev, contact_states) = ctx.commit_step(&u)?;
         let reactions: Vec<f64> = (0..dofs.n_prescribed)
             .map(|i| ev.f_int[nf + i] - applied[nf + i])
             .collect();
@@ -283,27 +280,18 @@ fn step_with_cutbacks(
     params: &SolveParams,
     info: &mut StepInfo,
 ) -> Result<()> {
-    let model = ctx.asm.model;
-    let a = &model.analysis;
-    let (nf, np) = (ctx.dofs.n_free, ctx.dofs.n_prescribed);
+    let a = &ctx.model().analysis;
+    let (nf, np) = (ctx.dofs().n_free, ctx.dofs().n_prescribed);
     let (step, t) = (goal.step, goal.t);
     let start_u = u.to_vec();
-    let start_states = ctx.converged_states.clone();
+    let start = ctx.checkpoint();
     let mut diagnosis = None;
     // The furthest state any substep converged to (for a failure's diagnosis).
     let mut furthest = (0.0, start_u.clone());
-    // Materials with a state: a cut-back restarts from the state the step began with.
-    let start_material = ctx
-        .asm
-        .has_material_state()
-        .then(|| ctx.asm.material_state().to_vec());
     for level in 0..=params.max_cutbacks {
         let nsub = 1usize << level;
         u.copy_from_slice(&start_u);
-        ctx.converged_states.clone_from(&start_states);
-        if let Some(m) = &start_material {
-            ctx.asm.restore_material_state(m);
-        }
+        ctx.rollback(&start);
         let mut ok = true;
         for s in 1..=nsub {
             let alpha = s as f64 / nsub as f64;
@@ -318,9 +306,7 @@ fn step_with_cutbacks(
                 .collect();
             match ctx.newton(u, &f_sub, &up_sub, a, info) {
                 Ok(true) => {
-                    if start_material.is_some() {
-                        ctx.asm.commit_material_state(u)?;
-                    }
+                    ctx.commit_substep(u)?;
                     if alpha > furthest.0 && alpha < 1.0 {
                         furthest = (alpha, u.to_vec());
                     }
@@ -331,13 +317,13 @@ fn step_with_cutbacks(
                     break;
                 }
                 Err(Error::Solve(msg)) if level < params.max_cutbacks => {
-                    ctx.observer
+                    ctx.observer()
                         .retry(&format!("step {step}: {msg}; cutting the step"));
                     ok = false;
                     break;
                 }
                 Err(Error::Solve(msg)) => {
-                    let softening = super::softening::softening_hint(model, &ctx.asm, &furthest.1);
+                    let softening = ctx.softening_hint(&furthest.1);
                     return Err(Error::Solve(format!(
                         "step {step} (t = {t}): {msg}, even after {} step halvings{}",
                         params.max_cutbacks,
@@ -355,9 +341,9 @@ fn step_with_cutbacks(
             info.substeps = nsub;
             return Ok(());
         }
-        ctx.factor_valid = false;
+        ctx.attempt_failed();
         if level < params.max_cutbacks {
-            ctx.observer.retry(&format!(
+            ctx.observer().retry(&format!(
                 "step {step}: no convergence in {} iterations{}; retrying in {} substeps",
                 a.maxiter,
                 diagnosis
@@ -368,7 +354,7 @@ fn step_with_cutbacks(
             ));
         }
     }
-    let softening = super::softening::softening_hint(model, &ctx.asm, &furthest.1);
+    let softening = ctx.softening_hint(&furthest.1);
     Err(Error::Solve(format!(
         "step {step} (t = {t}) did not converge within {} iterations even after {} step halvings; \
          last residual {:.3e} (rtolf {:.1e}){}{}",
