@@ -3,9 +3,9 @@
 
 use crate::error::{Error, Result};
 use crate::input::read_model_warning;
-use crate::output::names::OutputNames;
-use crate::output::vtu::{self, VtuFormat};
-use crate::output::{check, outfile, write_atomic, write_atomic_parts};
+use crate::output::check;
+use crate::output::vtu::VtuFormat;
+use crate::output::writer::RunWriter;
 use crate::solve::{run_analysis_observed, Observer, Phase, Silent, SolveParams};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -109,20 +109,16 @@ pub fn run_file_observed(
             .map(Path::to_path_buf)
             .unwrap_or_else(|| PathBuf::from(".")),
     };
-    let names = OutputNames::new(dir.clone(), &model.output_name);
-    if opts.write_outputs {
-        names.check_inputs_kept(&read.sources)?;
-        std::fs::create_dir_all(&dir)
-            .map_err(|e| Error::Output(format!("cannot create {}: {e}", dir.display())))?;
-    }
-    let stem = names.stem.clone();
-    let mut out_parts = vec![outfile::header(&model)];
-    let mut output_clock = std::time::Duration::ZERO;
-    let mut vtus: Vec<(f64, String)> = Vec::new();
-    let mut csv = String::from(outfile::CONTACT_CSV_HEADER);
-    csv.push('\n');
-    let mut history = String::new();
-    let mut newton = format!("{}\n", outfile::NEWTON_CSV_HEADER);
+    let mut writer = if opts.write_outputs {
+        Some(RunWriter::new(
+            &model,
+            &dir,
+            opts.vtu_format,
+            &read.sources,
+        )?)
+    } else {
+        None
+    };
     let params = SolveParams::default();
     let mut steps_done = 0;
     let mut solver_warnings: Vec<String> = Vec::new();
@@ -139,62 +135,20 @@ pub fn run_file_observed(
         report
             .outcomes
             .extend(check::evaluate_step(&model, &rules, res));
-        if opts.write_outputs {
-            let start = Instant::now();
-            // The .out block and the .vtu file side by side (each in parallel chunks too).
-            let (block, name) = rayon::join(
-                || {
-                    model
-                        .output
-                        .step(res.step)
-                        .then(|| outfile::step_block(&model, res))
-                },
-                || vtu::write_step(&model, res, &dir, &stem, opts.vtu_format),
-            );
-            out_parts.extend(block.into_iter().flatten());
-            csv.push_str(&outfile::contact_csv_rows(&model, res));
-            if history.is_empty() {
-                history = outfile::history_csv_header(&model, res.dofs);
-            }
-            history.push_str(&outfile::history_csv_row(res));
-            newton.push_str(&outfile::newton_csv_rows(res));
-            let name = name?;
-            report.written.push(dir.join(&name));
-            vtus.push((res.time, name));
-            output_clock += start.elapsed();
+        match writer.as_mut() {
+            Some(w) => w.step(res),
+            None => Ok(()),
         }
-        Ok(())
     });
     // A run that fails before its first step converged (a singular model, a step that cannot
     // converge) has no results: it leaves no files behind. After a converged step, the results so
     // far are written with the reason the analysis stopped.
-    if opts.write_outputs && (result.is_ok() || steps_done > 0) {
-        let start = Instant::now();
-        if let Err(e) = &result {
-            out_parts.push(format!("\nAnalysis stopped: {e}\n"));
-        }
-        out_parts.push(outfile::footer(clock.elapsed().as_secs_f64()));
-        let out_path = names.out_path();
-        let bytes: Vec<&[u8]> = out_parts.iter().map(|p| p.as_bytes()).collect();
-        write_atomic_parts(&out_path, &bytes)?;
-        report.written.push(out_path);
-        if !model.contacts.is_empty() {
-            let csv_path = names.path("contact.csv");
-            write_atomic(&csv_path, csv.as_bytes())?;
-            report.written.push(csv_path);
-        }
-        for (ext, text) in [("steps.csv", &history), ("newton.csv", &newton)] {
-            let p = names.path(ext);
-            write_atomic(&p, text.as_bytes())?;
-            report.written.push(p);
-        }
-        if !vtus.is_empty() {
-            vtu::write_collection(&dir, &stem, &vtus)?;
-            report.written.push(names.path("pvd"));
-        }
-        output_clock += start.elapsed();
+    if let Some(w) = writer.filter(|_| result.is_ok() || steps_done > 0) {
+        let stopped = result.as_ref().err().map(|e| e as &dyn std::fmt::Display);
+        let written = w.finish(stopped, clock.elapsed().as_secs_f64())?;
+        report.written = written.files;
+        report.output_seconds = written.seconds;
     }
-    report.output_seconds = output_clock.as_secs_f64();
     result?;
     Ok(report)
 }

@@ -43,15 +43,20 @@ pub enum Error {
     /// Writing output failed.
     #[error("output: {0}")]
     Output(String),
+    /// The observer asked for the analysis to stop (Ctrl-C in the Python module).
+    #[error("interrupted")]
+    Interrupted,
 }
 
 impl Error {
-    /// Process exit code for this error: 2 for bad input, 3 for solver failures, 4 for output.
+    /// Process exit code for this error: 2 for bad input, 3 for solver failures, 4 for output,
+    /// 130 (as for SIGINT) when interrupted.
     pub fn exit_code(&self) -> i32 {
         match self {
             Error::Input { .. } | Error::InputFile { .. } => 2,
             Error::Solve(_) | Error::Singular(_) => 3,
             Error::Output(_) => 4,
+            Error::Interrupted => 130,
         }
     }
 }

@@ -5,6 +5,7 @@ pub mod names;
 pub mod number;
 pub mod outfile;
 pub mod vtu;
+pub mod writer;
 
 use crate::error::{Error, Result};
 use std::path::Path;

@@ -711,6 +711,9 @@ impl<'a> NewtonContext<'a> {
         let mut held: Vec<Option<f64>> = Vec::new();
         let mut last_cycled = false;
         for it in 0..=a.maxiter {
+            if self.observer.interrupted() {
+                return Err(Error::Interrupted);
+            }
             let search = match &prev {
                 Some(p) => Search::Hint(p),
                 None => Search::Fresh,

@@ -86,6 +86,11 @@ pub trait Observer {
     fn detail(&self, _message: &str) {}
     /// Something the user should know (also kept in the step's `StepInfo::warnings`).
     fn warning(&self, _message: &str) {}
+    /// Whether the caller wants the analysis stopped (asked before every Newton iteration; the
+    /// analysis then ends with [`crate::error::Error::Interrupted`]).
+    fn interrupted(&self) -> bool {
+        false
+    }
 }
 
 /// An observer that shows nothing.
