@@ -1,0 +1,238 @@
+//! `hertz.Result` and `hertz.Step`: the converged steps of a run as numpy arrays, and the files
+//! `hertz run` writes.
+
+use crate::model::array2;
+use crate::to_py_err;
+use hertz::assembly::DofMap;
+use hertz::contact::SlotState;
+use hertz::model::Model as HModel;
+use hertz::output::vtu::VtuFormat;
+use hertz::output::writer::RunWriter;
+use hertz::solid::GpState;
+use hertz::solve::{StepInfo, StepResult};
+use numpy::{IntoPyArray, PyArray2};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::path::PathBuf;
+
+/// What a converged step leaves, owned (the solver's `StepResult` borrows).
+pub struct StepData {
+    step: usize,
+    time: f64,
+    u: Vec<f64>,
+    reactions: Vec<f64>,
+    states: Vec<Vec<GpState>>,
+    contact: Vec<SlotState>,
+    info: StepInfo,
+    /// n_nodes × DOFs per node, row-major (taken for the numpy arrays).
+    displacement: Vec<f64>,
+    reaction: Vec<f64>,
+}
+
+impl StepData {
+    pub fn from_result(res: &StepResult, model: &HModel) -> StepData {
+        let ids = model.domain.default_dofs();
+        let nd = ids.len();
+        let mut displacement = vec![0.0; model.nodes.len() * nd];
+        for n in 0..model.nodes.len() {
+            for (k, &d) in ids.iter().enumerate() {
+                displacement[n * nd + k] = res.displacement(n, d).unwrap_or(0.0);
+            }
+        }
+        let mut reaction = vec![0.0; model.nodes.len() * nd];
+        for (i, &(n, d, _)) in res.dofs.prescribed.iter().enumerate() {
+            if let Some(k) = ids.iter().position(|&id| id == d) {
+                reaction[n * nd + k] += res.reactions[i];
+            }
+        }
+        StepData {
+            step: res.step,
+            time: res.time,
+            u: res.u.to_vec(),
+            reactions: res.reactions.to_vec(),
+            states: res.states.to_vec(),
+            contact: res.contact.to_vec(),
+            info: res.info.clone(),
+            displacement,
+            reaction,
+        }
+    }
+}
+
+/// One converged step: `displacement` and `reaction` (n_nodes × DOFs per node, rows in the
+/// order of `Model.node_labels`, columns x, y(, z); reactions are zero where nothing is
+/// prescribed), `iterations`, `substeps`, and `contact`: the columns of the contact CSV as
+/// arrays (one entry per contact node).
+#[pyclass(module = "hertz", name = "Step", frozen)]
+pub struct Step {
+    #[pyo3(get)]
+    step: usize,
+    #[pyo3(get)]
+    time: f64,
+    #[pyo3(get)]
+    iterations: usize,
+    #[pyo3(get)]
+    substeps: usize,
+    #[pyo3(get)]
+    displacement: Py<PyArray2<f64>>,
+    #[pyo3(get)]
+    reaction: Py<PyArray2<f64>>,
+    #[pyo3(get)]
+    contact: Py<PyDict>,
+}
+
+#[pymethods]
+impl Step {
+    fn __repr__(&self) -> String {
+        format!(
+            "<hertz.Step {} (t = {}): {} iterations>",
+            self.step, self.time, self.iterations
+        )
+    }
+}
+
+/// The contact CSV's columns of one step.
+fn contact_dict<'py>(
+    py: Python<'py>,
+    model: &HModel,
+    states: &[SlotState],
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    let col = |f: &dyn Fn(&SlotState) -> f64| states.iter().map(f).collect::<Vec<f64>>();
+    let icol = |f: &dyn Fn(&SlotState) -> i64| states.iter().map(f).collect::<Vec<i64>>();
+    d.set_item("condition", icol(&|s| s.condition as i64).into_pyarray(py))?;
+    d.set_item(
+        "node",
+        icol(&|s| model.nodes[s.node].label as i64).into_pyarray(py),
+    )?;
+    d.set_item("x", col(&|s| s.x[0]).into_pyarray(py))?;
+    d.set_item("y", col(&|s| s.x[1]).into_pyarray(py))?;
+    d.set_item("z", col(&|s| s.x[2]).into_pyarray(py))?;
+    d.set_item("gap", col(&|s| s.gap).into_pyarray(py))?;
+    d.set_item("force", col(&|s| s.force).into_pyarray(py))?;
+    d.set_item("pressure", col(&|s| s.pressure).into_pyarray(py))?;
+    let active: Vec<bool> = states.iter().map(|s| s.active).collect();
+    d.set_item("active", active.into_pyarray(py))?;
+    d.set_item(
+        "friction",
+        col(&|s| s.friction.map_or(0.0, |f| f.1)).into_pyarray(py),
+    )?;
+    let slip: Vec<bool> = states
+        .iter()
+        .map(|s| s.friction.is_some_and(|f| !f.0))
+        .collect();
+    d.set_item("slip", slip.into_pyarray(py))?;
+    Ok(d)
+}
+
+/// The converged steps of an analysis (all of them, or those before it stopped: `converged`
+/// is then False and `message` says why), the solver's `warnings`, and `write`.
+#[pyclass(module = "hertz", name = "Result", frozen)]
+pub struct Result {
+    model: HModel,
+    sources: Vec<PathBuf>,
+    dofs: Option<DofMap>,
+    data: Vec<StepData>,
+    #[pyo3(get)]
+    steps: Vec<Py<Step>>,
+    #[pyo3(get)]
+    warnings: Vec<String>,
+    #[pyo3(get)]
+    message: Option<String>,
+    wall_seconds: f64,
+}
+
+impl Result {
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        py: Python<'_>,
+        model: HModel,
+        sources: Vec<PathBuf>,
+        dofs: Option<DofMap>,
+        mut data: Vec<StepData>,
+        warnings: Vec<String>,
+        message: Option<String>,
+        wall_seconds: f64,
+    ) -> PyResult<Result> {
+        let nd = model.domain.default_dofs().len();
+        let n = model.nodes.len();
+        let mut steps = Vec::with_capacity(data.len());
+        for s in &mut data {
+            let step = Step {
+                step: s.step,
+                time: s.time,
+                iterations: s.info.iterations,
+                substeps: s.info.substeps,
+                displacement: array2(py, n, nd, std::mem::take(&mut s.displacement)).unbind(),
+                reaction: array2(py, n, nd, std::mem::take(&mut s.reaction)).unbind(),
+                contact: contact_dict(py, &model, &s.contact)?.unbind(),
+            };
+            steps.push(Py::new(py, step)?);
+        }
+        Ok(Result {
+            model,
+            sources,
+            dofs,
+            data,
+            steps,
+            warnings,
+            message,
+            wall_seconds,
+        })
+    }
+}
+
+#[pymethods]
+impl Result {
+    /// Whether every step of the analysis converged.
+    #[getter]
+    fn converged(&self) -> bool {
+        self.message.is_none()
+    }
+
+    /// Write the files `hertz run` writes (the `.out` file, a VTU file per step and the PVD
+    /// collection, the contact, step and Newton CSV files) into `dir`, named after the output
+    /// file the input names; returns their paths. An input file is never overwritten.
+    fn write(&self, py: Python<'_>, dir: PathBuf) -> PyResult<Vec<PathBuf>> {
+        let err = |e| to_py_err(py, e, None);
+        let mut writer =
+            RunWriter::new(&self.model, &dir, VtuFormat::default(), &self.sources).map_err(err)?;
+        if let Some(dofs) = &self.dofs {
+            for s in &self.data {
+                writer
+                    .step(&StepResult {
+                        step: s.step,
+                        time: s.time,
+                        dofs,
+                        u: &s.u,
+                        reactions: &s.reactions,
+                        states: &s.states,
+                        contact: &s.contact,
+                        info: &s.info,
+                    })
+                    .map_err(err)?;
+            }
+        }
+        let stopped = self.message.as_ref().map(|m| m as &dyn std::fmt::Display);
+        Ok(writer
+            .finish(stopped, self.wall_seconds)
+            .map_err(err)?
+            .files)
+    }
+
+    fn __len__(&self) -> usize {
+        self.steps.len()
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "<hertz.Result: {} steps{}>",
+            self.steps.len(),
+            if self.message.is_some() {
+                ", stopped"
+            } else {
+                ""
+            }
+        )
+    }
+}

@@ -1,0 +1,324 @@
+"""The Python module against the command line on the same inputs, and each entry of its API."""
+
+import math
+import re
+import subprocess
+
+import numpy as np
+import pytest
+
+import hertz
+from conftest import EXAMPLES, ROOT
+
+EXAMPLE_INPUTS = sorted(EXAMPLES.glob("*.in")) + sorted((EXAMPLES / "gmsh").glob("*.in"))
+
+# Lines of the .out file that carry the wall clock (they differ between any two runs).
+CLOCK = re.compile(r"^(Starting analysis on|Finishing analysis on|Real time consumed|User time consumed)")
+
+
+def read_outfile(path, steps):
+    """Per output step: {(node label, dof): reaction text} and {(node label, dof): d text}; the
+    step is the header's "solution step number", else the step at its time."""
+    reactions, displacements = {}, {}
+    time = None
+    node = None
+    for line in path.read_text().splitlines():
+        m = re.match(r"Output for time\s+([-+0-9.eE]+)(?:, solution step number (\d+))?", line)
+        if m:
+            if m.group(2):
+                time = int(m.group(2))
+            else:
+                time = next(s.step for s in steps if s.time == float(m.group(1)))
+            reactions[time], displacements[time] = {}, {}
+            continue
+        m = re.match(r"Node\s+\d+\s+\(\s*(\d+)\):", line)
+        if m:
+            node = int(m.group(1))
+            continue
+        m = re.match(r"\s+dof (\d+)\s+d\s+(\S+)", line)
+        if m and node is not None:
+            displacements[time][(node, int(m.group(1)))] = m.group(2)
+            continue
+        m = re.match(r"\s*Node\s+(\d+) iDof\s+(\d+) reaction\s+(\S+)", line)
+        if m:
+            reactions[time][(int(m.group(1)), int(m.group(2)))] = m.group(3)
+    return reactions, displacements
+
+
+def read_csv(path):
+    lines = path.read_text().splitlines()
+    header = lines[0].split(",")
+    return [dict(zip(header, row.split(","))) for row in lines[1:]]
+
+
+@pytest.mark.parametrize("path", EXAMPLE_INPUTS, ids=lambda p: p.name)
+def test_every_example_equals_the_command_line(path, tmp_path, hertz_cli):
+    cli_dir, py_dir = tmp_path / "cli", tmp_path / "py"
+    subprocess.run([hertz_cli, "run", "-q", "-o", cli_dir, path], check=True, capture_output=True)
+    model = hertz.read(path)
+    result = model.solve()
+    assert result.converged and len(result.steps) == len(model.step_times)
+    written = result.write(py_dir)
+    # The same files, and the same contents but for the wall clock.
+    assert sorted(p.name for p in cli_dir.iterdir()) == sorted(p.name for p in written)
+    for p in written:
+        cli = [l for l in (cli_dir / p.name).read_text().splitlines() if not CLOCK.match(l)]
+        py = [l for l in p.read_text().splitlines() if not CLOCK.match(l)]
+        assert cli == py, p.name
+    labels = model.node_labels
+    row = {int(n): i for i, n in enumerate(labels)}
+    # Reactions and displacements as the .out file prints them, to its last digit.
+    out = next(p for p in written if p.suffix == ".out")
+    reactions, displacements = read_outfile(out, result.steps)
+    by_time = {s.step: s for s in result.steps}
+    checked = 0
+    for time, values in reactions.items():
+        step = by_time[time]
+        for (node, dof), text in values.items():
+            assert f"{step.reaction[row[node], dof - 1]:.4e}" == text, (time, node, dof)
+            checked += 1
+    for time, values in displacements.items():
+        step = by_time[time]
+        for (node, dof), text in values.items():
+            if dof <= step.displacement.shape[1]:
+                assert f"{step.displacement[row[node], dof - 1]:.8e}" == text, (node, dof)
+    # Contact pressures, gaps and forces equal the CSV's (which round-trip exactly).
+    csv = [p for p in written if p.name.endswith(".contact.csv")]
+    if csv:
+        rows = read_csv(csv[0])
+        for step in result.steps:
+            mine = [r for r in rows if int(r["step"]) == step.step]
+            c = step.contact
+            assert len(mine) == len(c["node"])
+            for k, r in enumerate(mine):
+                assert int(r["node"]) == c["node"][k]
+                for col in ("pressure", "force", "x", "y", "z"):
+                    assert float(r[col]) == c[col][k], (col, k)
+                assert bool(int(r["active"])) == c["active"][k]
+            checked += len(mine)
+    # The summed reactions of every boundary condition, as the step CSV gives them.
+    steps_csv = read_csv(next(p for p in written if p.name.endswith(".steps.csv")))
+    for step, r in zip(result.steps, steps_csv):
+        assert int(r["iterations"]) == step.iterations
+        for key, text in r.items():
+            m = re.fullmatch(r"bc(\d+)\.r(\d)", key)
+            if not m:
+                continue
+            bc = model.boundary_conditions[int(m.group(1))]
+            nodes = model.sets[bc["set"]]["nodes"]
+            col = model.dof_ids.index(int(m.group(2)))
+            parts = [step.reaction[row[int(n)], col] for n in nodes]
+            assert abs(sum(parts) - float(text)) <= 1e-12 * sum(map(abs, parts)), key
+    assert checked > 0 or not reactions
+
+
+WEDGE = (EXAMPLES / "wedge_on_brick.in").read_text()
+
+
+def test_read_string_reads_as_read_does():
+    a = hertz.read(EXAMPLES / "wedge_on_brick.in").solve()
+    b = hertz.read_string(WEDGE, name="wedge").solve()
+    assert np.array_equal(a.steps[-1].reaction, b.steps[-1].reaction)
+    assert np.array_equal(a.steps[-1].contact["pressure"], b.steps[-1].contact["pressure"])
+
+
+def test_model_arrays_describe_the_input():
+    m = hertz.read(EXAMPLES / "wedge_on_brick.in")
+    assert m.dim == 3
+    assert m.nodes.shape == (14, 3) and m.nodes[12].tolist() == [0.8, 0.3, 1.5]
+    assert m.node_labels.tolist() == list(range(1, 15))
+    assert m.elements["LSpace"]["connectivity"].tolist() == [[5, 7, 8, 6, 1, 3, 4, 2]]
+    assert m.elements["LWedge"]["labels"].tolist() == [2]
+    assert m.sets[5]["nodes"].tolist() == [12, 13, 14]
+    assert m.sets[1]["boundaries"].tolist() == [[1, 1]]
+    assert m.materials[1] == {"law": "IsoLE", "E": 1000.0, "nu": 0.3}
+    assert m.contacts[5] == {"law": "multipliers", "penalty": None, "friction": None}
+    assert m.boundary_conditions[4]["values"] == [0.0, 0.0, -0.01]
+
+
+def test_a_bad_record_raises_input_error_with_file_and_line():
+    text = WEDGE.replace("IsoLE 1 d 0 E 1000", "IsoLE 1 d 0 E -1000")
+    line = 1 + text.splitlines().index(next(l for l in text.splitlines() if "E -1000" in l))
+    with pytest.raises(hertz.InputError) as e:
+        hertz.read_string(text, name="bad_wedge.in")
+    assert e.value.line == line
+    assert e.value.file == "bad_wedge.in"
+    assert f"bad_wedge.in:{line}:" in str(e.value) and "E -1000" in e.value.record
+    with pytest.raises(hertz.InputError) as e:
+        hertz.read(ROOT / "no" / "such.in")
+    assert e.value.line is None and "such.in" in str(e.value)
+    assert issubclass(hertz.InputError, hertz.HertzError)
+
+
+def nonconverging():
+    """The large-deflection cantilever, unloaded at t = 1 and loaded at t = 2, with two Newton
+    iterations allowed: step 1 converges at once, step 2 cannot."""
+    text = (ROOT / "tests" / "data" / "cantilever_nlgeo.in").read_text()
+    text = text.replace("nsteps 1", "nsteps 2").replace("maxiter MAXITER", "maxiter 2")
+    text = text.replace("ConstantFunction 1 f(t) 1.0", "PiecewiseLinFunction 1 npoints 2 t 2 1 2 f(t) 2 0 1")
+    return hertz.read_string(text, name="cantilever_nlgeo.in")
+
+
+def test_a_step_that_cannot_converge_raises_solve_error_with_the_steps_before():
+    with pytest.raises(hertz.SolveError) as e:
+        nonconverging().solve()
+    msg = str(e.value)
+    assert "step 2" in msg and "did not converge" in msg
+    partial = e.value.result
+    assert not partial.converged and partial.message == msg
+    assert [s.step for s in partial.steps] == [1]
+    assert np.all(partial.steps[0].displacement == 0.0)
+
+
+def test_an_observer_sees_every_iteration_and_step():
+    reports = []
+    model = hertz.read(EXAMPLES / "hertz_rigid_circle.in")
+    result = model.solve(observer=reports.append)
+    steps = [r for r in reports if r["kind"] == "step"]
+    iterations = [r for r in reports if r["kind"] == "iteration"]
+    assert [r["step"] for r in steps] == [s.step for s in result.steps]
+    for s in result.steps:
+        mine = [r["iteration"] for r in iterations if r["step"] == s.step]
+        # Iteration 0 is the residual before the first solve.
+        assert s.substeps == 1 and mine == list(range(s.iterations + 1))
+    assert steps[-1]["iterations"] == result.steps[-1].iterations
+    assert iterations[-1]["residual"] == steps[-1]["residual"]
+    assert iterations[-1]["closed"] == int(result.steps[-1].contact["active"].sum())
+
+
+def test_an_exception_in_the_observer_stops_the_analysis():
+    def stop(report):
+        if report["kind"] == "iteration" and report["iteration"] == 1:
+            raise RuntimeError("enough")
+
+    with pytest.raises(RuntimeError, match="enough"):
+        hertz.read(EXAMPLES / "hertz_rigid_circle.in").solve(observer=stop)
+
+
+def test_a_keyboard_interrupt_stops_the_analysis():
+    import signal
+
+    def interrupt(report):
+        if report["kind"] == "iteration":
+            signal.raise_signal(signal.SIGINT)
+
+    with pytest.raises(KeyboardInterrupt):
+        hertz.read(EXAMPLES / "hertz_rigid_circle.in").solve(observer=interrupt)
+
+
+def same_answer(a, b):
+    """Two results with equal displacements, reactions and contact forces, to the last bit."""
+    for x, y in zip(a.steps, b.steps):
+        assert np.array_equal(x.displacement, y.displacement)
+        assert np.array_equal(x.reaction, y.reaction)
+        assert np.array_equal(x.contact["force"], y.contact["force"])
+
+
+def test_youngs_modulus_set_from_python_is_the_inputs():
+    model = hertz.read(EXAMPLES / "cantilever.in")
+    model.set_material(1, E=2000.0, nu=0.25)
+    assert model.materials[1] == {"law": "IsoLE", "E": 2000.0, "nu": 0.25}
+    text = (EXAMPLES / "cantilever.in").read_text().replace("E 1000 n 0.3", "E 2000 n 0.25")
+    edited = hertz.read_string(text, name="cantilever.in")
+    same_answer(model.solve(), edited.solve())
+    before = hertz.read(EXAMPLES / "cantilever.in").solve().steps[-1].displacement
+    after = model.solve().steps[-1].displacement
+    assert not np.allclose(before, after)
+    with pytest.raises(ValueError):
+        model.set_material(1, E=-1.0)
+    with pytest.raises(KeyError):
+        model.set_material(7, E=1.0)
+
+
+def test_a_prescribed_value_set_from_python_is_the_inputs():
+    model = hertz.read(EXAMPLES / "wedge_on_brick.in")
+    model.set_boundary_condition(4, [0.0, 0.0, -0.005])
+    text = WEDGE.replace("values 3 0 0 -0.01", "values 3 0 0 -0.005")
+    same_answer(model.solve(), hertz.read_string(text, name="wedge.in").solve())
+    force = model.solve().steps[-1].contact["force"]
+    full = hertz.read(EXAMPLES / "wedge_on_brick.in").solve().steps[-1].contact["force"]
+    # Half the indentation, about half the force (the contact geometry is not linear).
+    assert np.allclose(force, full / 2, rtol=1e-3)
+    with pytest.raises(ValueError):
+        model.set_boundary_condition(4, [0.0, 0.0])
+
+
+def test_a_penalty_set_from_python_converges_to_the_multipliers_answer():
+    model = hertz.read(EXAMPLES / "wedge_on_brick.in")
+    exact = model.solve().steps[-1].contact["force"].sum()
+    text = WEDGE.replace("n2slagrangianmultipliercontact 5", "n2spenaltycontact 5 penalty 1e3")
+    pen = hertz.read_string(text, name="wedge_penalty.in")
+    errors = []
+    for p in (1e3, 1e4, 1e5):
+        pen.set_contact(5, penalty=p)
+        errors.append(abs(pen.solve().steps[-1].contact["force"].sum() - exact) / exact)
+    # The penalty's error falls as 1/penalty.
+    assert errors[0] > errors[1] > errors[2]
+    assert errors[1] / errors[2] == pytest.approx(10, rel=0.05)
+    with pytest.raises(ValueError):
+        model.set_contact(5, penalty=1e3)
+
+
+def test_a_model_built_from_arrays_gives_the_text_inputs_answer():
+    text = hertz.read(EXAMPLES / "wedge_on_brick.in")
+    sets = {n: {k: v for k, v in s.items() if len(v)} for n, s in text.sets.items()}
+    built = hertz.from_arrays(
+        text.nodes,
+        {
+            "LSpace": text.elements["LSpace"]["connectivity"],
+            "LWedge": text.elements["LWedge"]["connectivity"],
+        },
+        domain="3d",
+        analysis=("StaticStructural", {"nsteps": 1, "deltat": 1, "rtolf": 1e-8, "maxiter": 25}),
+        materials=[("IsoLE", {"d": 0, "E": 1000.0, "n": 0.3, "tAlpha": 0})],
+        segments=[("linear3delementsurfacecontactsegment", {"boundaryset": 1})],
+        conditions=[
+            ("BoundaryCondition", {"loadTimeFunction": 2, "dofs": [3], "values": [0], "set": 2}),
+            ("BoundaryCondition", {"loadTimeFunction": 2, "dofs": [1, 2], "values": [0, 0], "set": 3}),
+            ("BoundaryCondition", {"loadTimeFunction": 2, "dofs": [2], "values": [0], "set": 4}),
+            (
+                "BoundaryCondition",
+                {"loadTimeFunction": 1, "dofs": [1, 2, 3], "values": [0, 0, -0.01], "set": 5},
+            ),
+            (
+                "n2slagrangianmultipliercontact",
+                {"loadTimeFunction": 1, "nodeset": [9, 10, 11], "segmentset": [1]},
+            ),
+        ],
+        functions=[
+            ("PiecewiseLinFunction", {"npoints": 2, "t": [0, 1], "f(t)": [0, 1]}),
+            ("ConstantFunction", {"f(t)": 1.0}),
+        ],
+        sets=sets,
+        name="wedge_built",
+    )
+    a, b = text.solve().steps[-1], built.solve().steps[-1]
+    assert np.array_equal(a.reaction, b.reaction)
+    assert np.array_equal(a.displacement, b.displacement)
+    assert np.array_equal(a.contact["pressure"], b.contact["pressure"])
+    assert a.contact["pressure"].min() > 0
+
+
+def test_a_built_model_with_a_bad_record_names_it():
+    with pytest.raises(hertz.InputError) as e:
+        hertz.from_arrays(
+            [[0.0], [1.0]],
+            {"Truss1d": [[1, 2]]},
+            domain="1dTruss",
+            materials=[("IsoLE", {"d": 0, "E": 1.0, "n": 0.3, "tAlpha": 0})],
+            cross_sections=[("SimpleCS", {"area": 1.0})],
+            conditions=[("BoundaryCondition", {"loadTimeFunction": 3, "dofs": [1], "values": [0], "set": 1})],
+            sets={1: {"nodes": [1]}},
+            name="truss_built",
+        )
+    assert "BoundaryCondition 1" in e.value.record and e.value.file == "truss_built"
+
+
+def test_writing_never_overwrites_the_input(tmp_path):
+    src = tmp_path / "self.in"
+    # The input names itself as its output file.
+    src.write_text(WEDGE.replace("wedge_on_brick.out", "self.in", 1))
+    before = src.read_text()
+    with pytest.raises(hertz.HertzError):
+        hertz.read(src).solve().write(tmp_path)
+    assert src.read_text() == before

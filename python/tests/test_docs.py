@@ -1,0 +1,60 @@
+"""The documentation's examples run: every Python block of docs/python.md prints what the page
+shows after it, and the parameter study of examples/python/penalty_study.py converges to Hertz's
+solution and draws its plot."""
+
+import contextlib
+import importlib.util
+import io
+import os
+import re
+
+import pytest
+
+from conftest import EXAMPLES, ROOT
+
+
+def doc_blocks():
+    text = (ROOT / "docs" / "python.md").read_text()
+    return re.findall(r"```(\w*)\n(.*?)```", text, re.S)
+
+
+def test_every_python_block_of_the_guide_prints_what_it_shows():
+    blocks = doc_blocks()
+    ran = 0
+    cwd = os.getcwd()
+    os.chdir(ROOT)
+    try:
+        for k, (lang, code) in enumerate(blocks):
+            if lang != "python":
+                continue
+            out = io.StringIO()
+            with contextlib.redirect_stdout(out):
+                exec(compile(code, f"docs/python.md block {k}", "exec"), {})
+            ran += 1
+            if k + 1 < len(blocks) and blocks[k + 1][0] == "":
+                assert out.getvalue() == blocks[k + 1][1], f"block {k}"
+    finally:
+        os.chdir(cwd)
+    assert ran >= 3
+
+
+def test_the_penalty_study_converges_to_hertz_and_plots(tmp_path):
+    pytest.importorskip("matplotlib")
+    spec = importlib.util.spec_from_file_location("study", EXAMPLES / "python" / "penalty_study.py")
+    study = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(study)
+    png = tmp_path / "study.png"
+    with contextlib.redirect_stdout(io.StringIO()):
+        model, rows = study.main(png)
+    forces = [r[1] for r in rows]
+    # The penalty's error in the force falls about tenfold per decade of penalty.
+    steps = [abs(b - a) for a, b in zip(forces, forces[1:])]
+    assert steps[0] > 5 * steps[1] > 25 * steps[2]
+    material = model.materials[1]
+    penalty, force, contact = rows[-1]
+    a, p0 = study.hertz_solution(force, material["E"], material["nu"], study.R)
+    assert abs(contact["pressure"].max() / p0 - 1) < 0.01
+    # The contact zone's edge lies within one element (h = 0.04) of Hertz's half-width.
+    closed = contact["x"][contact["pressure"] > 0]
+    assert abs(closed.max() - a) < 0.04
+    assert png.stat().st_size > 10_000
