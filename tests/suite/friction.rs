@@ -5,6 +5,7 @@
 use crate::common;
 
 use hertz::solve::{run_analysis, SolveParams};
+use hertz_bench::suite::plate_drawn_on_a_block;
 use std::path::Path;
 
 const MU: f64 = 0.3;
@@ -842,4 +843,94 @@ fn a_body_held_by_frictional_contact_alone_is_dragged_without_cut_back() {
     println!("large sliding with penalty friction: iterations {iterations:?}");
     assert_eq!(iterations.len(), 25);
     assert!(iterations.iter().all(|&i| i <= 6), "{iterations:?}");
+}
+
+/// Per step and column of contact nodes along x (their x), the normal and friction forces summed
+/// over the column (z = 0 and 1 in 3D), and whether every node slides.
+fn column_forces(text: &str) -> Vec<(Vec<(f64, f64, f64)>, bool)> {
+    let model = common::model_from_text(text).unwrap();
+    let mut out = Vec::new();
+    run_analysis(&model, &common::quiet(), |r| {
+        let mut cols: Vec<(f64, f64, f64)> = Vec::new();
+        for s in r.contact {
+            let x = model.nodes[s.node].coords[0];
+            let f = s.friction.map_or(0.0, |f| f.1);
+            match cols.iter_mut().find(|c| (c.0 - x).abs() < 1e-9) {
+                Some(c) => {
+                    c.1 += s.force;
+                    c.2 += f;
+                }
+                None => cols.push((x, s.force, f)),
+            }
+        }
+        cols.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let slides = r.contact.iter().all(|s| s.friction.is_some_and(|f| !f.0));
+        out.push((cols, slides));
+        Ok(())
+    })
+    .unwrap();
+    out
+}
+
+/// Friction multipliers on nodes with a prescribed displacement component (issue 30, class 2): a
+/// plate held at u_z = 0 everywhere, drawn along a fixed block, is the plane-strain problem.
+/// Node-to-face and mortar, multipliers and a penalty solved in their form: the 3D columns'
+/// normal and friction forces equal the 2D nodes', and the friction is μ times the normal force
+/// on every sliding node. Before, the friction component along z (whose column and, at the start
+/// of a slide, whose row were empty) made the Newton system singular: "a body is held by
+/// contact alone and no contact holds it", after 5 halvings.
+#[test]
+fn friction_multipliers_on_nodes_held_along_an_axis_give_the_plane_strain_answer() {
+    // Node-to-face penalties act per node: a 3D column of two nodes has half the 2D node's each.
+    for (keyword, params, params_3d, mortar) in [
+        (
+            "n2slagrangianmultipliercontact",
+            "friction 0.3",
+            "friction 0.3",
+            false,
+        ),
+        (
+            "n2spenaltycontact",
+            "penalty 1e5 friction 0.3 pt 1e5",
+            "penalty 5e4 friction 0.3 pt 5e4",
+            false,
+        ),
+        (
+            "s2slagrangianmultipliercontact",
+            "friction 0.3",
+            "friction 0.3",
+            true,
+        ),
+        (
+            "s2spenaltycontact",
+            "penalty 1e5 friction 0.3 pt 1e5",
+            "penalty 1e5 friction 0.3 pt 1e5",
+            true,
+        ),
+    ] {
+        let plane = column_forces(&plate_drawn_on_a_block(2, keyword, params, mortar));
+        let solid = column_forces(&plate_drawn_on_a_block(3, keyword, params_3d, mortar));
+        assert_eq!(plane.len(), 2);
+        for (step, ((p, p_slides), (s, s_slides))) in plane.iter().zip(&solid).enumerate() {
+            assert!(
+                *p_slides && *s_slides,
+                "{keyword} step {}: all nodes slide",
+                step + 1
+            );
+            assert_eq!(p.len(), s.len());
+            let total: f64 = p.iter().map(|c| c.1).sum();
+            assert!(total > 1.0, "{keyword}: pressed ({total})");
+            for (a, b) in p.iter().zip(s) {
+                assert!(
+                    (a.1 - b.1).abs() < 1e-8 * total && (a.2 - b.2).abs() < 1e-8 * total,
+                    "{keyword} step {} x = {}: 2D {:?}, 3D {:?}",
+                    step + 1,
+                    a.0,
+                    a,
+                    b
+                );
+                assert!((b.2 - MU * b.1).abs() < 1e-9 * total, "{keyword}: μN {b:?}");
+            }
+        }
+    }
 }

@@ -519,6 +519,149 @@ fn rubber_and_stiff_die(inp: &mut Input) {
 /// The penalty of [`die_as_wide_as_the_block`]'s twin: 10³ times the block's modulus (90/31).
 pub const DIE_PENALTY: f64 = 3e3;
 
+/// A plate 2 × 1 (4 × 2 elements) on a fixed block, pressed down 0.02 and drawn 0.05 along x
+/// by its top, μ = 0.3: in plane strain (`dim` 2), or in 3D one element thick with u_z = 0 on
+/// every node of the plate (`dim` 3), the same problem. The condition is `keyword` with
+/// `params` (law and friction); `mortar`: the plate's bottom is its slave segment.
+pub fn plate_drawn_on_a_block(dim: usize, keyword: &str, params: &str, mortar: bool) -> String {
+    let (nx, ny) = (4usize, 2usize);
+    let layers = if dim == 3 { 2 } else { 1 };
+    let mut nodes: Vec<[f64; 3]> = Vec::new();
+    let mut id = std::collections::HashMap::new();
+    // Plate (tag 0, y = 0..1) and block (tag 1, y = −0.5..0) nodes, z = 0 then z = 1.
+    for (tag, ys) in [(0u8, vec![0.0, 0.5, 1.0]), (1, vec![-0.5, 0.0])] {
+        for k in 0..layers {
+            for (j, y) in ys.iter().enumerate() {
+                for i in 0..=nx {
+                    nodes.push([0.5 * i as f64, *y, k as f64]);
+                    id.insert((tag, i, j, k), nodes.len());
+                }
+            }
+        }
+    }
+    let n = |t: u8, i: usize, j: usize, k: usize| id[&(t, i, j, k)];
+    // LSpace: nodes 5-8 under 1-4 (the guide); Quad1PlaneStrain counter-clockwise.
+    let element = |t: u8, i: usize, j: usize| -> Vec<usize> {
+        if dim == 3 {
+            let face = |k| {
+                [
+                    n(t, i, j, k),
+                    n(t, i, j + 1, k),
+                    n(t, i + 1, j + 1, k),
+                    n(t, i + 1, j, k),
+                ]
+            };
+            [face(1), face(0)].concat()
+        } else {
+            vec![
+                n(t, i, j, 0),
+                n(t, i + 1, j, 0),
+                n(t, i + 1, j + 1, 0),
+                n(t, i, j + 1, 0),
+            ]
+        }
+    };
+    let mut elements: Vec<Vec<usize>> = Vec::new();
+    for j in 0..ny {
+        for i in 0..nx {
+            elements.push(element(0, i, j));
+        }
+    }
+    let plate_elements = elements.len();
+    elements.extend((0..nx).map(|i| element(1, i, 0)));
+    let list = |v: &[usize]| {
+        let items: Vec<String> = v.iter().map(|x| x.to_string()).collect();
+        format!("{} {}", v.len(), items.join(" "))
+    };
+    // The block's top and the plate's bottom: LSpace faces 4 and 6, quadrilateral edges 3 and 1.
+    let (top_face, bottom_face) = if dim == 3 { (4, 6) } else { (3, 1) };
+    let boundaries = |first: usize, b: usize| {
+        let v: Vec<usize> = (0..nx).flat_map(|e| [first + e + 1, b]).collect();
+        list(&v)
+    };
+    let tagged = |tag: u8| {
+        let mut v: Vec<usize> = id
+            .iter()
+            .filter(|(key, _)| key.0 == tag)
+            .map(|(_, &m)| m)
+            .collect();
+        v.sort_unstable();
+        v
+    };
+    let row = |j: usize| -> Vec<usize> {
+        (0..layers)
+            .flat_map(|k| (0..=nx).map(move |i| (i, k)))
+            .map(|(i, k)| n(0, i, j, k))
+            .collect()
+    };
+    let face = if dim == 3 {
+        "linear3delementsurfacecontactsegment"
+    } else {
+        "linear2delementedgecontactsegment"
+    };
+    let set = if dim == 3 { "boundaryset" } else { "edgeset" };
+    let (segments, pairing) = if mortar {
+        (
+            format!("{face} 1 {set} 4\n{face} 2 {set} 5\n"),
+            "slavesegment 2 segmentset 1 1".to_string(),
+        )
+    } else {
+        (
+            format!("{face} 1 {set} 4\n"),
+            format!("nodeset {} segmentset 1 1", list(&row(0))),
+        )
+    };
+    let (domain, fixed) = if dim == 3 {
+        ("3d", "dofs 3 1 2 3 values 3 0 0 0")
+    } else {
+        ("PlaneStrain", "dofs 2 1 2 values 2 0 0")
+    };
+    let mut t = format!(
+        "plate.out\nplate on a block, drawn along it\nStaticStructural nsteps 2 rtolf 1e-10 maxiter 30\n\
+         domain {domain}\nOutputManager\n\
+         ndofman {} nelem {} ncrosssect 1 nmat 1 nbc 4 nic 0 nltf 2 nset 5 ncontactseg {}\n",
+        nodes.len(),
+        elements.len(),
+        if mortar { 2 } else { 1 },
+    );
+    for (k, x) in nodes.iter().enumerate() {
+        let c: Vec<String> = x[..dim].iter().map(|c| c.to_string()).collect();
+        t += &format!("node {} coords {dim} {}\n", k + 1, c.join(" "));
+    }
+    let kind = if dim == 3 {
+        "LSpace"
+    } else {
+        "Quad1PlaneStrain"
+    };
+    for (k, e) in elements.iter().enumerate() {
+        t += &format!("{kind} {} nodes {} mat 1 crossSect 1\n", k + 1, list(e));
+    }
+    t += &segments;
+    t += "SimpleCS 1 thick 1.0\nIsoLE 1 d 0 E 1000 n 0.3 tAlpha 0\n";
+    t += &format!("BoundaryCondition 1 loadTimeFunction 1 {fixed} set 3\n");
+    t += "BoundaryCondition 2 loadTimeFunction 2 dofs 2 1 2 values 2 0.05 -0.02 set 2\n";
+    // In 3D u_z = 0 on every plate node (in 2D a condition on nothing free: u_y = 0 of the block).
+    if dim == 3 {
+        t += "BoundaryCondition 3 loadTimeFunction 1 dofs 1 3 values 1 0 set 1\n";
+    } else {
+        t += "BoundaryCondition 3 loadTimeFunction 1 dofs 1 2 values 1 0 set 3\n";
+    }
+    t += &format!("{keyword} 4 loadTimeFunction 1 {params} {pairing}\n");
+    t += "ConstantFunction 1 f(t) 1.0\nPiecewiseLinFunction 2 npoints 3 t 3 0 1 2 f(t) 3 0 0.5 1\n";
+    t += &format!(
+        "Set 1 nodes {}\nSet 2 nodes {}\nSet 3 nodes {}\n",
+        list(&tagged(0)),
+        list(&row(ny)),
+        list(&tagged(1))
+    );
+    t += &format!(
+        "Set 4 elementboundaries {}\n",
+        boundaries(plate_elements, top_face)
+    );
+    t += &format!("Set 5 elementboundaries {}\n", boundaries(0, bottom_face));
+    t
+}
+
 /// A neo-Hookean block [0, 1]^dim (8 elements a side in 2D, 5 in 3D; c1 = 0.5, k = 10)
 /// compressed 30 % in ten steps of large deformation by a die exactly as wide and a thousand
 /// times stiffer (two layers over the block, 0.2 thick), the block's top nodes the slave side:
@@ -873,6 +1016,34 @@ pub fn setups() -> Vec<Setup> {
             |l| die_as_wide_as_the_block(2, true, l),
         )
     });
+    // Friction along a fixed block of a 3D plate held at u_z = 0 on every node (the friction
+    // force's z component acts on held DOFs only), node-to-face and mortar; μ = 0.3, sliding.
+    for (mortar, name) in [(false, "node-to-face"), (true, "mortar")] {
+        out.push(Setup::new(
+            format!("3D plate held at u_z = 0 drawn along a block, friction, {name}"),
+            "friction",
+            1e5,
+            move |l| {
+                let (keyword, params) = match (l, mortar) {
+                    (Law::Multiplier, false) => {
+                        ("n2slagrangianmultipliercontact", "friction 0.3".to_string())
+                    }
+                    (Law::Multiplier, true) => {
+                        ("s2slagrangianmultipliercontact", "friction 0.3".to_string())
+                    }
+                    (Law::Penalty(p), m) => (
+                        if m {
+                            "s2spenaltycontact"
+                        } else {
+                            "n2spenaltycontact"
+                        },
+                        format!("penalty {p} friction 0.3 pt {p}"),
+                    ),
+                };
+                plate_drawn_on_a_block(3, keyword, &params, mortar)
+            },
+        ));
+    }
     // A rigid plane and circle moving with a node compress a neo-Hookean block 50 %.
     for (circle, name) in [(false, "plane"), (true, "circle")] {
         out.push(Setup::new(

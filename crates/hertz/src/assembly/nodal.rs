@@ -83,6 +83,13 @@ impl<'a> NodalState<'a> {
         self.dofs.n_free - self.dofs.n_lambda
     }
 
+    /// Whether location code `code` moves with a free displacement equation (else every primary
+    /// DOF it follows is prescribed).
+    pub fn is_free(&self, code: usize) -> bool {
+        let first = self.first_multiplier();
+        self.dofs.entries(code).any(|(p, _)| p < first)
+    }
+
     /// The values of the multiplier equations `eqs`.
     pub fn multipliers(&self, eqs: Range<usize>) -> &'a [f64] {
         &self.u[eqs]

@@ -314,8 +314,9 @@ pub fn apply_law(
                 ContactLaw::Multiplier => 0.0,
             };
             let lambdas = ctx.nodes.multipliers(eqs.clone());
+            let free: Vec<bool> = codes.iter().map(|&c| ctx.nodes.is_free(c)).collect();
             let (point, friction) =
-                law::multiplier::evaluate(ctx.laws, lambdas, codes, eqs, kin, compliance);
+                law::multiplier::evaluate(ctx.laws, lambdas, codes, eqs, kin, compliance, &free);
             if let Some(s) = &kin.slip {
                 state.friction = friction;
                 // A sticking node keeps its anchor; a sliding one leaves it behind by its

@@ -58,8 +58,16 @@ fn capped(c: f64, compliance: f64) -> f64 {
 
 /// `codes`: the displacement codes, then the equations of the multipliers `lambdas`: the
 /// friction force's components (if any) and last the normal force. `cn`: 1/ε of a
-/// penalty condition solved in this form, else 0. Returns the point and, for an active point with
-/// friction, whether it sticks and the friction force's magnitude.
+/// penalty condition solved in this form, else 0. `free`: per displacement code, whether it moves
+/// with a free equation. Returns the point and, for an active point with friction, whether it
+/// sticks and the friction force's magnitude.
+///
+/// A friction component along an axis on which every node of the point is held (a plate with
+/// u_z = 0 everywhere, pressed on a fixed block) does no work on any free equation: its column
+/// is empty, and so is its row where the rule's kink leaves no λ_T dependence (a node sliding at
+/// the start of a step). It is held at zero (its row λ_T,k = 0): the only Coulomb force in a
+/// slide, since no slip can happen along the axis, and a valid one in stick, where the support
+/// takes any force along it.
 pub fn evaluate(
     laws: &Laws,
     lambdas: &[f64],
@@ -67,6 +75,7 @@ pub fn evaluate(
     eqs: std::ops::Range<usize>,
     k: &PointKinematics,
     cn: f64,
+    free: &[bool],
 ) -> (ContactPoint, Option<(bool, f64)>) {
     let m = k.b.len();
     let nt = eqs.len() - 1;
@@ -126,8 +135,14 @@ pub fn evaluate(
             }
             let (rows, stick, force) = coulomb(s, lambda, &lambda_t[..nt], m);
             for (c, row) in rows.iter().enumerate() {
-                fe[m + c] = row.v;
-                ke[(m + c) * mm..(m + c + 1) * mm].copy_from_slice(&row.d);
+                let acts = (0..m).any(|i| free[i] && s.share[c][i].v != 0.0);
+                if acts {
+                    fe[m + c] = row.v;
+                    ke[(m + c) * mm..(m + c + 1) * mm].copy_from_slice(&row.d);
+                } else {
+                    fe[m + c] = lambda_t[c];
+                    ke[(m + c) * mm + m + c] = 1.0;
+                }
             }
             friction = Some((stick, force));
         }

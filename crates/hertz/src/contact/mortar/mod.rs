@@ -370,8 +370,9 @@ impl SlotLaw {
                     *g += lambda * d;
                 }
             }
+            let free: Vec<bool> = codes.iter().map(|&c| ctx.nodes.is_free(c)).collect();
             let (point, friction) =
-                law::multiplier::evaluate(&laws, lambdas, codes, eqs, &kin, compliance);
+                law::multiplier::evaluate(&laws, lambdas, codes, eqs, &kin, compliance, &free);
             if let Some(s) = &kin.slip {
                 // Traction per unit area: the node's force is its times D_j.
                 state.friction = friction.map(|(stick, t)| (stick, t * w.area.v));
