@@ -845,13 +845,15 @@ fn a_body_held_by_frictional_contact_alone_is_dragged_without_cut_back() {
     assert!(iterations.iter().all(|&i| i <= 6), "{iterations:?}");
 }
 
-/// Per step and column of contact nodes along x (their x), the normal and friction forces summed
-/// over the column (z = 0 and 1 in 3D), and whether every node slides.
-fn column_forces(text: &str) -> Vec<(Vec<(f64, f64, f64)>, bool)> {
+/// A column of contact nodes along x: its x, and the normal and friction forces summed over it.
+type Column = (f64, f64, f64);
+
+/// Per step, the columns of contact nodes (z = 0 and 1 in 3D) and whether every node slides.
+fn column_forces(text: &str) -> Vec<(Vec<Column>, bool)> {
     let model = common::model_from_text(text).unwrap();
     let mut out = Vec::new();
     run_analysis(&model, &common::quiet(), |r| {
-        let mut cols: Vec<(f64, f64, f64)> = Vec::new();
+        let mut cols: Vec<Column> = Vec::new();
         for s in r.contact {
             let x = model.nodes[s.node].coords[0];
             let f = s.friction.map_or(0.0, |f| f.1);
