@@ -767,3 +767,100 @@ fn node_to_face_pressures_on_symmetry_planes_follow_hertz() {
         }
     }
 }
+
+/// A body held by contact alone with multipliers, above the condensed step's dense block (issue
+/// 30, class 1): the cap of a tetrahedral Hertz sphere, its whole bottom face the slave side,
+/// pushed down by a force of 30 (not a displacement), node-to-face and mortar. Solved condensed
+/// on all its candidates, condensed on its nearest points (the block lowered to 200 equations),
+/// and with full tangents (no condensed step): the same contact forces on every path, and the
+/// block's reactions balance the load. Reported: "the stiffness matrix is singular" at the first
+/// factorization, with some 800 slave nodes.
+#[test]
+#[ignore = "long: 6 solves of a 3D tetrahedral contact model (about 15 s)"]
+fn a_body_held_by_contact_alone_is_solved_on_every_solver_path() {
+    for mortar in [false, true] {
+        let text = HertzSphere {
+            kind: Solid::Tet,
+            sym: 0,
+            h: 0.25,
+            delta: 0.15,
+            nlgeo: false,
+            law: Law::Multiplier,
+            mortar,
+        }
+        .input_within(HERTZ_CAP);
+        // The push (condition 4, on the cap's top nodes) becomes a force of 30 in all.
+        let push = text
+            .lines()
+            .find(|l| l.starts_with("BoundaryCondition 4 "))
+            .unwrap()
+            .to_string();
+        let set: usize = push.split_whitespace().last().unwrap().parse().unwrap();
+        let count: usize = text
+            .lines()
+            .find(|l| l.starts_with(&format!("Set {set} nodes ")))
+            .unwrap()
+            .split_whitespace()
+            .nth(3)
+            .unwrap()
+            .parse()
+            .unwrap();
+        let load = format!(
+            "NodalLoad 4 loadTimeFunction 1 dofs 3 1 2 3 components 3 0 0 {} set {set}",
+            -30.0 / count as f64
+        );
+        let model = common::model_from_text(&text.replace(&push, &load)).unwrap();
+        let run = |max_condensed: usize, condensed_contact: bool| {
+            let params = SolveParams {
+                max_condensed,
+                condensed_contact,
+                ..common::quiet()
+            };
+            let mut out = (Vec::new(), 0.0);
+            run_analysis(&model, &params, |r| {
+                let lift: f64 = r
+                    .dofs
+                    .prescribed
+                    .iter()
+                    .zip(r.reactions)
+                    .filter(|((_, d, _), _)| *d == 3)
+                    .map(|(_, f)| f)
+                    .sum();
+                out = (r.contact.to_vec(), lift);
+                Ok(())
+            })
+            .unwrap_or_else(|e| {
+                panic!("mortar {mortar}, {max_condensed}, {condensed_contact}: {e}")
+            });
+            out
+        };
+        let (all, lift) = run(3000, true);
+        assert!(
+            (lift - 30.0).abs() < 1e-8,
+            "mortar {mortar}: reactions {lift}"
+        );
+        let p0 = all
+            .iter()
+            .map(|s| s.pressure)
+            .filter(|p| p.is_finite())
+            .fold(0.0, f64::max);
+        assert!(all.iter().filter(|s| s.active).count() > 10);
+        for (max, condensed) in [(200, true), (3000, false)] {
+            let (other, lift) = run(max, condensed);
+            assert!(
+                (lift - 30.0).abs() < 1e-8,
+                "mortar {mortar}: reactions {lift}"
+            );
+            for (a, b) in all.iter().zip(&other) {
+                assert!(
+                    (a.pressure.is_nan() && b.pressure.is_nan())
+                        || (a.pressure - b.pressure).abs() < 1e-8 * p0,
+                    "mortar {mortar}, {max}, {condensed}: node {} {} vs {}",
+                    a.node,
+                    a.pressure,
+                    b.pressure
+                );
+            }
+        }
+    }
+}
