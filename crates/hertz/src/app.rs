@@ -6,7 +6,7 @@ use crate::input::read_model_warning;
 use crate::output::check;
 use crate::output::vtu::VtuFormat;
 use crate::output::writer::RunWriter;
-use crate::solve::{run_analysis_observed, Observer, Phase, Silent, SolveParams};
+use crate::solve::{run_analysis_observed, Observer, Phase, Silent, SolveParams, SolverChoice};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -19,6 +19,8 @@ pub struct RunOptions {
     pub out_dir: Option<PathBuf>,
     /// How the `.vtu` arrays are written.
     pub vtu_format: VtuFormat,
+    /// The linear solver of the full tangents (PETSc's in the command's `petsc` feature).
+    pub solver: SolverChoice,
 }
 
 /// What a run produced.
@@ -119,7 +121,10 @@ pub fn run_file_observed(
     } else {
         None
     };
-    let params = SolveParams::default();
+    let params = SolveParams {
+        solver: opts.solver.clone(),
+        ..SolveParams::default()
+    };
     let mut steps_done = 0;
     let mut solver_warnings: Vec<String> = Vec::new();
     let result = run_analysis_observed(&model, &params, observer, |res| {

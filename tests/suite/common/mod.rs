@@ -223,6 +223,7 @@ pub fn run_writing_vtu(
             write_outputs: true,
             out_dir,
             vtu_format,
+            ..Default::default()
         },
     )
     .unwrap();

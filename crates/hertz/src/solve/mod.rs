@@ -14,7 +14,8 @@ pub mod stepping;
 
 pub use report::{IterationReport, Observer, Phase, Silent, StepReport};
 pub use stepping::{
-    run_analysis, run_analysis_observed, SolveParams, SolverChoice, StepInfo, StepResult,
+    run_analysis, run_analysis_observed, SolveParams, SolverChoice, SolverFactory, StepInfo,
+    StepResult,
 };
 
 use crate::assembly::DofMap;

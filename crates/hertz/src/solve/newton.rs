@@ -132,8 +132,11 @@ impl<'a> NewtonContext<'a> {
         let small_strain = model.constant_element_stiffness();
         let linear = small_strain && contact.is_empty();
         let zero = vec![0.0; np];
-        // Contact: Newton systems condensed on the contact equations (see `condensed`).
-        let condensed = if contact.is_empty() || !params.condensed_contact {
+        // Contact: Newton systems condensed on the contact equations (see `condensed`), unless
+        // the solver comes from outside: it offers no trailing factor block, so full tangents.
+        let condense =
+            params.condensed_contact && !matches!(params.solver, SolverChoice::Custom(_));
+        let condensed = if contact.is_empty() || !condense {
             Condensed::Off
         } else {
             Condensed::Pending(contact.candidate_equations(&NodalState::new(model, dofs, &zero))?)
@@ -147,13 +150,14 @@ impl<'a> NewtonContext<'a> {
         }
         let slot_nodes: Vec<usize> = initial_states.iter().map(|s| s.node).collect();
         let groups = Some(dofs.free_eq_nodes());
-        let solver: Box<dyn LinearSolver> = match params.solver {
+        let solver: Box<dyn LinearSolver> = match &params.solver {
             SolverChoice::Sparse => Box::new(FaerSolver::new(SolverSettings {
                 groups: groups.clone(),
                 krylov_min: params.krylov_min_unknowns,
                 ..Default::default()
             })),
             SolverChoice::Dense => Box::new(DenseLu::default()),
+            SolverChoice::Custom(make) => (make.0)(),
         };
         let mut ctx = NewtonContext {
             asm,
@@ -180,7 +184,7 @@ impl<'a> NewtonContext<'a> {
             max_condensed: params.max_condensed,
             eliminate: MultiplierElimination::new(params.krylov_min_unknowns),
         };
-        if !ctx.contact.is_empty() && !params.condensed_contact {
+        if !ctx.contact.is_empty() && !condense {
             ctx.condense_off();
         }
         Ok((ctx, initial_warnings))

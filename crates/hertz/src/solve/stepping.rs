@@ -7,7 +7,7 @@
 //! A step that does not converge is restarted in 2, 4, … substeps (loads and prescribed values
 //! interpolated linearly); after `max_cutbacks` halvings the run stops with an error.
 
-use super::linear::SolverStats;
+use super::linear::{LinearSolver, SolverStats};
 use super::newton::NewtonContext;
 use super::report::{Observer, Phase, Silent, StepReport};
 use crate::assembly::DofMap;
@@ -39,13 +39,27 @@ pub struct SolveParams {
 }
 
 /// Which [`LinearSolver`] factorizes the full tangents.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Default)]
 pub enum SolverChoice {
     /// [`FaerSolver`]: sparse direct factorizations, GMRES for large non-symmetric tangents.
     #[default]
     Sparse,
     /// [`DenseLu`]: a dense LU, the reference for small models.
     Dense,
+    /// A solver from outside the library (PETSc's KSP in the `hertz` command's `petsc`
+    /// feature), made once per analysis. It offers no trailing factor block, so the condensed
+    /// contact step falls back to full tangents with it.
+    Custom(SolverFactory),
+}
+
+/// Makes the [`LinearSolver`] of one analysis.
+#[derive(Clone)]
+pub struct SolverFactory(pub std::sync::Arc<dyn Fn() -> Box<dyn LinearSolver> + Send + Sync>);
+
+impl std::fmt::Debug for SolverFactory {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("SolverFactory(..)")
+    }
 }
 
 impl Default for SolveParams {
