@@ -46,6 +46,23 @@ struct Verbosity {
     verbose: bool,
 }
 
+#[derive(clap::Args, Default)]
+struct PetscArgs {
+    /// Solve the linear systems with PETSc (a build with `--features petsc`): CG + GAMG for a
+    /// positive definite tangent, MUMPS otherwise; under `mpirun -n N` across N ranks, rank 0
+    /// reporting and writing. Tangents with contact are then not condensed
+    #[arg(long)]
+    petsc: bool,
+    /// PETSc options for --petsc, e.g. "-ksp_type cg -pc_type hypre" (PETSC_OPTIONS is read too)
+    #[arg(
+        long,
+        value_name = "OPTIONS",
+        requires = "petsc",
+        allow_hyphen_values = true
+    )]
+    petsc_options: Option<String>,
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// Solve FILE; write its .out, a .vtu per step, a .pvd and, with contact, a .contact.csv;
@@ -60,6 +77,8 @@ enum Command {
         /// exact, faster to write and to load in ParaView)
         #[arg(long, default_value = "ascii", value_parser = hertz_cli::import::vtu_parser())]
         vtu: VtuFormat,
+        #[command(flatten)]
+        petsc: PetscArgs,
         #[command(flatten)]
         verbosity: Verbosity,
     },
@@ -97,9 +116,12 @@ fn main() -> ExitCode {
             file,
             output,
             vtu,
+            petsc,
             verbosity,
-        } => run_or_check(file, Some((output, vtu)), &verbosity),
-        Command::Check { file, verbosity } => run_or_check(file, None, &verbosity),
+        } => run_or_check(file, Some((output, vtu)), &petsc, &verbosity),
+        Command::Check { file, verbosity } => {
+            run_or_check(file, None, &PetscArgs::default(), &verbosity)
+        }
         Command::Import(args) => report(
             hertz::mesh::gmsh::import_command(&args.options())
                 .map(|lines| lines.iter().for_each(|l| eprintln!("{l}"))),
@@ -136,16 +158,33 @@ fn report(result: hertz::error::Result<()>) -> ExitCode {
 fn run_or_check(
     file: PathBuf,
     output: Option<(Option<PathBuf>, VtuFormat)>,
+    petsc: &PetscArgs,
     v: &Verbosity,
 ) -> ExitCode {
-    let run = output.is_some();
+    // PETSc for the whole run (finalized when `session` drops, after the analysis).
+    let session = if petsc.petsc {
+        match hertz_petsc::Session::start(petsc.petsc_options.as_deref()) {
+            Ok(s) => Some(s),
+            Err(e) => {
+                eprintln!("error: {e}");
+                return ExitCode::from(2);
+            }
+        }
+    } else {
+        None
+    };
+    // Under MPI every rank solves; rank 0 alone reports and writes.
+    let silent_rank = session.as_ref().is_some_and(|s| s.rank() > 0);
+    let run = output.is_some() && !silent_rank;
     let (out_dir, vtu_format) = output.unwrap_or_default();
     let opts = RunOptions {
         write_outputs: run,
         out_dir,
         vtu_format,
+        solver: session.as_ref().map(|s| s.solver()).unwrap_or_default(),
     };
-    let level = match (v.quiet, v.verbose) {
+    let quiet = v.quiet || silent_rank;
+    let level = match (quiet, v.verbose) {
         (true, _) => Level::Quiet,
         (_, true) => Level::Verbose,
         _ => Level::Normal,
@@ -154,6 +193,13 @@ fn run_or_check(
     let result = run_file_observed(&file, &opts, &observer);
     // The progress bar is cleared before anything more is printed.
     drop(observer);
+    if silent_rank {
+        let code = match &result {
+            Ok(r) => u8::from(r.n_failed() > 0),
+            Err(e) => e.exit_code() as u8,
+        };
+        return ExitCode::from(code);
+    }
     let report_ = match result {
         Ok(r) => r,
         Err(e) => return report(Err(e)),

@@ -20,7 +20,7 @@ from ._hertz import (
     read,
     read_string,
 )
-from ._build import from_arrays
+from ._build import from_arrays, input_from_arrays
 
 __all__ = [
     "HertzError",
@@ -31,6 +31,7 @@ __all__ = [
     "SolveError",
     "Step",
     "from_arrays",
+    "input_from_arrays",
     "read",
     "read_string",
 ]

@@ -55,7 +55,13 @@ def _pairs(items, what):
     return out
 
 
-def from_arrays(
+def from_arrays(*args, **kwargs):
+    """A `hertz.Model` from arrays: `input_from_arrays`'s text, read by the library's reader
+    (named `name` in messages)."""
+    return read_string(input_from_arrays(*args, **kwargs), kwargs.get("name", "model"))
+
+
+def input_from_arrays(
     nodes,
     elements,
     *,
@@ -70,7 +76,8 @@ def from_arrays(
     name="model",
     description="built from arrays",
 ):
-    """A `hertz.Model` from arrays.
+    """The OOFEM input text of a model given by arrays (write it to a file to run it with
+    `hertz run`; `from_arrays` reads it at once).
 
     nodes: (n, dim) coordinates; node i has label i + 1.
     elements: element type (OOFEM keyword: "LSpace", "LTRSpace", "LWedge", "PlaneStress2d",
@@ -146,4 +153,4 @@ def from_arrays(
             key = "elementboundaries" if key == "boundaries" else key
             spec[key] = np.asarray(v, dtype=np.int64)
         lines.append(_record("Set", number, spec))
-    return read_string("\n".join(lines) + "\n", name)
+    return "\n".join(lines) + "\n"

@@ -19,6 +19,8 @@ mod hyperelastic;
 mod mortar;
 mod newton;
 mod oofem_suite;
+#[cfg(feature = "petsc")]
+mod petsc;
 mod plasticity;
 mod plot;
 mod robustness;

@@ -1,0 +1,78 @@
+//! PETSc as a linear solver of hertz (the feature `petsc`): the tangent goes into a PETSc AIJ
+//! matrix split by rows across the MPI ranks, and PETSc's KSP solves it — by default CG with
+//! algebraic multigrid (GAMG) for a positive definite tangent, MUMPS' LDLᵀ for a symmetric one and
+//! MUMPS' LU otherwise, to a relative residual of 1e-12; any PETSc option overrides that
+//! (`PETSC_OPTIONS`, or the options string given to [`Session::start`], e.g.
+//! `-ksp_type cg -pc_type hypre`).
+//!
+//! Under `mpirun -n N` every rank reads and assembles the whole model (assembly is replicated)
+//! and inserts its own rows; the factorization or the multigrid hierarchy, and the solve, are
+//! distributed, and every rank gets the whole solution back. Without the feature this crate is a
+//! stub whose [`Session::start`] says how to build with PETSc.
+
+use hertz::solve::SolverFactory;
+
+#[cfg(feature = "petsc")]
+mod ffi;
+#[cfg(feature = "petsc")]
+mod solver;
+#[cfg(feature = "petsc")]
+pub use solver::PetscSolver;
+
+/// Whether this build has PETSc.
+pub const AVAILABLE: bool = cfg!(feature = "petsc");
+
+/// PETSc (and MPI) initialized for the life of the value; finalized when it is dropped, after
+/// every solver made from it.
+pub struct Session {
+    rank: usize,
+    size: usize,
+}
+
+impl Session {
+    /// Initialize PETSc with the options in `options` (PETSc's syntax, added to those of the
+    /// `PETSC_OPTIONS` environment variable). PETSc reports errors as return codes, printing
+    /// nothing.
+    #[cfg(feature = "petsc")]
+    pub fn start(options: Option<&str>) -> Result<Session, String> {
+        solver::start(options)
+    }
+
+    /// Without PETSc: an error that says how to build with it.
+    #[cfg(not(feature = "petsc"))]
+    pub fn start(_options: Option<&str>) -> Result<Session, String> {
+        Err(
+            "this hertz was built without PETSc: build it with `cargo build --release \
+             --features petsc` (Debian: apt-get install libpetsc-real3.18-dev first)"
+                .into(),
+        )
+    }
+
+    /// This process's MPI rank (0 on one process).
+    pub fn rank(&self) -> usize {
+        self.rank
+    }
+
+    /// The number of MPI ranks.
+    pub fn size(&self) -> usize {
+        self.size
+    }
+
+    /// The solver choice that makes a [`PetscSolver`] for each analysis.
+    pub fn solver(&self) -> hertz::solve::SolverChoice {
+        #[cfg(feature = "petsc")]
+        let make = SolverFactory(std::sync::Arc::new(|| {
+            Box::new(PetscSolver::new()) as Box<dyn hertz::solve::linear::LinearSolver>
+        }));
+        #[cfg(not(feature = "petsc"))]
+        let make = SolverFactory(std::sync::Arc::new(|| unreachable!("no PETSc session")));
+        hertz::solve::SolverChoice::Custom(make)
+    }
+}
+
+#[cfg(feature = "petsc")]
+impl Drop for Session {
+    fn drop(&mut self) {
+        solver::finish();
+    }
+}

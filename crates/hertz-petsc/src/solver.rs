@@ -1,0 +1,437 @@
+//! [`PetscSolver`]: hertz's [`LinearSolver`] on a PETSc AIJ matrix and KSP.
+
+use crate::ffi::*;
+use crate::Session;
+use hertz::assembly::Pattern;
+use hertz::error::{Error, Result};
+use hertz::solve::linear::{LinearSolver, SolverStats};
+use std::ffi::CString;
+use std::os::raw::c_int;
+use std::ptr::null_mut;
+use std::time::Instant;
+
+/// A PETSc call's error code as hertz's error.
+fn check(code: PetscErrorCode, what: &str) -> Result<()> {
+    if code == 0 {
+        Ok(())
+    } else {
+        Err(Error::Solve(format!(
+            "PETSc: {what} failed (error code {code})"
+        )))
+    }
+}
+
+fn cstr(s: &str) -> CString {
+    CString::new(s).expect("no NUL in PETSc names")
+}
+
+pub(crate) fn start(options: Option<&str>) -> std::result::Result<Session, String> {
+    let fail =
+        |what: &str, code: PetscErrorCode| format!("PETSc: {what} failed (error code {code})");
+    // SAFETY: PETSc is initialized once per process, before any other call; NULL argc/argv is
+    // allowed (options then come from PETSC_OPTIONS and the string below).
+    unsafe {
+        let code = PetscInitialize(null_mut(), null_mut(), std::ptr::null(), std::ptr::null());
+        if code != 0 {
+            return Err(fail("PetscInitialize", code));
+        }
+        // Errors come back as codes that hertz reports; PETSc prints nothing.
+        PetscPushErrorHandler(PetscReturnErrorHandler, null_mut());
+        if let Some(o) = options {
+            let s = cstr(o);
+            let code = PetscOptionsInsertString(null_mut(), s.as_ptr());
+            if code != 0 {
+                return Err(format!(
+                    "PETSc options `{o}`: not understood (error code {code})"
+                ));
+            }
+        }
+        // The options are checked once, on a KSP of no matrix: an unknown method is an error now,
+        // not at the first solve.
+        let mut ksp: KSP = null_mut();
+        KSPCreate(PETSC_COMM_WORLD, &mut ksp);
+        let code = KSPSetFromOptions(ksp);
+        KSPDestroy(&mut ksp);
+        if code != 0 {
+            PetscFinalize();
+            return Err(format!(
+                "PETSc does not accept the options {} (error code {code}: an unknown \
+                 -ksp_type or -pc_type?)",
+                options.map_or("of PETSC_OPTIONS".to_string(), |o| format!("`{o}`"))
+            ));
+        }
+        let (mut rank, mut size): (c_int, c_int) = (0, 1);
+        MPI_Comm_rank(PETSC_COMM_WORLD, &mut rank);
+        MPI_Comm_size(PETSC_COMM_WORLD, &mut size);
+        Ok(Session {
+            rank: rank as usize,
+            size: size as usize,
+        })
+    }
+}
+
+pub(crate) fn finish() {
+    // SAFETY: every PETSc object was destroyed with its solver, before the session ends.
+    unsafe {
+        PetscFinalize();
+    }
+}
+
+/// The rows [lo, hi) of this rank (PETSc's PETSC_DECIDE split: the first n mod size ranks get
+/// one row more).
+fn ownership(n: usize) -> (usize, usize) {
+    let (mut rank, mut size): (c_int, c_int) = (0, 1);
+    // SAFETY: PETSc (and MPI) are initialized by the session that made this solver.
+    unsafe {
+        MPI_Comm_rank(PETSC_COMM_WORLD, &mut rank);
+        MPI_Comm_size(PETSC_COMM_WORLD, &mut size);
+    }
+    let (r, s) = (rank as usize, size as usize);
+    let base = n / s;
+    let extra = n % s;
+    let lo = r * base + r.min(extra);
+    (lo, lo + base + usize::from(r < extra))
+}
+
+/// The owned rows of a pattern's matrix, row by row: (column, position in the values) of every
+/// entry, both triangles of a symmetric pattern.
+struct OwnedRows {
+    lo: usize,
+    rows: Vec<Vec<(PetscInt, usize)>>,
+}
+
+impl OwnedRows {
+    fn new(pattern: &Pattern, lo: usize, hi: usize) -> OwnedRows {
+        let mut rows = vec![Vec::new(); hi - lo];
+        for c in 0..pattern.n {
+            for k in pattern.col_ptr[c]..pattern.col_ptr[c + 1] {
+                let r = pattern.row_idx[k];
+                if (lo..hi).contains(&r) {
+                    rows[r - lo].push((c as PetscInt, k));
+                }
+                if pattern.symmetric && r != c && (lo..hi).contains(&c) {
+                    rows[c - lo].push((r as PetscInt, k));
+                }
+            }
+        }
+        for row in &mut rows {
+            row.sort_unstable();
+        }
+        OwnedRows { lo, rows }
+    }
+}
+
+/// PETSc's KSP on an AIJ matrix distributed by rows.
+pub struct PetscSolver {
+    mat: Mat,
+    ksp: KSP,
+    b: PetscVec,
+    x: PetscVec,
+    n: usize,
+    owned: Option<OwnedRows>,
+    stats: SolverStats,
+}
+
+impl Default for PetscSolver {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl PetscSolver {
+    pub fn new() -> PetscSolver {
+        PetscSolver {
+            mat: null_mut(),
+            ksp: null_mut(),
+            b: null_mut(),
+            x: null_mut(),
+            n: 0,
+            owned: None,
+            stats: SolverStats::default(),
+        }
+    }
+
+    /// The matrix, its vectors and the KSP for `pattern`, with its default method.
+    fn create(&mut self, pattern: &Pattern, spd: bool) -> Result<()> {
+        self.destroy();
+        let n = pattern.n;
+        let (lo, hi) = ownership(n);
+        let owned = OwnedRows::new(pattern, lo, hi);
+        let diag: Vec<PetscInt> = owned
+            .rows
+            .iter()
+            .map(|r| {
+                r.iter()
+                    .filter(|(c, _)| (lo..hi).contains(&(*c as usize)))
+                    .count() as PetscInt
+            })
+            .collect();
+        let off: Vec<PetscInt> = owned
+            .rows
+            .iter()
+            .zip(&diag)
+            .map(|(r, d)| r.len() as PetscInt - d)
+            .collect();
+        let local = (hi - lo) as PetscInt;
+        // SAFETY: the handles are created here and destroyed in `destroy`; the arrays outlive
+        // the calls that read them.
+        unsafe {
+            check(MatCreate(PETSC_COMM_WORLD, &mut self.mat), "MatCreate")?;
+            check(
+                MatSetSizes(self.mat, local, local, n as PetscInt, n as PetscInt),
+                "MatSetSizes",
+            )?;
+            let aij = cstr("aij");
+            check(MatSetType(self.mat, aij.as_ptr()), "MatSetType")?;
+            check(
+                MatSeqAIJSetPreallocation(self.mat, 0, diag.as_ptr()),
+                "preallocation",
+            )?;
+            check(
+                MatMPIAIJSetPreallocation(self.mat, 0, diag.as_ptr(), 0, off.as_ptr()),
+                "preallocation",
+            )?;
+            check(
+                MatCreateVecs(self.mat, &mut self.x, &mut self.b),
+                "MatCreateVecs",
+            )?;
+            check(KSPCreate(PETSC_COMM_WORLD, &mut self.ksp), "KSPCreate")?;
+            let mut pc: PC = null_mut();
+            check(KSPGetPC(self.ksp, &mut pc), "KSPGetPC")?;
+            let (ksp_type, pc_type) = if spd {
+                ("cg", "gamg")
+            } else if pattern.symmetric {
+                ("preonly", "cholesky")
+            } else {
+                ("preonly", "lu")
+            };
+            let (kt, pt, mumps) = (cstr(ksp_type), cstr(pc_type), cstr("mumps"));
+            check(KSPSetType(self.ksp, kt.as_ptr()), "KSPSetType")?;
+            check(PCSetType(pc, pt.as_ptr()), "PCSetType")?;
+            if !spd {
+                check(
+                    PCFactorSetMatSolverType(pc, mumps.as_ptr()),
+                    "PCFactorSetMatSolverType",
+                )?;
+            }
+            check(
+                KSPSetTolerances(self.ksp, 1e-12, 1e-50, -2.0, 10_000),
+                "KSPSetTolerances",
+            )?;
+        }
+        self.n = n;
+        self.owned = Some(owned);
+        Ok(())
+    }
+
+    fn destroy(&mut self) {
+        // SAFETY: each handle is null or was created by this solver; PETSc's destroy functions
+        // take null handles.
+        unsafe {
+            if !self.ksp.is_null() {
+                KSPDestroy(&mut self.ksp);
+            }
+            if !self.b.is_null() {
+                VecDestroy(&mut self.b);
+            }
+            if !self.x.is_null() {
+                VecDestroy(&mut self.x);
+            }
+            if !self.mat.is_null() {
+                MatDestroy(&mut self.mat);
+            }
+        }
+        self.owned = None;
+        self.n = 0;
+    }
+
+    /// The solution vector on every rank, into `out`.
+    fn gather(&self, out: &mut [f64]) -> Result<()> {
+        // SAFETY: `x` is assembled; the arrays read are restored before the vectors are freed.
+        unsafe {
+            let mut size: c_int = 1;
+            MPI_Comm_size(PETSC_COMM_WORLD, &mut size);
+            let (mut all, mut ctx): (PetscVec, VecScatter) = (self.x, null_mut());
+            if size > 1 {
+                check(
+                    VecScatterCreateToAll(self.x, &mut ctx, &mut all),
+                    "VecScatterCreateToAll",
+                )?;
+                check(
+                    VecScatterBegin(ctx, self.x, all, INSERT_VALUES, SCATTER_FORWARD),
+                    "VecScatterBegin",
+                )?;
+                check(
+                    VecScatterEnd(ctx, self.x, all, INSERT_VALUES, SCATTER_FORWARD),
+                    "VecScatterEnd",
+                )?;
+            }
+            let mut data: *const PetscScalar = std::ptr::null();
+            check(VecGetArrayRead(all, &mut data), "VecGetArrayRead")?;
+            out.copy_from_slice(std::slice::from_raw_parts(data, self.n));
+            check(VecRestoreArrayRead(all, &mut data), "VecRestoreArrayRead")?;
+            if size > 1 {
+                VecScatterDestroy(&mut ctx);
+                VecDestroy(&mut all);
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Drop for PetscSolver {
+    fn drop(&mut self) {
+        self.destroy();
+    }
+}
+
+impl LinearSolver for PetscSolver {
+    fn factorize(
+        &mut self,
+        pattern: &Pattern,
+        values: &[f64],
+        spd: bool,
+        _describe_eq: &dyn Fn(usize) -> String,
+    ) -> Result<()> {
+        let clock = Instant::now();
+        if self.owned.is_none() || self.n != pattern.n {
+            self.create(pattern, spd)?;
+        }
+        let owned = self.owned.as_ref().expect("created");
+        // SAFETY: the matrix was preallocated for exactly these entries; the slices outlive the
+        // calls.
+        unsafe {
+            let mut cols: Vec<PetscInt> = Vec::new();
+            let mut vals: Vec<f64> = Vec::new();
+            for (i, row) in owned.rows.iter().enumerate() {
+                cols.clear();
+                vals.clear();
+                cols.extend(row.iter().map(|e| e.0));
+                vals.extend(row.iter().map(|e| values[e.1]));
+                let r = (owned.lo + i) as PetscInt;
+                check(
+                    MatSetValues(
+                        self.mat,
+                        1,
+                        &r,
+                        cols.len() as PetscInt,
+                        cols.as_ptr(),
+                        vals.as_ptr(),
+                        INSERT_VALUES,
+                    ),
+                    "MatSetValues",
+                )?;
+            }
+            check(
+                MatAssemblyBegin(self.mat, MAT_FINAL_ASSEMBLY),
+                "MatAssemblyBegin",
+            )?;
+            check(
+                MatAssemblyEnd(self.mat, MAT_FINAL_ASSEMBLY),
+                "MatAssemblyEnd",
+            )?;
+            if pattern.symmetric {
+                // MUMPS then factorizes LDLᵀ (SYM = 2); SPD: Cholesky (SYM = 1).
+                check(
+                    MatSetOption(self.mat, MAT_SYMMETRIC, PETSC_TRUE),
+                    "MatSetOption",
+                )?;
+                check(
+                    MatSetOption(self.mat, MAT_SYMMETRY_ETERNAL, PETSC_TRUE),
+                    "MatSetOption",
+                )?;
+                if spd {
+                    check(MatSetOption(self.mat, MAT_SPD, PETSC_TRUE), "MatSetOption")?;
+                }
+            }
+            check(
+                KSPSetOperators(self.ksp, self.mat, self.mat),
+                "KSPSetOperators",
+            )?;
+            check(
+                KSPSetFromOptions(self.ksp),
+                "KSPSetFromOptions (the PETSc options)",
+            )?;
+            if KSPSetUp(self.ksp) != 0 {
+                return Err(Error::Singular(
+                    "PETSc could not set up its preconditioner or factorize the tangent \
+                     (singular: are all rigid-body motions restrained?)"
+                        .into(),
+                ));
+            }
+        }
+        self.stats = SolverStats {
+            ordering: "PETSc",
+            numeric_seconds: clock.elapsed().as_secs_f64(),
+            ..SolverStats::default()
+        };
+        Ok(())
+    }
+
+    fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()> {
+        let clock = Instant::now();
+        let owned = self
+            .owned
+            .as_ref()
+            .ok_or_else(|| Error::Solve("PETSc: solve before factorize".into()))?;
+        let lo = owned.lo;
+        let hi = lo + owned.rows.len();
+        let idx: Vec<PetscInt> = (lo..hi).map(|i| i as PetscInt).collect();
+        // SAFETY: b and x belong to the matrix; the index and value slices outlive the calls.
+        unsafe {
+            check(
+                VecSetValues(
+                    self.b,
+                    idx.len() as PetscInt,
+                    idx.as_ptr(),
+                    rhs[lo..hi].as_ptr(),
+                    INSERT_VALUES,
+                ),
+                "VecSetValues",
+            )?;
+            check(VecAssemblyBegin(self.b), "VecAssemblyBegin")?;
+            check(VecAssemblyEnd(self.b), "VecAssemblyEnd")?;
+            if KSPSolve(self.ksp, self.b, self.x) != 0 {
+                return Err(Error::Singular(
+                    "PETSc's solve failed (a singular tangent: are all rigid-body motions restrained?)".into(),
+                ));
+            }
+            let mut reason: KSPConvergedReason = 0;
+            check(
+                KSPGetConvergedReason(self.ksp, &mut reason),
+                "KSPGetConvergedReason",
+            )?;
+            let mut its: PetscInt = 0;
+            check(
+                KSPGetIterationNumber(self.ksp, &mut its),
+                "KSPGetIterationNumber",
+            )?;
+            // KSP_DIVERGED_PC_FAILED: the factorization or the multigrid setup met a zero pivot.
+            if reason == -11 {
+                return Err(Error::Singular(
+                    "PETSc's preconditioner failed on the tangent (singular: a mechanism or an \
+                     unrestrained rigid-body motion; check the supports)"
+                        .into(),
+                ));
+            }
+            if reason < 0 {
+                return Err(Error::Solve(format!(
+                    "PETSc's KSP did not converge (reason {reason} after {its} iterations; see \
+                     KSPConvergedReason, or choose another method with -ksp_type/-pc_type)"
+                )));
+            }
+            self.stats.krylov_iterations = its as usize;
+        }
+        self.gather(rhs)?;
+        self.stats.solve_seconds = clock.elapsed().as_secs_f64();
+        Ok(())
+    }
+
+    fn stats(&self) -> &SolverStats {
+        &self.stats
+    }
+
+    fn reset(&mut self) {
+        self.destroy();
+    }
+}

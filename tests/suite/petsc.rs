@@ -1,0 +1,165 @@
+//! `hertz run --petsc` (the `petsc` feature: `cargo test --release --features petsc --test suite
+//! petsc`): PETSc's CG + GAMG and MUMPS give the answers of hertz's own solvers, on one process
+//! and under `mpirun -n 2`; bad PETSc options and a singular model are clear errors. Each run is
+//! a process of its own (PETSc and MPI are initialized once per process).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// `hertz run FILE -o DIR ARGS`, under `mpirun -n ranks` if ranks > 1.
+fn run(file: &str, dir: &Path, args: &[&str], ranks: usize) -> Output {
+    let hertz = env!("CARGO_BIN_EXE_hertz");
+    let file = root().join(file);
+    let mut cmd = if ranks > 1 {
+        let mut c = Command::new("mpirun");
+        c.args([
+            "-n",
+            &ranks.to_string(),
+            "--bind-to",
+            "none",
+            "--oversubscribe",
+            hertz,
+        ]);
+        // Root in CI; traffic on the machine only.
+        c.env("OMPI_ALLOW_RUN_AS_ROOT", "1")
+            .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+            .env("OMPI_MCA_btl", "self,vader")
+            .env("OMPI_MCA_pml", "ob1")
+            .env("OMPI_MCA_oob_tcp_if_include", "lo");
+        c
+    } else {
+        Command::new(hertz)
+    };
+    cmd.arg("run")
+        .arg(&file)
+        .arg("-q")
+        .arg("-o")
+        .arg(dir)
+        .args(args);
+    cmd.output().expect("running hertz")
+}
+
+/// The rows of a CSV file as maps from column to value.
+fn csv(path: &Path) -> Vec<std::collections::HashMap<String, f64>> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    lines
+        .map(|l| {
+            header
+                .iter()
+                .zip(l.split(','))
+                .map(|(h, v)| (h.to_string(), v.parse().unwrap()))
+                .collect()
+        })
+        .collect()
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("hertz-petsc-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+/// The `columns` of two CSV files within `tol` relative to the largest of their values (a sum of
+/// reactions that cancels is round-off in both).
+fn same_columns(a: &Path, b: &Path, tol: f64, columns: fn(&str) -> bool) {
+    let (a, b) = (csv(a), csv(b));
+    assert_eq!(a.len(), b.len());
+    let largest = a
+        .iter()
+        .flat_map(|r| r.iter().filter(|(k, _)| columns(k)).map(|(_, v)| v.abs()))
+        .fold(0.0, f64::max);
+    for key in a[0].keys().filter(|k| columns(k)) {
+        for (x, y) in a.iter().zip(&b) {
+            assert!(
+                (x[key] - y[key]).abs() <= tol * largest,
+                "{key}: {} vs {}",
+                x[key],
+                y[key]
+            );
+        }
+    }
+}
+
+/// The cantilever (beam theory check rules) by CG + GAMG on one process and on two ranks: its
+/// rules pass and its reactions and displacements equal the sparse Cholesky's to 1e-8.
+#[test]
+fn cg_with_algebraic_multigrid_solves_the_cantilever_on_one_and_two_ranks() {
+    let reference = tmp("cantilever-ref");
+    assert!(run("examples/cantilever.in", &reference, &[], 1)
+        .status
+        .success());
+    for ranks in [1, 2] {
+        let dir = tmp(&format!("cantilever-{ranks}"));
+        let out = run("examples/cantilever.in", &dir, &["--petsc"], ranks);
+        assert!(out.status.success(), "{ranks} ranks: {out:?}");
+        assert!(String::from_utf8_lossy(&out.stdout).contains("2 passed, 0 failed"));
+        same_columns(
+            &reference.join("cantilever.steps.csv"),
+            &dir.join("cantilever.steps.csv"),
+            1e-8,
+            |k| k.starts_with("bc"),
+        );
+    }
+}
+
+/// The rigid cylinder pressed into a block (node-to-segment penalty) by MUMPS' LU across two
+/// ranks, and by MUMPS' LDLᵀ (the default for a symmetric tangent) on one: the same Newton
+/// iterations and contact pressures as hertz's solver (to 1e-6: a penalty of 1e7 turns the gaps'
+/// round-off into force).
+#[test]
+fn mumps_solves_penalty_contact_as_hertz_does() {
+    let reference = tmp("circle-ref");
+    assert!(run("examples/hertz_rigid_circle.in", &reference, &[], 1)
+        .status
+        .success());
+    let lu = [
+        "--petsc",
+        "--petsc-options",
+        "-ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps",
+    ];
+    for (ranks, args) in [(2, &lu[..]), (1, &["--petsc"][..])] {
+        let dir = tmp(&format!("circle-{ranks}"));
+        let out = run("examples/hertz_rigid_circle.in", &dir, args, ranks);
+        assert!(out.status.success(), "{ranks} ranks: {out:?}");
+        let steps = |d: &Path| csv(&d.join("hertz_rigid_circle.steps.csv"));
+        assert_eq!(
+            steps(&reference)[0]["iterations"],
+            steps(&dir)[0]["iterations"]
+        );
+        same_columns(
+            &reference.join("hertz_rigid_circle.contact.csv"),
+            &dir.join("hertz_rigid_circle.contact.csv"),
+            1e-6,
+            |_| true,
+        );
+    }
+}
+
+/// An unknown method is refused before anything is solved (exit 2, naming the options); a
+/// mechanism is a singular model (exit 3), not a step to cut back.
+#[test]
+fn bad_petsc_options_and_a_mechanism_are_clear_errors() {
+    let dir = tmp("errors");
+    let out = run(
+        "examples/cantilever.in",
+        &dir,
+        &["--petsc", "--petsc-options", "-ksp_type bogus"],
+        1,
+    );
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("`-ksp_type bogus`"));
+    assert!(!dir.join("cantilever.out").exists());
+    let out = run("tests/data/mechanism.in", &dir, &["--petsc"], 1);
+    assert_eq!(out.status.code(), Some(3));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("singular") && !err.contains("halvings"),
+        "{err}"
+    );
+}
