@@ -106,6 +106,7 @@ fn every_mapped_element_type_passes_the_patch_test() {
     for (file, etype, n) in [
         ("cube_hex.msh", "LSpace", 8),
         ("cube_tet.msh", "LTRSpace", 100),
+        ("cube_tet10.msh", "QTRSpace", 100),
         ("cube_prism.msh", "LWedge", 28),
         ("square_tri.msh", "TrPlaneStress2d", 26),
         ("square_quad.msh", "PlaneStress2d", 21),
@@ -129,6 +130,73 @@ fn every_mapped_element_type_passes_the_patch_test() {
         println!("{file}: {n} {etype}, patch test error {err:.2e}");
         assert!(err < 1e-12, "{file}: {err}");
     }
+}
+
+/// Gmsh's second-order tetrahedra (type 11) map to QTRSpace with their mid-edge nodes where
+/// OOFEM's order has them: pure bending (κ about y), u = (κxz, −νκyz, −κ(x² + ν(z² − y²))/2),
+/// prescribed on the boundary of the unit cube is reproduced at every interior node to
+/// round-off, which a mid-edge node on the wrong edge (a curved element) would spoil.
+#[test]
+fn gmsh_quadratic_tetrahedra_reproduce_pure_bending() {
+    const KAPPA: f64 = 0.01;
+    let c = convert(&data("cube_tet10.msh"), Plane::Stress).unwrap();
+    assert!(c.elements.iter().all(|(t, _)| t.name() == "QTRSpace"));
+    let exact = |x: [f64; 3]| {
+        [
+            KAPPA * x[0] * x[2],
+            -NU * KAPPA * x[1] * x[2],
+            -0.5 * KAPPA * (x[0] * x[0] + NU * (x[2] * x[2] - x[1] * x[1])),
+        ]
+    };
+    let on_boundary = |x: [f64; 3]| {
+        x.iter()
+            .any(|&v| v.abs() < 1e-12 || (v - 1.0).abs() < 1e-12)
+    };
+    let boundary: Vec<usize> = (0..c.coords.len())
+        .filter(|&n| on_boundary(c.coords[n]))
+        .collect();
+    let nset0 = c.sets.len();
+    let mut records = c.records();
+    let mut bcs = String::new();
+    for (k, &n) in boundary.iter().enumerate() {
+        records.push(format!("Set {} nodes 1 {}", nset0 + k + 1, n + 1));
+        let u = exact(c.coords[n]);
+        bcs.push_str(&format!(
+            "BoundaryCondition {} loadTimeFunction 1 dofs 3 1 2 3 values 3 {:e} {:e} {:e} set {}\n",
+            k + 1,
+            u[0],
+            u[1],
+            u[2],
+            nset0 + k + 1
+        ));
+    }
+    let text = format!(
+        "bending.out\nQuadratic patch test\nLinearStatic nsteps 1\ndomain 3d\n\
+         OutputManager\nndofman {} nelem {} ncrosssect 1 nmat 1 nbc {} nic 0 nltf 1 nset {}\n\
+         {}\nSimpleCS 1 material 1 set 1\nIsoLE 1 d 0 E 1 n {NU} tAlpha 0\n\
+         {bcs}ConstantFunction 1 f(t) 1\n",
+        c.coords.len(),
+        c.elements.len(),
+        boundary.len(),
+        nset0 + boundary.len(),
+        records.join("\n"),
+    );
+    let model = common::model_from_text(&text).unwrap();
+    let mut worst = f64::NAN;
+    let mut interior = 0;
+    run_analysis(&model, &common::quiet(), |r| {
+        worst = 0.0;
+        for n in (0..c.coords.len()).filter(|&n| !on_boundary(c.coords[n])) {
+            interior += 1;
+            for (d, ud) in (1u8..).zip(exact(c.coords[n])) {
+                worst = worst.max((r.displacement(n, d).unwrap() - ud).abs());
+            }
+        }
+        Ok(())
+    })
+    .unwrap();
+    assert!(interior > 5, "{interior} interior nodes");
+    assert!(worst < 1e-13, "interior error {worst:e}");
 }
 
 /// The 6-node triangles are quadratically complete: pure bending, u = (κxy, −κ(x² + ν'y²)/2)
@@ -393,7 +461,12 @@ fn unsupported_element_types_and_binary_files_are_named() {
 fn vtu_cells_are_positive_whatever_the_input_orientation() {
     let dir = std::env::temp_dir().join(format!("hertz-vtu-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    for file in ["cube_hex.msh", "cube_tet.msh", "cube_prism.msh"] {
+    for file in [
+        "cube_hex.msh",
+        "cube_tet.msh",
+        "cube_tet10.msh",
+        "cube_prism.msh",
+    ] {
         let mut c = convert(&data(file), Plane::Stress).unwrap();
         for (etype, nodes) in c.elements.iter_mut().step_by(2) {
             *nodes = etype.shape().mirror().iter().map(|&a| nodes[a]).collect();
@@ -415,6 +488,7 @@ fn vtu_cells_are_positive_whatever_the_input_orientation() {
                 let (n, sign) = match t as u8 {
                     12 => (8, 1.0),  // hexahedron: (p1-p0) x (p3-p0) . (p4-p0) > 0
                     10 => (4, 1.0),  // tetrahedron: (p1-p0) x (p2-p0) . (p3-p0) > 0
+                    24 => (10, 1.0), // quadratic tetrahedron: corners as the tetrahedron's
                     13 => (6, -1.0), // wedge: the base (0,1,2) faces away from (3,4,5)
                     other => panic!("cell type {other}"),
                 };
@@ -428,6 +502,20 @@ fn vtu_cells_are_positive_whatever_the_input_orientation() {
                     sign * triple > 0.0,
                     "{file} ({vtu_format:?}): cell at {at} has triple product {triple}"
                 );
+                // VTK's quadratic tetrahedron: node 4 + k at the middle of its edge k.
+                if n == 10 {
+                    for (k, (i, j)) in [(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)]
+                        .into_iter()
+                        .enumerate()
+                    {
+                        let m = [0, 1, 2].map(|c| 0.5 * (q[i][c] + q[j][c]));
+                        assert!(
+                            (0..3).all(|c| (q[4 + k][c] - m[c]).abs() < 1e-12),
+                            "{file}: cell at {at}, mid-edge node {}",
+                            4 + k
+                        );
+                    }
+                }
                 at += n;
             }
             assert_eq!(at, conn.len());

@@ -1,6 +1,6 @@
 """Regenerate the Gmsh test meshes of tests/suite/gmsh.rs (pip install gmsh; python3 box.py).
 
-Unit cube in hexahedra, tetrahedra and prisms; unit square in quadrangles, triangles,
+Unit cube in hexahedra, tetrahedra (also 10-node ones) and prisms; unit square in quadrangles, triangles,
 6-node triangles and 8-node quadrangles. Physical groups: the body (1), faces/edges x = 0 (2), y = 0 (3), z = 0 or
 the bottom (4), the top (5)."""
 import gmsh
@@ -41,6 +41,8 @@ def cube(name, kind):
             gmsh.model.mesh.setSize(gmsh.model.getEntities(0), 0.5)
     groups(3)
     gmsh.model.mesh.generate(3)
+    if kind == "tet10":
+        gmsh.model.mesh.setOrder(2)
     gmsh.write(name + ".msh")
 
 def square(name, kind):
@@ -67,6 +69,7 @@ gmsh.option.setNumber("General.Terminal", 0)
 gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
 cube("cube_hex", "hex")
 cube("cube_tet", "tet")
+cube("cube_tet10", "tet10")
 cube("cube_prism", "prism")
 square("square_tri", "tri")
 gmsh.option.setNumber("Mesh.MshFileVersion", 2.2)

@@ -138,7 +138,7 @@ pub fn rule(shape: Shape, nip: usize) -> Option<Vec<QuadPoint>> {
                 });
             }
         }
-        Shape::Tet4 => {
+        Shape::Tet4 | Shape::Tet10 => {
             for (p, w) in tetra(nip)? {
                 out.push(QuadPoint { xi: p, weight: w });
             }

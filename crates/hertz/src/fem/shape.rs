@@ -18,11 +18,18 @@ pub enum Shape {
     Quad8,
     /// N = (ξ, η, ζ, 1−ξ−η−ζ).
     Tet4,
+    /// Quadratic tetrahedron (OOFEM's QTRSpace) in the barycentrics (l1..l4) = (ξ, η, ζ,
+    /// 1−ξ−η−ζ): corners 1–4 as Tet4, mid-edge 5 (1–2), 6 (2–3), 7 (3–1), 8 (1–4), 9 (2–4),
+    /// 10 (3–4).
+    Tet10,
     /// Nodes 1..8 at (−1,−1,+1), (−1,+1,+1), (+1,+1,+1), (+1,−1,+1), then the same at ζ = −1.
     Hexa8,
     /// N₁..₃ = ½(1−w)(1−u−v, u, v), N₄..₆ = ½(1+w)(1−u−v, u, v).
     Wedge6,
 }
+
+/// The corners of Tet10's mid-edge nodes 5..10.
+const TET10_EDGES: [[usize; 2]; 6] = [[0, 1], [1, 2], [2, 0], [0, 3], [1, 3], [2, 3]];
 
 const QUAD4_NODES: [[f64; 2]; 4] = [[1.0, 1.0], [-1.0, 1.0], [-1.0, -1.0], [1.0, -1.0]];
 const QUAD8_NODES: [[f64; 2]; 8] = [
@@ -68,7 +75,7 @@ impl Shape {
         match self {
             Shape::Line2 | Shape::Line3 => 1,
             Shape::Tri3 | Shape::Tri6 | Shape::Quad4 | Shape::Quad8 => 2,
-            Shape::Tet4 | Shape::Hexa8 | Shape::Wedge6 => 3,
+            Shape::Tet4 | Shape::Tet10 | Shape::Hexa8 | Shape::Wedge6 => 3,
         }
     }
 
@@ -79,6 +86,7 @@ impl Shape {
             Shape::Quad4 | Shape::Tet4 => 4,
             Shape::Tri6 | Shape::Wedge6 => 6,
             Shape::Quad8 | Shape::Hexa8 => 8,
+            Shape::Tet10 => 10,
         }
     }
 
@@ -164,6 +172,24 @@ impl Shape {
                 dn[2] = [0.0, 0.0, 1.0];
                 dn[3] = [-1.0, -1.0, -1.0];
             }
+            Shape::Tet10 => {
+                let l = [x, y, z, 1.0 - x - y - z];
+                let dl = [
+                    [1.0, 0.0, 0.0],
+                    [0.0, 1.0, 0.0],
+                    [0.0, 0.0, 1.0],
+                    [-1.0, -1.0, -1.0],
+                ];
+                for i in 0..4 {
+                    n[i] = (2.0 * l[i] - 1.0) * l[i];
+                    let f = 4.0 * l[i] - 1.0;
+                    dn[i] = [f * dl[i][0], f * dl[i][1], f * dl[i][2]];
+                }
+                for (k, &[i, j]) in TET10_EDGES.iter().enumerate() {
+                    n[4 + k] = 4.0 * l[i] * l[j];
+                    dn[4 + k] = std::array::from_fn(|c| 4.0 * (dl[i][c] * l[j] + l[i] * dl[j][c]));
+                }
+            }
             Shape::Hexa8 => {
                 for (a, p) in HEXA8_NODES.iter().enumerate() {
                     let (fx, fy, fz) = (1.0 + p[0] * x, 1.0 + p[1] * y, 1.0 + p[2] * z);
@@ -194,7 +220,7 @@ impl Shape {
     pub fn centre(self) -> [f64; 3] {
         match self {
             Shape::Tri3 | Shape::Tri6 | Shape::Wedge6 => [1.0 / 3.0, 1.0 / 3.0, 0.0],
-            Shape::Tet4 => [0.25, 0.25, 0.25],
+            Shape::Tet4 | Shape::Tet10 => [0.25, 0.25, 0.25],
             _ => [0.0; 3],
         }
     }
@@ -210,6 +236,7 @@ impl Shape {
             Shape::Quad4 => &[0, 3, 2, 1],
             Shape::Quad8 => &[0, 3, 2, 1, 7, 6, 5, 4],
             Shape::Tet4 => &[0, 2, 1, 3],
+            Shape::Tet10 => &[0, 2, 1, 3, 6, 5, 4, 7, 9, 8],
             Shape::Hexa8 => &[4, 5, 6, 7, 0, 1, 2, 3],
             Shape::Wedge6 => &[3, 4, 5, 0, 1, 2],
         }
@@ -225,6 +252,14 @@ impl Shape {
             Shape::Quad4 => &[&[0, 1], &[1, 2], &[2, 3], &[3, 0]],
             Shape::Quad8 => &[&[0, 1, 4], &[1, 2, 5], &[2, 3, 6], &[3, 0, 7]],
             Shape::Tet4 => &[&[0, 2, 1], &[0, 1, 3], &[1, 2, 3], &[0, 3, 2]],
+            // Tet4's faces with their mid-edge nodes (Tri6 order: corners, then the mid-sides
+            // of the face's sides 1–2, 2–3, 3–1).
+            Shape::Tet10 => &[
+                &[0, 2, 1, 6, 5, 4],
+                &[0, 1, 3, 4, 8, 7],
+                &[1, 2, 3, 5, 9, 8],
+                &[0, 3, 2, 7, 9, 6],
+            ],
             Shape::Hexa8 => &[
                 &[0, 3, 2, 1],
                 &[4, 5, 6, 7],
@@ -247,6 +282,14 @@ impl Shape {
     pub fn edges(self) -> &'static [&'static [usize]] {
         match self {
             Shape::Tet4 => &[&[0, 1], &[1, 2], &[2, 0], &[0, 3], &[1, 3], &[2, 3]],
+            Shape::Tet10 => &[
+                &[0, 1, 4],
+                &[1, 2, 5],
+                &[2, 0, 6],
+                &[0, 3, 7],
+                &[1, 3, 8],
+                &[2, 3, 9],
+            ],
             Shape::Hexa8 => &[
                 &[0, 1],
                 &[1, 2],
@@ -277,13 +320,23 @@ impl Shape {
     }
 
     /// Shape of a boundary (edge or face) with `n` nodes of this element: 2 → Line2, 3 → Line3
-    /// on a 2D element (quadratic edge) or Tri3 on a 3D one, 4 → Quad4.
+    /// on a 2D element (quadratic edge) or Tri3 on a 3D one, 4 → Quad4, 6 → Tri6.
     pub fn boundary_shape(self, n: usize) -> Shape {
         match (self.dim(), n) {
             (2, 3) => Shape::Line3,
             (3, 3) => Shape::Tri3,
             (_, 4) => Shape::Quad4,
+            (_, 6) => Shape::Tri6,
             _ => Shape::Line2,
+        }
+    }
+
+    /// Shape of an edge with `n` nodes (of `edges()`): 2 → Line2, 3 → Line3.
+    pub fn edge_shape(n: usize) -> Shape {
+        if n == 3 {
+            Shape::Line3
+        } else {
+            Shape::Line2
         }
     }
 }
@@ -292,7 +345,7 @@ impl Shape {
 mod tests {
     use super::*;
 
-    const ALL: [Shape; 9] = [
+    const ALL: [Shape; 10] = [
         Shape::Line2,
         Shape::Line3,
         Shape::Tri3,
@@ -300,6 +353,7 @@ mod tests {
         Shape::Quad4,
         Shape::Quad8,
         Shape::Tet4,
+        Shape::Tet10,
         Shape::Hexa8,
         Shape::Wedge6,
     ];
@@ -307,8 +361,8 @@ mod tests {
     #[test]
     fn shape_functions_sum_to_one_and_derivatives_to_zero() {
         for s in ALL {
-            let mut n = [0.0; 8];
-            let mut dn = [[0.0; 3]; 8];
+            let mut n = [0.0; 10];
+            let mut dn = [[0.0; 3]; 10];
             s.eval([0.21, 0.33, -0.4], &mut n, &mut dn);
             let m = s.n_nodes();
             assert!((n[..m].iter().sum::<f64>() - 1.0).abs() < 1e-14, "{s:?}");
@@ -325,16 +379,16 @@ mod tests {
     fn shape_derivatives_match_finite_differences() {
         for s in ALL {
             let xi = [0.17, 0.23, 0.31];
-            let (mut n0, mut n1, mut dn) = ([0.0; 8], [0.0; 8], [[0.0; 3]; 8]);
+            let (mut n0, mut n1, mut dn) = ([0.0; 10], [0.0; 10], [[0.0; 3]; 10]);
             s.eval(xi, &mut n0, &mut dn);
             let h = 1e-6;
             for k in 0..s.dim() {
                 let (mut xp, mut xm) = (xi, xi);
                 xp[k] += h;
                 xm[k] -= h;
-                let mut d = [[0.0; 3]; 8];
+                let mut d = [[0.0; 3]; 10];
                 s.eval(xp, &mut n1, &mut d);
-                let mut nm = [0.0; 8];
+                let mut nm = [0.0; 10];
                 s.eval(xm, &mut nm, &mut d);
                 for a in 0..s.n_nodes() {
                     let fd = (n1[a] - nm[a]) / (2.0 * h);
@@ -347,7 +401,7 @@ mod tests {
     #[test]
     fn quad_nodes_are_kronecker() {
         for (a, p) in QUAD8_NODES.iter().enumerate() {
-            let (mut n, mut dn) = ([0.0; 8], [[0.0; 3]; 8]);
+            let (mut n, mut dn) = ([0.0; 10], [[0.0; 3]; 10]);
             Shape::Quad8.eval([p[0], p[1], 0.0], &mut n, &mut dn);
             for (b, v) in n.iter().enumerate() {
                 assert!((v - if a == b { 1.0 } else { 0.0 }).abs() < 1e-14);
@@ -380,6 +434,58 @@ mod tests {
         for f in fields {
             let v: f64 = nodes.iter().zip(n).map(|(p, na)| na * f(p[0], p[1])).sum();
             assert!((v - f(x, y)).abs() < 1e-14);
+        }
+    }
+
+    /// The 10-node tetrahedron: N_a(node b) = δ_ab at its corners and mid-edges (OOFEM's order:
+    /// 5 on 1–2, 6 on 2–3, 7 on 3–1, 8 on 1–4, 9 on 2–4, 10 on 3–4), it reproduces every
+    /// quadratic field, and each face's six nodes are the Tri6 of that face (the mid-sides of
+    /// its sides 1–2, 2–3, 3–1 in that order).
+    #[test]
+    fn tet10_is_kronecker_quadratically_complete_and_its_faces_are_tri6() {
+        let corners = [
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [0.0, 0.0, 0.0],
+        ];
+        let mid = |a: usize, b: usize| -> [f64; 3] {
+            std::array::from_fn(|k| 0.5 * (corners[a][k] + corners[b][k]))
+        };
+        let mut nodes = corners.to_vec();
+        nodes.extend([
+            mid(0, 1),
+            mid(1, 2),
+            mid(2, 0),
+            mid(0, 3),
+            mid(1, 3),
+            mid(2, 3),
+        ]);
+        let (mut n, mut dn) = ([0.0; 10], [[0.0; 3]; 10]);
+        for (a, p) in nodes.iter().enumerate() {
+            Shape::Tet10.eval(*p, &mut n, &mut dn);
+            for (b, v) in n.iter().enumerate() {
+                assert!(
+                    (v - if a == b { 1.0 } else { 0.0 }).abs() < 1e-14,
+                    "{a} {b}"
+                );
+            }
+        }
+        let x = [0.21, 0.17, 0.33];
+        Shape::Tet10.eval(x, &mut n, &mut dn);
+        for i in 0..3 {
+            for j in i..3 {
+                let v: f64 = nodes.iter().zip(n).map(|(p, na)| na * p[i] * p[j]).sum();
+                assert!((v - x[i] * x[j]).abs() < 1e-14);
+            }
+        }
+        for face in Shape::Tet10.boundaries() {
+            for k in 0..3 {
+                let (a, b) = (face[k], face[(k + 1) % 3]);
+                let m = mid(a, b);
+                let at = nodes.iter().position(|p| *p == m).unwrap();
+                assert_eq!(face[3 + k], at, "face {face:?} side {k}");
+            }
         }
     }
 }

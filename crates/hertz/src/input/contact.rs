@@ -390,6 +390,19 @@ pub fn resolve(
                 }
                 let dim = if faces { 3 } else { 2 };
                 for &(e, _) in &list {
+                    // Contact on curved (6-node) faces is not written yet: refused, never taken
+                    // as a quadrilateral.
+                    if faces && elements[e].etype.shape() == crate::fem::Shape::Tet10 {
+                        return Err(err(
+                            &s.span,
+                            format!(
+                                "element {} of set {set} is a QTRSpace: contact on its 6-node \
+                                 faces is not supported yet (use LTRSpace elements on the contact \
+                                 surface)",
+                                elements[e].label
+                            ),
+                        ));
+                    }
                     if elements[e].etype.shape().dim() != dim {
                         return Err(err(
                             &s.span,

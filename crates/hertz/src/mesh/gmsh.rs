@@ -489,12 +489,16 @@ fn hertz_element(
         // Gmsh's hexahedron starts on its bottom face, OOFEM's LSpace on its top face.
         (5, _) => (E::LSpace, &[4, 7, 6, 5, 0, 3, 2, 1]),
         (6, _) => (E::LWedge, &[0, 1, 2, 3, 4, 5]),
+        // Corners as type 4; Gmsh's mid-edge nodes 4..9 lie on its edges 0–1, 1–2, 2–0, 3–0,
+        // 3–2, 3–1 (its 8 and 9 are swapped against VTK's).
+        (11, _) => (E::QTRSpace, &[1, 2, 3, 0, 5, 8, 9, 4, 6, 7]),
         (t, _) => {
             let name = gmsh_type(t).map_or("this element", |x| x.2);
             return Err(format!(
                 "hertz has no {name} element (Gmsh type {t}); mesh with first-order elements \
                  (Mesh.ElementOrder = 1), or second-order triangles and 8-node quadrangles \
-                 (Mesh.ElementOrder = 2, Mesh.SecondOrderIncomplete = 1) in 2D"
+                 (Mesh.ElementOrder = 2, Mesh.SecondOrderIncomplete = 1) in 2D, or second-order \
+                 tetrahedra (Mesh.ElementOrder = 2) in 3D"
             ));
         }
     })
@@ -602,11 +606,11 @@ pub fn convert(path: &Path, plane: Plane) -> Result<Converted> {
     let mut boundary_of: HashMap<Vec<usize>, (usize, usize)> = HashMap::new();
     for (ei, (etype, nodes)) in elements.iter().enumerate() {
         for (b, local) in etype.shape().boundaries().iter().enumerate() {
-            // Quadratic 2D elements: an edge is keyed by its two corners.
-            let n_corner = if matches!(etype.shape(), Shape::Quad8 | Shape::Tri6) {
-                2
-            } else {
-                local.len()
+            // Quadratic elements: an edge is keyed by its two corners, a face by its three.
+            let n_corner = match etype.shape() {
+                Shape::Quad8 | Shape::Tri6 => 2,
+                Shape::Tet10 => 3,
+                _ => local.len(),
             };
             let global: Vec<usize> = local.iter().map(|&a| nodes[a]).collect();
             boundary_of.insert(corners(&global, n_corner), (ei, b + 1));
@@ -623,7 +627,8 @@ pub fn convert(path: &Path, plane: Plane) -> Result<Converted> {
             if edim + 1 == dim {
                 let n_corner = match e.gmsh_type {
                     8 => 2,
-                    9 | 16 | 10 => return Err(err(path, 0, "second-order boundary elements in a physical group: hertz reads them only as 3-node lines (Gmsh type 8) on the edges of 6-node triangles and 8-node quadrangles")),
+                    9 if dim == 3 => 3,
+                    9 | 16 | 10 => return Err(err(path, 0, "second-order boundary elements in a physical group: hertz reads them only as 3-node lines (Gmsh type 8) on the edges of 6-node triangles and 8-node quadrangles, and as 6-node triangles (type 9) on the faces of 10-node tetrahedra")),
                     _ => nodes.len(),
                 };
                 let key = corners(&nodes, n_corner);

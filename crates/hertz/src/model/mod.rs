@@ -140,6 +140,8 @@ pub enum ElementType {
     LSpace,
     LTRSpace,
     LWedge,
+    /// 10-node tetrahedron (OOFEM's QTRSpace): corners, then mid-edge nodes 1–2, 2–3, 3–1, 1–4, 2–4, 3–4.
+    QTRSpace,
 }
 
 /// Strain/stress state of an element's material points.
@@ -152,7 +154,7 @@ pub enum StressMode {
 }
 
 impl ElementType {
-    pub const ALL: [(&'static str, ElementType); 13] = [
+    pub const ALL: [(&'static str, ElementType); 14] = [
         ("truss1d", ElementType::Truss1d),
         ("truss2d", ElementType::Truss2d),
         ("planestress2d", ElementType::PlaneStress2d),
@@ -166,6 +168,7 @@ impl ElementType {
         ("lspace", ElementType::LSpace),
         ("ltrspace", ElementType::LTRSpace),
         ("lwedge", ElementType::LWedge),
+        ("qtrspace", ElementType::QTRSpace),
     ];
 
     pub fn from_keyword(k: &str) -> Option<ElementType> {
@@ -187,6 +190,7 @@ impl ElementType {
             ElementType::LSpace => "LSpace",
             ElementType::LTRSpace => "LTRSpace",
             ElementType::LWedge => "LWedge",
+            ElementType::QTRSpace => "QTRSpace",
         }
     }
 
@@ -197,6 +201,7 @@ impl ElementType {
             ElementType::TrPlaneStress2d | ElementType::TrPlaneStrain => 3,
             ElementType::QPlaneStress2d | ElementType::QPlaneStrain | ElementType::LSpace => 8,
             ElementType::QTrPlaneStress2d | ElementType::QTrPlaneStrain | ElementType::LWedge => 6,
+            ElementType::QTRSpace => 10,
         }
     }
 
@@ -211,7 +216,10 @@ impl ElementType {
             | ElementType::TrPlaneStrain
             | ElementType::QPlaneStrain
             | ElementType::QTrPlaneStrain => StressMode::PlaneStrain,
-            ElementType::LSpace | ElementType::LTRSpace | ElementType::LWedge => StressMode::ThreeD,
+            ElementType::LSpace
+            | ElementType::LTRSpace
+            | ElementType::LWedge
+            | ElementType::QTRSpace => StressMode::ThreeD,
         }
     }
 
@@ -227,6 +235,7 @@ impl ElementType {
             ElementType::LSpace => Shape::Hexa8,
             ElementType::LTRSpace => Shape::Tet4,
             ElementType::LWedge => Shape::Wedge6,
+            ElementType::QTRSpace => Shape::Tet10,
         }
     }
 
@@ -243,6 +252,8 @@ impl ElementType {
             | ElementType::QTrPlaneStrain => 4,
             ElementType::LSpace => 8,
             ElementType::LWedge => 6,
+            // OOFEM's QTRSpace: 4 points (exact for its linear-elastic stiffness).
+            ElementType::QTRSpace => 4,
         }
     }
 

@@ -22,6 +22,9 @@ fn vtk_cell(shape: Shape) -> (u8, &'static [usize]) {
         Shape::Quad4 => (9, &[0, 1, 2, 3]),
         Shape::Quad8 => (23, &[0, 1, 2, 3, 4, 5, 6, 7]),
         Shape::Tet4 => (10, &[0, 2, 1, 3]),
+        // VTK_QUADRATIC_TETRA: VTK's corners are OOFEM's 1, 3, 2, 4, its edges (0,1), (1,2),
+        // (2,0), (0,3), (1,3), (2,3) of those.
+        Shape::Tet10 => (24, &[0, 2, 1, 3, 6, 5, 4, 7, 9, 8]),
         Shape::Hexa8 => (12, &[0, 1, 2, 3, 4, 5, 6, 7]),
         Shape::Wedge6 => (13, &[0, 2, 1, 3, 5, 4]),
     }

@@ -40,7 +40,7 @@ pub fn reference_contributions(model: &Model, load: &Load) -> Result<Vec<(usize,
                 } else {
                     1.0
                 };
-                let edge_shape = shape.boundary_shape(local.len());
+                let edge_shape = crate::fem::Shape::edge_shape(local.len());
                 let mut n = [0.0; 3];
                 let mut dn = [[0.0; 3]; 3];
                 for (xi, w) in gauss_line(3).expect("3-point rule") {
@@ -66,8 +66,8 @@ pub fn reference_contributions(model: &Model, load: &Load) -> Result<Vec<(usize,
                 let el = &model.elements[e];
                 let shape = el.etype.shape();
                 let face = shape.boundary_shape(local.len());
-                let mut n = [0.0; 4];
-                let mut dn = [[0.0; 3]; 4];
+                let mut n = [0.0; 8];
+                let mut dn = [[0.0; 3]; 8];
                 for qp in rule(face, if local.len() == 3 { 3 } else { 4 }).expect("face rule") {
                     face.eval(qp.xi, &mut n, &mut dn);
                     let (mut g1, mut g2) = ([0.0; 3], [0.0; 3]);
