@@ -47,7 +47,7 @@ fn laws(mode: StressMode, nlgeo: bool) -> Vec<Constitutive> {
 }
 
 /// (shape, stress mode, default nip) of every continuum element type.
-const CONTINUUM: [(&str, Shape, StressMode, usize); 9] = [
+const CONTINUUM: [(&str, Shape, StressMode, usize); 10] = [
     ("PlaneStress2d", Shape::Quad4, StressMode::PlaneStress, 4),
     ("Quad1PlaneStrain", Shape::Quad4, StressMode::PlaneStrain, 4),
     ("TrPlaneStress2d", Shape::Tri3, StressMode::PlaneStress, 1),
@@ -57,7 +57,13 @@ const CONTINUUM: [(&str, Shape, StressMode, usize); 9] = [
     ("LTRSpace", Shape::Tet4, StressMode::ThreeD, 1),
     ("LWedge", Shape::Wedge6, StressMode::ThreeD, 6),
     ("QTRSpace", Shape::Tet10, StressMode::ThreeD, 4),
+    ("QSpace", Shape::Hexa20, StressMode::ThreeD, 27),
 ];
+
+/// Hexa8's reference corners (the 20-node brick takes its mid-edge nodes between them).
+fn distorted_corners_of_hexa() -> Vec<[f64; 3]> {
+    distorted_nodes(Shape::Hexa8)
+}
 
 /// A distorted reference element: node positions of the shape perturbed a little.
 fn distorted_nodes(shape: Shape) -> Vec<[f64; 3]> {
@@ -95,6 +101,27 @@ fn distorted_nodes(shape: Shape) -> Vec<[f64; 3]> {
             [0.0, 0.0, 1.0],
             [0.0, 0.0, 0.0],
         ],
+        Shape::Hexa20 => {
+            let c = distorted_corners_of_hexa();
+            let mut v = c.clone();
+            for (a, b) in [
+                (0, 1),
+                (1, 2),
+                (2, 3),
+                (3, 0),
+                (4, 5),
+                (5, 6),
+                (6, 7),
+                (7, 4),
+                (0, 4),
+                (1, 5),
+                (2, 6),
+                (3, 7),
+            ] {
+                v.push(std::array::from_fn(|k| 0.5 * (c[a][k] + c[b][k])));
+            }
+            return v;
+        }
         Shape::Tet10 => {
             let c = [
                 [1.0, 0.0, 0.0],
@@ -392,6 +419,40 @@ fn patch_3d(kind: &'static str) -> Patch {
                         HEXA8_CORNERS.iter().map(|p| c(p[0], p[1], p[2])).collect(),
                         String::new(),
                     )),
+                    "QSpace" => {
+                        let mut ids: Vec<usize> =
+                            HEXA8_CORNERS.iter().map(|p| c(p[0], p[1], p[2])).collect();
+                        let corners = ids.clone();
+                        let edges = [
+                            (0, 1),
+                            (1, 2),
+                            (2, 3),
+                            (3, 0),
+                            (4, 5),
+                            (5, 6),
+                            (6, 7),
+                            (7, 4),
+                            (0, 4),
+                            (1, 5),
+                            (2, 6),
+                            (3, 7),
+                        ];
+                        for (a, b) in edges {
+                            let (pa, pb) = (corners[a] - 1, corners[b] - 1);
+                            let m = [0, 1, 2].map(|k| 0.5 * (nodes[pa][k] + nodes[pb][k]));
+                            let found = nodes
+                                .iter()
+                                .position(|p| (0..3).all(|k| (p[k] - m[k]).abs() < 1e-12));
+                            let id = found.unwrap_or_else(|| {
+                                nodes.push(m);
+                                let on = |v: f64| v.abs() < 1e-12 || (v - 2.0).abs() < 1e-12;
+                                boundary.push(m.iter().any(|&v| on(v)));
+                                nodes.len() - 1
+                            });
+                            ids.push(id + 1);
+                        }
+                        elements.push((kind, ids, String::new()));
+                    }
                     "LWedge" => {
                         elements.push((
                             kind,
@@ -610,12 +671,13 @@ fn patch_test_small_strain_every_element_type() {
         "LTRSpace",
         "LWedge",
         "QTRSpace",
+        "QSpace",
         "Truss1d",
         "Truss2d",
     ];
     for kind in kinds {
         let p = match kind {
-            "LSpace" | "LTRSpace" | "LWedge" | "QTRSpace" => patch_3d(kind),
+            "LSpace" | "LTRSpace" | "LWedge" | "QTRSpace" | "QSpace" => patch_3d(kind),
             "Truss1d" | "Truss2d" => patch_truss(kind),
             _ => patch_2d(kind),
         };
@@ -732,24 +794,36 @@ fn quadratic_tetrahedra_are_exact_in_pure_bending() {
     assert!(nodal > 1e-5, "LTRSpace: {nodal:e}");
 }
 
-/// A uniform traction p on the faces x = 2 of the distorted QTRSpace patch (a
-/// `ConstantSurfaceLoad` on those 6-node faces: the consistent load of a quadratic face puts it
-/// all on the mid-side nodes), with rollers on x = 0, y = 0 and z = 0: uniaxial stress, u = p/E ·
-/// (x, −νy, −νz) at every node, exact.
+/// A uniform traction p on the faces x = 2 of the distorted QTRSpace and QSpace patches (a
+/// `ConstantSurfaceLoad` on those 6- and 8-node faces: the consistent loads of quadratic faces),
+/// with rollers on x = 0, y = 0 and z = 0: uniaxial stress, u = p/E · (x, −νy, −νz) at every
+/// node, exact.
 #[test]
-fn a_surface_load_on_quadratic_tetrahedra_gives_uniaxial_stress() {
-    let p = patch_3d("QTRSpace");
+fn a_surface_load_on_quadratic_3d_elements_gives_uniaxial_stress() {
+    for (kind, shape, corners, n_faces) in [
+        ("QTRSpace", Shape::Tet10, 3, 8),
+        ("QSpace", Shape::Hexa20, 4, 4),
+    ] {
+        traction_on_quadratic_faces(kind, shape, corners, n_faces);
+    }
+}
+
+fn traction_on_quadratic_faces(kind: &'static str, shape: Shape, corners: usize, n_faces: usize) {
+    let p = patch_3d(kind);
     let pressure = 3.0;
     let on = |v: f64, w: f64| (v - w).abs() < 1e-12;
     let mut faces = Vec::new();
     for (e, (_, ids, _)) in p.elements.iter().enumerate() {
-        for (b, local) in Shape::Tet10.boundaries().iter().enumerate() {
-            if local[..3].iter().all(|&a| on(p.nodes[ids[a] - 1][0], 2.0)) {
+        for (b, local) in shape.boundaries().iter().enumerate() {
+            if local[..corners]
+                .iter()
+                .all(|&a| on(p.nodes[ids[a] - 1][0], 2.0))
+            {
                 faces.push(format!("{} {}", e + 1, b + 1));
             }
         }
     }
-    assert_eq!(faces.len(), 8, "two triangles per cell face");
+    assert_eq!(faces.len(), n_faces, "{kind}: the faces at x = 2");
     let mut s = String::from(
         "traction.out\nuniaxial traction\nLinearStatic nsteps 1\ndomain 3d\nOutputManager\n",
     );
@@ -808,7 +882,7 @@ fn a_surface_load_on_quadratic_tetrahedra_gives_uniaxial_stress() {
         Ok(())
     })
     .unwrap();
-    assert!(worst < 1e-12, "error {worst:e}");
+    assert!(worst < 1e-12, "{kind}: error {worst:e}");
 }
 
 /// Contact on the 6-node faces of QTRSpace is not written yet: a segment on them is an input

@@ -107,6 +107,7 @@ fn every_mapped_element_type_passes_the_patch_test() {
         ("cube_hex.msh", "LSpace", 8),
         ("cube_tet.msh", "LTRSpace", 100),
         ("cube_tet10.msh", "QTRSpace", 100),
+        ("cube_hex20.msh", "QSpace", 8),
         ("cube_prism.msh", "LWedge", 28),
         ("square_tri.msh", "TrPlaneStress2d", 26),
         ("square_quad.msh", "PlaneStress2d", 21),
@@ -132,15 +133,22 @@ fn every_mapped_element_type_passes_the_patch_test() {
     }
 }
 
-/// Gmsh's second-order tetrahedra (type 11) map to QTRSpace with their mid-edge nodes where
-/// OOFEM's order has them: pure bending (κ about y), u = (κxz, −νκyz, −κ(x² + ν(z² − y²))/2),
-/// prescribed on the boundary of the unit cube is reproduced at every interior node to
-/// round-off, which a mid-edge node on the wrong edge (a curved element) would spoil.
+/// Gmsh's second-order tetrahedra (type 11) and 20-node hexahedra (type 17) map to QTRSpace and
+/// QSpace with their mid-edge nodes where OOFEM's order has them: pure bending (κ about y),
+/// u = (κxz, −νκyz, −κ(x² + ν(z² − y²))/2), prescribed on the boundary of the unit cube is
+/// reproduced at every interior node to round-off, which a mid-edge node on the wrong edge (a
+/// curved element) would spoil.
 #[test]
-fn gmsh_quadratic_tetrahedra_reproduce_pure_bending() {
+fn gmsh_quadratic_3d_elements_reproduce_pure_bending() {
+    for (file, etype) in [("cube_tet10.msh", "QTRSpace"), ("cube_hex20.msh", "QSpace")] {
+        bending_3d(file, etype);
+    }
+}
+
+fn bending_3d(file: &str, etype: &str) {
     const KAPPA: f64 = 0.01;
-    let c = convert(&data("cube_tet10.msh"), Plane::Stress).unwrap();
-    assert!(c.elements.iter().all(|(t, _)| t.name() == "QTRSpace"));
+    let c = convert(&data(file), Plane::Stress).unwrap();
+    assert!(c.elements.iter().all(|(t, _)| t.name() == etype));
     let exact = |x: [f64; 3]| {
         [
             KAPPA * x[0] * x[2],
@@ -195,8 +203,8 @@ fn gmsh_quadratic_tetrahedra_reproduce_pure_bending() {
         Ok(())
     })
     .unwrap();
-    assert!(interior > 5, "{interior} interior nodes");
-    assert!(worst < 1e-13, "interior error {worst:e}");
+    assert!(interior > 5, "{file}: {interior} interior nodes");
+    assert!(worst < 1e-13, "{file}: interior error {worst:e}");
 }
 
 /// The 6-node triangles are quadratically complete: pure bending, u = (κxy, −κ(x² + ν'y²)/2)
@@ -465,6 +473,7 @@ fn vtu_cells_are_positive_whatever_the_input_orientation() {
         "cube_hex.msh",
         "cube_tet.msh",
         "cube_tet10.msh",
+        "cube_hex20.msh",
         "cube_prism.msh",
     ] {
         let mut c = convert(&data(file), Plane::Stress).unwrap();
@@ -489,12 +498,13 @@ fn vtu_cells_are_positive_whatever_the_input_orientation() {
                     12 => (8, 1.0),  // hexahedron: (p1-p0) x (p3-p0) . (p4-p0) > 0
                     10 => (4, 1.0),  // tetrahedron: (p1-p0) x (p2-p0) . (p3-p0) > 0
                     24 => (10, 1.0), // quadratic tetrahedron: corners as the tetrahedron's
+                    25 => (20, 1.0), // quadratic hexahedron: corners as the hexahedron's
                     13 => (6, -1.0), // wedge: the base (0,1,2) faces away from (3,4,5)
                     other => panic!("cell type {other}"),
                 };
                 let q: Vec<[f64; 3]> = conn[at..at + n].iter().map(|&k| p(k)).collect();
                 let (a, b, d) = match n {
-                    8 => (sub(q[1], q[0]), sub(q[3], q[0]), sub(q[4], q[0])),
+                    8 | 20 => (sub(q[1], q[0]), sub(q[3], q[0]), sub(q[4], q[0])),
                     _ => (sub(q[1], q[0]), sub(q[2], q[0]), sub(q[3], q[0])),
                 };
                 let triple = dot(cross(a, b), d);
@@ -502,19 +512,33 @@ fn vtu_cells_are_positive_whatever_the_input_orientation() {
                     sign * triple > 0.0,
                     "{file} ({vtu_format:?}): cell at {at} has triple product {triple}"
                 );
-                // VTK's quadratic tetrahedron: node 4 + k at the middle of its edge k.
-                if n == 10 {
-                    for (k, (i, j)) in [(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)]
-                        .into_iter()
-                        .enumerate()
-                    {
-                        let m = [0, 1, 2].map(|c| 0.5 * (q[i][c] + q[j][c]));
-                        assert!(
-                            (0..3).all(|c| (q[4 + k][c] - m[c]).abs() < 1e-12),
-                            "{file}: cell at {at}, mid-edge node {}",
-                            4 + k
-                        );
-                    }
+                // VTK's quadratic cells: their mid-edge nodes at the middle of VTK's edges.
+                let edges: &[(usize, usize)] = match n {
+                    10 => &[(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)],
+                    20 => &[
+                        (0, 1),
+                        (1, 2),
+                        (2, 3),
+                        (3, 0),
+                        (4, 5),
+                        (5, 6),
+                        (6, 7),
+                        (7, 4),
+                        (0, 4),
+                        (1, 5),
+                        (2, 6),
+                        (3, 7),
+                    ],
+                    _ => &[],
+                };
+                let first = if n == 10 { 4 } else { 8 };
+                for (k, &(i, j)) in edges.iter().enumerate() {
+                    let m = [0, 1, 2].map(|c| 0.5 * (q[i][c] + q[j][c]));
+                    assert!(
+                        (0..3).all(|c| (q[first + k][c] - m[c]).abs() < 1e-12),
+                        "{file}: cell at {at}, mid-edge node {}",
+                        first + k
+                    );
                 }
                 at += n;
             }

@@ -1,6 +1,6 @@
 """Regenerate the Gmsh test meshes of tests/suite/gmsh.rs (pip install gmsh; python3 box.py).
 
-Unit cube in hexahedra, tetrahedra (also 10-node ones) and prisms; unit square in quadrangles, triangles,
+Unit cube in hexahedra, tetrahedra (also 10-node ones) and prisms, and in 20-node hexahedra; unit square in quadrangles, triangles,
 6-node triangles and 8-node quadrangles. Physical groups: the body (1), faces/edges x = 0 (2), y = 0 (3), z = 0 or
 the bottom (4), the top (5)."""
 import gmsh
@@ -30,7 +30,7 @@ def cube(name, kind):
     else:
         gmsh.model.occ.addBox(0, 0, 0, 1, 1, 1)
         gmsh.model.occ.synchronize()
-        if kind == "hex":
+        if kind in ("hex", "hex20"):
             for c in gmsh.model.getEntities(1):
                 gmsh.model.mesh.setTransfiniteCurve(c[1], 3)
             for s in gmsh.model.getEntities(2):
@@ -43,6 +43,10 @@ def cube(name, kind):
     gmsh.model.mesh.generate(3)
     if kind == "tet10":
         gmsh.model.mesh.setOrder(2)
+    if kind == "hex20":
+        gmsh.option.setNumber("Mesh.SecondOrderIncomplete", 1)
+        gmsh.model.mesh.setOrder(2)
+        gmsh.option.setNumber("Mesh.SecondOrderIncomplete", 0)
     gmsh.write(name + ".msh")
 
 def square(name, kind):
@@ -70,6 +74,7 @@ gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
 cube("cube_hex", "hex")
 cube("cube_tet", "tet")
 cube("cube_tet10", "tet10")
+cube("cube_hex20", "hex20")
 cube("cube_prism", "prism")
 square("square_tri", "tri")
 gmsh.option.setNumber("Mesh.MshFileVersion", 2.2)

@@ -113,7 +113,7 @@ pub fn rule(shape: Shape, nip: usize) -> Option<Vec<QuadPoint>> {
                 }
             }
         }
-        Shape::Hexa8 => {
+        Shape::Hexa8 | Shape::Hexa20 => {
             let n = (nip as f64).cbrt().round() as usize;
             if n * n * n != nip {
                 return None;

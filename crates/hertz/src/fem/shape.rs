@@ -24,9 +24,28 @@ pub enum Shape {
     Tet10,
     /// Nodes 1..8 at (−1,−1,+1), (−1,+1,+1), (+1,+1,+1), (+1,−1,+1), then the same at ζ = −1.
     Hexa8,
+    /// 20-node serendipity hexahedron (OOFEM's QSpace): corners as Hexa8, then mid-edge nodes
+    /// 9–12 on 1–2, 2–3, 3–4, 4–1, 13–16 on 5–6, 6–7, 7–8, 8–5, 17–20 on 1–5, 2–6, 3–7, 4–8.
+    Hexa20,
     /// N₁..₃ = ½(1−w)(1−u−v, u, v), N₄..₆ = ½(1+w)(1−u−v, u, v).
     Wedge6,
 }
+
+/// The corners of Hexa20's mid-edge nodes 9..20 (Hexa8's edges).
+const HEXA20_EDGES: [[usize; 2]; 12] = [
+    [0, 1],
+    [1, 2],
+    [2, 3],
+    [3, 0],
+    [4, 5],
+    [5, 6],
+    [6, 7],
+    [7, 4],
+    [0, 4],
+    [1, 5],
+    [2, 6],
+    [3, 7],
+];
 
 /// The corners of Tet10's mid-edge nodes 5..10.
 const TET10_EDGES: [[usize; 2]; 6] = [[0, 1], [1, 2], [2, 0], [0, 3], [1, 3], [2, 3]];
@@ -75,7 +94,7 @@ impl Shape {
         match self {
             Shape::Line2 | Shape::Line3 => 1,
             Shape::Tri3 | Shape::Tri6 | Shape::Quad4 | Shape::Quad8 => 2,
-            Shape::Tet4 | Shape::Tet10 | Shape::Hexa8 | Shape::Wedge6 => 3,
+            Shape::Tet4 | Shape::Tet10 | Shape::Hexa8 | Shape::Hexa20 | Shape::Wedge6 => 3,
         }
     }
 
@@ -87,6 +106,7 @@ impl Shape {
             Shape::Tri6 | Shape::Wedge6 => 6,
             Shape::Quad8 | Shape::Hexa8 => 8,
             Shape::Tet10 => 10,
+            Shape::Hexa20 => 20,
         }
     }
 
@@ -201,6 +221,42 @@ impl Shape {
                     ];
                 }
             }
+            Shape::Hexa20 => {
+                for (a, p) in HEXA8_NODES.iter().enumerate() {
+                    let (fx, fy, fz) = (1.0 + p[0] * x, 1.0 + p[1] * y, 1.0 + p[2] * z);
+                    let s = p[0] * x + p[1] * y + p[2] * z - 2.0;
+                    n[a] = 0.125 * fx * fy * fz * s;
+                    dn[a] = [
+                        0.125 * p[0] * fy * fz * (s + fx),
+                        0.125 * p[1] * fx * fz * (s + fy),
+                        0.125 * p[2] * fx * fy * (s + fz),
+                    ];
+                }
+                // A mid-edge node: the coordinate along its edge is 0 (quadratic bubble there).
+                for (k, &[i, j]) in HEXA20_EDGES.iter().enumerate() {
+                    let m: [f64; 3] =
+                        std::array::from_fn(|c| 0.5 * (HEXA8_NODES[i][c] + HEXA8_NODES[j][c]));
+                    let along = (0..3).find(|&c| m[c] == 0.0).expect("an edge's free axis");
+                    let xi = [x, y, z];
+                    let mut f = [0.0; 3];
+                    let mut df = [0.0; 3];
+                    for c in 0..3 {
+                        if c == along {
+                            f[c] = 1.0 - xi[c] * xi[c];
+                            df[c] = -2.0 * xi[c];
+                        } else {
+                            f[c] = 1.0 + m[c] * xi[c];
+                            df[c] = m[c];
+                        }
+                    }
+                    n[8 + k] = 0.25 * f[0] * f[1] * f[2];
+                    dn[8 + k] = [
+                        0.25 * df[0] * f[1] * f[2],
+                        0.25 * f[0] * df[1] * f[2],
+                        0.25 * f[0] * f[1] * df[2],
+                    ];
+                }
+            }
             Shape::Wedge6 => {
                 let tri = [1.0 - x - y, x, y];
                 let dtri = [[-1.0, -1.0], [1.0, 0.0], [0.0, 1.0]];
@@ -238,6 +294,10 @@ impl Shape {
             Shape::Tet4 => &[0, 2, 1, 3],
             Shape::Tet10 => &[0, 2, 1, 3, 6, 5, 4, 7, 9, 8],
             Shape::Hexa8 => &[4, 5, 6, 7, 0, 1, 2, 3],
+            // Swapping the two faces: edges 9–12 ↔ 13–16, the vertical ones stay.
+            Shape::Hexa20 => &[
+                4, 5, 6, 7, 0, 1, 2, 3, 12, 13, 14, 15, 8, 9, 10, 11, 16, 17, 18, 19,
+            ],
             Shape::Wedge6 => &[3, 4, 5, 0, 1, 2],
         }
     }
@@ -267,6 +327,16 @@ impl Shape {
                 &[1, 2, 6, 5],
                 &[2, 3, 7, 6],
                 &[3, 0, 4, 7],
+            ],
+            // Hexa8's faces with their mid-edge nodes (Quad8 order: corners, then the mid-sides of
+            // the face's sides 1–2, 2–3, 3–4, 4–1).
+            Shape::Hexa20 => &[
+                &[0, 3, 2, 1, 11, 10, 9, 8],
+                &[4, 5, 6, 7, 12, 13, 14, 15],
+                &[0, 1, 5, 4, 8, 17, 12, 16],
+                &[1, 2, 6, 5, 9, 18, 13, 17],
+                &[2, 3, 7, 6, 10, 19, 14, 18],
+                &[3, 0, 4, 7, 11, 16, 15, 19],
             ],
             Shape::Wedge6 => &[
                 &[0, 1, 2],
@@ -304,6 +374,20 @@ impl Shape {
                 &[2, 6],
                 &[3, 7],
             ],
+            Shape::Hexa20 => &[
+                &[0, 1, 8],
+                &[1, 2, 9],
+                &[2, 3, 10],
+                &[3, 0, 11],
+                &[4, 5, 12],
+                &[5, 6, 13],
+                &[6, 7, 14],
+                &[7, 4, 15],
+                &[0, 4, 16],
+                &[1, 5, 17],
+                &[2, 6, 18],
+                &[3, 7, 19],
+            ],
             Shape::Wedge6 => &[
                 &[0, 1],
                 &[1, 2],
@@ -320,13 +404,15 @@ impl Shape {
     }
 
     /// Shape of a boundary (edge or face) with `n` nodes of this element: 2 → Line2, 3 → Line3
-    /// on a 2D element (quadratic edge) or Tri3 on a 3D one, 4 → Quad4, 6 → Tri6.
+    /// on a 2D element (quadratic edge) or Tri3 on a 3D one, 4 → Quad4, 6 → Tri6, 8 → Quad8 (a
+    /// face of a 3D element).
     pub fn boundary_shape(self, n: usize) -> Shape {
         match (self.dim(), n) {
             (2, 3) => Shape::Line3,
             (3, 3) => Shape::Tri3,
             (_, 4) => Shape::Quad4,
             (_, 6) => Shape::Tri6,
+            (3, 8) => Shape::Quad8,
             _ => Shape::Line2,
         }
     }
@@ -345,7 +431,7 @@ impl Shape {
 mod tests {
     use super::*;
 
-    const ALL: [Shape; 10] = [
+    const ALL: [Shape; 11] = [
         Shape::Line2,
         Shape::Line3,
         Shape::Tri3,
@@ -355,14 +441,15 @@ mod tests {
         Shape::Tet4,
         Shape::Tet10,
         Shape::Hexa8,
+        Shape::Hexa20,
         Shape::Wedge6,
     ];
 
     #[test]
     fn shape_functions_sum_to_one_and_derivatives_to_zero() {
         for s in ALL {
-            let mut n = [0.0; 10];
-            let mut dn = [[0.0; 3]; 10];
+            let mut n = [0.0; 20];
+            let mut dn = [[0.0; 3]; 20];
             s.eval([0.21, 0.33, -0.4], &mut n, &mut dn);
             let m = s.n_nodes();
             assert!((n[..m].iter().sum::<f64>() - 1.0).abs() < 1e-14, "{s:?}");
@@ -379,16 +466,16 @@ mod tests {
     fn shape_derivatives_match_finite_differences() {
         for s in ALL {
             let xi = [0.17, 0.23, 0.31];
-            let (mut n0, mut n1, mut dn) = ([0.0; 10], [0.0; 10], [[0.0; 3]; 10]);
+            let (mut n0, mut n1, mut dn) = ([0.0; 20], [0.0; 20], [[0.0; 3]; 20]);
             s.eval(xi, &mut n0, &mut dn);
             let h = 1e-6;
             for k in 0..s.dim() {
                 let (mut xp, mut xm) = (xi, xi);
                 xp[k] += h;
                 xm[k] -= h;
-                let mut d = [[0.0; 3]; 10];
+                let mut d = [[0.0; 3]; 20];
                 s.eval(xp, &mut n1, &mut d);
-                let mut nm = [0.0; 10];
+                let mut nm = [0.0; 20];
                 s.eval(xm, &mut nm, &mut d);
                 for a in 0..s.n_nodes() {
                     let fd = (n1[a] - nm[a]) / (2.0 * h);
@@ -486,6 +573,51 @@ mod tests {
                 let at = nodes.iter().position(|p| *p == m).unwrap();
                 assert_eq!(face[3 + k], at, "face {face:?} side {k}");
             }
+        }
+    }
+
+    /// The 20-node brick: N_a(node b) = δ_ab at its corners and mid-edges (OOFEM's QSpace order),
+    /// it reproduces the quadratic fields of the serendipity space (all of degree ≤ 2), and each
+    /// face's eight nodes are the Quad8 of that face.
+    #[test]
+    fn hexa20_is_kronecker_quadratically_complete_and_its_faces_are_quad8() {
+        let mut nodes: Vec<[f64; 3]> = HEXA8_NODES.to_vec();
+        for [i, j] in HEXA20_EDGES {
+            nodes.push(std::array::from_fn(|c| {
+                0.5 * (HEXA8_NODES[i][c] + HEXA8_NODES[j][c])
+            }));
+        }
+        let (mut n, mut dn) = ([0.0; 20], [[0.0; 3]; 20]);
+        for (a, p) in nodes.iter().enumerate() {
+            Shape::Hexa20.eval(*p, &mut n, &mut dn);
+            for (b, v) in n.iter().enumerate() {
+                assert!(
+                    (v - if a == b { 1.0 } else { 0.0 }).abs() < 1e-14,
+                    "{a} {b}"
+                );
+            }
+        }
+        let x = [0.21, -0.47, 0.33];
+        Shape::Hexa20.eval(x, &mut n, &mut dn);
+        for i in 0..3 {
+            for j in i..3 {
+                let v: f64 = nodes.iter().zip(n).map(|(p, na)| na * p[i] * p[j]).sum();
+                assert!((v - x[i] * x[j]).abs() < 1e-14);
+            }
+        }
+        for face in Shape::Hexa20.boundaries() {
+            for k in 0..4 {
+                let (a, b) = (face[k], face[(k + 1) % 4]);
+                let m: [f64; 3] = std::array::from_fn(|c| 0.5 * (nodes[a][c] + nodes[b][c]));
+                let at = nodes.iter().position(|p| *p == m).unwrap();
+                assert_eq!(face[4 + k], at, "face {face:?} side {k}");
+            }
+        }
+        // The mirror is the same element: node a of the mirror sits where node mirror[a] does
+        // in the mirrored (ζ → −ζ) cube.
+        for (a, &b) in Shape::Hexa20.mirror().iter().enumerate() {
+            let p = nodes[b];
+            assert_eq!(nodes[a], [p[0], p[1], -p[2]], "mirror {a}");
         }
     }
 }

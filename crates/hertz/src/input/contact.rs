@@ -3,6 +3,7 @@
 
 use super::record::Record;
 use crate::error::{Error, Result, Span};
+use crate::fem::Shape;
 use crate::model::{
     ContactCondition, ContactLaw, ContactSegment, Element, Friction, Pairing, SegmentKind, Set,
 };
@@ -392,14 +393,16 @@ pub fn resolve(
                 for &(e, _) in &list {
                     // Contact on curved (6-node) faces is not written yet: refused, never taken
                     // as a quadrilateral.
-                    if faces && elements[e].etype.shape() == crate::fem::Shape::Tet10 {
+                    let etype = elements[e].etype;
+                    if faces && matches!(etype.shape(), Shape::Tet10 | Shape::Hexa20) {
                         return Err(err(
                             &s.span,
                             format!(
-                                "element {} of set {set} is a QTRSpace: contact on its 6-node \
-                                 faces is not supported yet (use LTRSpace elements on the contact \
-                                 surface)",
-                                elements[e].label
+                                "element {} of set {set} is a {}: contact on its curved \
+                                 (quadratic) faces is not supported yet (use LTRSpace or LSpace \
+                                 elements on the contact surface)",
+                                elements[e].label,
+                                etype.name()
                             ),
                         ));
                     }

@@ -492,13 +492,22 @@ fn hertz_element(
         // Corners as type 4; Gmsh's mid-edge nodes 4..9 lie on its edges 0–1, 1–2, 2–0, 3–0,
         // 3–2, 3–1 (its 8 and 9 are swapped against VTK's).
         (11, _) => (E::QTRSpace, &[1, 2, 3, 0, 5, 8, 9, 4, 6, 7]),
+        // Corners as type 5; Gmsh's mid-edge nodes 8..19 lie on its edges 0–1, 0–3, 0–4, 1–2,
+        // 1–5, 2–3, 2–6, 3–7, 4–5, 4–7, 5–6, 6–7.
+        (17, _) => (
+            E::QSpace,
+            &[
+                4, 7, 6, 5, 0, 3, 2, 1, 17, 19, 18, 16, 9, 13, 11, 8, 10, 15, 14, 12,
+            ],
+        ),
         (t, _) => {
             let name = gmsh_type(t).map_or("this element", |x| x.2);
             return Err(format!(
                 "hertz has no {name} element (Gmsh type {t}); mesh with first-order elements \
                  (Mesh.ElementOrder = 1), or second-order triangles and 8-node quadrangles \
                  (Mesh.ElementOrder = 2, Mesh.SecondOrderIncomplete = 1) in 2D, or second-order \
-                 tetrahedra (Mesh.ElementOrder = 2) in 3D"
+                 tetrahedra and 20-node hexahedra (Mesh.ElementOrder = 2, \
+                 Mesh.SecondOrderIncomplete = 1) in 3D"
             ));
         }
     })
@@ -610,6 +619,7 @@ pub fn convert(path: &Path, plane: Plane) -> Result<Converted> {
             let n_corner = match etype.shape() {
                 Shape::Quad8 | Shape::Tri6 => 2,
                 Shape::Tet10 => 3,
+                Shape::Hexa20 => 4,
                 _ => local.len(),
             };
             let global: Vec<usize> = local.iter().map(|&a| nodes[a]).collect();
@@ -628,7 +638,8 @@ pub fn convert(path: &Path, plane: Plane) -> Result<Converted> {
                 let n_corner = match e.gmsh_type {
                     8 => 2,
                     9 if dim == 3 => 3,
-                    9 | 16 | 10 => return Err(err(path, 0, "second-order boundary elements in a physical group: hertz reads them only as 3-node lines (Gmsh type 8) on the edges of 6-node triangles and 8-node quadrangles, and as 6-node triangles (type 9) on the faces of 10-node tetrahedra")),
+                    16 if dim == 3 => 4,
+                    9 | 16 | 10 => return Err(err(path, 0, "second-order boundary elements in a physical group: hertz reads them only as 3-node lines (Gmsh type 8) on the edges of 6-node triangles and 8-node quadrangles, and as 6-node triangles and 8-node quadrangles (types 9, 16) on the faces of 10-node tetrahedra and 20-node hexahedra")),
                     _ => nodes.len(),
                 };
                 let key = corners(&nodes, n_corner);

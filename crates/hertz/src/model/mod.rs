@@ -142,6 +142,9 @@ pub enum ElementType {
     LWedge,
     /// 10-node tetrahedron (OOFEM's QTRSpace): corners, then mid-edge nodes 1–2, 2–3, 3–1, 1–4, 2–4, 3–4.
     QTRSpace,
+    /// 20-node serendipity brick (OOFEM's QSpace): corners as LSpace, then mid-edges 1–2, 2–3,
+    /// 3–4, 4–1, 5–6, 6–7, 7–8, 8–5, 1–5, 2–6, 3–7, 4–8.
+    QSpace,
 }
 
 /// Strain/stress state of an element's material points.
@@ -154,7 +157,7 @@ pub enum StressMode {
 }
 
 impl ElementType {
-    pub const ALL: [(&'static str, ElementType); 14] = [
+    pub const ALL: [(&'static str, ElementType); 15] = [
         ("truss1d", ElementType::Truss1d),
         ("truss2d", ElementType::Truss2d),
         ("planestress2d", ElementType::PlaneStress2d),
@@ -169,6 +172,7 @@ impl ElementType {
         ("ltrspace", ElementType::LTRSpace),
         ("lwedge", ElementType::LWedge),
         ("qtrspace", ElementType::QTRSpace),
+        ("qspace", ElementType::QSpace),
     ];
 
     pub fn from_keyword(k: &str) -> Option<ElementType> {
@@ -191,6 +195,7 @@ impl ElementType {
             ElementType::LTRSpace => "LTRSpace",
             ElementType::LWedge => "LWedge",
             ElementType::QTRSpace => "QTRSpace",
+            ElementType::QSpace => "QSpace",
         }
     }
 
@@ -202,6 +207,7 @@ impl ElementType {
             ElementType::QPlaneStress2d | ElementType::QPlaneStrain | ElementType::LSpace => 8,
             ElementType::QTrPlaneStress2d | ElementType::QTrPlaneStrain | ElementType::LWedge => 6,
             ElementType::QTRSpace => 10,
+            ElementType::QSpace => 20,
         }
     }
 
@@ -219,7 +225,8 @@ impl ElementType {
             ElementType::LSpace
             | ElementType::LTRSpace
             | ElementType::LWedge
-            | ElementType::QTRSpace => StressMode::ThreeD,
+            | ElementType::QTRSpace
+            | ElementType::QSpace => StressMode::ThreeD,
         }
     }
 
@@ -236,6 +243,7 @@ impl ElementType {
             ElementType::LTRSpace => Shape::Tet4,
             ElementType::LWedge => Shape::Wedge6,
             ElementType::QTRSpace => Shape::Tet10,
+            ElementType::QSpace => Shape::Hexa20,
         }
     }
 
@@ -254,6 +262,8 @@ impl ElementType {
             ElementType::LWedge => 6,
             // OOFEM's QTRSpace: 4 points (exact for its linear-elastic stiffness).
             ElementType::QTRSpace => 4,
+            // OOFEM's QSpace: 27 points.
+            ElementType::QSpace => 27,
         }
     }
 

@@ -26,6 +26,14 @@ fn vtk_cell(shape: Shape) -> (u8, &'static [usize]) {
         // (2,0), (0,3), (1,3), (2,3) of those.
         Shape::Tet10 => (24, &[0, 2, 1, 3, 6, 5, 4, 7, 9, 8]),
         Shape::Hexa8 => (12, &[0, 1, 2, 3, 4, 5, 6, 7]),
+        // VTK_QUADRATIC_HEXAHEDRON: corners as the hexahedron's, then its edges in Hexa20's
+        // order (the two faces' edges, then the four joining them).
+        Shape::Hexa20 => (
+            25,
+            &[
+                0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19,
+            ],
+        ),
         Shape::Wedge6 => (13, &[0, 2, 1, 3, 5, 4]),
     }
 }

@@ -68,7 +68,12 @@ pub fn reference_contributions(model: &Model, load: &Load) -> Result<Vec<(usize,
                 let face = shape.boundary_shape(local.len());
                 let mut n = [0.0; 8];
                 let mut dn = [[0.0; 3]; 8];
-                for qp in rule(face, if local.len() == 3 { 3 } else { 4 }).expect("face rule") {
+                let points = match local.len() {
+                    3 => 3,
+                    8 => 9,
+                    _ => 4,
+                };
+                for qp in rule(face, points).expect("face rule") {
                     face.eval(qp.xi, &mut n, &mut dn);
                     let (mut g1, mut g2) = ([0.0; 3], [0.0; 3]);
                     for (k, &a) in local.iter().enumerate() {
