@@ -249,3 +249,96 @@ fn any_tangent_sink_gets_the_assembled_tangent() {
         "{total} vs {on_pattern}"
     );
 }
+
+/// The rigid-body motions a linear solver may use as its near-null space (`rigid_body_modes`,
+/// PETSc's GAMG) are orthonormal and free of strain: the stiffness of an unsupported body
+/// (a distorted 2 × 1 × 1 brick block, a 2D plate) maps each of them to zero.
+#[test]
+fn rigid_body_modes_are_orthonormal_and_strain_free() {
+    for (domain, elements, nodes, count) in [
+        (
+            "3d",
+            "LSpace 1 nodes 8 2 5 4 1 8 11 10 7 mat 1 crossSect 1\n\
+             LSpace 2 nodes 8 3 6 5 2 9 12 11 8 mat 1 crossSect 1\n",
+            vec![
+                [0.0, 0.0, 1.0],
+                [1.0, 0.1, 1.0],
+                [2.0, 0.0, 1.2],
+                [0.0, 1.0, 1.0],
+                [1.1, 1.0, 0.9],
+                [2.0, 1.0, 1.0],
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.1],
+                [2.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [0.9, 1.1, 0.0],
+                [2.0, 1.0, 0.0],
+            ],
+            6,
+        ),
+        (
+            "2dPlaneStress",
+            "PlaneStress2d 1 nodes 4 5 4 1 2 mat 1 crossSect 1\n\
+             PlaneStress2d 2 nodes 4 6 5 2 3 mat 1 crossSect 1\n",
+            vec![
+                [0.0, 0.0, 0.0],
+                [1.1, 0.1, 0.0],
+                [2.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [0.9, 1.2, 0.0],
+                [2.0, 1.0, 0.0],
+            ],
+            3,
+        ),
+    ] {
+        let dim = if domain == "3d" { 3 } else { 2 };
+        let mut text = format!(
+            "free.out\nunsupported body\nLinearStatic nsteps 1\ndomain {domain}\nOutputManager\n\
+             ndofman {} nelem 2 ncrosssect 1 nmat 1 nbc 0 nic 0 nltf 1 nset 1\n",
+            nodes.len()
+        );
+        for (i, x) in nodes.iter().enumerate() {
+            let c: Vec<String> = x[..dim].iter().map(|v| v.to_string()).collect();
+            text += &format!("node {} coords {dim} {}\n", i + 1, c.join(" "));
+        }
+        text += elements;
+        text += "SimpleCS 1 thick 1 material 1 set 1\nIsoLE 1 d 0 E 100 n 0.3 tAlpha 0\n\
+                 ConstantFunction 1 f(t) 1.0\nSet 1 allelements\n";
+        let model = common::model_from_text(&text).unwrap();
+        let dofs = hertz::solve::number_dofs(&model).unwrap();
+        let modes = hertz::solve::linear::rigid_body_modes(&model, &dofs);
+        assert_eq!(modes.len(), count, "{domain}");
+        for (a, ma) in modes.iter().enumerate() {
+            for (b, mb) in modes.iter().enumerate() {
+                let dot: f64 = ma.iter().zip(mb).map(|(x, y)| x * y).sum();
+                assert!(
+                    (dot - f64::from(u8::from(a == b))).abs() < 1e-12,
+                    "{domain}"
+                );
+            }
+        }
+        let asm = hertz::assembly::Assembler::new(&model, &dofs).unwrap();
+        let kv = asm
+            .evaluate(&vec![0.0; dofs.n_primary()], true, false, None, &[])
+            .unwrap()
+            .k_values
+            .unwrap();
+        let pattern = &asm.pattern;
+        let scale = kv.iter().map(|v| v.abs()).fold(0.0, f64::max);
+        for m in &modes {
+            // K·m from the stored (upper, for a symmetric pattern) entries.
+            let mut km = vec![0.0; pattern.n];
+            for c in 0..pattern.n {
+                let range = pattern.col_ptr[c]..pattern.col_ptr[c + 1];
+                for (&r, &v) in pattern.row_idx[range.clone()].iter().zip(&kv[range]) {
+                    km[r] += v * m[c];
+                    if pattern.symmetric && r != c {
+                        km[c] += v * m[r];
+                    }
+                }
+            }
+            let worst = km.iter().map(|v| v.abs()).fold(0.0, f64::max);
+            assert!(worst < 1e-12 * scale, "{domain}: |K·m| = {worst:e}");
+        }
+    }
+}

@@ -36,7 +36,8 @@ macro_rules! opaque {
     )*};
 }
 opaque!(_p_Mat => Mat, _p_Vec => PetscVec, _p_KSP => KSP, _p_PC => PC, _p_PetscOptions => PetscOptions,
-        _p_PetscSF => VecScatter, ompi_communicator_t => OmpiCommPtr);
+        _p_PetscSF => VecScatter, _p_MatNullSpace => MatNullSpace,
+        ompi_communicator_t => OmpiCommPtr);
 
 pub type InsertMode = c_uint;
 pub const INSERT_VALUES: InsertMode = 1;
@@ -118,6 +119,16 @@ extern "C" {
     pub fn MatSetOption(a: Mat, op: MatOption, flg: PetscBool) -> PetscErrorCode;
     pub fn MatCreateVecs(a: Mat, right: *mut PetscVec, left: *mut PetscVec) -> PetscErrorCode;
     pub fn MatDestroy(a: *mut Mat) -> PetscErrorCode;
+    pub fn MatNullSpaceCreate(
+        comm: MPI_Comm,
+        has_constant: PetscBool,
+        n: PetscInt,
+        vecs: *const PetscVec,
+        sp: *mut MatNullSpace,
+    ) -> PetscErrorCode;
+    pub fn MatSetNearNullSpace(a: Mat, sp: MatNullSpace) -> PetscErrorCode;
+    pub fn MatNullSpaceDestroy(sp: *mut MatNullSpace) -> PetscErrorCode;
+    pub fn VecDuplicate(x: PetscVec, y: *mut PetscVec) -> PetscErrorCode;
 
     pub fn VecSetValues(
         x: PetscVec,

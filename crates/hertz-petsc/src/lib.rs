@@ -1,6 +1,7 @@
 //! PETSc as a linear solver of hertz (the feature `petsc`): the tangent goes into a PETSc AIJ
 //! matrix split by rows across the MPI ranks, and PETSc's KSP solves it — by default CG with
-//! algebraic multigrid (GAMG) for a positive definite tangent, MUMPS' LDLᵀ for a symmetric one and
+//! algebraic multigrid (GAMG, the model's rigid-body motions as its near-null space) for a
+//! positive definite tangent, MUMPS' LDLᵀ for a symmetric one and
 //! MUMPS' LU otherwise, to a relative residual of 1e-12; any PETSc option overrides that
 //! (`PETSC_OPTIONS`, or the options string given to [`Session::start`], e.g.
 //! `-ksp_type cg -pc_type hypre`).

@@ -130,6 +130,8 @@ pub struct PetscSolver {
     n: usize,
     owned: Option<OwnedRows>,
     stats: SolverStats,
+    /// The rigid-body motions (GAMG's near-null space), if told.
+    modes: Vec<Vec<f64>>,
 }
 
 impl Default for PetscSolver {
@@ -148,7 +150,55 @@ impl PetscSolver {
             n: 0,
             owned: None,
             stats: SolverStats::default(),
+            modes: Vec::new(),
         }
+    }
+
+    /// Give the matrix the rigid-body motions as its near-null space (what GAMG coarsens with).
+    fn attach_modes(&mut self, lo: usize, hi: usize) -> Result<()> {
+        if self.modes.is_empty() || self.modes[0].len() != self.n {
+            return Ok(());
+        }
+        let idx: Vec<PetscInt> = (lo..hi).map(|i| i as PetscInt).collect();
+        let mut vecs: Vec<PetscVec> = Vec::with_capacity(self.modes.len());
+        // SAFETY: the vectors are duplicates of the matrix's and destroyed below; the null space
+        // keeps its own references.
+        unsafe {
+            for m in &self.modes {
+                let mut v: PetscVec = null_mut();
+                check(VecDuplicate(self.x, &mut v), "VecDuplicate")?;
+                check(
+                    VecSetValues(
+                        v,
+                        idx.len() as PetscInt,
+                        idx.as_ptr(),
+                        m[lo..hi].as_ptr(),
+                        INSERT_VALUES,
+                    ),
+                    "VecSetValues",
+                )?;
+                check(VecAssemblyBegin(v), "VecAssemblyBegin")?;
+                check(VecAssemblyEnd(v), "VecAssemblyEnd")?;
+                vecs.push(v);
+            }
+            let mut sp: MatNullSpace = null_mut();
+            check(
+                MatNullSpaceCreate(
+                    PETSC_COMM_WORLD,
+                    PETSC_FALSE,
+                    vecs.len() as PetscInt,
+                    vecs.as_ptr(),
+                    &mut sp,
+                ),
+                "MatNullSpaceCreate",
+            )?;
+            check(MatSetNearNullSpace(self.mat, sp), "MatSetNearNullSpace")?;
+            MatNullSpaceDestroy(&mut sp);
+            for v in &mut vecs {
+                VecDestroy(v);
+            }
+        }
+        Ok(())
     }
 
     /// The matrix, its vectors and the KSP for `pattern`, with its default method.
@@ -221,7 +271,7 @@ impl PetscSolver {
         }
         self.n = n;
         self.owned = Some(owned);
-        Ok(())
+        self.attach_modes(lo, hi)
     }
 
     fn destroy(&mut self) {
@@ -429,6 +479,10 @@ impl LinearSolver for PetscSolver {
 
     fn stats(&self) -> &SolverStats {
         &self.stats
+    }
+
+    fn set_near_null_space(&mut self, modes: &[Vec<f64>]) {
+        self.modes = modes.to_vec();
     }
 
     fn reset(&mut self) {

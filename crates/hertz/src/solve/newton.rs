@@ -157,7 +157,11 @@ impl<'a> NewtonContext<'a> {
                 ..Default::default()
             })),
             SolverChoice::Dense => Box::new(DenseLu::default()),
-            SolverChoice::Custom(make) => (make.0)(),
+            SolverChoice::Custom(make) => {
+                let mut solver = (make.0)();
+                solver.set_near_null_space(&super::linear::rigid_body_modes(model, dofs));
+                solver
+            }
         };
         let mut ctx = NewtonContext {
             asm,

@@ -35,6 +35,65 @@ pub(crate) fn singular() -> Error {
     Error::Singular("the tangent matrix is singular: are all rigid-body motions restrained?".into())
 }
 
+/// The rigid-body motions of `model` over the free equations of `dofs`: translations and
+/// rotations about the centroid (3 in 2D, 6 in 3D), orthonormalized; entries only on the
+/// displacement DOFs of nodes (not on slave-node codes or multipliers).
+pub fn rigid_body_modes(
+    model: &crate::model::Model,
+    dofs: &crate::assembly::DofMap,
+) -> Vec<Vec<f64>> {
+    let dim = model.domain.nsd();
+    let n = model.nodes.len().max(1) as f64;
+    let centre: [f64; 3] =
+        std::array::from_fn(|k| model.nodes.iter().map(|p| p.coords[k]).sum::<f64>() / n);
+    // Motion of node n along DOF d (1-based) in mode m.
+    let motion = |m: usize, x: [f64; 3], d: usize| -> f64 {
+        let r = [x[0] - centre[0], x[1] - centre[1], x[2] - centre[2]];
+        match (dim, m) {
+            (_, m) if m < dim => f64::from(u8::from(d == m)),
+            // 2D: the rotation about z.
+            (2, _) => [-r[1], r[0], 0.0][d],
+            // 3D: rotations about x, y, z (ω × r).
+            (_, m) => {
+                let w: [f64; 3] = std::array::from_fn(|k| f64::from(u8::from(k == m - 3)));
+                [
+                    w[1] * r[2] - w[2] * r[1],
+                    w[2] * r[0] - w[0] * r[2],
+                    w[0] * r[1] - w[1] * r[0],
+                ][d]
+            }
+        }
+    };
+    let count = match dim {
+        2 => 3,
+        3 => 6,
+        _ => 1,
+    };
+    let mut modes: Vec<Vec<f64>> = Vec::with_capacity(count);
+    for m in 0..count {
+        let mut v = vec![0.0; dofs.n_free];
+        for (node, list) in dofs.node_dofs.iter().enumerate() {
+            for &(id, code) in list {
+                let d = id as usize - 1;
+                if code < dofs.n_free - dofs.n_lambda && d < dim {
+                    v[code] = motion(m, model.nodes[node].coords, d);
+                }
+            }
+        }
+        // Gram–Schmidt against the modes before.
+        for w in &modes {
+            let dot: f64 = v.iter().zip(w).map(|(a, b)| a * b).sum();
+            v.iter_mut().zip(w).for_each(|(a, b)| *a -= dot * b);
+        }
+        let norm = v.iter().map(|a| a * a).sum::<f64>().sqrt();
+        if norm > 1e-12 {
+            v.iter_mut().for_each(|a| *a /= norm);
+            modes.push(v);
+        }
+    }
+    modes
+}
+
 /// Timings and sizes of the last factorization (for logs and benchmarks).
 #[derive(Debug, Clone, Default)]
 pub struct SolverStats {
@@ -99,6 +158,11 @@ pub trait LinearSolver {
 
     /// Forget what was analysed (the pattern changed).
     fn reset(&mut self);
+
+    /// Optional: the rigid-body motions of the model over the free equations (3 in 2D, 6 in 3D,
+    /// orthonormal; zero on the multipliers), for a solver that can use them (an algebraic
+    /// multigrid's near-null space). Told once, before the first factorization.
+    fn set_near_null_space(&mut self, _modes: &[Vec<f64>]) {}
 
     /// Optional: the trailing block L₂₂ of a Cholesky factor whose last equations are
     /// [`SolverSettings::last_block`], with the equation at each of its positions (L₂₂L₂₂ᵀ is the
