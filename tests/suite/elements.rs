@@ -60,14 +60,20 @@ const CONTINUUM: [(&str, Shape, StressMode, usize); 10] = [
     ("QSpace", Shape::Hexa20, StressMode::ThreeD, 27),
 ];
 
-/// Hexa8's reference corners (the 20-node brick takes its mid-edge nodes between them).
-fn distorted_corners_of_hexa() -> Vec<[f64; 3]> {
-    distorted_nodes(Shape::Hexa8)
+/// `corners` followed by the midpoints of `edges` (the quadratic element's mid-edge nodes).
+fn with_mid_edges(corners: Vec<[f64; 3]>, edges: &[&[usize]]) -> Vec<[f64; 3]> {
+    let mut v = corners.clone();
+    for e in edges {
+        v.push(std::array::from_fn(|k| {
+            0.5 * (corners[e[0]][k] + corners[e[1]][k])
+        }));
+    }
+    v
 }
 
-/// A distorted reference element: node positions of the shape perturbed a little.
-fn distorted_nodes(shape: Shape) -> Vec<[f64; 3]> {
-    let base: Vec<[f64; 3]> = match shape {
+/// The node positions of a reference element (quadratic ones with straight edges).
+fn reference_nodes(shape: Shape) -> Vec<[f64; 3]> {
+    match shape {
         Shape::Quad4 => vec![
             [1.0, 1.0, 0.0],
             [-1.0, 1.0, 0.0],
@@ -101,48 +107,8 @@ fn distorted_nodes(shape: Shape) -> Vec<[f64; 3]> {
             [0.0, 0.0, 1.0],
             [0.0, 0.0, 0.0],
         ],
-        Shape::Hexa20 => {
-            let c = distorted_corners_of_hexa();
-            let mut v = c.clone();
-            for (a, b) in [
-                (0, 1),
-                (1, 2),
-                (2, 3),
-                (3, 0),
-                (4, 5),
-                (5, 6),
-                (6, 7),
-                (7, 4),
-                (0, 4),
-                (1, 5),
-                (2, 6),
-                (3, 7),
-            ] {
-                v.push(std::array::from_fn(|k| 0.5 * (c[a][k] + c[b][k])));
-            }
-            return v;
-        }
-        Shape::Tet10 => {
-            let c = [
-                [1.0, 0.0, 0.0],
-                [0.0, 1.0, 0.0],
-                [0.0, 0.0, 1.0],
-                [0.0, 0.0, 0.0],
-            ];
-            let mid = |a: usize, b: usize| -> [f64; 3] {
-                std::array::from_fn(|k| 0.5 * (c[a][k] + c[b][k]))
-            };
-            let mut v = c.to_vec();
-            v.extend([
-                mid(0, 1),
-                mid(1, 2),
-                mid(2, 0),
-                mid(0, 3),
-                mid(1, 3),
-                mid(2, 3),
-            ]);
-            v
-        }
+        Shape::Hexa20 => with_mid_edges(reference_nodes(Shape::Hexa8), Shape::Hexa8.edges()),
+        Shape::Tet10 => with_mid_edges(reference_nodes(Shape::Tet4), Shape::Tet4.edges()),
         Shape::Wedge6 => vec![
             [0.0, 0.0, -1.0],
             [1.0, 0.0, -1.0],
@@ -152,8 +118,13 @@ fn distorted_nodes(shape: Shape) -> Vec<[f64; 3]> {
             [0.0, 1.0, 1.0],
         ],
         _ => unreachable!(),
-    };
-    base.iter()
+    }
+}
+
+/// A distorted reference element: node positions of the shape perturbed a little.
+fn distorted_nodes(shape: Shape) -> Vec<[f64; 3]> {
+    reference_nodes(shape)
+        .iter()
         .enumerate()
         .map(|(a, x)| {
             let s = 0.07 * ((a as f64 * 1.7).sin());
@@ -406,6 +377,32 @@ fn patch_2d(kind: &'static str) -> Patch {
     }
 }
 
+/// Append to the element `ids` (1-based, its corners) the mid-edge nodes of its `edges`, shared
+/// between elements: found among `nodes` or added, on the patch's boundary when they lie on a
+/// face of the cube [0, 2]³.
+fn add_mid_edges(
+    nodes: &mut Vec<[f64; 3]>,
+    boundary: &mut Vec<bool>,
+    ids: &mut Vec<usize>,
+    edges: &[&[usize]],
+) {
+    let corners = ids.clone();
+    for e in edges {
+        let (pa, pb) = (corners[e[0]] - 1, corners[e[1]] - 1);
+        let m = [0, 1, 2].map(|k| 0.5 * (nodes[pa][k] + nodes[pb][k]));
+        let found = nodes
+            .iter()
+            .position(|p| (0..3).all(|k| (p[k] - m[k]).abs() < 1e-12));
+        let id = found.unwrap_or_else(|| {
+            nodes.push(m);
+            let on = |v: f64| v.abs() < 1e-12 || (v - 2.0).abs() < 1e-12;
+            boundary.push(m.iter().any(|&v| on(v)));
+            nodes.len() - 1
+        });
+        ids.push(id + 1);
+    }
+}
+
 fn patch_3d(kind: &'static str) -> Patch {
     let (mut nodes, idx, mut boundary) = grid([2, 2, 2]);
     let mut elements = Vec::new();
@@ -422,35 +419,7 @@ fn patch_3d(kind: &'static str) -> Patch {
                     "QSpace" => {
                         let mut ids: Vec<usize> =
                             HEXA8_CORNERS.iter().map(|p| c(p[0], p[1], p[2])).collect();
-                        let corners = ids.clone();
-                        let edges = [
-                            (0, 1),
-                            (1, 2),
-                            (2, 3),
-                            (3, 0),
-                            (4, 5),
-                            (5, 6),
-                            (6, 7),
-                            (7, 4),
-                            (0, 4),
-                            (1, 5),
-                            (2, 6),
-                            (3, 7),
-                        ];
-                        for (a, b) in edges {
-                            let (pa, pb) = (corners[a] - 1, corners[b] - 1);
-                            let m = [0, 1, 2].map(|k| 0.5 * (nodes[pa][k] + nodes[pb][k]));
-                            let found = nodes
-                                .iter()
-                                .position(|p| (0..3).all(|k| (p[k] - m[k]).abs() < 1e-12));
-                            let id = found.unwrap_or_else(|| {
-                                nodes.push(m);
-                                let on = |v: f64| v.abs() < 1e-12 || (v - 2.0).abs() < 1e-12;
-                                boundary.push(m.iter().any(|&v| on(v)));
-                                nodes.len() - 1
-                            });
-                            ids.push(id + 1);
-                        }
+                        add_mid_edges(&mut nodes, &mut boundary, &mut ids, Shape::Hexa8.edges());
                         elements.push((kind, ids, String::new()));
                     }
                     "LWedge" => {
@@ -497,23 +466,8 @@ fn patch_3d(kind: &'static str) -> Patch {
                             }
                             ids.push(c(1, 1, 1));
                             if kind == "QTRSpace" {
-                                // Mid-edge nodes 5..10 on 1–2, 2–3, 3–1, 1–4, 2–4, 3–4, shared.
-                                let corners = ids.clone();
-                                for (a, b) in [(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)] {
-                                    let (pa, pb) = (corners[a] - 1, corners[b] - 1);
-                                    let m = [0, 1, 2].map(|k| 0.5 * (nodes[pa][k] + nodes[pb][k]));
-                                    let found = nodes
-                                        .iter()
-                                        .position(|p| (0..3).all(|k| (p[k] - m[k]).abs() < 1e-12));
-                                    let id = found.unwrap_or_else(|| {
-                                        nodes.push(m);
-                                        let on =
-                                            |v: f64| v.abs() < 1e-12 || (v - 2.0).abs() < 1e-12;
-                                        boundary.push(m.iter().any(|&v| on(v)));
-                                        nodes.len() - 1
-                                    });
-                                    ids.push(id + 1);
-                                }
+                                let edges = Shape::Tet4.edges();
+                                add_mid_edges(&mut nodes, &mut boundary, &mut ids, edges);
                             }
                             elements.push((kind, ids, String::new()));
                         }

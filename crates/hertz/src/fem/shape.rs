@@ -31,25 +31,6 @@ pub enum Shape {
     Wedge6,
 }
 
-/// The corners of Hexa20's mid-edge nodes 9..20 (Hexa8's edges).
-const HEXA20_EDGES: [[usize; 2]; 12] = [
-    [0, 1],
-    [1, 2],
-    [2, 3],
-    [3, 0],
-    [4, 5],
-    [5, 6],
-    [6, 7],
-    [7, 4],
-    [0, 4],
-    [1, 5],
-    [2, 6],
-    [3, 7],
-];
-
-/// The corners of Tet10's mid-edge nodes 5..10.
-const TET10_EDGES: [[usize; 2]; 6] = [[0, 1], [1, 2], [2, 0], [0, 3], [1, 3], [2, 3]];
-
 const QUAD4_NODES: [[f64; 2]; 4] = [[1.0, 1.0], [-1.0, 1.0], [-1.0, -1.0], [1.0, -1.0]];
 const QUAD8_NODES: [[f64; 2]; 8] = [
     [1.0, 1.0],
@@ -205,7 +186,9 @@ impl Shape {
                     let f = 4.0 * l[i] - 1.0;
                     dn[i] = [f * dl[i][0], f * dl[i][1], f * dl[i][2]];
                 }
-                for (k, &[i, j]) in TET10_EDGES.iter().enumerate() {
+                // Mid-edge node 5 + k on Tet4's edge k.
+                for (k, e) in Shape::Tet4.edges().iter().enumerate() {
+                    let (i, j) = (e[0], e[1]);
                     n[4 + k] = 4.0 * l[i] * l[j];
                     dn[4 + k] = std::array::from_fn(|c| 4.0 * (dl[i][c] * l[j] + l[i] * dl[j][c]));
                 }
@@ -233,7 +216,8 @@ impl Shape {
                     ];
                 }
                 // A mid-edge node: the coordinate along its edge is 0 (quadratic bubble there).
-                for (k, &[i, j]) in HEXA20_EDGES.iter().enumerate() {
+                for (k, e) in Shape::Hexa8.edges().iter().enumerate() {
+                    let (i, j) = (e[0], e[1]);
                     let m: [f64; 3] =
                         std::array::from_fn(|c| 0.5 * (HEXA8_NODES[i][c] + HEXA8_NODES[j][c]));
                     let along = (0..3).find(|&c| m[c] == 0.0).expect("an edge's free axis");
@@ -581,12 +565,18 @@ mod tests {
     /// face's eight nodes are the Quad8 of that face.
     #[test]
     fn hexa20_is_kronecker_quadratically_complete_and_its_faces_are_quad8() {
+        // OOFEM's FEI3dHexaQuad: nodes 9–12 at (−1, 0, 1), (0, 1, 1), (1, 0, 1), (0, −1, 1),
+        // 13–16 the same at ζ = −1, 17–20 at (−1, −1, 0), (−1, 1, 0), (1, 1, 0), (1, −1, 0).
         let mut nodes: Vec<[f64; 3]> = HEXA8_NODES.to_vec();
-        for [i, j] in HEXA20_EDGES {
-            nodes.push(std::array::from_fn(|c| {
-                0.5 * (HEXA8_NODES[i][c] + HEXA8_NODES[j][c])
-            }));
+        for z in [1.0, -1.0] {
+            nodes.extend([[-1.0, 0.0, z], [0.0, 1.0, z], [1.0, 0.0, z], [0.0, -1.0, z]]);
         }
+        nodes.extend([
+            [-1.0, -1.0, 0.0],
+            [-1.0, 1.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [1.0, -1.0, 0.0],
+        ]);
         let (mut n, mut dn) = ([0.0; 20], [[0.0; 3]; 20]);
         for (a, p) in nodes.iter().enumerate() {
             Shape::Hexa20.eval(*p, &mut n, &mut dn);
