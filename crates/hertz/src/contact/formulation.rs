@@ -314,7 +314,7 @@ pub fn apply_law(
                 ContactLaw::Multiplier => 0.0,
             };
             let lambdas = ctx.nodes.multipliers(eqs.clone());
-            let free: Vec<bool> = codes.iter().map(|&c| ctx.nodes.is_free(c)).collect();
+            let free = |c| ctx.nodes.is_free(c);
             let (point, friction) =
                 law::multiplier::evaluate(ctx.laws, lambdas, codes, eqs, kin, compliance, &free);
             if let Some(s) = &kin.slip {

@@ -58,8 +58,8 @@ fn capped(c: f64, compliance: f64) -> f64 {
 
 /// `codes`: the displacement codes, then the equations of the multipliers `lambdas`: the
 /// friction force's components (if any) and last the normal force. `cn`: 1/ε of a
-/// penalty condition solved in this form, else 0. `free`: per displacement code, whether it moves
-/// with a free equation. Returns the point and, for an active point with friction, whether it
+/// penalty condition solved in this form, else 0. `free`: whether a displacement code moves with
+/// a free equation (asked only with friction). Returns the point and, for an active point with friction, whether it
 /// sticks and the friction force's magnitude.
 ///
 /// A friction component along an axis on which every node of the point is held (a plate with
@@ -75,7 +75,7 @@ pub fn evaluate(
     eqs: std::ops::Range<usize>,
     k: &PointKinematics,
     cn: f64,
-    free: &[bool],
+    free: &dyn Fn(usize) -> bool,
 ) -> (ContactPoint, Option<(bool, f64)>) {
     let m = k.b.len();
     let nt = eqs.len() - 1;
@@ -134,8 +134,9 @@ pub fn evaluate(
                 }
             }
             let (rows, stick, force) = coulomb(s, lambda, &lambda_t[..nt], m);
+            let moves: Vec<bool> = codes[..m].iter().map(|&c| free(c)).collect();
             for (c, row) in rows.iter().enumerate() {
-                let acts = (0..m).any(|i| free[i] && s.share[c][i].v != 0.0);
+                let acts = (0..m).any(|i| moves[i] && s.share[c][i].v != 0.0);
                 if acts {
                     fe[m + c] = row.v;
                     ke[(m + c) * mm..(m + c + 1) * mm].copy_from_slice(&row.d);

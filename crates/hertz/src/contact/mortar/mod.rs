@@ -370,7 +370,7 @@ impl SlotLaw {
                     *g += lambda * d;
                 }
             }
-            let free: Vec<bool> = codes.iter().map(|&c| ctx.nodes.is_free(c)).collect();
+            let free = |c| ctx.nodes.is_free(c);
             let (point, friction) =
                 law::multiplier::evaluate(&laws, lambdas, codes, eqs, &kin, compliance, &free);
             if let Some(s) = &kin.slip {
