@@ -268,6 +268,11 @@ impl PetscSolver {
                 KSPSetTolerances(self.ksp, 1e-12, 1e-50, -2.0, 10_000),
                 "KSPSetTolerances",
             )?;
+            // The user's options override these defaults, once for the KSP's life.
+            check(
+                KSPSetFromOptions(self.ksp),
+                "KSPSetFromOptions (the PETSc options)",
+            )?;
         }
         self.n = n;
         self.owned = Some(owned);
@@ -397,10 +402,6 @@ impl LinearSolver for PetscSolver {
             check(
                 KSPSetOperators(self.ksp, self.mat, self.mat),
                 "KSPSetOperators",
-            )?;
-            check(
-                KSPSetFromOptions(self.ksp),
-                "KSPSetFromOptions (the PETSc options)",
             )?;
             if KSPSetUp(self.ksp) != 0 {
                 return Err(Error::Singular(
