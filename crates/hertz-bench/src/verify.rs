@@ -44,6 +44,7 @@ fn contact_faces_and_material(inp: &mut Input, master: &Block, z: f64, nlgeo: bo
 /// `slave` whose nodes satisfy `on` (segment 2).
 fn contact(
     inp: &mut Input,
+    number: usize,
     law: Law,
     mortar: bool,
     slave: &Block,
@@ -51,7 +52,7 @@ fn contact(
     on: &dyn Fn([f64; 3]) -> bool,
 ) {
     if !mortar {
-        inp.bcs.push(n2s(5, law, nodes, &[1], ""));
+        inp.bcs.push(n2s(number, law, nodes, &[1], ""));
         return;
     }
     let faces = inp.faces_where(slave, on);
@@ -61,29 +62,38 @@ fn contact(
     ));
     inp.bcs.push(match law {
         Law::Penalty(p) => {
-            format!("s2spenaltycontact 5 loadTimeFunction 1 penalty {p:e} slavesegment 2 segmentset 1 1")
+            format!("s2spenaltycontact {number} loadTimeFunction 1 penalty {p:e} slavesegment 2 segmentset 1 1")
         }
-        Law::Multiplier => {
-            "s2slagrangianmultipliercontact 5 loadTimeFunction 1 slavesegment 2 segmentset 1 1".into()
-        }
+        Law::Multiplier => format!(
+            "s2slagrangianmultipliercontact {number} loadTimeFunction 1 slavesegment 2 segmentset 1 1"
+        ),
     });
 }
 
 /// Conditions 1–3: rollers on the planes x = 0 and y = 0 and on the nodes `bottom` (held in z);
 /// condition 4: the nodes `top` moved down by `delta` times function 1.
-fn rollers_and_push(inp: &mut Input, bottom: &[usize], top: &[usize], delta: f64) {
+/// Conditions 1 and 2: the symmetry planes x = 0 and y = 0 on rollers.
+fn rollers(inp: &mut Input) {
     let x0 = inp.nodes_where(&|p| p[0].abs() < 1e-12);
     let y0 = inp.nodes_where(&|p| p[1].abs() < 1e-12);
     let x0 = inp.node_set(&x0);
     let y0 = inp.node_set(&y0);
-    let bottom = inp.node_set(bottom);
-    let top = inp.node_set(top);
-    for (k, (dof, set)) in [(1, x0), (2, y0), (3, bottom)].iter().enumerate() {
+    for (k, (dof, set)) in [(1, x0), (2, y0)].iter().enumerate() {
         inp.bcs.push(format!(
             "BoundaryCondition {} loadTimeFunction 2 dofs 1 {dof} values 1 0 set {set}",
             k + 1
         ));
     }
+}
+
+/// [`rollers`], `bottom` held in z (3) and `top` moved down by `delta` (4).
+fn rollers_and_push(inp: &mut Input, bottom: &[usize], top: &[usize], delta: f64) {
+    rollers(inp);
+    let bottom = inp.node_set(bottom);
+    let top = inp.node_set(top);
+    inp.bcs.push(format!(
+        "BoundaryCondition 3 loadTimeFunction 2 dofs 1 3 values 1 0 set {bottom}"
+    ));
     inp.bcs.push(format!(
         "BoundaryCondition 4 loadTimeFunction 1 dofs 1 3 values 1 {} set {top}",
         -delta
@@ -142,7 +152,7 @@ impl Patch {
         contact_faces_and_material(&mut inp, &master, 0.0, self.nlgeo);
         rollers_and_push(&mut inp, &master.bottom, &slave.top, self.delta);
         let bottom = slave.bottom.clone();
-        contact(&mut inp, self.law, self.mortar, &slave, &bottom, &|p| {
+        contact(&mut inp, 5, self.law, self.mortar, &slave, &bottom, &|p| {
             p[2].abs() < 1e-12
         });
         let steps: Vec<f64> = (1..=self.steps)
@@ -256,7 +266,7 @@ impl HertzSphere {
             .copied()
             .filter(|&n| near(inp.nodes[n - 1]))
             .collect();
-        contact(&mut inp, self.law, self.mortar, &cap, &nodes, &|p| {
+        contact(&mut inp, 5, self.law, self.mortar, &cap, &nodes, &|p| {
             let zb = HERTZ_R - (HERTZ_R * HERTZ_R - p[0] * p[0] - p[1] * p[1]).sqrt();
             near(p) && (p[2] - zb).abs() < 1e-9
         });
@@ -815,4 +825,237 @@ pub fn simo_pister_with(number: usize, e: f64, nu: f64) -> String {
     let g = e / (2.0 * (1.0 + nu));
     let lambda = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
     format!("simopistermat {number} d 0 g {g} k {lambda}")
+}
+
+/// Two equal spherical caps of [`HertzSphere`] (radius `HERTZ_R`) pressed together pole to pole,
+/// quarter model: the upper cap as in [`HertzSphere`], the lower its mirror image in z = 0 with
+/// its flat bottom held; the upper cap's top moved down by 2δ. By symmetry the interface stays
+/// flat and the answer is that of one cap pressed by δ onto a rigid plane, which `rigid_plane`
+/// builds instead (the plane z = 0, fixed). Slave: the upper cap's bottom within `HERTZ_NEAR`
+/// of the axis; master: the lower cap's top faces, or the plane.
+#[derive(Debug, Clone, Copy)]
+pub struct TwoCaps {
+    pub kind: Solid,
+    pub h: f64,
+    pub delta: f64,
+    pub nlgeo: bool,
+    pub law: Law,
+    pub mortar: bool,
+    pub rigid_plane: bool,
+}
+
+impl TwoCaps {
+    pub fn input(&self) -> String {
+        use super::mesh::graded;
+        let mut inp = Input::default();
+        let extra = format!("mat 1 crossSect 1 nlgeo {}", u8::from(self.nlgeo));
+        let xc = graded(HERTZ_CAP, self.h, 1.5, 1.2);
+        let zc = graded(HERTZ_CAP, self.h, 0.75, 1.2);
+        let sphere =
+            |p: &[f64; 3]| HERTZ_R - (HERTZ_R * HERTZ_R - p[0] * p[0] - p[1] * p[1]).sqrt();
+        let lower = (!self.rigid_plane).then(|| {
+            let zl: Vec<f64> = zc.iter().rev().map(|d| -d).collect();
+            let lower = inp.solid3d(self.kind, &xc, &xc, &zl, &extra, 0);
+            // Bend the lower cap's top onto the mirrored sphere: z → −z_b + z (H − z_b)/H.
+            for id in lower.nodes.0..=lower.nodes.1 {
+                let p = &mut inp.nodes[id - 1];
+                let zb = sphere(p);
+                p[2] = -zb + p[2] * (HERTZ_CAP - zb) / HERTZ_CAP;
+            }
+            lower
+        });
+        let cap = inp.solid3d(self.kind, &xc, &xc, &zc, &extra, 0);
+        for id in cap.nodes.0..=cap.nodes.1 {
+            let p = &mut inp.nodes[id - 1];
+            let zb = sphere(p);
+            p[2] = zb + p[2] * (HERTZ_CAP - zb) / HERTZ_CAP;
+        }
+        let near = |p: [f64; 3]| p[0].hypot(p[1]) <= HERTZ_NEAR;
+        match &lower {
+            Some(lower) => {
+                let faces = inp.faces_where(lower, &|p| (p[2] + sphere(&p)).abs() < 1e-9);
+                let seg = inp.boundary_set(&faces);
+                inp.segments.push(format!(
+                    "linear3delementsurfacecontactsegment 1 boundaryset {seg}"
+                ));
+            }
+            None => inp
+                .segments
+                .push("planecontactsegment 1 point 3 0 0 0 normal 3 0 0 1".into()),
+        }
+        inp.sections.push("SimpleCS 1".into());
+        inp.materials.push(if self.nlgeo {
+            neo_hookean(1)
+        } else {
+            format!("IsoLE 1 d 0 E {E} n {NU} tAlpha 0")
+        });
+        let number = match &lower {
+            Some(lower) => {
+                rollers_and_push(&mut inp, &lower.bottom, &cap.top, 2.0 * self.delta);
+                5
+            }
+            None => {
+                rollers(&mut inp);
+                let top = inp.node_set(&cap.top);
+                inp.bcs.push(format!(
+                    "BoundaryCondition 3 loadTimeFunction 1 dofs 1 3 values 1 {} set {top}",
+                    -self.delta
+                ));
+                4
+            }
+        };
+        let nodes: Vec<usize> = cap
+            .bottom
+            .iter()
+            .copied()
+            .filter(|&n| near(inp.nodes[n - 1]))
+            .collect();
+        contact(
+            &mut inp,
+            number,
+            self.law,
+            self.mortar,
+            &cap,
+            &nodes,
+            &|p| near(p) && (p[2] - sphere(&p)).abs() < 1e-9,
+        );
+        inp.functions.push(history(&[1.0]));
+        inp.functions.push("ConstantFunction 2 f(t) 1.0".into());
+        inp.render("two_caps", &analysis(1), "3d")
+    }
+}
+
+/// [`TwoCaps`] in plane strain: two equal cylinders (radius `HERTZ_R`, caps `HERTZ_CAP` wide and
+/// high, half model about x = 0, 4-node quadrilaterals) pressed together, the upper one's top
+/// moved down by δ plus the lower one's share of the approach, its bottom held. Slave: the upper
+/// cap's bottom within `HERTZ_NEAR` of the axis.
+#[derive(Debug, Clone, Copy)]
+pub struct TwoCylinders {
+    pub h: f64,
+    pub delta: f64,
+    pub law: Law,
+    pub mortar: bool,
+    pub lower: Lower,
+}
+
+/// The lower body of [`TwoCylinders`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Lower {
+    /// The mirror image of the upper cylinder, its modulus this many times the upper one's: it
+    /// takes δ/s of the approach (geometry alike, so its displacements are the upper one's over s).
+    Elastic(f64),
+    /// The fixed rigid line y = 0: the equal bodies' flat interface.
+    RigidPlane,
+    /// The fixed rigid circle of radius `HERTZ_R` below y = 0: an infinitely stiff lower body.
+    RigidCircle,
+}
+
+impl TwoCylinders {
+    pub fn input(&self) -> String {
+        use super::mesh::{graded, Kind};
+        let mut inp = Input::default();
+        let xc = graded(HERTZ_CAP, self.h, 1.5, 1.2);
+        let hc = graded(HERTZ_CAP, self.h, 0.75, 1.2);
+        let bottom = |x: f64| HERTZ_R - (HERTZ_R * HERTZ_R - x * x).sqrt();
+        let lower = matches!(self.lower, Lower::Elastic(_)).then(|| {
+            inp.block2d(
+                Kind::Q4,
+                &xc,
+                &|i| {
+                    let yb = bottom(xc[i]);
+                    hc.iter()
+                        .rev()
+                        .map(|t| -yb - t * (HERTZ_CAP - yb) / HERTZ_CAP)
+                        .collect()
+                },
+                "mat 2 crossSect 1",
+            )
+        });
+        let cap = inp.block2d(
+            Kind::Q4,
+            &xc,
+            &|i| {
+                let yb = bottom(xc[i]);
+                hc.iter()
+                    .map(|t| yb + t * (HERTZ_CAP - yb) / HERTZ_CAP)
+                    .collect()
+            },
+            "mat 1 crossSect 1",
+        );
+        match &lower {
+            Some(lower) => {
+                let set = inp.boundary_set(&lower.top_edges);
+                inp.segments
+                    .push(format!("linear2delementedgecontactsegment 1 edgeset {set}"));
+            }
+            None if self.lower == Lower::RigidPlane => inp
+                .segments
+                .push("planecontactsegment 1 point 2 0 0 normal 2 0 1".into()),
+            None => inp.segments.push(format!(
+                "circlecontactsegment 1 centerpoint 2 0 {} radius {HERTZ_R}",
+                -HERTZ_R
+            )),
+        }
+        inp.sections.push("SimpleCS 1 thick 1.0".into());
+        let stiff = match self.lower {
+            Lower::Elastic(s) => s,
+            _ => f64::INFINITY,
+        };
+        inp.materials
+            .push(format!("IsoLE 1 d 0 E {E} n {NU} tAlpha 0"));
+        if lower.is_some() {
+            inp.materials
+                .push(format!("IsoLE 2 d 0 E {} n {NU} tAlpha 0", E * stiff));
+        }
+        let x0 = inp.nodes_where(&|p| p[0].abs() < 1e-12);
+        let x0 = inp.node_set(&x0);
+        inp.bcs.push(format!(
+            "BoundaryCondition 1 loadTimeFunction 2 dofs 1 1 values 1 0 set {x0}"
+        ));
+        let top = inp.node_set(&cap.top);
+        let push = (1.0 + 1.0 / stiff) * self.delta;
+        inp.bcs.push(format!(
+            "BoundaryCondition 2 loadTimeFunction 1 dofs 1 2 values 1 {} set {top}",
+            -push
+        ));
+        if let Some(lower) = &lower {
+            let held = inp.node_set(&lower.bottom);
+            inp.bcs.push(format!(
+                "BoundaryCondition 3 loadTimeFunction 2 dofs 1 2 values 1 0 set {held}"
+            ));
+        }
+        let number = inp.bcs.len() + 1;
+        let near: Vec<usize> = cap
+            .bottom
+            .iter()
+            .zip(&xc)
+            .filter(|(_, &x)| x <= HERTZ_NEAR)
+            .map(|(&n, _)| n)
+            .collect();
+        if self.mortar {
+            let edges: Vec<(usize, usize)> = cap
+                .bottom_edges
+                .iter()
+                .zip(xc.windows(2))
+                .filter(|(_, x)| x[1] <= HERTZ_NEAR + 1e-12)
+                .map(|(&e, _)| e)
+                .collect();
+            let set = inp.boundary_set(&edges);
+            inp.segments
+                .push(format!("linear2delementedgecontactsegment 2 edgeset {set}"));
+            inp.bcs.push(match self.law {
+                Law::Penalty(p) => format!(
+                    "s2spenaltycontact {number} loadTimeFunction 1 penalty {p:e} slavesegment 2 segmentset 1 1"
+                ),
+                Law::Multiplier => format!(
+                    "s2slagrangianmultipliercontact {number} loadTimeFunction 1 slavesegment 2 segmentset 1 1"
+                ),
+            });
+        } else {
+            inp.bcs.push(n2s(number, self.law, &near, &[1], ""));
+        }
+        inp.functions.push(history(&[1.0]));
+        inp.functions.push("ConstantFunction 2 f(t) 1.0".into());
+        inp.render("two_cylinders", &analysis(1), "PlaneStrain")
+    }
 }

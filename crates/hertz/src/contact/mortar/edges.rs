@@ -13,7 +13,9 @@
 //!   past the master's end.
 //!
 //! In small deformation the segmentation, the normals and the weights are those of the reference
-//! configuration and only the gap follows the displacements (linear contact); in large
+//! configuration and only the gap follows the displacements (linear contact), the gap and the
+//! force along the blend of the slave's and the master's normals at the pair of points
+//! ([`interface_weights`]) rather than along ν alone; in large
 //! deformation all of it is evaluated at the current state and differentiated.
 
 use super::{nearest_sheet, rigid_node, search_limit, Facing, SlipForm, SlotLaw, Weighted};
@@ -22,7 +24,9 @@ use crate::contact::geometry::edges::{shape, EdgeSurface};
 use crate::contact::geometry::rigid;
 use crate::contact::geometry::scalar::Scalar;
 use crate::contact::search::broad::BroadPhase;
-use crate::contact::{ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState};
+use crate::contact::{
+    interface_weights, ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState,
+};
 use crate::error::{Error, Result};
 use crate::model::{Model, Pairing, SegmentKind};
 
@@ -449,8 +453,9 @@ impl Mortar {
                 if w.partner == Partner::None {
                     w.partner = Partner::Edge(mi);
                 }
+                let (ws, wm) = interface_weights(ctx.model, e.element, me.element);
                 add(&mut w, &coef, lo, hi, &|xi: Dual| {
-                    let (x, t, nu, jac, xcur) = at(xi);
+                    let (x, t, mut nu, jac, xcur) = at(xi);
                     // η where x(ξ) + s ν crosses the master: (y(η) − x(ξ))·x'(ξ) = 0.
                     let eta = solve(0.5, m, yg.len() == 2, |eta| {
                         let (y, ty, _) = curve(&yg, eta);
@@ -460,6 +465,15 @@ impl Mortar {
                         )
                     });
                     let (ycur, _, _) = curve(&yc, eta);
+                    if !self.nlgeo {
+                        // The blend of the two reference normals ([`interface_weights`]).
+                        let (_, ty, _) = curve(&yg, eta);
+                        let ly = (ty[0] * ty[0] + ty[1] * ty[1]).sqrt();
+                        let nm = [ty[1] * me.side / ly, -(ty[0] * me.side) / ly];
+                        let blend = [nu[0] * ws + nm[0] * wm, nu[1] * ws + nm[1] * wm];
+                        let len = (blend[0] * blend[0] + blend[1] * blend[1]).sqrt();
+                        nu = [blend[0] / len, blend[1] / len];
+                    }
                     let g = (xcur[0] - ycur[0]) * nu[0] + (xcur[1] - ycur[1]) * nu[1];
                     let (shape_m, _) = shape(yg.len(), eta);
                     let master = me

@@ -15,7 +15,10 @@
 //! ([`super::segment::dual_basis`]). The support D_j is ∫ N_j dA over the overlaps.
 //!
 //! Small deformation: the segmentation, ν and the weights are those of the reference
-//! configuration, so each slave node's weighted gap is a fixed linear form of the current
+//! configuration, ν the blend of the slave's and the master's face normals that the contact
+//! interface takes ([`interface_weights`]: the slave's alone made two equal spheres pressed
+//! together differ from one on a rigid plane by 0.7 %), so each slave node's weighted gap is a
+//! fixed linear form of the current
 //! positions, g̃_j = Σ_n c_jn·x_n with c_jn = B_j at node n (computed once). Large deformation:
 //! each overlapping pair is segmented at the current state in duals over its two faces'
 //! coordinates and its integrals are scattered into the constraints of the slave face's nodes.
@@ -28,7 +31,9 @@ use crate::contact::geometry::faces::{
 };
 use crate::contact::geometry::rigid;
 use crate::contact::search::broad::BroadPhase;
-use crate::contact::{ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState};
+use crate::contact::{
+    interface_weights, ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState,
+};
 use crate::error::{Error, Result};
 use crate::model::{Model, Pairing, SegmentKind};
 use std::collections::HashMap;
@@ -282,7 +287,14 @@ impl FaceMortar {
             let dual = overlap_dual_basis(sf.nodes.len(), pieces.iter().flat_map(|p| &p.1));
             for (mi, points) in pieces {
                 let mf = &self.master.faces[mi];
-                for p in points {
+                let xm: Vec<[f64; 3]> = mf.nodes.iter().map(|&n| pos(n)).collect();
+                let (cx, ce) = faces::centre(mf.kind);
+                let nm = face_normal(mf.kind, &xm, mf.side, cx, ce);
+                let (ws, wm) = interface_weights(model, sf.element, mf.element);
+                for mut p in points {
+                    let nu: [f64; 3] = std::array::from_fn(|i| ws * p.nu[i] + wm * nm[i]);
+                    let len = dot(&nu, &nu).sqrt();
+                    p.nu = nu.map(|v| v / len);
                     for (a, &node) in sf.nodes.iter().enumerate() {
                         let form = &mut forms[self.slot_of[&node]];
                         if form.partner == Partner::None {
