@@ -45,6 +45,10 @@ pub struct BenchArgs {
     /// --sphere: mortar contact of the cap's bottom faces instead of node-to-face
     #[arg(long, requires = "sphere")]
     pub mortar: bool,
+    /// --sphere: quadratic elements (10-node tetrahedra with --tet, else 20-node bricks, whose
+    /// faces cannot be node-to-face slaves); node-to-face only
+    #[arg(long, requires = "sphere", conflicts_with = "mortar")]
+    pub quadratic: bool,
     /// --sphere: the cap's whole bottom face as the slave side, as a user meshing the whole
     /// face would (else the part near the axis)
     #[arg(long, requires = "sphere")]
@@ -97,6 +101,7 @@ pub fn main(args: BenchArgs) -> ExitCode {
             },
             mortar: args.mortar,
             whole_face: args.whole_face,
+            quadratic: args.quadratic,
         })),
         (_, Some(p)) => Some(Model3d::Patch(p as usize)),
         _ => None,

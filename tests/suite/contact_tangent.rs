@@ -13,7 +13,7 @@
 
 use crate::common;
 
-use common::{face_input, label_of_slave, strip, LM, PEN};
+use common::{face_input, face_input_of, label_of_slave, strip, LM, PEN};
 
 use hertz::assembly::NodalState;
 use hertz::contact::{ContactSystem, Search};
@@ -616,7 +616,8 @@ fn n2s_penalty_tangent_matches_the_consistent_closed_form_of_the_spec() {
 /// Node against the faces of hexahedra, tetrahedra and wedges in several node orders: in the
 /// middle of a face, near the vertex where faces meet (normals averaged, in large deformation
 /// over the faces around it), past an open edge of the master (force weighted down); small and
-/// large deformation; penalty and multipliers; with a prescribed normal.
+/// large deformation; penalty and multipliers; with a prescribed normal. Also against the curved
+/// 6- and 8-node faces of quadratic tetrahedra and bricks (the mid-side nodes off the chords).
 #[test]
 fn face_tangents_are_jacobians_of_residuals() {
     let positions: [(&str, [f64; 3], [f64; 3]); 3] = [
@@ -626,10 +627,12 @@ fn face_tangents_are_jacobians_of_residuals() {
     ];
     let penalty = "n2spenaltycontact 1 loadTimeFunction 1 penalty 1000";
     let multiplier = "n2slagrangianmultipliercontact 1 loadTimeFunction 1";
-    for (kind, syms) in [
-        (Solid::Hex, &[0, 13, 22, 45][..]),
-        (Solid::Tet, &[0, 45]),
-        (Solid::Wedge, &[0, 13]),
+    for (kind, quadratic, syms) in [
+        (Solid::Hex, false, &[0, 13, 22, 45][..]),
+        (Solid::Tet, false, &[0, 45]),
+        (Solid::Wedge, false, &[0, 13]),
+        (Solid::Hex, true, &[22]),
+        (Solid::Tet, true, &[45]),
     ] {
         for &sym in syms {
             for nlgeo in [0u8, 1] {
@@ -639,10 +642,19 @@ fn face_tangents_are_jacobians_of_residuals() {
                         (multiplier, 3.0, ""),
                         (penalty, 0.0, " normal 3 0.1 -0.2 1"),
                     ] {
-                        let (text, node) =
-                            face_input(kind, sym, nlgeo, pos, &format!("{law}{extra}"));
+                        let (text, node) = face_input_of(
+                            kind,
+                            quadratic,
+                            sym,
+                            nlgeo,
+                            pos,
+                            &format!("{law}{extra}"),
+                        );
                         check(&Case {
-                            name: format!("{name}-{kind:?}-sym{sym}-nlgeo{nlgeo}{extra}"),
+                            name: format!(
+                                "{name}-{kind:?}{}-sym{sym}-nlgeo{nlgeo}{extra}",
+                                if quadratic { "-quadratic" } else { "" }
+                            ),
                             text,
                             disp: vec![
                                 (node, ds),

@@ -156,12 +156,18 @@ fn patch3d_errors(
         mortar,
     }
     .input();
+    patch3d_run(&text, delta, law)
+}
+
+/// The errors of [`patch3d_errors`] for the input `text` of a [`Patch`] with the slave's top
+/// moved down by `delta`, with `law`.
+pub(crate) fn patch3d_run(text: &str, delta: f64, law: Law) -> (f64, f64, usize) {
     let compliance = match law {
         Law::Penalty(eps) => 1.0 / eps,
         Law::Multiplier => 0.0,
     };
     let p = delta / (2.0 * PATCH_H / E + compliance);
-    let model = common::model_from_text(&text).unwrap();
+    let model = common::model_from_text(text).unwrap();
     let (mut stress, mut pressure, mut its) = (f64::NAN, f64::NAN, 0);
     run_analysis(&model, &common::quiet(), |r| {
         stress = r

@@ -302,6 +302,8 @@ pub struct SphereBench {
     pub mortar: bool,
     /// The cap's whole bottom face as the slave side, else its part within 1.6 of the axis.
     pub whole_face: bool,
+    /// Quadratic elements (10-node tetrahedra, 20-node bricks).
+    pub quadratic: bool,
 }
 
 /// Compression of the patch benchmark.
@@ -327,11 +329,14 @@ impl Model3d {
                 law,
                 mortar: b.mortar,
             }
-            .input_within(if b.whole_face {
-                verify::HERTZ_CAP
-            } else {
-                verify::HERTZ_NEAR
-            }),
+            .input_of(
+                if b.whole_face {
+                    verify::HERTZ_CAP
+                } else {
+                    verify::HERTZ_NEAR
+                },
+                b.quadratic,
+            ),
             Model3d::Patch(n) => verify::Patch {
                 kind: mesh::Solid::Hex,
                 slave_kind: None,
@@ -351,7 +356,8 @@ impl Model3d {
     fn describe(self) -> String {
         match self {
             Model3d::Sphere(b) => format!(
-                "Hertz sphere on a block, {}, spacing {} under the contact, {}{}",
+                "Hertz sphere on a block, {}{}, spacing {} under the contact, {}{}",
+                if b.quadratic { "quadratic " } else { "" },
                 if b.kind == mesh::Solid::Tet {
                     "tetrahedra"
                 } else {

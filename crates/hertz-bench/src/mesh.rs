@@ -346,6 +346,46 @@ impl Input {
         b
     }
 
+    /// Turn the linear tetrahedra and bricks among elements `first..=last` (ids) into OOFEM's
+    /// quadratic ones (LTRSpace → QTRSpace, LSpace → QSpace): a node in the middle of each edge,
+    /// shared by the elements around it, in the order of the linear shape's `edges()`. Returns
+    /// the new nodes' ids (the caller may move them off the chords).
+    pub fn make_quadratic(&mut self, (first, last): (usize, usize)) -> Vec<usize> {
+        let mut mids: std::collections::HashMap<(usize, usize), usize> = Default::default();
+        let mut added = Vec::new();
+        for e in first..=last {
+            let (shape, nodes) = self.cells[e - 1].clone();
+            let (quadratic, name) = match shape {
+                Shape::Tet4 => (Shape::Tet10, "QTRSpace"),
+                Shape::Hexa8 => (Shape::Hexa20, "QSpace"),
+                _ => continue,
+            };
+            let mut all = nodes.clone();
+            for edge in shape.edges() {
+                let (a, b) = (nodes[edge[0]], nodes[edge[1]]);
+                let id = *mids.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                    let (p, q) = (self.nodes[a - 1], self.nodes[b - 1]);
+                    self.nodes
+                        .push(std::array::from_fn(|i| 0.5 * (p[i] + q[i])));
+                    added.push(self.nodes.len());
+                    self.nodes.len()
+                });
+                all.push(id);
+            }
+            let words: Vec<&str> = self.elements[e - 1].split_whitespace().collect();
+            let rest = words[4 + nodes.len()..].join(" ");
+            let list: Vec<String> = all.iter().map(|v| v.to_string()).collect();
+            self.elements[e - 1] = format!(
+                "{name} {} nodes {} {} {rest}",
+                words[1],
+                all.len(),
+                list.join(" ")
+            );
+            self.cells[e - 1] = (quadratic, all);
+        }
+        added
+    }
+
     /// The boundaries (element, boundary number) of the 3D elements of `block` whose nodes all
     /// satisfy `on`: the faces of a side picked by position, whatever the elements' node order.
     pub fn faces_where(&self, block: &Block, on: &dyn Fn([f64; 3]) -> bool) -> Vec<(usize, usize)> {

@@ -127,13 +127,23 @@ pub const PATCH_H: f64 = 0.5;
 
 impl Patch {
     pub fn input(&self) -> String {
+        self.build(false)
+    }
+
+    /// [`Patch::input`] with quadratic elements (QTRSpace for `Solid::Tet`, QSpace for
+    /// `Solid::Hex`), the mid-side nodes of the slave's bottom among the contact nodes.
+    pub fn input_quadratic(&self) -> String {
+        self.build(true)
+    }
+
+    fn build(&self, quadratic: bool) -> String {
         let mut inp = Input::default();
         let extra = format!("mat 1 crossSect 1 nlgeo {}", u8::from(self.nlgeo));
         let (g, gs) = (
             uniform(0.0, 1.0, self.n),
             uniform(0.0, 1.0, self.slave_n.unwrap_or(2 * self.n)),
         );
-        let master = inp.solid3d(
+        let mut master = inp.solid3d(
             self.kind,
             &g,
             &g,
@@ -141,14 +151,18 @@ impl Patch {
             &extra,
             self.sym,
         );
-        let slave = inp.solid3d(
-            self.kind,
+        let mut slave = inp.solid3d(
+            self.slave_kind.unwrap_or(self.kind),
             &gs,
             &gs,
             &uniform(0.0, PATCH_H, 2),
             &extra,
             self.sym,
         );
+        if quadratic {
+            quadratic_block(&mut inp, &mut master, 0.0, -PATCH_H);
+            quadratic_block(&mut inp, &mut slave, PATCH_H, 0.0);
+        }
         contact_faces_and_material(&mut inp, &master, 0.0, self.nlgeo);
         rollers_and_push(&mut inp, &master.bottom, &slave.top, self.delta);
         let bottom = slave.bottom.clone();
@@ -167,6 +181,21 @@ impl Patch {
         }
         inp.render("patch3d", &analysis, "3d")
     }
+}
+
+/// Make `block`'s elements quadratic ([`Input::make_quadratic`]), its new mid-side nodes at
+/// height `top` or `bottom` added to its top or bottom nodes; returns the new nodes.
+fn quadratic_block(inp: &mut Input, block: &mut Block, top: f64, bottom: f64) -> Vec<usize> {
+    let mids = inp.make_quadratic(block.elements);
+    for &n in &mids {
+        let z = inp.nodes[n - 1][2];
+        if (z - top).abs() < 1e-12 {
+            block.top.push(n);
+        } else if (z - bottom).abs() < 1e-12 {
+            block.bottom.push(n);
+        }
+    }
+    mids
 }
 
 /// The law of [`neo_hookean`].
@@ -237,6 +266,14 @@ impl HertzSphere {
     /// The input with the cap's bottom nodes within `radius` of the axis as the slave side
     /// (`HERTZ_CAP`: all of them, as a user meshing the whole face would).
     pub fn input_within(&self, radius: f64) -> String {
+        self.input_of(radius, false)
+    }
+
+    /// [`HertzSphere::input_within`], with quadratic elements if `quadratic` (QTRSpace for
+    /// `Solid::Tet`, QSpace for `Solid::Hex`): the cap's bottom curved on the sphere, mid-side
+    /// nodes included, node-to-face contact of its bottom nodes (mid-sides too) on the block's
+    /// 6- or 8-node top faces.
+    pub fn input_of(&self, radius: f64, quadratic: bool) -> String {
         use super::mesh::graded;
         let mut inp = Input::default();
         let extra = format!("mat 1 crossSect 1 nlgeo {}", u8::from(self.nlgeo));
@@ -246,12 +283,21 @@ impl HertzSphere {
             .rev()
             .map(|d| -d)
             .collect();
-        let block = inp.solid3d(self.kind, &xs, &xs, &zs, &extra, self.sym);
+        let with_mids = |inp: &mut Input, b: &mut Block, top: f64, bottom: f64| {
+            if quadratic {
+                quadratic_block(inp, b, top, bottom)
+            } else {
+                Vec::new()
+            }
+        };
+        let mut block = inp.solid3d(self.kind, &xs, &xs, &zs, &extra, self.sym);
+        with_mids(&mut inp, &mut block, 0.0, zs[0]);
         let xc = graded(HERTZ_CAP, self.h, 1.5, 1.2);
         let zc = graded(HERTZ_CAP, self.h, 0.75, 1.2);
-        let cap = inp.solid3d(self.kind, &xc, &xc, &zc, &extra, self.sym);
+        let mut cap = inp.solid3d(self.kind, &xc, &xc, &zc, &extra, self.sym);
+        let cap_mids = with_mids(&mut inp, &mut cap, HERTZ_CAP, 0.0);
         // Bend the cap's bottom onto the sphere: z → z_b + z (H − z_b)/H.
-        for id in cap.nodes.0..=cap.nodes.1 {
+        for id in (cap.nodes.0..=cap.nodes.1).chain(cap_mids) {
             let p = &mut inp.nodes[id - 1];
             let r2 = p[0] * p[0] + p[1] * p[1];
             let zb = HERTZ_R - (HERTZ_R * HERTZ_R - r2).sqrt();

@@ -169,6 +169,19 @@ pub fn face_input(
     pos: [f64; 3],
     condition: &str,
 ) -> (String, usize) {
+    face_input_of(kind, false, sym, nlgeo, pos, condition)
+}
+
+/// [`face_input`], the master's elements quadratic if `quadratic` (QTRSpace, QSpace): its top
+/// faces curved, the mid-side nodes on the wavy surface too, off the chords.
+pub fn face_input_of(
+    kind: hertz_bench::mesh::Solid,
+    quadratic: bool,
+    sym: usize,
+    nlgeo: u8,
+    pos: [f64; 3],
+    condition: &str,
+) -> (String, usize) {
     let mut inp = hertz_bench::mesh::Input::default();
     let extra = format!("mat 1 crossSect 1 nlgeo {nlgeo}");
     let g = hertz_bench::mesh::uniform(0.0, 2.0, 2);
@@ -180,7 +193,12 @@ pub fn face_input(
         &extra,
         sym,
     );
-    for &n in &master.top {
+    let mut top = master.top.clone();
+    if quadratic {
+        let mids = inp.make_quadratic(master.elements);
+        top.extend(mids.into_iter().filter(|&n| inp.nodes[n - 1][2] > 0.99));
+    }
+    for &n in &top {
         let p = &mut inp.nodes[n - 1];
         p[2] += 0.05 * (1.3 * p[0] + 0.7 * p[1]).sin();
     }

@@ -10,8 +10,9 @@ use std::ops::{Add, Div, Mul, Neg, Sub};
 /// Most local unknowns of one contact pair: a 2D node against a quadratic edge whose end normals
 /// are averaged with the neighbouring quadratic edges (9 nodes × 2) plus a multiplier; in 3D a
 /// node against a quadrilateral with moving nodal normals (27) and the two other corners of a
-/// neighbouring face its friction is anchored to (6).
-pub const MAXV: usize = 40;
+/// neighbouring face its friction is anchored to (6), or against an 8-node quadrilateral with
+/// moving nodal normals (3 + 8 × 3 positions and 8 × 3 normals: 51).
+pub const MAXV: usize = 56;
 
 /// f with ∂f/∂q_i for i < n ≤ N: the derivative storage is a fixed array, so arithmetic never
 /// allocates; small problems (a projection in two parameters) use a small N.

@@ -55,6 +55,8 @@ impl Facet {
                 let l = (dist(x[0], x[2]) + dist(x[2], x[1])) * self.thick;
                 vec![l / 6.0, l / 6.0, 2.0 * l / 3.0]
             }
+        } else if x.len() > 4 {
+            quadratic_face_shares(x)
         } else {
             let a = if x.len() == 3 {
                 triangle_area(x[0], x[1], x[2])
@@ -64,6 +66,40 @@ impl Facet {
             vec![a / x.len() as f64; x.len()]
         }
     }
+}
+
+/// The shares of a 6- or 8-node face's area (positions `x`, corners then mid-sides): its area
+/// lumped in proportion to ∫ N_a² (Hinton, Rock and Zienkiewicz 1976). ∫ N_a itself is zero at a
+/// 6-node triangle's corners (negative at an 8-node quadrilateral's), which would leave a
+/// corner node no area; these shares are all positive and sum to the area: 1/19 and 16/57 of a
+/// flat triangle's.
+fn quadratic_face_shares(x: &[[f64; 3]]) -> Vec<f64> {
+    let m = face_mass(x);
+    let area: f64 = m.iter().flatten().sum();
+    let total: f64 = (0..x.len()).map(|a| m[a][a]).sum();
+    (0..x.len()).map(|a| area * m[a][a] / total).collect()
+}
+
+/// ∫ N_a N_b dA over a 3D face at positions `x` (3, 4, 6 or 8 nodes): its consistent mass.
+fn face_mass(x: &[[f64; 3]]) -> Vec<Vec<f64>> {
+    use super::geometry::faces::{cross, dot, shape_values, FaceKind};
+    let kind = FaceKind::of(x.len());
+    let k = x.len();
+    let mut m = vec![vec![0.0; k]; k];
+    for (xi, eta, w) in super::mortar::segment::face_rule(kind) {
+        let (n, dx, de) = shape_values(kind, xi, eta);
+        let tangent = |d: &[f64; 8]| -> [f64; 3] {
+            std::array::from_fn(|i| (0..k).map(|a| d[a] * x[a][i]).sum())
+        };
+        let normal = cross(&tangent(&dx), &tangent(&de));
+        let da = w * dot(&normal, &normal).sqrt();
+        for a in 0..k {
+            for b in 0..k {
+                m[a][b] += n[a] * n[b] * da;
+            }
+        }
+    }
+    m
 }
 
 /// The facets of the surface that the contact nodes `nodes` make up.
@@ -129,6 +165,9 @@ pub struct PressureAreas {
     moving: Vec<(Facet, Vec<usize>)>,
     /// Each node's measure in the reference configuration, less the moving facets' shares.
     fixed: Vec<f64>,
+    /// The curved (6- and 8-node) facets of a 3D surface, with their nodes' reference positions:
+    /// the pressure there is the L2 projection of the nodal forces ([`PressureAreas::pressures`]).
+    curved: Vec<(Facet, Vec<usize>, Vec<[f64; 3]>)>,
 }
 
 impl PressureAreas {
@@ -137,8 +176,14 @@ impl PressureAreas {
         let index: HashMap<usize, usize> = nodes.iter().enumerate().map(|(k, &n)| (n, k)).collect();
         let mut fixed = vec![0.0; nodes.len()];
         let mut moving = Vec::new();
+        let mut curved = Vec::new();
         for f in facets(model, nodes) {
             let slots: Vec<usize> = f.nodes.iter().map(|n| index[n]).collect();
+            if !f.plane && f.nodes.len() > 4 {
+                let x = f.nodes.iter().map(|&n| model.nodes[n].coords).collect();
+                curved.push((f, slots, x));
+                continue;
+            }
             if f.nlgeo {
                 moving.push((f, slots));
                 continue;
@@ -148,7 +193,67 @@ impl PressureAreas {
                 fixed[k] += s;
             }
         }
-        PressureAreas { moving, fixed }
+        PressureAreas {
+            moving,
+            fixed,
+            curved,
+        }
+    }
+
+    /// Whether the surface has curved facets (its pressures need [`PressureAreas::pressures`]).
+    pub fn has_curved(&self) -> bool {
+        !self.curved.is_empty()
+    }
+
+    /// The nodes' contact pressures for their normal forces `forces`, the nodes at
+    /// `position(n)`: force / area where the surface is made of linear facets; where it has
+    /// curved (quadratic) ones, the pressure field p = Σ p_a N_a whose consistent nodal forces
+    /// ∫ p N_a dA are the forces — the consistent mass M solved, M p = f (with the linear
+    /// facets' areas on its diagonal). A uniform pressure puts no force on a 6-node triangle's
+    /// corners and 1/3 of its area on each mid-side: force over any lumped area would report 0
+    /// and 1.19 p there, the projection p everywhere. Uncovered nodes (no facet): 0 force, NaN.
+    pub fn pressures(
+        &self,
+        forces: &[f64],
+        mut position: impl FnMut(usize) -> crate::error::Result<[f64; 3]>,
+    ) -> crate::error::Result<Vec<f64>> {
+        let lumped = self.at(&mut position)?;
+        if self.curved.is_empty() {
+            return Ok(forces
+                .iter()
+                .zip(&lumped)
+                .map(|(f, a)| if *a > 0.0 { f / a } else { f64::NAN })
+                .collect());
+        }
+        let n = forces.len();
+        let mut rows: Vec<Vec<(usize, f64)>> = (0..n).map(|k| vec![(k, lumped[k])]).collect();
+        for (f, slots, reference) in &self.curved {
+            let x = if f.nlgeo {
+                f.nodes
+                    .iter()
+                    .map(|&m| position(m))
+                    .collect::<crate::error::Result<Vec<_>>>()?
+            } else {
+                reference.clone()
+            };
+            let m = face_mass(&x);
+            for (a, &i) in slots.iter().enumerate() {
+                for (b, &j) in slots.iter().enumerate() {
+                    rows[i].push((j, m[a][b]));
+                }
+            }
+        }
+        let covered: Vec<bool> = rows
+            .iter()
+            .map(|r| r.iter().any(|&(_, v)| v != 0.0))
+            .collect();
+        let mut p = conjugate_gradients(&rows, forces, &covered);
+        for (v, c) in p.iter_mut().zip(&covered) {
+            if !c {
+                *v = f64::NAN;
+            }
+        }
+        Ok(p)
     }
 
     /// The areas with the nodes at `position(n)`.
@@ -168,5 +273,109 @@ impl PressureAreas {
             }
         }
         Ok(out)
+    }
+}
+
+/// M p = f by Jacobi-preconditioned conjugate gradients, M symmetric positive definite given by
+/// rows of (column, value) entries (repeated columns add up); rows not `covered` hold p = 0. A
+/// surface mass matrix is well conditioned (its condition number does not grow with the mesh):
+/// a few dozen iterations reach round-off.
+fn conjugate_gradients(rows: &[Vec<(usize, f64)>], f: &[f64], covered: &[bool]) -> Vec<f64> {
+    let n = f.len();
+    let apply = |x: &[f64]| -> Vec<f64> {
+        rows.iter()
+            .map(|r| r.iter().map(|&(j, v)| v * x[j]).sum())
+            .collect()
+    };
+    let diag: Vec<f64> = rows
+        .iter()
+        .enumerate()
+        .map(|(i, r)| r.iter().filter(|e| e.0 == i).map(|e| e.1).sum())
+        .collect();
+    let precond = |r: &[f64]| -> Vec<f64> {
+        (0..n)
+            .map(|i| {
+                if covered[i] && diag[i] > 0.0 {
+                    r[i] / diag[i]
+                } else {
+                    0.0
+                }
+            })
+            .collect()
+    };
+    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    let mut x = vec![0.0; n];
+    let mut r: Vec<f64> = (0..n)
+        .map(|i| if covered[i] { f[i] } else { 0.0 })
+        .collect();
+    let norm0 = dot(&r, &r).sqrt();
+    let mut z = precond(&r);
+    let mut d = z.clone();
+    let mut rz = dot(&r, &z);
+    for _ in 0..10 * n.max(10) {
+        if !(dot(&r, &r).sqrt() > 1e-14 * norm0) {
+            break;
+        }
+        let q = apply(&d);
+        let alpha = rz / dot(&d, &q);
+        for i in 0..n {
+            x[i] += alpha * d[i];
+            r[i] -= alpha * q[i];
+        }
+        z = precond(&r);
+        let rz_new = dot(&r, &z);
+        let beta = rz_new / rz;
+        rz = rz_new;
+        for i in 0..n {
+            d[i] = z[i] + beta * d[i];
+        }
+    }
+    x
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A flat 6-node triangle's area lumped by ∫ N_a²: 1/19 to each corner, 16/57 to each
+    /// mid-side. A flat 8-node square's consistent mass gives ∫ N_a = −1/12 of its area at the
+    /// corners and 1/3 at the mid-sides; its lumped shares are positive and sum to the area.
+    #[test]
+    fn quadratic_faces_lump_their_area_by_the_squares_of_their_shape_functions() {
+        let tri: Vec<[f64; 3]> = vec![
+            [0.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [0.0, 2.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ];
+        let s = quadratic_face_shares(&tri);
+        for a in 0..3 {
+            assert!((s[a] - 2.0 / 19.0).abs() < 1e-14, "{s:?}");
+            assert!((s[3 + a] - 2.0 * 16.0 / 57.0).abs() < 1e-14, "{s:?}");
+        }
+        let quad: Vec<[f64; 3]> = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.5, 0.0, 0.0],
+            [1.0, 0.5, 0.0],
+            [0.5, 1.0, 0.0],
+            [0.0, 0.5, 0.0],
+        ];
+        let m = face_mass(&quad);
+        let consistent: Vec<f64> = m.iter().map(|r| r.iter().sum()).collect();
+        for a in 0..4 {
+            assert!((consistent[a] + 1.0 / 12.0).abs() < 1e-14, "{consistent:?}");
+            assert!(
+                (consistent[4 + a] - 1.0 / 3.0).abs() < 1e-14,
+                "{consistent:?}"
+            );
+        }
+        let s = quadratic_face_shares(&quad);
+        assert!((s.iter().sum::<f64>() - 1.0).abs() < 1e-14);
+        assert!(s.iter().all(|&v| v > 0.0), "{s:?}");
     }
 }

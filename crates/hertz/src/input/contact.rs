@@ -391,21 +391,6 @@ pub fn resolve(
                 }
                 let dim = if faces { 3 } else { 2 };
                 for &(e, _) in &list {
-                    // Contact on curved (6-node) faces is not written yet: refused, never taken
-                    // as a quadrilateral.
-                    let etype = elements[e].etype;
-                    if faces && matches!(etype.shape(), Shape::Tet10 | Shape::Hexa20) {
-                        return Err(err(
-                            &s.span,
-                            format!(
-                                "element {} of set {set} is a {}: contact on its curved \
-                                 (quadratic) faces is not supported yet (use LTRSpace or LSpace \
-                                 elements on the contact surface)",
-                                elements[e].label,
-                                etype.name()
-                            ),
-                        ));
-                    }
                     if elements[e].etype.shape().dim() != dim {
                         return Err(err(
                             &s.span,
@@ -447,6 +432,29 @@ pub fn resolve(
                             segments[slave].number
                         ),
                     ));
+                }
+                // Mortar on curved (6- and 8-node) faces is not written yet: refused, never
+                // taken as linear faces. Node-to-face handles them.
+                for &g in std::iter::once(&slave).chain(&c.segments) {
+                    let SegmentKind::Faces { faces } = &segments[g].kind else {
+                        continue;
+                    };
+                    if let Some(&(e, _)) = faces.iter().find(|&&(e, _)| {
+                        matches!(elements[e].etype.shape(), Shape::Tet10 | Shape::Hexa20)
+                    }) {
+                        return Err(err(
+                            &c.span,
+                            format!(
+                                "segment {} has the curved (quadratic) faces of element {} ({}): \
+                                 mortar contact on them is not supported yet (node-to-segment \
+                                 contact, n2s..., is; or use LTRSpace or LSpace elements on the \
+                                 contact surface)",
+                                segments[g].number,
+                                elements[e].label,
+                                elements[e].etype.name()
+                            ),
+                        ));
+                    }
                 }
                 Pairing::Mortar {
                     slave,

@@ -17,11 +17,47 @@ use super::scalar::Scalar;
 use crate::model::{Model, SegmentKind};
 use std::collections::HashMap;
 
-/// Triangle or quadrilateral.
+/// Triangle or quadrilateral, linear (3, 4 nodes) or quadratic (6, 8 nodes: the corners, then
+/// the mid-sides of sides 1–2, 2–3, 3–1 (3–4, 4–1), the faces of QTRSpace and QSpace).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum FaceKind {
     Tri,
     Quad,
+    Tri6,
+    Quad8,
+}
+
+impl FaceKind {
+    /// The kind of a face with `nodes` nodes (3, 4, 6 or 8).
+    pub fn of(nodes: usize) -> FaceKind {
+        match nodes {
+            3 => FaceKind::Tri,
+            4 => FaceKind::Quad,
+            6 => FaceKind::Tri6,
+            _ => FaceKind::Quad8,
+        }
+    }
+
+    /// The linear face on the same corners (its parameters are this face's).
+    pub fn linear(self) -> FaceKind {
+        match self {
+            FaceKind::Tri | FaceKind::Tri6 => FaceKind::Tri,
+            FaceKind::Quad | FaceKind::Quad8 => FaceKind::Quad,
+        }
+    }
+
+    /// Number of corners (and of sides): 3 or 4.
+    pub fn corners(self) -> usize {
+        match self.linear() {
+            FaceKind::Tri => 3,
+            _ => 4,
+        }
+    }
+
+    /// Quadratic (6 or 8 nodes).
+    pub fn quadratic(self) -> bool {
+        matches!(self, FaceKind::Tri6 | FaceKind::Quad8)
+    }
 }
 
 /// One face of a master surface.
@@ -75,11 +111,66 @@ fn normalize<T: Scalar>(a: &V3<T>) -> V3<T> {
     [a[0] / l, a[1] / l, a[2] / l]
 }
 
-/// Shape values and their ξ and η derivatives at (ξ, η).
+/// Shape values of any face and their ξ and η derivatives at (ξ, η), zero past its nodes.
+/// Quadratic triangle: L₀ = 1 − ξ − η, L₁ = ξ, L₂ = η, N_a = L_a(2L_a − 1) at the corners and
+/// 4 L_a L_{a+1} at the mid-sides; quadratic quadrilateral: the serendipity functions.
+pub fn shape_values<T: Scalar>(kind: FaceKind, xi: T, eta: T) -> ([T; 8], [T; 8], [T; 8]) {
+    let z = xi.cst(0.0);
+    let one = xi.cst(1.0);
+    let (mut n, mut dx, mut de) = ([z; 8], [z; 8], [z; 8]);
+    match kind {
+        FaceKind::Tri | FaceKind::Quad => {
+            let (a, b, c) = shape(kind, xi, eta);
+            n[..4].copy_from_slice(&a);
+            dx[..4].copy_from_slice(&b);
+            de[..4].copy_from_slice(&c);
+        }
+        FaceKind::Tri6 => {
+            let l = [one - xi - eta, xi, eta];
+            let dl = [(-1.0, -1.0), (1.0, 0.0), (0.0, 1.0)];
+            for a in 0..3 {
+                let b = (a + 1) % 3;
+                n[a] = l[a] * (l[a] * 2.0 - 1.0);
+                let f = l[a] * 4.0 - 1.0;
+                dx[a] = f * dl[a].0;
+                de[a] = f * dl[a].1;
+                n[3 + a] = l[a] * l[b] * 4.0;
+                dx[3 + a] = (l[b] * dl[a].0 + l[a] * dl[b].0) * 4.0;
+                de[3 + a] = (l[b] * dl[a].1 + l[a] * dl[b].1) * 4.0;
+            }
+        }
+        FaceKind::Quad8 => {
+            for a in 0..8 {
+                let (px, pe) = node_param(kind, a);
+                if a < 4 {
+                    let (fx, fe) = (one + xi * px, one + eta * pe);
+                    let s = xi * px + eta * pe - 1.0;
+                    n[a] = fx * fe * s * 0.25;
+                    dx[a] = fe * (s + fx) * (px * 0.25);
+                    de[a] = fx * (s + fe) * (pe * 0.25);
+                } else if px == 0.0 {
+                    let fe = one + eta * pe;
+                    n[a] = (one - xi * xi) * fe * 0.5;
+                    dx[a] = -(xi * fe);
+                    de[a] = (one - xi * xi) * (pe * 0.5);
+                } else {
+                    let fx = one + xi * px;
+                    n[a] = fx * (one - eta * eta) * 0.5;
+                    dx[a] = (one - eta * eta) * (px * 0.5);
+                    de[a] = -(eta * fx);
+                }
+            }
+        }
+    }
+    (n, dx, de)
+}
+
+/// Shape values and their ξ and η derivatives at (ξ, η) of a linear face (of a quadratic one's
+/// corners: the linear face on them).
 pub fn shape<T: Scalar>(kind: FaceKind, xi: T, eta: T) -> ([T; 4], [T; 4], [T; 4]) {
     let z = xi.cst(0.0);
     let one = xi.cst(1.0);
-    match kind {
+    match kind.linear() {
         FaceKind::Tri => (
             [one - xi - eta, xi, eta, z],
             [xi.cst(-1.0), one, z, z],
@@ -98,38 +189,58 @@ pub fn shape<T: Scalar>(kind: FaceKind, xi: T, eta: T) -> ([T; 4], [T; 4], [T; 4
                 [xm * -0.25, xp * -0.25, xp * 0.25, xm * 0.25],
             )
         }
+        _ => unreachable!("a linear kind"),
     }
 }
 
 /// Parametric centre of a face.
 pub fn centre(kind: FaceKind) -> (f64, f64) {
-    match kind {
+    match kind.linear() {
         FaceKind::Tri => (1.0 / 3.0, 1.0 / 3.0),
-        FaceKind::Quad => (0.0, 0.0),
+        _ => (0.0, 0.0),
     }
 }
 
-/// Parameters of corner `a`.
-fn corner(kind: FaceKind, a: usize) -> (f64, f64) {
-    match kind {
-        FaceKind::Tri => [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)][a],
-        FaceKind::Quad => [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)][a],
+/// Parameters of node `a` (a corner, or a quadratic face's mid-side).
+fn node_param(kind: FaceKind, a: usize) -> (f64, f64) {
+    let tri = [
+        (0.0, 0.0),
+        (1.0, 0.0),
+        (0.0, 1.0),
+        (0.5, 0.0),
+        (0.5, 0.5),
+        (0.0, 0.5),
+    ];
+    let quad = [
+        (-1.0, -1.0),
+        (1.0, -1.0),
+        (1.0, 1.0),
+        (-1.0, 1.0),
+        (0.0, -1.0),
+        (1.0, 0.0),
+        (0.0, 1.0),
+        (-1.0, 0.0),
+    ];
+    match kind.linear() {
+        FaceKind::Tri => tri[a],
+        _ => quad[a],
     }
 }
 
 /// How far (ξ, η) lies outside the face, in parameter units (≤ 0 inside).
 pub fn outside(kind: FaceKind, xi: f64, eta: f64) -> f64 {
-    match kind {
+    match kind.linear() {
         FaceKind::Tri => (-xi).max(-eta).max(xi + eta - 1.0),
-        FaceKind::Quad => (xi.abs() - 1.0).max(eta.abs() - 1.0),
+        _ => (xi.abs() - 1.0).max(eta.abs() - 1.0),
     }
 }
 
-/// How far (ξ, η) lies beyond each face edge (a, a + 1), in parameter units (≤ 0 inside).
+/// How far (ξ, η) lies beyond each face side (corners a, a + 1), in parameter units (≤ 0
+/// inside).
 pub fn edge_excess(kind: FaceKind, xi: f64, eta: f64) -> [f64; 4] {
-    match kind {
+    match kind.linear() {
         FaceKind::Tri => [-eta, xi + eta - 1.0, -xi, f64::NEG_INFINITY],
-        FaceKind::Quad => [-eta - 1.0, xi - 1.0, eta - 1.0, -xi - 1.0],
+        _ => [-eta - 1.0, xi - 1.0, eta - 1.0, -xi - 1.0],
     }
 }
 
@@ -145,9 +256,9 @@ fn clamp<T: Scalar>(kind: FaceKind, xi: T, eta: T) -> (T, T) {
             v
         }
     };
-    match kind {
+    match kind.linear() {
         FaceKind::Quad => (lim(xi, -1.0, 1.0), lim(eta, -1.0, 1.0)),
-        FaceKind::Tri => {
+        _ => {
             let (a, b) = (lim(xi, 0.0, f64::INFINITY), lim(eta, 0.0, f64::INFINITY));
             let s = a + b;
             if s.val() > 1.0 {
@@ -161,7 +272,7 @@ fn clamp<T: Scalar>(kind: FaceKind, xi: T, eta: T) -> (T, T) {
 
 /// Unit outward normal of a face at (ξ, η), from node positions `x` in cyclic order.
 pub fn face_normal<T: Scalar>(kind: FaceKind, x: &[V3<T>], side: f64, xi: T, eta: T) -> V3<T> {
-    let (_, dx, de) = shape(kind, xi, eta);
+    let (_, dx, de) = shape_values(kind, xi, eta);
     let k = x.len();
     let mut t1 = [xi.cst(0.0); 3];
     let mut t2 = [xi.cst(0.0); 3];
@@ -187,10 +298,10 @@ impl<T: Scalar> FaceGeometry<T> {
     /// is taken at the nearest point of the face when (ξ, η) lies outside it.
     pub fn eval(&self, xi: T, eta: T) -> (V3<T>, V3<T>, V3<T>, V3<T>) {
         let k = self.x.len();
-        let (nn, dx, de) = shape(self.kind, xi, eta);
+        let (nn, dx, de) = shape_values(self.kind, xi, eta);
         let (cx, ce) = clamp(self.kind, xi, eta);
         let nc = if outside(self.kind, xi.val(), eta.val()) > 0.0 {
-            shape(self.kind, cx, ce).0
+            shape_values(self.kind, cx, ce).0
         } else {
             nn
         };
@@ -227,19 +338,19 @@ impl<T: Scalar> FaceGeometry<T> {
     }
 
     /// Shape values at (ξ, η) (extended past the face): x = Σ c_a x_a.
-    pub fn coefficients(&self, xi: T, eta: T) -> [T; 4] {
-        shape(self.kind, xi, eta).0
+    pub fn coefficients(&self, xi: T, eta: T) -> [T; 8] {
+        shape_values(self.kind, xi, eta).0
     }
 
-    /// Unit outward normal of face edge (a, a + 1) in the face's tangent plane at the edge's
-    /// middle, and the edge's first node.
+    /// Unit outward normal of face side (corners a, a + 1) in the face's tangent plane at the
+    /// side's middle, and the side's first corner (a curved side: the normal to its chord).
     pub fn edge_outward(&self, a: usize) -> (V3<T>, V3<T>) {
-        let k = self.x.len();
+        let k = self.kind.corners();
         let (p, q) = (self.x[a], self.x[(a + 1) % k]);
         let t = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
         // m = t × (x_ξ × x_η) points away from the face: the corners run counter-clockwise
         // about x_ξ × x_η in both parametrizations.
-        let ((ca, ea), (cb, eb)) = (corner(self.kind, a), corner(self.kind, (a + 1) % k));
+        let ((ca, ea), (cb, eb)) = (node_param(self.kind, a), node_param(self.kind, (a + 1) % k));
         let z = p[0].cst(0.0);
         let (_, t1, t2, _) = self.eval(z + 0.5 * (ca + cb), z + 0.5 * (ea + eb));
         (normalize(&cross(&t, &cross(&t1, &t2))), p)
@@ -350,15 +461,14 @@ impl FaceSurface {
                 let el = &model.elements[e];
                 let local = el.etype.shape().boundaries()[b - 1];
                 let nodes: Vec<usize> = local.iter().map(|&a| el.nodes[a]).collect();
-                let kind = if nodes.len() == 3 {
-                    FaceKind::Tri
-                } else {
-                    FaceKind::Quad
-                };
+                let kind = FaceKind::of(nodes.len());
                 let k = surf.faces.len();
-                for (i, &a) in nodes.iter().enumerate() {
+                for &a in &nodes {
                     surf.at_node.entry(a).or_default().push(k);
-                    let b = nodes[(i + 1) % nodes.len()];
+                }
+                let nc = kind.corners();
+                for i in 0..nc {
+                    let (a, b) = (nodes[i], nodes[(i + 1) % nc]);
                     *edge_count.entry((a.min(b), a.max(b))).or_default() += 1;
                 }
                 surf.faces.push(Face {
@@ -373,7 +483,7 @@ impl FaceSurface {
             }
         }
         for f in &mut surf.faces {
-            let k = f.nodes.len();
+            let k = f.kind.corners();
             f.open = (0..k)
                 .map(|i| {
                     let (a, b) = (f.nodes[i], f.nodes[(i + 1) % k]);
@@ -413,8 +523,12 @@ impl FaceSurface {
         for &f in faces.iter().chain(faces.is_empty().then_some(&k)) {
             let face = &self.faces[f];
             let x: Vec<V3<T>> = (0..face.nodes.len()).map(|i| pos(f, i)).collect();
-            let i = face.nodes.iter().position(|&n| n == a).expect("a corner");
-            let (c, e) = corner(face.kind, i);
+            let i = face
+                .nodes
+                .iter()
+                .position(|&n| n == a)
+                .expect("a node of the face");
+            let (c, e) = node_param(face.kind, i);
             let z = x[0][0].cst(0.0);
             let n = face_normal(face.kind, &x, face.side, z + c, z + e);
             sum = Some(match sum {
@@ -429,8 +543,8 @@ impl FaceSurface {
     /// face normal is differentiated in duals over its own corners, the sum is normalized in
     /// closed form (dn = (I − n nᵀ) ds / |s|), so the cost does not grow with the valence.
     pub fn nodal_normal_jacobian(&self, a: usize, pos: &dyn Fn(usize) -> [f64; 3]) -> NodalNormal {
-        // A face normal depends on at most 4 corners.
-        type Dual = super::super::dual::DualN<12>;
+        // A face normal depends on at most 8 nodes.
+        type Dual = super::super::dual::DualN<24>;
         let mut s = [0.0; 3];
         let mut ds: Vec<(usize, [[f64; 3]; 3])> = Vec::new();
         for &f in &self.at_node[&a] {
@@ -445,8 +559,12 @@ impl FaceSurface {
                     [0, 1, 2].map(|j| Dual::variable(p[j], 3 * b + j, 3 * k))
                 })
                 .collect();
-            let i = face.nodes.iter().position(|&n| n == a).expect("a corner");
-            let (c, e) = corner(face.kind, i);
+            let i = face
+                .nodes
+                .iter()
+                .position(|&n| n == a)
+                .expect("a node of the face");
+            let (c, e) = node_param(face.kind, i);
             let z = Dual::constant(0.0, 3 * k);
             let nf = face_normal(face.kind, &x, face.side, z + c, z + e);
             for (b, &node) in face.nodes.iter().enumerate() {

@@ -148,10 +148,7 @@ fn inverse<T: Scalar>(kind: FaceKind, s: &[V2<T>], p: &V2<T>) -> Option<(T, T)> 
         let deta = (r[1] * j[0][0] - r[0] * j[1][0]) / det;
         Some((xi - dxi, eta - deta, dxi.val().abs().max(deta.val().abs())))
     }
-    let (mut xi, mut eta) = match kind {
-        FaceKind::Tri => (1.0 / 3.0, 1.0 / 3.0),
-        FaceKind::Quad => (0.0, 0.0),
-    };
+    let (mut xi, mut eta) = crate::contact::geometry::faces::centre(kind);
     if kind == FaceKind::Quad {
         let sv: Vec<V2<f64>> = s.iter().map(|q| [q[0].val(), q[1].val()]).collect();
         let pv = [p[0].val(), p[1].val()];
@@ -263,12 +260,12 @@ pub fn overlap<T: Scalar>(
 /// A quadrature rule over a whole face in its parameters: (ξ, η, weight), the weights summing to
 /// the parametric area (a triangle's 7 points of degree 5, a quadrilateral's 3 × 3 Gauss points).
 pub fn face_rule(kind: FaceKind) -> Vec<(f64, f64, f64)> {
-    match kind {
+    match kind.linear() {
         FaceKind::Tri => triangle_rule()
             .into_iter()
             .map(|(l, w)| (l[1], l[2], 0.5 * w))
             .collect(),
-        FaceKind::Quad => {
+        _ => {
             let g = [
                 (-(0.6f64).sqrt(), 5.0 / 9.0),
                 (0.0, 8.0 / 9.0),

@@ -1,12 +1,14 @@
 //! A node against a face of a 3D master surface (see [`crate::contact::geometry::faces`]).
 //!
-//! Unknowns: the node and the face's corners, and in large deformation the corners of every face
-//! around them (the current nodal normals average those faces' normals). The kinematics are
-//! evaluated in duals over the node, the corners and the corners' nodal normals (at most 27
-//! numbers); each nodal normal carries its own derivatives with respect to the nodes around it
+//! Unknowns: the node and the face's nodes (its corners, and a quadratic face's mid-sides), and
+//! in large deformation the nodes of every face around them (the current nodal normals average
+//! those faces' normals). The kinematics are evaluated in duals over the node, the face's nodes
+//! and their nodal normals (at most 27 numbers on a linear face, 51 on an 8-node one); each
+//! nodal normal carries its own derivatives with respect to the nodes around it
 //! ([`NodalNormal`]), and the chain rule takes the result to the local unknowns ([`Jet::chain`]).
-//! So a pair never differentiates with respect to more than 27 variables, whatever the valence of
-//! the mesh.
+//! So a pair never differentiates with respect to more variables than that, whatever the
+//! valence of the mesh. On a quadratic face the contact point is the curved face's: the ray
+//! along ñ meets the face's quadratic map, found by Newton.
 
 use super::ISOLATED_RAMP;
 use super::{extents, Current, EndWeight, NodeToSegment, Slot, HYSTERESIS_BAND, INSIDE_TOL};
@@ -54,7 +56,7 @@ impl NodeToSegment {
     fn face_ramp(&self, model: &Model, slot: &Slot, k: usize, e: usize) -> (f64, f64) {
         let face = &self.faces.faces[k];
         let x: Vec<[f64; 3]> = face.nodes.iter().map(|&n| model.nodes[n].coords).collect();
-        let (p, q) = (x[e], x[(e + 1) % x.len()]);
+        let (p, q) = (x[e], x[(e + 1) % face.kind.corners()]);
         let len = (0..3).map(|i| (q[i] - p[i]).powi(2)).sum::<f64>().sqrt();
         let geom = FaceGeometry {
             kind: face.kind,
@@ -82,7 +84,7 @@ impl NodeToSegment {
     ) -> EndWeight<T> {
         let face = &self.faces.faces[k];
         let mut w = EndWeight::new(xs[0].cst(1.0));
-        for e in 0..face.nodes.len() {
+        for e in 0..face.kind.corners() {
             if face.open[e] {
                 w.boundary(geom.past_edge(xs, e), self.face_ramp(model, slot, k, e));
             }
@@ -105,7 +107,7 @@ impl NodeToSegment {
         let (xi, eta) = geom.project(xs)?;
         let excess = edge_excess(face.kind, xi, eta);
         let (mut past_open, mut past_shared) = (false, f64::NEG_INFINITY);
-        for (e, &d) in excess.iter().take(face.nodes.len()).enumerate() {
+        for (e, &d) in excess.iter().take(face.kind.corners()).enumerate() {
             if face.open[e] {
                 past_open |= d > INSIDE_TOL;
             } else {

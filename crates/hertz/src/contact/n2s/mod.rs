@@ -290,6 +290,26 @@ impl NodeToSegment {
             }
         }
         edges::check_support(model, &edges)?;
+        // The nodes of an 8-node face (QSpace) as contact nodes: under a uniform pressure its
+        // consistent nodal forces pull on its corners (−1/12 of its area each), so a corner
+        // held to the master by a node-to-face constraint would need tension: it opens and
+        // sinks in (a Hertz contact's every corner node inside the contact zone opened).
+        if let Some(f) = super::tributary::facets(model, nodes)
+            .iter()
+            .find(|f| f.nodes.len() == 8)
+        {
+            return Err(err(format!(
+                "the contact nodes include the nodes of an 8-node face (of a QSpace element, \
+                 nodes {}): node-to-segment contact cannot hold its corners, which a uniform \
+                 pressure pulls on; use QTRSpace, LSpace or LTRSpace elements on the slave side, \
+                 or make the QSpace surface the master",
+                f.nodes
+                    .iter()
+                    .map(|&n| model.nodes[n].label.to_string())
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            )));
+        }
 
         let tribs = super::tributary::tributaries(model, nodes);
         let young = super::stiffest_young(model);
@@ -574,6 +594,7 @@ impl Formulation for NodeToSegment {
         }
         let searching = start.elapsed().as_secs_f64();
         let areas = self.areas.at(|n| Ok(ctx.position(n)?.0))?;
+        let first_state = states.len();
         for (k, (slot, chosen)) in self.slots.iter().zip(chosen).enumerate() {
             let per = self.multipliers_per_node();
             let lambda_eqs = self
@@ -637,6 +658,14 @@ impl Formulation for NodeToSegment {
                 &mut state,
             ));
             states.push(state);
+        }
+        if self.areas.has_curved() {
+            let mine = &mut states[first_state..];
+            let forces: Vec<f64> = mine.iter().map(|s| s.force).collect();
+            let p = self.areas.pressures(&forces, |n| Ok(ctx.position(n)?.0))?;
+            for (s, p) in mine.iter_mut().zip(p) {
+                s.pressure = p;
+            }
         }
         Ok(searching)
     }
