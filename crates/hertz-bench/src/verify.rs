@@ -1105,3 +1105,140 @@ impl TwoCylinders {
         inp.render("two_cylinders", &analysis(1), "PlaneStrain")
     }
 }
+
+/// Two concentric elastic rings in plane strain, quarter model, 8-node quadrilaterals
+/// (`QPlaneStrain`) with curved edges (mid-side nodes on the arcs): the inner ring a ≤ r ≤ b,
+/// the outer one b ≤ r ≤ c, touching at r = b with non-matching meshes (`inner` and `outer`
+/// elements around the quarter, two through each thickness). The inner surface r = a is pushed
+/// out radially by `push`, the outer r = c is free, rollers on x = 0 and y = 0. Contact: the
+/// outer ring's inner edges (slave) on the inner ring's outer edges, node-to-segment or mortar.
+/// By continuity the answer is one Lamé cylinder a ≤ r ≤ c ([`ConcentricRings::pressure`]).
+#[derive(Debug, Clone, Copy)]
+pub struct ConcentricRings {
+    pub inner: usize,
+    pub outer: usize,
+    pub law: Law,
+    pub mortar: bool,
+}
+
+/// Radii a, b, c of [`ConcentricRings`] and the inner surface's radial displacement (2 % of a:
+/// a hundred times the 2.2e-4 by which the coarsest mesh's quadratic arcs stray from the circle
+/// r = b, which at 0.1 % of a made the pressure 150 % off there).
+pub const RING_A: f64 = 1.0;
+pub const RING_B: f64 = 1.5;
+pub const RING_C: f64 = 2.0;
+pub const RING_PUSH: f64 = 0.02;
+
+impl ConcentricRings {
+    /// The exact contact pressure at r = b (plane strain, E and ν of the verification bodies):
+    /// u = A r + B/r with u(a) = push and σ_r(c) = 0, p = −σ_r(b).
+    pub fn pressure() -> f64 {
+        let mu = E / (2.0 * (1.0 + NU));
+        let lambda = E * NU / ((1.0 + NU) * (1.0 - 2.0 * NU));
+        let k = (lambda + mu) * RING_C * RING_C / mu;
+        let a = RING_PUSH / (RING_A + k / RING_A);
+        let b = k * a;
+        2.0 * mu * b / (RING_B * RING_B) - 2.0 * (lambda + mu) * a
+    }
+
+    pub fn input(&self) -> String {
+        use std::f64::consts::FRAC_PI_2;
+        let mut inp = Input::default();
+        // One ring: node ids on a (2·nr + 1) × (2·nt + 1) polar grid, elements, and its inner
+        // and outer arc edges (element, edge).
+        type Ring = (Vec<Vec<usize>>, Vec<(usize, usize)>, Vec<(usize, usize)>);
+        let ring = |inp: &mut Input, r0: f64, r1: f64, nt: usize, mat: usize| -> Ring {
+            let nr = 2;
+            let mut id = vec![vec![0usize; 2 * nt + 1]; 2 * nr + 1];
+            for (i, row) in id.iter_mut().enumerate() {
+                let r = r0 + (r1 - r0) * i as f64 / (2 * nr) as f64;
+                for (j, v) in row.iter_mut().enumerate() {
+                    if i % 2 == 1 && j % 2 == 1 {
+                        continue;
+                    }
+                    let t = FRAC_PI_2 * j as f64 / (2 * nt) as f64;
+                    *v = inp.node(r * t.cos(), r * t.sin(), 0.0);
+                }
+            }
+            let (mut inner, mut outer) = (Vec::new(), Vec::new());
+            for i in 0..nr {
+                for j in 0..nt {
+                    let (i0, j0) = (2 * i, 2 * j);
+                    let n = [
+                        id[i0][j0],
+                        id[i0 + 2][j0],
+                        id[i0 + 2][j0 + 2],
+                        id[i0][j0 + 2],
+                        id[i0 + 1][j0],
+                        id[i0 + 2][j0 + 1],
+                        id[i0 + 1][j0 + 2],
+                        id[i0][j0 + 1],
+                    ];
+                    let list: Vec<String> = n.iter().map(|v| v.to_string()).collect();
+                    inp.elements.push(format!(
+                        "QPlaneStrain {} nodes 8 {} mat {mat} crossSect 1",
+                        inp.elements.len() + 1,
+                        list.join(" ")
+                    ));
+                    let e = inp.elements.len();
+                    if i == 0 {
+                        inner.push((e, 4));
+                    }
+                    if i + 1 == nr {
+                        outer.push((e, 2));
+                    }
+                }
+            }
+            (id, inner, outer)
+        };
+        let (inner_ids, _, inner_outer) = ring(&mut inp, RING_A, RING_B, self.inner, 1);
+        let (outer_ids, outer_inner, _) = ring(&mut inp, RING_B, RING_C, self.outer, 1);
+        let master = inp.boundary_set(&inner_outer);
+        let slave = inp.boundary_set(&outer_inner);
+        inp.segments.push(format!(
+            "linear2delementedgecontactsegment 1 edgeset {master}"
+        ));
+        inp.segments.push(format!(
+            "linear2delementedgecontactsegment 2 edgeset {slave}"
+        ));
+        inp.sections.push("SimpleCS 1 thick 1.0".into());
+        inp.materials
+            .push(format!("IsoLE 1 d 0 E {E} n {NU} tAlpha 0"));
+        let x0 = inp.nodes_where(&|p| p[0].abs() < 1e-12);
+        let y0 = inp.nodes_where(&|p| p[1].abs() < 1e-12);
+        let (x0, y0) = (inp.node_set(&x0), inp.node_set(&y0));
+        inp.bcs.push(format!(
+            "BoundaryCondition 1 loadTimeFunction 2 dofs 1 1 values 1 0 set {x0}"
+        ));
+        inp.bcs.push(format!(
+            "BoundaryCondition 2 loadTimeFunction 2 dofs 1 2 values 1 0 set {y0}"
+        ));
+        // The inner surface pushed out radially: one condition per node (its own direction).
+        for &n in &inner_ids[0] {
+            let p = inp.nodes[n - 1];
+            let set = inp.node_set(&[n]);
+            let k = inp.bcs.len() + 1;
+            inp.bcs.push(format!(
+                "BoundaryCondition {k} loadTimeFunction 1 dofs 2 1 2 values 2 {} {} set {set}",
+                RING_PUSH * p[0] / RING_A,
+                RING_PUSH * p[1] / RING_A
+            ));
+        }
+        let k = inp.bcs.len() + 1;
+        if self.mortar {
+            inp.bcs.push(match self.law {
+                Law::Penalty(p) => format!(
+                    "s2spenaltycontact {k} loadTimeFunction 1 penalty {p:e} slavesegment 2 segmentset 1 1"
+                ),
+                Law::Multiplier => format!(
+                    "s2slagrangianmultipliercontact {k} loadTimeFunction 1 slavesegment 2 segmentset 1 1"
+                ),
+            });
+        } else {
+            inp.bcs.push(n2s(k, self.law, &outer_ids[0], &[1], ""));
+        }
+        inp.functions.push(history(&[1.0]));
+        inp.functions.push("ConstantFunction 2 f(t) 1.0".into());
+        inp.render("rings", &analysis(1), "PlaneStrain")
+    }
+}
