@@ -1,9 +1,11 @@
 //! A 3D master surface made of element faces (linear triangles and bilinear quadrilaterals of
-//! LSpace, LTRSpace and LWedge), with a normal field that is continuous across edges and corners:
-//! the 3D counterpart of [`super::edges`].
+//! LSpace, LTRSpace and LWedge; the curved 6-node triangles and 8-node quadrilaterals of QTRSpace
+//! and QSpace), with a normal field that is continuous across edges and corners: the 3D
+//! counterpart of [`super::edges`].
 //!
 //! Glossary: (ξ, η) the face parameters — barycentric for a triangle, x = (1 − ξ − η)x₀ + ξx₁ +
-//! ηx₂, bilinear on [−1, 1]² for a quadrilateral with its nodes in cyclic order; `x_ξ`, `x_η` the
+//! ηx₂, bilinear on [−1, 1]² for a quadrilateral with its corners in cyclic order (a quadratic
+//! face: the same parameters, its map through its mid-sides too); `x_ξ`, `x_η` the
 //! tangents; `n_a` the nodal normal of node a (normalized sum of the unit outward normals of the
 //! faces meeting there); `ñ = Σ N_a n_a` the smoothed normal. A node's contact point is where the
 //! ray along ñ through it meets the face: the residual r_α = (x_s − x)·x_α − ((x_s − x)·ñ)(ñ·x_α)/
@@ -53,11 +55,6 @@ impl FaceKind {
             _ => 4,
         }
     }
-
-    /// Quadratic (6 or 8 nodes).
-    pub fn quadratic(self) -> bool {
-        matches!(self, FaceKind::Tri6 | FaceKind::Quad8)
-    }
 }
 
 /// One face of a master surface.
@@ -66,13 +63,13 @@ pub struct Face {
     /// Index of the contact segment (model) the face belongs to.
     pub segment: usize,
     pub element: usize,
-    /// Model node indices in cyclic order.
+    /// Model node indices: the corners in cyclic order, then a quadratic face's mid-sides.
     pub nodes: Vec<usize>,
     pub kind: FaceKind,
     /// +1 when x_ξ × x_η points out of the element, else −1.
     pub side: f64,
     pub nlgeo: bool,
-    /// Per face edge (nodes i, i+1): no other face of the surface shares it.
+    /// Per face side (corners i, i+1): no other face of the surface shares it.
     pub open: Vec<bool>,
 }
 
@@ -80,7 +77,7 @@ pub struct Face {
 #[derive(Debug, Clone, Default)]
 pub struct FaceSurface {
     pub faces: Vec<Face>,
-    /// Faces having a node as a corner.
+    /// Faces having a node as a corner or a mid-side.
     pub at_node: HashMap<usize, Vec<usize>>,
     ref_normals: HashMap<usize, [f64; 3]>,
 }
@@ -540,7 +537,7 @@ impl FaceSurface {
     }
 
     /// Current nodal normal of node `a` with its derivatives, from positions `pos(node)`: each
-    /// face normal is differentiated in duals over its own corners, the sum is normalized in
+    /// face normal is differentiated in duals over its own nodes, the sum is normalized in
     /// closed form (dn = (I − n nᵀ) ds / |s|), so the cost does not grow with the valence.
     pub fn nodal_normal_jacobian(&self, a: usize, pos: &dyn Fn(usize) -> [f64; 3]) -> NodalNormal {
         // A face normal depends on at most 8 nodes.
