@@ -102,6 +102,15 @@ pub(crate) fn n2s(
     )
 }
 
+/// A mortar condition record `number` with `law`: slave segment 2 on master segment 1.
+pub(crate) fn s2s(number: usize, law: Law) -> String {
+    let head = match law {
+        Law::Penalty(p) => format!("s2spenaltycontact {number} loadTimeFunction 1 penalty {p:e}"),
+        Law::Multiplier => format!("s2slagrangianmultipliercontact {number} loadTimeFunction 1"),
+    };
+    format!("{head} slavesegment 2 segmentset 1 1")
+}
+
 /// A piecewise-linear load history through the factors `steps` at t = 1, 2, …
 pub(crate) fn history(steps: &[f64]) -> String {
     let t: Vec<String> = (0..=steps.len()).map(|i| i.to_string()).collect();
@@ -735,16 +744,7 @@ pub fn die_as_wide_as_the_block(dim: usize, mortar: bool, law: Law) -> String {
             inp.faces_where(&block, &|x| (x[2] - 1.0).abs() < 1e-9)
         };
         inp.boundary_set(&faces);
-        let head = match law {
-            Law::Penalty(p) => {
-                format!("s2spenaltycontact {number} loadTimeFunction 1 penalty {p:e}")
-            }
-            Law::Multiplier => {
-                format!("s2slagrangianmultipliercontact {number} loadTimeFunction 1")
-            }
-        };
-        inp.bcs
-            .push(format!("{head} slavesegment 2 segmentset 1 1"));
+        inp.bcs.push(s2s(number, law));
     } else {
         inp.bcs.push(n2s(number, law, &block.top, &[1], ""));
     }

@@ -3,7 +3,7 @@
 //! [`super::mesh::cube_symmetry`]), so that a test can run each in every orientation.
 
 use super::mesh::{uniform, Block, Input, Solid};
-use super::suite::{analysis, history, n2s, Law};
+use super::suite::{analysis, history, n2s, s2s, Law};
 
 /// Young's modulus and Poisson's ratio of the verification bodies.
 pub const E: f64 = 1000.0;
@@ -60,14 +60,7 @@ fn contact(
     inp.segments.push(format!(
         "linear3delementsurfacecontactsegment 2 boundaryset {set}"
     ));
-    inp.bcs.push(match law {
-        Law::Penalty(p) => {
-            format!("s2spenaltycontact {number} loadTimeFunction 1 penalty {p:e} slavesegment 2 segmentset 1 1")
-        }
-        Law::Multiplier => format!(
-            "s2slagrangianmultipliercontact {number} loadTimeFunction 1 slavesegment 2 segmentset 1 1"
-        ),
-    });
+    inp.bcs.push(s2s(number, law));
 }
 
 /// Conditions 1–3: rollers on the planes x = 0 and y = 0 and on the nodes `bottom` (held in z);
@@ -257,6 +250,22 @@ pub const HERTZ_R: f64 = 10.0;
 pub const HERTZ_CAP: f64 = 4.0;
 pub const HERTZ_BLOCK: f64 = 6.0;
 
+/// Height above its lowest point of the sphere (cylinder, y = 0) of radius `HERTZ_R` at (x, y).
+fn sphere_height(x: f64, y: f64) -> f64 {
+    HERTZ_R - (HERTZ_R * HERTZ_R - (x * x + y * y)).sqrt()
+}
+
+/// Bend a cap of height `HERTZ_CAP` (nodes `ids`, z from 0 up) onto the sphere:
+/// z → z_b + z (H − z_b)/H; `mirrored` (z from −H to 0, its top bent down): z → −z_b + z (H − z_b)/H.
+fn bend_onto_sphere(inp: &mut Input, ids: impl IntoIterator<Item = usize>, mirrored: bool) {
+    for id in ids {
+        let p = &mut inp.nodes[id - 1];
+        let zb = sphere_height(p[0], p[1]);
+        let base = if mirrored { -zb } else { zb };
+        p[2] = base + p[2] * (HERTZ_CAP - zb) / HERTZ_CAP;
+    }
+}
+
 impl HertzSphere {
     /// The input with the cap's bottom nodes within 1.6 of the axis as the contact's slave side.
     pub fn input(&self) -> String {
@@ -296,13 +305,7 @@ impl HertzSphere {
         let zc = graded(HERTZ_CAP, self.h, 0.75, 1.2);
         let mut cap = inp.solid3d(self.kind, &xc, &xc, &zc, &extra, self.sym);
         let cap_mids = with_mids(&mut inp, &mut cap, HERTZ_CAP, 0.0);
-        // Bend the cap's bottom onto the sphere: z → z_b + z (H − z_b)/H.
-        for id in (cap.nodes.0..=cap.nodes.1).chain(cap_mids) {
-            let p = &mut inp.nodes[id - 1];
-            let r2 = p[0] * p[0] + p[1] * p[1];
-            let zb = HERTZ_R - (HERTZ_R * HERTZ_R - r2).sqrt();
-            p[2] = zb + p[2] * (HERTZ_CAP - zb) / HERTZ_CAP;
-        }
+        bend_onto_sphere(&mut inp, (cap.nodes.0..=cap.nodes.1).chain(cap_mids), false);
         contact_faces_and_material(&mut inp, &block, 0.0, self.nlgeo);
         rollers_and_push(&mut inp, &block.bottom, &cap.top, self.delta);
         let near = |p: [f64; 3]| p[0].hypot(p[1]) <= radius;
@@ -313,8 +316,7 @@ impl HertzSphere {
             .filter(|&n| near(inp.nodes[n - 1]))
             .collect();
         contact(&mut inp, 5, self.law, self.mortar, &cap, &nodes, &|p| {
-            let zb = HERTZ_R - (HERTZ_R * HERTZ_R - p[0] * p[0] - p[1] * p[1]).sqrt();
-            near(p) && (p[2] - zb).abs() < 1e-9
+            near(p) && (p[2] - sphere_height(p[0], p[1])).abs() < 1e-9
         });
         inp.functions.push(history(&[1.0]));
         inp.functions.push("ConstantFunction 2 f(t) 1.0".into());
@@ -897,25 +899,15 @@ impl TwoCaps {
         let extra = format!("mat 1 crossSect 1 nlgeo {}", u8::from(self.nlgeo));
         let xc = graded(HERTZ_CAP, self.h, 1.5, 1.2);
         let zc = graded(HERTZ_CAP, self.h, 0.75, 1.2);
-        let sphere =
-            |p: &[f64; 3]| HERTZ_R - (HERTZ_R * HERTZ_R - p[0] * p[0] - p[1] * p[1]).sqrt();
+        let sphere = |p: &[f64; 3]| sphere_height(p[0], p[1]);
         let lower = (!self.rigid_plane).then(|| {
             let zl: Vec<f64> = zc.iter().rev().map(|d| -d).collect();
             let lower = inp.solid3d(self.kind, &xc, &xc, &zl, &extra, 0);
-            // Bend the lower cap's top onto the mirrored sphere: z → −z_b + z (H − z_b)/H.
-            for id in lower.nodes.0..=lower.nodes.1 {
-                let p = &mut inp.nodes[id - 1];
-                let zb = sphere(p);
-                p[2] = -zb + p[2] * (HERTZ_CAP - zb) / HERTZ_CAP;
-            }
+            bend_onto_sphere(&mut inp, lower.nodes.0..=lower.nodes.1, true);
             lower
         });
         let cap = inp.solid3d(self.kind, &xc, &xc, &zc, &extra, 0);
-        for id in cap.nodes.0..=cap.nodes.1 {
-            let p = &mut inp.nodes[id - 1];
-            let zb = sphere(p);
-            p[2] = zb + p[2] * (HERTZ_CAP - zb) / HERTZ_CAP;
-        }
+        bend_onto_sphere(&mut inp, cap.nodes.0..=cap.nodes.1, false);
         let near = |p: [f64; 3]| p[0].hypot(p[1]) <= HERTZ_NEAR;
         match &lower {
             Some(lower) => {
@@ -1002,7 +994,7 @@ impl TwoCylinders {
         let mut inp = Input::default();
         let xc = graded(HERTZ_CAP, self.h, 1.5, 1.2);
         let hc = graded(HERTZ_CAP, self.h, 0.75, 1.2);
-        let bottom = |x: f64| HERTZ_R - (HERTZ_R * HERTZ_R - x * x).sqrt();
+        let bottom = |x: f64| sphere_height(x, 0.0);
         let lower = matches!(self.lower, Lower::Elastic(_)).then(|| {
             inp.block2d(
                 Kind::Q4,
@@ -1089,14 +1081,7 @@ impl TwoCylinders {
             let set = inp.boundary_set(&edges);
             inp.segments
                 .push(format!("linear2delementedgecontactsegment 2 edgeset {set}"));
-            inp.bcs.push(match self.law {
-                Law::Penalty(p) => format!(
-                    "s2spenaltycontact {number} loadTimeFunction 1 penalty {p:e} slavesegment 2 segmentset 1 1"
-                ),
-                Law::Multiplier => format!(
-                    "s2slagrangianmultipliercontact {number} loadTimeFunction 1 slavesegment 2 segmentset 1 1"
-                ),
-            });
+            inp.bcs.push(s2s(number, self.law));
         } else {
             inp.bcs.push(n2s(number, self.law, &near, &[1], ""));
         }
@@ -1226,14 +1211,7 @@ impl ConcentricRings {
         }
         let k = inp.bcs.len() + 1;
         if self.mortar {
-            inp.bcs.push(match self.law {
-                Law::Penalty(p) => format!(
-                    "s2spenaltycontact {k} loadTimeFunction 1 penalty {p:e} slavesegment 2 segmentset 1 1"
-                ),
-                Law::Multiplier => format!(
-                    "s2slagrangianmultipliercontact {k} loadTimeFunction 1 slavesegment 2 segmentset 1 1"
-                ),
-            });
+            inp.bcs.push(s2s(k, self.law));
         } else {
             inp.bcs.push(n2s(k, self.law, &outer_ids[0], &[1], ""));
         }
