@@ -205,26 +205,20 @@ impl PressureAreas {
         !self.curved.is_empty()
     }
 
-    /// The nodes' contact pressures for their normal forces `forces`, the nodes at
-    /// `position(n)`: force / area where the surface is made of linear facets; where it has
-    /// curved (quadratic) ones, the pressure field p = Σ p_a N_a whose consistent nodal forces
-    /// ∫ p N_a dA are the forces — the consistent mass M solved, M p = f (with the linear
-    /// facets' areas on its diagonal). A uniform pressure puts no force on a 6-node triangle's
-    /// corners and 1/3 of its area on each mid-side: force over any lumped area would report 0
-    /// and 1.19 p there, the projection p everywhere. Uncovered nodes (no facet): 0 force, NaN.
+    /// The nodes' contact pressures, on a surface with curved (quadratic) facets
+    /// ([`PressureAreas::has_curved`]), for their normal forces `forces`, the nodes at
+    /// `position(n)` and `lumped` the linear facets' areas ([`PressureAreas::at`]): the pressure
+    /// field p = Σ p_a N_a whose consistent nodal forces ∫ p N_a dA are the forces — the
+    /// consistent mass M solved, M p = f (with the linear facets' areas on its diagonal). A
+    /// uniform pressure puts no force on a 6-node triangle's corners and 1/3 of its area on each
+    /// mid-side: force over any lumped area would report 0 and 1.19 p there, the projection p
+    /// everywhere. Uncovered nodes (no facet): 0 force, NaN.
     pub fn pressures(
         &self,
         forces: &[f64],
+        lumped: &[f64],
         mut position: impl FnMut(usize) -> crate::error::Result<[f64; 3]>,
     ) -> crate::error::Result<Vec<f64>> {
-        let lumped = self.at(&mut position)?;
-        if self.curved.is_empty() {
-            return Ok(forces
-                .iter()
-                .zip(&lumped)
-                .map(|(f, a)| if *a > 0.0 { f / a } else { f64::NAN })
-                .collect());
-        }
         let n = forces.len();
         let mut rows: Vec<Vec<(usize, f64)>> = (0..n).map(|k| vec![(k, lumped[k])]).collect();
         for (f, slots, reference) in &self.curved {

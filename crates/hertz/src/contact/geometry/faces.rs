@@ -73,6 +73,18 @@ pub struct Face {
     pub open: Vec<bool>,
 }
 
+impl Face {
+    /// The face parameters (ξ, η) of its node `a` (a model node index).
+    fn param_of(&self, a: usize) -> (f64, f64) {
+        let i = self
+            .nodes
+            .iter()
+            .position(|&n| n == a)
+            .expect("a node of the face");
+        node_param(self.kind, i)
+    }
+}
+
 /// The faces of one condition's surface segments, with their adjacency and reference normals.
 #[derive(Debug, Clone, Default)]
 pub struct FaceSurface {
@@ -520,12 +532,7 @@ impl FaceSurface {
         for &f in faces.iter().chain(faces.is_empty().then_some(&k)) {
             let face = &self.faces[f];
             let x: Vec<V3<T>> = (0..face.nodes.len()).map(|i| pos(f, i)).collect();
-            let i = face
-                .nodes
-                .iter()
-                .position(|&n| n == a)
-                .expect("a node of the face");
-            let (c, e) = node_param(face.kind, i);
+            let (c, e) = face.param_of(a);
             let z = x[0][0].cst(0.0);
             let n = face_normal(face.kind, &x, face.side, z + c, z + e);
             sum = Some(match sum {
@@ -556,12 +563,7 @@ impl FaceSurface {
                     [0, 1, 2].map(|j| Dual::variable(p[j], 3 * b + j, 3 * k))
                 })
                 .collect();
-            let i = face
-                .nodes
-                .iter()
-                .position(|&n| n == a)
-                .expect("a node of the face");
-            let (c, e) = node_param(face.kind, i);
+            let (c, e) = face.param_of(a);
             let z = Dual::constant(0.0, 3 * k);
             let nf = face_normal(face.kind, &x, face.side, z + c, z + e);
             for (b, &node) in face.nodes.iter().enumerate() {

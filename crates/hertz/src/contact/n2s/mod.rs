@@ -662,7 +662,9 @@ impl Formulation for NodeToSegment {
         if self.areas.has_curved() {
             let mine = &mut states[first_state..];
             let forces: Vec<f64> = mine.iter().map(|s| s.force).collect();
-            let p = self.areas.pressures(&forces, |n| Ok(ctx.position(n)?.0))?;
+            let p = self
+                .areas
+                .pressures(&forces, &areas, |n| Ok(ctx.position(n)?.0))?;
             for (s, p) in mine.iter_mut().zip(p) {
                 s.pressure = p;
             }
