@@ -42,8 +42,8 @@ pub struct BenchArgs {
     /// --sphere: tetrahedra instead of hexahedra
     #[arg(long, requires = "sphere")]
     pub tet: bool,
-    /// --sphere: mortar contact of the cap's bottom faces instead of node-to-face
-    #[arg(long, requires = "sphere")]
+    /// --sphere, --patch: mortar contact of the slave's bottom faces instead of node-to-face
+    #[arg(long)]
     pub mortar: bool,
     /// --sphere: quadratic elements (10-node tetrahedra with --tet, else 20-node bricks, whose
     /// faces cannot be node-to-face slaves); node-to-face only
@@ -86,6 +86,10 @@ pub fn main(args: BenchArgs) -> ExitCode {
         args.write,
         args.examples,
     );
+    if args.mortar && args.sphere.is_none() && args.patch.is_none() {
+        eprintln!("error: --mortar needs --sphere or --patch");
+        return ExitCode::from(2);
+    }
     let model3d = match (args.sphere, args.patch) {
         // Spacing 0.03: about 10^6 unknowns.
         (Some(h), _) if !(0.03..=1.0).contains(&h) => {
@@ -103,7 +107,10 @@ pub fn main(args: BenchArgs) -> ExitCode {
             whole_face: args.whole_face,
             quadratic: args.quadratic,
         })),
-        (_, Some(p)) => Some(Model3d::Patch(p as usize)),
+        (_, Some(p)) => Some(Model3d::Patch(hertz_bench::PatchBench {
+            n: p as usize,
+            mortar: args.mortar,
+        })),
         _ => None,
     };
     if let Some(dir) = examples {

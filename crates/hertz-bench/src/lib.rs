@@ -288,7 +288,7 @@ pub enum Model3d {
     Sphere(SphereBench),
     /// The patch test of [`verify::Patch`] (small strain, compressed by 0.01) with n × n × 2
     /// master bricks: a contact zone of (2n + 1)² nodes.
-    Patch(usize),
+    Patch(PatchBench),
 }
 
 /// The Hertz sphere benchmark's mesh and contact.
@@ -304,6 +304,15 @@ pub struct SphereBench {
     pub whole_face: bool,
     /// Quadratic elements (10-node tetrahedra, 20-node bricks).
     pub quadratic: bool,
+}
+
+/// The patch benchmark's mesh and contact.
+#[derive(Debug, Clone, Copy)]
+pub struct PatchBench {
+    /// Master bricks across (the slave has twice as many).
+    pub n: usize,
+    /// Mortar (the slave's bottom faces) instead of node-to-face (its bottom nodes).
+    pub mortar: bool,
 }
 
 /// Compression of the patch benchmark.
@@ -337,17 +346,17 @@ impl Model3d {
                 },
                 b.quadratic,
             ),
-            Model3d::Patch(n) => verify::Patch {
+            Model3d::Patch(b) => verify::Patch {
                 kind: mesh::Solid::Hex,
                 slave_kind: None,
                 sym: 0,
-                n,
+                n: b.n,
                 nlgeo: false,
                 delta: PATCH_DELTA,
                 steps: 1,
                 law,
                 slave_n: None,
-                mortar: false,
+                mortar: b.mortar,
             }
             .input(),
         }
@@ -371,9 +380,11 @@ impl Model3d {
                     ""
                 }
             ),
-            Model3d::Patch(n) => format!(
-                "contact patch test, {n} x {n} x 2 master bricks, {m} x {m} x 2 slave bricks",
-                m = 2 * n
+            Model3d::Patch(b) => format!(
+                "contact patch test, {n} x {n} x 2 master bricks, {m} x {m} x 2 slave bricks, {f}",
+                n = b.n,
+                m = 2 * b.n,
+                f = if b.mortar { "mortar" } else { "node-to-face" }
             ),
         }
     }

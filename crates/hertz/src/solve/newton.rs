@@ -603,15 +603,13 @@ impl<'a> NewtonContext<'a> {
         self.times.assembly += since(t);
         let mut closed: Vec<Branch> = points.iter().zip(guess).map(|(p, &g)| p.guess(g)).collect();
         let mut search = BranchSearch::new(MAX_FULL_UPDATES);
-        // Multipliers eliminated through their slave rows below the Krylov threshold; above it
-        // the saddle-point tangent's GMRES, preconditioned with the LDLᵀ of its symmetric part,
-        // serves better: the reduced system's symmetric part (gap rows in place of slave rows)
-        // is no preconditioner for it.
-        let groups = if nf < self.krylov_min {
-            self.multiplier_groups(points)
-        } else {
-            Vec::new()
-        };
+        // Multipliers eliminated through their slave rows: always where the tangent is
+        // symmetric (the reduced system is then symmetric too and goes to Cholesky), otherwise
+        // below the Krylov threshold; above it the general tangent's GMRES, preconditioned with
+        // the LDLᵀ of its symmetric part, serves better: the general reduced system's symmetric
+        // part (gap rows in place of slave rows) is no preconditioner for it.
+        let groups = self.multiplier_groups(points);
+        let general = nf < self.krylov_min;
         loop {
             let mut kv = ks.k_values.clone().expect("requested");
             let mut step = rhs.clone();
@@ -637,12 +635,7 @@ impl<'a> NewtonContext<'a> {
                 })
                 .collect();
             self.asm.add_tangents(&mut kv, &contribs);
-            if groups.is_empty() {
-                self.factorize(&kv)?;
-                let t = Instant::now();
-                self.solver.solve_in_place(&mut step)?;
-                self.times.solve += since(t);
-            } else {
+            let eliminated = !groups.is_empty() && {
                 let (model, dofs) = (self.asm.model, self.dofs);
                 let describe = |eq: usize| describe_eq(model, dofs, eq);
                 self.observer.phase(&Phase::Factorization {
@@ -650,16 +643,34 @@ impl<'a> NewtonContext<'a> {
                     unknowns: self.asm.pattern.n,
                 });
                 let t = Instant::now();
-                self.eliminate
-                    .solve(&self.asm.pattern, &kv, &mut step, &groups, &describe)?;
+                let solved = self.eliminate.solve(
+                    &self.asm.pattern,
+                    &kv,
+                    &mut step,
+                    &groups,
+                    general,
+                    &describe,
+                )?;
                 self.times.factor += since(t);
-                if search.updates == 0 {
+                if solved && search.updates == 0 {
                     self.observer.detail(&format!(
-                        "multipliers eliminated through the slave rows: {} of {}",
+                        "multipliers eliminated through the slave rows ({}): {} of {}",
+                        if self.eliminate.symmetric {
+                            "symmetric"
+                        } else {
+                            "general"
+                        },
                         self.eliminate.eliminated,
                         self.eliminate.eliminated + self.eliminate.kept
                     ));
                 }
+                solved
+            };
+            if !eliminated {
+                self.factorize(&kv)?;
+                let t = Instant::now();
+                self.solver.solve_in_place(&mut step)?;
+                self.times.solve += since(t);
             }
             let predicted: Vec<Branch> = points
                 .iter()

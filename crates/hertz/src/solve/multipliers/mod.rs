@@ -7,18 +7,28 @@
 //! as
 //!   rows S (the slave node's free equations):  K_S x + C λ = b_S,   C = Q [R; 0] (QR, r × p),
 //!   other rows i:                              K_i x + T_iλ λ = b_i,
-//! so that λ = R⁻¹ Q₁ᵀ (b_S − K_S x) and, with E = R⁻¹ Q₁ᵀ,
+//!   its constraint rows:                       G x + d λ = b_L,
+//! so that λ = R⁻¹ Q₁ᵀ (b_S − K_S x) = E (b_S − K_S x). Two reductions follow:
+//! - a general tangent ([`MultiplierElimination::solve`]):
 //!   (K_i − T_iλ E K_S) x = b_i − T_iλ E b_S   (the constraint rows among them),
 //!   Q₂ᵀ K_S x = Q₂ᵀ b_S                      (the slave node's rows with no multiplier),
-//! a square system in the displacements (and the multipliers that could not be eliminated) with
-//! the fill of the slave rows in the master and constraint rows. The elimination is exact: a
-//! multiplier is eliminated only where the slave rows of the other eliminated points carry none of
-//! it (up to round-off, 1e-12 of its own coupling) and C has full column rank; the others stay
-//! unknowns of the reduced system.
+//!   a square system in the displacements with the fill of the slave rows in the master and
+//!   constraint rows, for a sparse LU;
+//! - a symmetric one, G = Cᵀ up to a row's scale and d = 0 ([`symmetric`]): the slave
+//!   unknowns are substituted by the motion that keeps the constraints, and the equations taken
+//!   along it, a symmetric system for a sparse Cholesky.
+//!
+//! The elimination is exact: a multiplier is eliminated only where the slave rows of the other
+//! eliminated points carry none of it (up to round-off, 1e-12 of its own coupling) and C has
+//! full column rank; the others stay unknowns of the reduced system.
+
+mod rows;
+mod symmetric;
 
 use super::linear::{FaerSolver, LinearSolver, SolverSettings};
 use crate::assembly::Pattern;
 use crate::error::Result;
+use rows::{RowBuilder, Rows};
 
 /// One contact point's multipliers and its slave node's free equations.
 #[derive(Debug, Clone)]
@@ -39,6 +49,8 @@ pub struct MultiplierElimination {
     /// Multipliers eliminated and kept in the last solve.
     pub eliminated: usize,
     pub kept: usize,
+    /// Whether the last solve's tangent was symmetric (and so its reduced system).
+    pub symmetric: bool,
 }
 
 /// An eliminated group: its rows, multipliers, Q (r × r, row-major) and E = R⁻¹Q₁ᵀ (p × r).
@@ -47,59 +59,6 @@ struct Eliminated {
     lambdas: Vec<usize>,
     q: Vec<f64>,
     e: Vec<f64>,
-}
-
-/// A sparse matrix in compressed rows.
-struct Rows {
-    ptr: Vec<usize>,
-    col: Vec<usize>,
-    val: Vec<f64>,
-}
-
-impl Rows {
-    /// Both triangles of the matrix `values` on `pattern`, by rows.
-    fn new(pattern: &Pattern, values: &[f64]) -> Rows {
-        let n = pattern.n;
-        let mut count = vec![0usize; n + 1];
-        for c in 0..n {
-            for k in pattern.col_ptr[c]..pattern.col_ptr[c + 1] {
-                let r = pattern.row_idx[k];
-                count[r + 1] += 1;
-                if pattern.symmetric && r != c {
-                    count[c + 1] += 1;
-                }
-            }
-        }
-        for i in 0..n {
-            count[i + 1] += count[i];
-        }
-        let mut next = count.clone();
-        let nnz = count[n];
-        let (mut col, mut val) = (vec![0; nnz], vec![0.0; nnz]);
-        let mut put = |r: usize, c: usize, v: f64| {
-            col[next[r]] = c;
-            val[next[r]] = v;
-            next[r] += 1;
-        };
-        for c in 0..n {
-            for k in pattern.col_ptr[c]..pattern.col_ptr[c + 1] {
-                let r = pattern.row_idx[k];
-                put(r, c, values[k]);
-                if pattern.symmetric && r != c {
-                    put(c, r, values[k]);
-                }
-            }
-        }
-        Rows {
-            ptr: count,
-            col,
-            val,
-        }
-    }
-
-    fn row(&self, i: usize) -> impl Iterator<Item = (usize, f64)> + '_ {
-        (self.ptr[i]..self.ptr[i + 1]).map(|k| (self.col[k], self.val[k]))
-    }
 }
 
 /// Householder QR of the r × p matrix `c` (row-major), r ≥ p: Q (r × r, row-major) and R
@@ -150,7 +109,6 @@ fn qr(c: &[f64], r: usize, p: usize) -> (Vec<f64>, Vec<f64>) {
         .collect();
     (q, rm)
 }
-
 impl MultiplierElimination {
     /// Reduced systems of `krylov_min` unknowns and more are solved by GMRES (see
     /// [`FaerSolver`]).
@@ -170,19 +128,48 @@ impl MultiplierElimination {
         self.solver.stats()
     }
 
+    /// Record how many multipliers the last solve eliminated and kept.
+    fn count(&mut self, eliminated: &[Eliminated], decoupled: &[usize], groups: &[Group]) {
+        self.eliminated = eliminated.iter().map(|e| e.lambdas.len()).sum::<usize>()
+            + decoupled
+                .iter()
+                .map(|&g| groups[g].lambdas.len())
+                .sum::<usize>();
+        self.kept = groups.iter().map(|g| g.lambdas.len()).sum::<usize>() - self.eliminated;
+    }
+
     /// Solve T x = `rhs` in place (T: `values` on `pattern`, displacements and multipliers),
     /// eliminating the multipliers of `groups` where that is exact (see the module doc).
+    /// A symmetric T is always solved; a general one only with `general` (else false is
+    /// returned and `rhs` is untouched: the caller solves T itself).
     pub fn solve(
         &mut self,
         pattern: &Pattern,
         values: &[f64],
         rhs: &mut [f64],
         groups: &[Group],
+        general: bool,
         describe: &dyn Fn(usize) -> String,
-    ) -> Result<()> {
+    ) -> Result<bool> {
         let n = pattern.n;
         let rows = Rows::new(pattern, values);
-        let (eliminated, decoupled) = eliminable(&rows, n, groups);
+        let multipliers: Vec<usize> = groups.iter().flat_map(|g| g.lambdas.clone()).collect();
+        let scales = rows.symmetric_scales(&multipliers);
+        self.symmetric = scales.is_some();
+        if let Some(scale) = scales {
+            let rows = rows.scaled(&scale);
+            let mut scaled: Vec<f64> = rhs.iter().zip(&scale).map(|(b, s)| b / s).collect();
+            if self.solve_symmetric(&rows, &mut scaled, groups, general, describe)? {
+                rhs.copy_from_slice(&scaled);
+                return Ok(true);
+            }
+        }
+        self.symmetric = false;
+        if !general {
+            self.count(&[], &[], &[]);
+            return Ok(false);
+        }
+        let (eliminated, decoupled) = eliminable(&rows, n, groups, false);
         // Unknowns kept, and where each row goes in the reduced system.
         let mut gone = vec![false; n];
         // Rows not carried over as they are: the eliminated groups' slave rows and the decoupled
@@ -309,16 +296,10 @@ impl MultiplierElimination {
         solved.eliminated_multipliers(&eliminated, &mut x);
         solved.decoupled_multipliers(&decoupled, groups, &mut x, describe)?;
         rhs.copy_from_slice(&x);
-        self.eliminated = eliminated.iter().map(|e| e.lambdas.len()).sum::<usize>()
-            + decoupled
-                .iter()
-                .map(|&g| groups[g].lambdas.len())
-                .sum::<usize>();
-        self.kept = groups.iter().map(|g| g.lambdas.len()).sum::<usize>() - self.eliminated;
-        Ok(())
+        self.count(&eliminated, &decoupled, groups);
+        Ok(true)
     }
 }
-
 /// The reduced system's solution and what recovers the multipliers from it.
 struct Solved<'a> {
     rows: &'a Rows,
@@ -389,7 +370,14 @@ impl Solved<'_> {
 
 /// The groups whose multipliers can be eliminated exactly, with their QR, and those whose
 /// multipliers touch no row but their own (an open point's λ = 0).
-fn eliminable(rows: &Rows, n: usize, groups: &[Group]) -> (Vec<Eliminated>, Vec<usize>) {
+/// With `hard_only`, groups whose multipliers have a compliance (a diagonal entry: a penalty
+/// solved in multiplier form, a sliver's fading constraint) are not eliminated.
+fn eliminable(
+    rows: &Rows,
+    n: usize,
+    groups: &[Group],
+    hard_only: bool,
+) -> (Vec<Eliminated>, Vec<usize>) {
     // A slave row claimed by two groups (a node slave of two conditions) serves neither.
     let mut owner = vec![usize::MAX; n];
     let mut shared = vec![false; groups.len()];
@@ -460,6 +448,14 @@ fn eliminable(rows: &Rows, n: usize, groups: &[Group]) -> (Vec<Eliminated>, Vec<
         if shared[g] || p == 0 || p > r {
             continue;
         }
+        if hard_only
+            && gr
+                .lambdas
+                .iter()
+                .any(|&l| rows.row(l).any(|(c, v)| c == l && v != 0.0))
+        {
+            continue;
+        }
         let c = &coupling[g];
         let size = c.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         if !(size > 0.0) || stray[g] > COUPLING_TOL * size {
@@ -517,110 +513,6 @@ fn solve_small(a: &mut [f64], f: &mut [f64], p: usize) -> Option<Vec<f64>> {
     }
     Some(x)
 }
-
-/// The reduced system's rows, each summed in a dense work row as it is built (the rows of the
-/// eliminated slave nodes fill the master rows: a 3D mortar patch's reduced system had 72 million
-/// contributions to 3.3 million entries, which as sorted triplets took 20 s and 1.7 GB).
-struct RowBuilder {
-    work: Vec<f64>,
-    seen: Vec<bool>,
-    cols: Vec<usize>,
-    rows: Vec<Vec<(usize, f64)>>,
-}
-
-impl RowBuilder {
-    fn new(n: usize) -> RowBuilder {
-        RowBuilder {
-            work: vec![0.0; n],
-            seen: vec![false; n],
-            cols: Vec::new(),
-            rows: vec![Vec::new(); n],
-        }
-    }
-
-    /// Add v at column c of the row being built.
-    fn add(&mut self, c: usize, v: f64) {
-        if !self.seen[c] {
-            self.seen[c] = true;
-            self.work[c] = 0.0;
-            self.cols.push(c);
-        }
-        self.work[c] += v;
-    }
-
-    /// Close the row being built as row t (added to what row t holds already).
-    fn close(&mut self, t: usize) {
-        self.cols.sort_unstable();
-        let mut row: Vec<(usize, f64)> = self
-            .cols
-            .iter()
-            .map(|&c| {
-                self.seen[c] = false;
-                (c, self.work[c])
-            })
-            .collect();
-        self.cols.clear();
-        if !self.rows[t].is_empty() {
-            row.append(&mut self.rows[t]);
-            row.sort_unstable_by_key(|e| e.0);
-            row.dedup_by(|b, a| {
-                let same = a.0 == b.0;
-                if same {
-                    a.1 += b.1;
-                }
-                same
-            });
-        }
-        self.rows[t] = row;
-    }
-
-    /// A general, structurally symmetric pattern (diagonal always present; the Krylov solver's
-    /// preconditioner takes the symmetric part on it) and its values, by columns.
-    fn into_pattern(self) -> (Pattern, Vec<f64>) {
-        let n = self.rows.len();
-        // Column c holds the entries (r, c) of row r and, with zeros, the transposed ones of
-        // row c, and the diagonal.
-        let mut by_col: Vec<Vec<(usize, f64)>> = vec![Vec::new(); n];
-        for (r, row) in self.rows.iter().enumerate() {
-            for &(c, v) in row {
-                by_col[c].push((r, v));
-            }
-        }
-        let mut col_ptr = Vec::with_capacity(n + 1);
-        let (mut row_idx, mut vals) = (Vec::new(), Vec::new());
-        col_ptr.push(0);
-        for (c, entries) in by_col.iter().enumerate() {
-            // Merge the column's entries (rows ascending) with row c's columns and c itself.
-            let transposed = self.rows[c].iter().map(|e| (e.0, 0.0));
-            let mut merged: Vec<(usize, f64)> = entries
-                .iter()
-                .copied()
-                .chain(transposed)
-                .chain(std::iter::once((c, 0.0)))
-                .collect();
-            merged.sort_unstable_by_key(|e| e.0);
-            for (r, v) in merged {
-                if row_idx.len() > col_ptr[c] && row_idx.last() == Some(&r) {
-                    *vals.last_mut().expect("an entry") += v;
-                } else {
-                    row_idx.push(r);
-                    vals.push(v);
-                }
-            }
-            col_ptr.push(row_idx.len());
-        }
-        (
-            Pattern {
-                n,
-                col_ptr,
-                row_idx,
-                symmetric: false,
-            },
-            vals,
-        )
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -673,8 +565,11 @@ mod tests {
         full.solve_in_place(&mut want).unwrap();
         let mut got = rhs.to_vec();
         let mut el = MultiplierElimination::default();
-        el.solve(&pattern, &values, &mut got, groups, &|i| format!("{i}"))
-            .unwrap();
+        assert!(el
+            .solve(&pattern, &values, &mut got, groups, true, &|i| format!(
+                "{i}"
+            ))
+            .unwrap());
         for (g, w) in got.iter().zip(&want) {
             assert!((g - w).abs() < 1e-13, "{got:?} vs {want:?}");
         }
@@ -715,6 +610,65 @@ mod tests {
             lambdas: vec![4],
         }];
         assert_eq!(against_full_solve(&a, &rhs, &groups), (1, 0));
+    }
+
+    /// The same springs with a symmetric tangent whose gap row is its force column times 2
+    /// (a nodal gap against a weighted force), a second slave node whose multiplier has a
+    /// compliance (kept), and an open point's multiplier (its own row alone): the symmetric
+    /// elimination gives the full solve's x, multipliers included.
+    #[test]
+    fn symmetric_elimination_matches_the_full_solve() {
+        // Unknowns 0-3 and 5, 6 displacements (slave node 1, 2; slave node 5, 6), 4, 7 and 8
+        // multipliers.
+        let k = [
+            [4.0, -1.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+            [-1.0, 3.0, 0.5, -1.0, 0.0, 0.2, 0.0],
+            [0.0, 0.5, 2.0, 0.0, 0.0, 0.0, -0.3],
+            [0.0, -1.0, 0.0, 2.0, -1.0, 0.0, 0.0],
+            [0.0, 0.0, 0.0, -1.0, 3.0, -0.5, 0.0],
+            [0.0, 0.2, 0.0, 0.0, -0.5, 2.5, 0.4],
+            [0.0, 0.0, -0.3, 0.0, 0.0, 0.4, 1.5],
+        ];
+        let disp = [0, 1, 2, 3, 5, 6, 9];
+        let mut a = vec![vec![0.0; 10]; 10];
+        for (i, &di) in disp.iter().enumerate() {
+            for (j, &dj) in disp.iter().enumerate() {
+                a[di][dj] = k[i][j];
+            }
+        }
+        // Multiplier 4 on slave rows 1, 2 and master row 3; its row is twice its column.
+        for (row, v) in [(1, 0.6), (2, 0.8), (3, -1.0)] {
+            a[row][4] = v;
+            a[4][row] = 2.0 * v;
+        }
+        // Multiplier 7 on slave rows 5, 6 and master row 9, with a compliance.
+        for (row, v) in [(5, 1.0), (6, 0.5), (9, -0.7)] {
+            a[row][7] = v;
+            a[7][row] = v;
+        }
+        a[7][7] = -0.05;
+        // Multiplier 8 of an open point: λ = 0.3 from its own row.
+        a[8][8] = 1.0;
+        let rhs = [1.0, 0.0, -0.5, 0.25, 0.02, 0.1, -0.2, 0.01, 0.3, 0.4];
+        let groups = [
+            Group {
+                slave: vec![1, 2],
+                lambdas: vec![4],
+            },
+            Group {
+                slave: vec![5, 6],
+                lambdas: vec![7],
+            },
+            Group {
+                slave: vec![],
+                lambdas: vec![8],
+            },
+        ];
+        assert_eq!(against_full_solve(&a, &rhs, &groups), (2, 1));
+        // The same with the row's factor off by 1e-6: not symmetric, the general elimination
+        // (which also eliminates the compliant multiplier).
+        a[4][1] *= 1.000001;
+        assert_eq!(against_full_solve(&a, &rhs, &groups), (3, 0));
     }
 
     /// A multiplier that also loads another group's slave row is kept, and the solve is still
