@@ -186,6 +186,18 @@ impl Jet {
         Jet { v: x.v, d }
     }
 
+    /// self += a · b, in place; nothing to do where b is zero (its value and gradient: a
+    /// mortar moment's force direction at an unknown the face does not hold).
+    pub fn add_product(&mut self, a: &Jet, b: &Jet) {
+        if b.v == 0.0 && b.d.iter().all(|&x| x == 0.0) {
+            return;
+        }
+        self.v += a.v * b.v;
+        for ((s, x), y) in self.d.iter_mut().zip(&a.d).zip(&b.d) {
+            *s += x * b.v + a.v * y;
+        }
+    }
+
     /// self · other.
     pub fn product(&self, other: &Jet) -> Jet {
         Jet {

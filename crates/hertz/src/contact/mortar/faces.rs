@@ -476,10 +476,10 @@ impl FaceMortar {
                 }
                 if let Some(slip) = &mut w.slip {
                     for b in 0..nf {
-                        add_share(slip, local.index(nodes[b]), &map, na * n[b]);
+                        add_share(slip, local.index(nodes[b]), &map, &(na * n[b]));
                     }
                     if let Some(r) = moving {
-                        add_share(slip, local.index(nodes[r]), &map, -na);
+                        add_share(slip, local.index(nodes[r]), &map, &-na);
                     }
                     for i in 0..3 {
                         add(&mut slip.normal[i], na * nu[i]);
@@ -583,6 +583,7 @@ impl FaceMortar {
             };
             out.push((local, w));
         }
+        let mut terms = Box::new(PointTerms::default());
         for (k, sf) in self.slave.faces.iter().enumerate() {
             let kn = sf.nodes.len();
             // Per node of the face, in its slot's unknowns: the integrals weighted by each N_b
@@ -605,12 +606,13 @@ impl FaceMortar {
                 if points.is_empty() {
                     continue;
                 }
-                for (a, &node) in sf.nodes.iter().enumerate() {
+                // Each face node's map: pair unknown p is its slot's unknown map[p].
+                let mut maps: Vec<Vec<usize>> = Vec::with_capacity(kn);
+                for &node in &sf.nodes {
                     let (local, w) = &mut out[self.slot_of[&node]];
                     if w.partner == Partner::None {
                         w.partner = Partner::Face(mi);
                     }
-                    // Pair unknown p is slot unknown map[p].
                     let map: Vec<usize> = nodes
                         .iter()
                         .flat_map(|&n| {
@@ -618,9 +620,16 @@ impl FaceMortar {
                             [3 * k, 3 * k + 1, 3 * k + 2]
                         })
                         .collect();
-                    let mo = moments[a].get_or_insert_with(|| Moments::new(kn, local.m()));
-                    for p in &points {
-                        mo.add(&map, a, xs, xm, p);
+                    maps.push(map);
+                }
+                for p in &points {
+                    terms.fill(xs, xm, p);
+                    let terms = &*terms;
+                    for (a, map) in maps.iter().enumerate() {
+                        let m = out[self.slot_of[&sf.nodes[a]]].0.m();
+                        moments[a]
+                            .get_or_insert_with(|| Moments::new(kn, m))
+                            .add(map, a, terms);
                     }
                 }
             }
@@ -686,23 +695,30 @@ impl Moments {
         }
     }
 
-    /// Point `p` of an overlap, for slave face node `a`.
-    fn add(
-        &mut self,
-        map: &[usize],
-        a: usize,
-        xs: &[[PairDual; 3]],
-        xm: &[[PairDual; 3]],
-        p: &Point<PairDual>,
-    ) {
+    /// A point's integrands `t`, for slave face node `a` (pair unknown i is the slot's
+    /// `map[i]`).
+    fn add(&mut self, map: &[usize], a: usize, t: &PointTerms) {
         let kn = self.d.len();
         for b in 0..kn {
-            let mut unit = [0.0; 4];
-            unit[b] = 1.0;
-            accumulate(&mut self.by[b], map, (a, &unit), xs, xm, p);
-            add_pair(&mut self.d[b], map, p.slave[b] * p.weight);
+            let w = &mut self.by[b];
+            add_pair(&mut w.gap, map, &t.gap[b]);
+            add_pair(&mut w.area, map, &t.nw[a]);
+            for q in 0..t.nodes {
+                for i in 0..3 {
+                    add_pair(&mut w.b[map[3 * q + i]], map, &t.b[b][q][i]);
+                }
+                if let Some(slip) = &mut w.slip {
+                    add_share(slip, map[3 * q] / 3, map, &t.share[b][q]);
+                }
+            }
+            if let Some(slip) = &mut w.slip {
+                for i in 0..3 {
+                    add_pair(&mut slip.normal[i], map, &t.normal[b][i]);
+                }
+            }
+            add_pair(&mut self.d[b], map, &t.nw[b]);
             for c in 0..kn {
-                add_pair(&mut self.m[b][c], map, p.slave[b] * p.slave[c] * p.weight);
+                add_pair(&mut self.m[b][c], map, &t.m[b][c]);
             }
         }
     }
@@ -737,23 +753,21 @@ impl Moments {
                 Jet { v: row[c], d }
             })
             .collect();
-        let add = |acc: &mut Jet, x: Jet| {
-            acc.v += x.v;
-            for (s, t) in acc.d.iter_mut().zip(&x.d) {
-                *s += t;
-            }
-        };
         // D_j is ∫ N_a over the overlaps (the same in every by[b]).
-        add(&mut w.area, self.by[0].area.clone());
+        let area = &self.by[0].area;
+        w.area.v += area.v;
+        for (s, t) in w.area.d.iter_mut().zip(&area.d) {
+            *s += t;
+        }
         for (c, by) in self.by.into_iter().enumerate() {
             let coeff = &coeffs[c];
-            add(&mut w.gap, coeff.product(&by.gap));
+            w.gap.add_product(coeff, &by.gap);
             for (wb, bb) in w.b.iter_mut().zip(&by.b) {
-                add(wb, coeff.product(bb));
+                wb.add_product(coeff, bb);
             }
             if let (Some(slip), Some(from)) = (&mut w.slip, by.slip) {
                 for (i, n) in from.normal.iter().enumerate() {
-                    add(&mut slip.normal[i], coeff.product(n));
+                    slip.normal[i].add_product(coeff, n);
                 }
                 for (k, share) in &from.shares {
                     let at = match slip.shares.iter().position(|s| s.0 == *k) {
@@ -763,7 +777,7 @@ impl Moments {
                             slip.shares.len() - 1
                         }
                     };
-                    add(&mut slip.shares[at].1, coeff.product(share));
+                    slip.shares[at].1.add_product(coeff, share);
                 }
             }
         }
@@ -771,16 +785,16 @@ impl Moments {
 }
 
 /// Add `v` (over a pair's unknowns, pair unknown i being `map[i]`) to `jet`.
-fn add_pair(jet: &mut Jet, map: &[usize], v: PairDual) {
+fn add_pair(jet: &mut Jet, map: &[usize], v: &PairDual) {
     jet.v += v.v;
-    for (i, &t) in map.iter().enumerate() {
-        jet.d[t] += v.d[i];
+    for (&t, &x) in map.iter().zip(&v.d[..map.len()]) {
+        jet.d[t] += x;
     }
 }
 
 /// Add `v` (over a pair's unknowns, pair unknown i being the slot's `map[i]`) to the share of
 /// local node `k` in `slip`.
-fn add_share(slip: &mut SlipForm, k: usize, map: &[usize], v: PairDual) {
+fn add_share(slip: &mut SlipForm, k: usize, map: &[usize], v: &PairDual) {
     let at = match slip.shares.iter().position(|s| s.0 == k) {
         Some(at) => at,
         None => {
@@ -789,64 +803,93 @@ fn add_share(slip: &mut SlipForm, k: usize, map: &[usize], v: PairDual) {
             slip.shares.len() - 1
         }
     };
-    let jet = &mut slip.shares[at].1;
-    jet.v += v.v;
-    for (i, &t) in map.iter().enumerate() {
-        jet.d[t] += v.d[i];
+    add_pair(&mut slip.shares[at].1, map, v);
+}
+
+/// A point's integrands over the pair's unknowns, for each slave face node b's shape N_b in
+/// place of the dual function (the basis adapted to the overlaps is known only once every
+/// point is in): the same for every node of the slave face, so they are computed once a point
+/// and added to each node's [`Moments`].
+struct PointTerms {
+    /// Slave and master face nodes.
+    nodes: usize,
+    /// N_b w (w the point's weight).
+    nw: [PairDual; 4],
+    /// N_b w g, g = (x_S − x_M)·ν at the point.
+    gap: [PairDual; 4],
+    /// N_b w s_q ν_i, s_q the shape of node q there (negative for the master's).
+    b: [[[PairDual; 3]; 8]; 4],
+    /// N_b w s_q.
+    share: [[PairDual; 8]; 4],
+    /// N_b w ν_i.
+    normal: [[PairDual; 3]; 4],
+    /// N_b N_c w.
+    m: [[PairDual; 4]; 4],
+}
+
+impl Default for PointTerms {
+    fn default() -> Self {
+        let zero = PairDual::constant(0.0, 0);
+        PointTerms {
+            nodes: 0,
+            nw: [zero; 4],
+            gap: [zero; 4],
+            b: [[[zero; 3]; 8]; 4],
+            share: [[zero; 8]; 4],
+            normal: [[zero; 3]; 4],
+            m: [[zero; 4]; 4],
+        }
     }
 }
 
-/// Add point `p`'s share of the integrals of slave face node `a` to `w`: the weighted gap and
-/// the force direction weighted by its dual shape function Φ = Σ_b `dual`_b N_b, the support
-/// by N_a (pair unknown i is `w`'s unknown `map[i]`; the slave face's nodes come first).
-fn accumulate(
-    w: &mut Weighted,
-    map: &[usize],
-    (a, dual): (usize, &[f64; 4]),
-    xs: &[[PairDual; 3]],
-    xm: &[[PairDual; 3]],
-    p: &Point<PairDual>,
-) {
-    let add = |jet: &mut Jet, v: PairDual| {
-        jet.v += v.v;
-        for (i, &t) in map.iter().enumerate() {
-            jet.d[t] += v.d[i];
-        }
-    };
-    let mut phi = p.weight * 0.0;
-    for (b, &c) in dual.iter().enumerate() {
-        phi = phi + p.slave[b] * c;
-    }
-    let na = phi * p.weight;
-    // g = (x_S − x_M)·ν at the point.
-    let mut g = na * 0.0;
-    for i in 0..3 {
-        let mut d = na * 0.0;
-        for (b, x) in xs.iter().enumerate() {
-            d = d + p.slave[b] * x[i];
-        }
-        for (l, y) in xm.iter().enumerate() {
-            d = d - p.master[l] * y[i];
-        }
-        g = g + d * p.nu[i];
-    }
-    add(&mut w.gap, na * g);
-    add(&mut w.area, p.slave[a] * p.weight);
-    let shapes = p.slave[..xs.len()]
-        .iter()
-        .copied()
-        .chain(p.master[..xm.len()].iter().map(|&v| -v));
-    for (b, s) in shapes.enumerate() {
+impl PointTerms {
+    /// The terms of point `p` of the faces at `xs` (slave) and `xm` (master).
+    fn fill(&mut self, xs: &[[PairDual; 3]], xm: &[[PairDual; 3]], p: &Point<PairDual>) {
+        let zero = p.weight * 0.0;
+        let (kn, nodes) = (xs.len(), xs.len() + xm.len());
+        let mut g = zero;
         for i in 0..3 {
-            add(&mut w.b[map[3 * b + i]], na * s * p.nu[i]);
+            let mut d = zero;
+            for (b, x) in xs.iter().enumerate() {
+                d = d + p.slave[b] * x[i];
+            }
+            for (l, y) in xm.iter().enumerate() {
+                d = d - p.master[l] * y[i];
+            }
+            g = g + d * p.nu[i];
         }
-        if let Some(slip) = &mut w.slip {
-            add_share(slip, map[3 * b] / 3, map, na * s);
+        let mut s = [zero; 8];
+        for (q, sq) in s.iter_mut().enumerate().take(nodes) {
+            *sq = if q < kn {
+                p.slave[q]
+            } else {
+                -p.master[q - kn]
+            };
         }
-    }
-    if let Some(slip) = &mut w.slip {
-        for i in 0..3 {
-            add(&mut slip.normal[i], na * p.nu[i]);
+        let mut snu = [[zero; 3]; 8];
+        for q in 0..nodes {
+            for i in 0..3 {
+                snu[q][i] = s[q] * p.nu[i];
+            }
+        }
+        let t = self;
+        t.nodes = nodes;
+        for b in 0..kn {
+            let nw = p.slave[b] * p.weight;
+            t.nw[b] = nw;
+            t.gap[b] = nw * g;
+            for q in 0..nodes {
+                for i in 0..3 {
+                    t.b[b][q][i] = nw * snu[q][i];
+                }
+                t.share[b][q] = nw * s[q];
+            }
+            for i in 0..3 {
+                t.normal[b][i] = nw * p.nu[i];
+            }
+            for c in 0..kn {
+                t.m[b][c] = nw * p.slave[c];
+            }
         }
     }
 }
