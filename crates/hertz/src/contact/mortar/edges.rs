@@ -199,7 +199,7 @@ impl Mortar {
             }
             boxes.push(pts);
         }
-        Ok(BroadPhase::new(boxes.iter().map(|v| &v[..])))
+        Ok(BroadPhase::new(boxes.iter().map(|v| (&v[..], v.len() > 2))))
     }
 
     /// Master edges that can overlap slave edge `k`: those whose ends project within it along

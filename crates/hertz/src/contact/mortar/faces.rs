@@ -248,7 +248,7 @@ impl FaceMortar {
             .map(|f| f.nodes.iter().map(|&n| pos(n)).collect())
             .collect();
         MasterIndex {
-            boxes: BroadPhase::new(boxes.iter().map(|v| &v[..])),
+            boxes: BroadPhase::new(boxes.iter().map(|v| (&v[..], v.len() > 4))),
             facets: self
                 .master
                 .faces

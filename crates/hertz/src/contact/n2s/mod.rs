@@ -435,8 +435,8 @@ impl NodeToSegment {
         let face_boxes: Vec<Vec<[f64; 3]>> =
             self.faces.faces.iter().map(|f| corners(&f.nodes)).collect();
         Ok(Current {
-            edges: BroadPhase::new(edge_boxes.iter().map(|v| &v[..])),
-            faces: BroadPhase::new(face_boxes.iter().map(|v| &v[..])),
+            edges: BroadPhase::new(edge_boxes.iter().map(|v| (&v[..], v.len() > 2))),
+            faces: BroadPhase::new(face_boxes.iter().map(|v| (&v[..], v.len() > 4))),
             x,
             normals,
         })
