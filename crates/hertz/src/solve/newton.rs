@@ -61,6 +61,9 @@ pub(super) struct NewtonContext<'a> {
     groups: Option<Vec<usize>>,
     /// Unknowns from which non-symmetric tangents go to GMRES (multipliers then stay unknowns).
     krylov_min: usize,
+    /// The solver is hertz's own (not one from outside, PETSc's): large symmetric tangents
+    /// may then have their multipliers eliminated by hertz rather than go whole to the solver.
+    own_solver: bool,
     /// The current factorization is the (constant) tangent of a linear problem.
     factor_valid: bool,
     /// Small strain and no contact: the tangent is constant.
@@ -170,6 +173,7 @@ impl<'a> NewtonContext<'a> {
             solver,
             groups,
             krylov_min: params.krylov_min_unknowns,
+            own_solver: !matches!(params.solver, SolverChoice::Custom(_)),
             factor_valid: false,
             linear,
             small_strain,
@@ -607,9 +611,14 @@ impl<'a> NewtonContext<'a> {
         // symmetric (the reduced system is then symmetric too and goes to Cholesky), otherwise
         // below the Krylov threshold; above it the general tangent's GMRES, preconditioned with
         // the LDLᵀ of its symmetric part, serves better: the general reduced system's symmetric
-        // part (gap rows in place of slave rows) is no preconditioner for it.
-        let groups = self.multiplier_groups(points);
+        // part (gap rows in place of slave rows) is no preconditioner for it. A solver from
+        // outside (PETSc) gets the large systems whole, as before.
         let general = nf < self.krylov_min;
+        let groups = if general || self.own_solver {
+            self.multiplier_groups(points)
+        } else {
+            Vec::new()
+        };
         loop {
             let mut kv = ks.k_values.clone().expect("requested");
             let mut step = rhs.clone();
