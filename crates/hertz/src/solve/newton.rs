@@ -203,7 +203,7 @@ impl<'a> NewtonContext<'a> {
     pub fn finish_step_info(&mut self, info: &mut StepInfo) {
         info.multipliers_eliminated = (self.eliminate.eliminated, self.eliminate.kept);
         info.solver = if self.eliminate.eliminated + self.eliminate.kept > 0 {
-            self.eliminate.stats().clone()
+            self.eliminate.stats()
         } else {
             self.solver.stats().clone()
         };
@@ -664,11 +664,7 @@ impl<'a> NewtonContext<'a> {
                 if solved && search.updates == 0 {
                     self.observer.detail(&format!(
                         "multipliers eliminated through the slave rows ({}): {} of {}",
-                        if self.eliminate.symmetric {
-                            "symmetric"
-                        } else {
-                            "general"
-                        },
+                        self.eliminate.method.name(),
                         self.eliminate.eliminated,
                         self.eliminate.eliminated + self.eliminate.kept
                     ));

@@ -148,7 +148,7 @@ pub const KRYLOV_MIN_UNKNOWNS: usize = 20_000;
 /// Smallest pivot of the regularized LDLᵀ preconditioner, relative to the largest diagonal.
 const LDLT_REGULARIZATION: f64 = 1e-8;
 /// GMRES stops at this relative residual.
-const KRYLOV_TOL: f64 = 1e-12;
+pub(crate) const KRYLOV_TOL: f64 = 1e-12;
 
 /// The faer implementation of [`LinearSolver`]: factorizes matrices that share one pattern.
 pub struct FaerSolver {

@@ -8,15 +8,19 @@
 //!   rows S (the slave node's free equations):  K_S x + C λ = b_S,   C = Q [R; 0] (QR, r × p),
 //!   other rows i:                              K_i x + T_iλ λ = b_i,
 //!   its constraint rows:                       G x + d λ = b_L,
-//! so that λ = R⁻¹ Q₁ᵀ (b_S − K_S x) = E (b_S − K_S x). Two reductions follow:
-//! - a general tangent ([`MultiplierElimination::solve`]):
+//! so that λ = R⁻¹ Q₁ᵀ (b_S − K_S x) = E (b_S − K_S x). Three ways follow
+//! ([`MultiplierElimination::solve`] takes the first that applies, [`Method`]):
+//! - a symmetric tangent, G = Cᵀ up to a row's scale and d = 0 (module `symmetric`): the slave
+//!   unknowns are substituted by the motion that keeps the constraints, and the equations taken
+//!   along it, a symmetric system for a sparse Cholesky;
+//! - a general tangent near its symmetric counterpart (the same with the displacements' block
+//!   symmetrized and each gap row its force column: large deformation): GMRES on the whole
+//!   tangent, preconditioned with the counterpart's symmetric elimination;
+//! - a general tangent otherwise:
 //!   (K_i − T_iλ E K_S) x = b_i − T_iλ E b_S   (the constraint rows among them),
 //!   Q₂ᵀ K_S x = Q₂ᵀ b_S                      (the slave node's rows with no multiplier),
 //!   a square system in the displacements with the fill of the slave rows in the master and
-//!   constraint rows, for a sparse LU;
-//! - a symmetric one, G = Cᵀ up to a row's scale and d = 0 ([`symmetric`]): the slave
-//!   unknowns are substituted by the motion that keeps the constraints, and the equations taken
-//!   along it, a symmetric system for a sparse Cholesky.
+//!   constraint rows, for a sparse LU.
 //!
 //! The elimination is exact: a multiplier is eliminated only where the slave rows of the other
 //! eliminated points carry none of it (up to round-off, 1e-12 of its own coupling) and C has
@@ -28,7 +32,10 @@ mod symmetric;
 use super::linear::{FaerSolver, LinearSolver, SolverSettings};
 use crate::assembly::Pattern;
 use crate::error::Result;
+use crate::solve::krylov::gmres;
+use crate::solve::linear::faer_direct::KRYLOV_TOL;
 use rows::{RowBuilder, Rows};
+use symmetric::Reduction;
 
 /// One contact point's multipliers and its slave node's free equations.
 #[derive(Debug, Clone)]
@@ -41,6 +48,29 @@ pub struct Group {
 /// own coupling are round-off of the dual basis' biorthogonality and are dropped.
 const COUPLING_TOL: f64 = 1e-12;
 
+/// How a solve reduced the system.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum Method {
+    /// A symmetric tangent into a symmetric system (Cholesky).
+    #[default]
+    Symmetric,
+    /// A general tangent by GMRES, preconditioned with its symmetric counterpart's.
+    Preconditioned,
+    /// A general tangent into a general system (sparse LU).
+    General,
+}
+
+impl Method {
+    /// How the method reads in a report.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Symmetric => "symmetric",
+            Method::Preconditioned => "GMRES on the symmetric counterpart's",
+            Method::General => "general",
+        }
+    }
+}
+
 /// The reduced system's solver, kept while its pattern stays the same.
 #[derive(Default)]
 pub struct MultiplierElimination {
@@ -49,8 +79,11 @@ pub struct MultiplierElimination {
     /// Multipliers eliminated and kept in the last solve.
     pub eliminated: usize,
     pub kept: usize,
-    /// Whether the last solve's tangent was symmetric (and so its reduced system).
-    pub symmetric: bool,
+    /// How the last solve reduced the system.
+    pub method: Method,
+    /// GMRES iterations of the last solve (a general tangent preconditioned by the symmetric
+    /// elimination of its symmetric counterpart), 0 for a direct solve.
+    krylov_iterations: usize,
 }
 
 /// An eliminated group: its rows, multipliers, Q (r × r, row-major) and E = R⁻¹Q₁ᵀ (p × r).
@@ -124,8 +157,11 @@ impl MultiplierElimination {
     }
 
     /// The reduced system's last factorization and solve.
-    pub fn stats(&self) -> &super::linear::SolverStats {
-        self.solver.stats()
+    pub fn stats(&self) -> super::linear::SolverStats {
+        super::linear::SolverStats {
+            krylov_iterations: self.krylov_iterations,
+            ..self.solver.stats().clone()
+        }
     }
 
     /// Record how many multipliers the last solve eliminated and kept.
@@ -151,25 +187,132 @@ impl MultiplierElimination {
         general: bool,
         describe: &dyn Fn(usize) -> String,
     ) -> Result<bool> {
-        let n = pattern.n;
         let rows = Rows::new(pattern, values);
         let multipliers: Vec<usize> = groups.iter().flat_map(|g| g.lambdas.clone()).collect();
-        let scales = rows.symmetric_scales(&multipliers);
-        self.symmetric = scales.is_some();
-        if let Some(scale) = scales {
-            let rows = rows.scaled(&scale);
-            let mut scaled: Vec<f64> = rhs.iter().zip(&scale).map(|(b, s)| b / s).collect();
-            if self.solve_symmetric(&rows, &mut scaled, groups, general, describe)? {
-                rhs.copy_from_slice(&scaled);
+        self.method = Method::General;
+        self.krylov_iterations = 0;
+        if let Some((scale, out)) = rows.multiplier_scales(&multipliers) {
+            if rows.is_symmetric_with(&scale, &out) {
+                let scaled_rhs: Vec<f64> = rhs.iter().zip(&scale).map(|(b, s)| b / s).collect();
+                let (red, reduced, vals) = Reduction::new(rows.scaled(&scale), groups);
+                if general || red.kept_multipliers == 0 {
+                    self.factorize_reduced(reduced, &vals, &|k| describe(red.unknown(k)))?;
+                    let x = red.apply(&mut self.solver, &scaled_rhs, groups, describe)?;
+                    rhs.copy_from_slice(&x);
+                    let (eliminated, decoupled) = red.counts();
+                    self.count(eliminated, decoupled, groups);
+                    self.method = Method::Symmetric;
+                    return Ok(true);
+                }
+            } else if let Some(x) =
+                self.preconditioned(&rows, &scale, &out, rhs, groups, describe)?
+            {
+                rhs.copy_from_slice(&x);
                 return Ok(true);
             }
         }
-        self.symmetric = false;
         if !general {
             self.count(&[], &[], &[]);
             return Ok(false);
         }
-        let (eliminated, decoupled) = eliminable(&rows, n, groups, false);
+        self.solve_general(&rows, rhs, groups, describe)?;
+        Ok(true)
+    }
+
+    /// Factorize the reduced matrix `reduced` (`values`), its symbolic analysis kept while the
+    /// pattern stays the same.
+    fn factorize_reduced(
+        &mut self,
+        reduced: Pattern,
+        values: &[f64],
+        describe: &dyn Fn(usize) -> String,
+    ) -> Result<()> {
+        if self
+            .pattern
+            .as_ref()
+            .is_none_or(|p| p.col_ptr != reduced.col_ptr || p.row_idx != reduced.row_idx)
+        {
+            self.solver.reset();
+            self.pattern = Some(reduced);
+        }
+        let reduced = self.pattern.as_ref().expect("set above");
+        self.solver.factorize(reduced, values, false, describe)
+    }
+
+    /// A general matrix whose multipliers' rows are their columns scaled but for terms of the
+    /// linearization (large deformation: the normals' and the dual basis' variations), solved
+    /// by GMRES preconditioned with the symmetric elimination of its symmetric counterpart (the
+    /// displacements' block symmetrized, each multiplier's row its column): a Cholesky of the
+    /// reduced system instead of a sparse LU of the general one. None where that counterpart
+    /// keeps multipliers or GMRES does not converge.
+    fn preconditioned(
+        &mut self,
+        rows: &Rows,
+        scale: &[f64],
+        out: &[bool],
+        rhs: &[f64],
+        groups: &[Group],
+        describe: &dyn Fn(usize) -> String,
+    ) -> Result<Option<Vec<f64>>> {
+        let mut multiplier = vec![false; rhs.len()];
+        for g in groups {
+            for &l in &g.lambdas {
+                multiplier[l] = true;
+            }
+        }
+        let Some(counterpart) = rows.symmetric_counterpart(&multiplier, scale, out) else {
+            return Ok(None);
+        };
+        let (red, reduced, vals) = Reduction::new(counterpart, groups);
+        if red.kept_multipliers > 0 {
+            return Ok(None);
+        }
+        if self
+            .factorize_reduced(reduced, &vals, &|k| describe(red.unknown(k)))
+            .is_err()
+        {
+            return Ok(None);
+        }
+        let solver = &mut self.solver;
+        let mut failed = None;
+        let solved = gmres(
+            rhs,
+            &mut |x, y| rows.matvec(x, y),
+            &mut |v| {
+                let scaled: Vec<f64> = v.iter().zip(scale).map(|(b, s)| b / s).collect();
+                match red.apply(solver, &scaled, groups, describe) {
+                    Ok(x) => v.copy_from_slice(&x),
+                    Err(e) => failed = Some(e),
+                }
+                Ok(())
+            },
+            KRYLOV_TOL,
+            50,
+            200,
+        )?;
+        if let Some(e) = failed {
+            return Err(e);
+        }
+        Ok(solved.map(|(x, iterations)| {
+            self.krylov_iterations = iterations;
+            self.method = Method::Preconditioned;
+            let (eliminated, decoupled) = red.counts();
+            self.count(eliminated, decoupled, groups);
+            x
+        }))
+    }
+
+    /// The general elimination (see the module doc): constraint rows in the places of the
+    /// slave rows, for a sparse LU.
+    fn solve_general(
+        &mut self,
+        rows: &Rows,
+        rhs: &mut [f64],
+        groups: &[Group],
+        describe: &dyn Fn(usize) -> String,
+    ) -> Result<()> {
+        let n = rhs.len();
+        let (eliminated, decoupled) = eliminable(rows, n, groups, false);
         // Unknowns kept, and where each row goes in the reduced system.
         let mut gone = vec![false; n];
         // Rows not carried over as they are: the eliminated groups' slave rows and the decoupled
@@ -270,18 +413,7 @@ impl MultiplierElimination {
             }
         }
         let (reduced, vals) = reduced_rows.into_pattern();
-        if self
-            .pattern
-            .as_ref()
-            .is_none_or(|p| p.col_ptr != reduced.col_ptr || p.row_idx != reduced.row_idx)
-        {
-            self.solver.reset();
-            self.pattern = Some(reduced);
-        }
-        let reduced = self.pattern.as_ref().expect("set above");
-        let describe_kept = |k: usize| describe(kept[k]);
-        self.solver
-            .factorize(reduced, &vals, false, &describe_kept)?;
+        self.factorize_reduced(reduced, &vals, &|k| describe(kept[k]))?;
         self.solver.solve_in_place(&mut b)?;
         // x, then each group's multipliers λ = E (b_S − K_S x).
         let mut x = vec![0.0; n];
@@ -289,7 +421,7 @@ impl MultiplierElimination {
             x[i] = b[k];
         }
         let solved = Solved {
-            rows: &rows,
+            rows,
             gone: &gone,
             rhs,
         };
@@ -297,7 +429,7 @@ impl MultiplierElimination {
         solved.decoupled_multipliers(&decoupled, groups, &mut x, describe)?;
         rhs.copy_from_slice(&x);
         self.count(&eliminated, &decoupled, groups);
-        Ok(true)
+        Ok(())
     }
 }
 /// The reduced system's solution and what recovers the multipliers from it.
@@ -669,6 +801,54 @@ mod tests {
         // (which also eliminates the compliant multiplier).
         a[4][1] *= 1.000001;
         assert_eq!(against_full_solve(&a, &rhs, &groups), (3, 0));
+    }
+
+    /// A general tangent (the displacements' block not symmetric, the gap row twice the force
+    /// column but for a term on the master row, as in large deformation) is solved by GMRES
+    /// preconditioned with the symmetric elimination of its symmetric counterpart: the full
+    /// solve's x, in a few iterations.
+    #[test]
+    fn a_general_tangent_is_solved_by_gmres_on_the_symmetric_elimination() {
+        let mut a = vec![
+            vec![4.0, -1.2, 0.0, 0.0, 0.0],
+            vec![-0.8, 3.0, 0.5, -1.0, 0.6],
+            vec![0.0, 0.4, 2.0, 0.1, 0.8],
+            vec![0.0, -1.0, 0.0, 2.0, -1.0],
+            vec![0.0, 1.2, 1.6, -2.3, 0.0],
+        ];
+        let rhs = [1.0, 0.0, -0.5, 0.25, 0.01];
+        let groups = [Group {
+            slave: vec![1, 2],
+            lambdas: vec![4],
+        }];
+        let (pattern, values) = dense(&a);
+        let mut full = FaerSolver::default();
+        full.factorize(&pattern, &values, false, &|i| format!("{i}"))
+            .unwrap();
+        let mut want = rhs.to_vec();
+        full.solve_in_place(&mut want).unwrap();
+        let mut got = rhs.to_vec();
+        let mut el = MultiplierElimination::default();
+        // Without `general`: only the preconditioned path can take it.
+        assert!(el
+            .solve(&pattern, &values, &mut got, &groups, false, &|i| format!(
+                "{i}"
+            ))
+            .unwrap());
+        for (g, w) in got.iter().zip(&want) {
+            assert!((g - w).abs() < 1e-12, "{got:?} vs {want:?}");
+        }
+        let iterations = el.stats().krylov_iterations;
+        assert!((1..=5).contains(&iterations), "{iterations}");
+        assert_eq!(
+            (el.eliminated, el.kept, el.method),
+            (1, 0, Method::Preconditioned)
+        );
+        // A gap row far from its column (its slave entries swapped): still the full solve
+        // (GMRES, or the general elimination if it fails).
+        a[4][1] = 1.6;
+        a[4][2] = 1.2;
+        against_full_solve(&a, &rhs, &groups);
     }
 
     /// A multiplier that also loads another group's slave row is kept, and the solve is still

@@ -61,13 +61,12 @@ impl Rows {
             .map_or(0.0, |k| self.val[self.ptr[r] + k])
     }
 
-    /// If the matrix is symmetric once each multiplier's row is divided by its scale (a gap row
-    /// may be its force column times a factor: a nodal gap against the force's weighted one),
-    /// those scales (1 for the other rows); every entry must then equal its transpose to 1e-12
-    /// of the smaller of the two rows' largest entries. A multiplier whose column is empty
-    /// outside its own rows (an open point's) is left out: it leaves the system anyway.
-    /// Symmetric so: small-deformation mortar and node-to-node, hard constraints.
-    pub(super) fn symmetric_scales(&self, multipliers: &[usize]) -> Option<Vec<f64>> {
+    /// Each multiplier's scale, the factor between its row and its column (least squares; a
+    /// gap row may be its force column times a factor: a nodal gap against the force's
+    /// weighted one), 1 for the other rows; and the multipliers whose column is empty outside
+    /// their own rows (open points', which leave the system anyway). None if a row is
+    /// orthogonal to its column.
+    pub(super) fn multiplier_scales(&self, multipliers: &[usize]) -> Option<(Vec<f64>, Vec<bool>)> {
         let n = self.ptr.len() - 1;
         let mut scale = vec![1.0; n];
         let mut out = vec![false; n];
@@ -88,18 +87,71 @@ impl Rows {
                 return None;
             }
         }
+        Some((scale, out))
+    }
+
+    /// Whether the matrix is symmetric once each row is divided by its `scale`, but for the
+    /// rows and columns `out`: every entry equal to its transpose to 1e-12 of the smaller of
+    /// the two rows' largest entries. Symmetric so: small-deformation mortar and node-to-node,
+    /// hard constraints.
+    pub(super) fn is_symmetric_with(&self, scale: &[f64], out: &[bool]) -> bool {
+        let n = self.ptr.len() - 1;
         let size: Vec<f64> = (0..n)
             .map(|i| self.row(i).fold(0.0f64, |m, (_, v)| m.max(v.abs())) / scale[i].abs())
             .collect();
-        let symmetric = (0..n).filter(|&i| !out[i]).all(|i| {
+        (0..n).filter(|&i| !out[i]).all(|i| {
             self.row(i).all(|(c, v)| {
                 c <= i
                     || out[c]
                     || (v / scale[i] - self.at(c, i) / scale[c]).abs()
                         <= SYMMETRY_TOL * size[i].min(size[c])
             })
-        });
-        symmetric.then_some(scale)
+        })
+    }
+
+    /// The symmetric counterpart of a structurally symmetric matrix with multipliers (the
+    /// unknowns `multiplier`): the block of the other unknowns symmetrized, each multiplier's
+    /// row (but for `out`) its column, its diagonal divided by its `scale`. None if the pattern
+    /// is not structurally symmetric.
+    pub(super) fn symmetric_counterpart(
+        &self,
+        multiplier: &[bool],
+        scale: &[f64],
+        out: &[bool],
+    ) -> Option<Rows> {
+        let n = self.ptr.len() - 1;
+        let multiplier = |i: usize| multiplier[i];
+        let mut val = self.val.clone();
+        for i in 0..n {
+            for k in self.ptr[i]..self.ptr[i + 1] {
+                let c = self.col[k];
+                let cols = &self.col[self.ptr[c]..self.ptr[c + 1]];
+                let t = self.val[self.ptr[c] + cols.binary_search(&i).ok()?];
+                val[k] = if c == i {
+                    self.val[k] / scale[i]
+                } else if out[i] || out[c] {
+                    self.val[k]
+                } else if multiplier(i) {
+                    t
+                } else if multiplier(c) {
+                    self.val[k]
+                } else {
+                    0.5 * (self.val[k] + t)
+                };
+            }
+        }
+        Some(Rows {
+            ptr: self.ptr.clone(),
+            col: self.col.clone(),
+            val,
+        })
+    }
+
+    /// y = A x.
+    pub(super) fn matvec(&self, x: &[f64], y: &mut [f64]) {
+        for (i, yi) in y.iter_mut().enumerate() {
+            *yi = self.row(i).map(|(c, v)| v * x[c]).sum();
+        }
     }
 
     /// The rows divided by `scale`.
