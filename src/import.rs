@@ -17,6 +17,9 @@ pub struct ImportArgs {
     /// 2D element types: plane stress or plane strain
     #[arg(long, default_value = "stress", value_parser = plane_parser())]
     pub plane: Plane,
+    /// Large deformation: `nlgeo 1` on every element record
+    #[arg(long)]
+    pub nlgeo: bool,
 }
 
 impl ImportArgs {
@@ -25,6 +28,7 @@ impl ImportArgs {
             mesh: self.mesh.clone(),
             output: self.output.clone(),
             plane: self.plane,
+            nlgeo: self.nlgeo,
         }
     }
 }

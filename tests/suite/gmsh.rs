@@ -133,6 +133,47 @@ fn every_mapped_element_type_passes_the_patch_test() {
     }
 }
 
+/// `@gmsh "mesh.msh" nlgeo` (and `hertz import --nlgeo`) writes `nlgeo 1` on every element:
+/// the tetrahedral cube compressed by 1 % in large deformation takes the St. Venant–Kirchhoff
+/// answer of uniaxial stress, lateral stretch √(1 − ν(λ₁² − 1)) (E₂ = −ν E₁), at every node
+/// to round-off, 3e-5 from the small-strain −ν ε that the same mesh gives without `nlgeo`.
+#[test]
+fn gmsh_meshes_in_large_deformation() {
+    let mesh = data("cube_tet.msh");
+    let c = convert(&mesh, Plane::Stress).unwrap();
+    let lateral = (1.0 - NU * ((1.0 + STRAIN).powi(2) - 1.0)).sqrt() - 1.0;
+    for (directive, want) in [(" nlgeo", lateral), ("", -NU * STRAIN)] {
+        let text = patch_input(&c, &format!("@gmsh \"{}\"{directive}", mesh.display())).replace(
+            "LinearStatic nsteps 1",
+            "NonLinearStatic nsteps 1 controlmode 1 rtolf 1e-12 manrmsteps 1 maxiter 20",
+        );
+        let model = common::model_from_text(&text).unwrap();
+        assert!(model
+            .elements
+            .iter()
+            .all(|e| e.nlgeo == !directive.is_empty()));
+        let mut worst = f64::NAN;
+        run_analysis(&model, &common::quiet(), |r| {
+            worst = 0.0;
+            for (n, node) in model.nodes.iter().enumerate() {
+                let u = r.displacement(n, 1).unwrap();
+                worst = worst.max((u - want * node.coords[0]).abs());
+            }
+            Ok(())
+        })
+        .unwrap();
+        assert!(worst < 1e-12, "{directive:?}: {worst:e}");
+    }
+    assert!((lateral + NU * STRAIN).abs() > 1e-5);
+    // `hertz import --nlgeo` writes the same element records.
+    let mut c = c;
+    c.nlgeo = true;
+    assert!(c
+        .records()
+        .iter()
+        .any(|r| r.starts_with("LTRSpace 1 ") && r.ends_with(" nlgeo 1")));
+}
+
 /// Gmsh's second-order tetrahedra (type 11) and 20-node hexahedra (type 17) map to QTRSpace and
 /// QSpace with their mid-edge nodes where OOFEM's order has them: pure bending (κ about y),
 /// u = (κxz, −νκyz, −κ(x² + ν(z² − y²))/2), prescribed on the boundary of the unit cube is

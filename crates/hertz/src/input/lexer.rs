@@ -154,8 +154,8 @@ fn line_error(path: &Path, line: usize, text: &str, msg: String) -> Error {
     }
 }
 
-/// `@gmsh "mesh.msh" [plane stress|strain]`: the mesh's node, element and set records, as
-/// `hertz import` writes them, in place of the line. They are located in messages as
+/// `@gmsh "mesh.msh" [plane stress|strain] [nlgeo]`: the mesh's node, element and set records,
+/// as `hertz import` writes them (`nlgeo`: with `nlgeo 1`), in place of the line. They are located in messages as
 /// `mesh.msh [converted]:k`, record k of the conversion. Returns the mesh file's path.
 fn splice_gmsh(
     path: &Path,
@@ -170,12 +170,18 @@ fn splice_gmsh(
     let Some(name) = words.first() else {
         return Err(here("`@gmsh` needs a mesh file name".into()));
     };
-    let plane = match words[1..].iter().map(String::as_str).collect::<Vec<_>>()[..] {
+    let mut options: Vec<&str> = words[1..].iter().map(String::as_str).collect();
+    let nlgeo = options.last() == Some(&"nlgeo");
+    if nlgeo {
+        options.pop();
+    }
+    let plane = match options[..] {
         [] | ["plane", "stress"] => Plane::Stress,
         ["plane", "strain"] => Plane::Strain,
         ref other => {
             return Err(here(format!(
-                "`@gmsh` takes `plane stress` or `plane strain` after the file name, found `{}`",
+                "`@gmsh` takes `plane stress` or `plane strain`, then `nlgeo`, after the file \
+                 name, found `{}`",
                 other.join(" ")
             )))
         }
@@ -187,7 +193,8 @@ fn splice_gmsh(
     if !mesh.is_file() {
         return Err(here(format!("mesh file {} does not exist", mesh.display())));
     }
-    let converted = convert(&mesh, plane)?;
+    let mut converted = convert(&mesh, plane)?;
+    converted.nlgeo = nlgeo;
     let file = Arc::new(PathBuf::from(format!("{} [converted]", mesh.display())));
     out.extend(
         converted

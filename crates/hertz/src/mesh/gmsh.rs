@@ -56,6 +56,8 @@ pub struct Converted {
     pub sets: Vec<GroupSet>,
     /// Elements whose Gmsh order had a negative Jacobian and were mirrored.
     pub n_flipped: usize,
+    /// The element records say `nlgeo 1` (large deformation).
+    pub nlgeo: bool,
 }
 
 /// How 2D elements are named.
@@ -115,6 +117,8 @@ pub struct ImportOptions {
     pub output: Option<PathBuf>,
     /// How 2D elements are named.
     pub plane: Plane,
+    /// Large deformation: `nlgeo 1` on every element record.
+    pub nlgeo: bool,
 }
 
 fn err(path: &Path, line: usize, msg: impl Into<String>) -> Error {
@@ -671,6 +675,7 @@ pub fn convert(path: &Path, plane: Plane) -> Result<Converted> {
         elements,
         sets,
         n_flipped,
+        nlgeo: false,
     })
 }
 
@@ -698,11 +703,12 @@ impl Converted {
         for (i, (etype, nodes)) in self.elements.iter().enumerate() {
             let list: Vec<String> = nodes.iter().map(|n| (n + 1).to_string()).collect();
             out.push(format!(
-                "{} {} nodes {} {}",
+                "{} {} nodes {} {}{}",
                 etype.name(),
                 i + 1,
                 nodes.len(),
-                list.join(" ")
+                list.join(" "),
+                if self.nlgeo { " nlgeo 1" } else { "" }
             ));
         }
         for s in &self.sets {
@@ -785,10 +791,11 @@ impl Converted {
     }
 }
 
-/// `hertz import MESH [-o FILE] [--plane stress|strain]`: write the records; returns what to
+/// `hertz import MESH [-o FILE] [--plane stress|strain] [--nlgeo]`: write the records; returns what to
 /// tell the user (the file, the counts, the sets, and a warning line if the mesh has no groups).
 pub fn import_command(args: &ImportOptions) -> Result<Vec<String>> {
-    let c = convert(&args.mesh, args.plane)?;
+    let mut c = convert(&args.mesh, args.plane)?;
+    c.nlgeo = args.nlgeo;
     let out = args
         .output
         .clone()
