@@ -58,6 +58,19 @@ impl<const N: usize> DualN<N> {
         self.chain(r, -r * r)
     }
 
+    /// self += a·b in place (no temporaries: an accumulation's many terms).
+    pub fn add_mul(&mut self, a: &Self, b: &Self) {
+        let n = a.n.max(b.n);
+        if n > self.n {
+            self.d[self.n..n].fill(0.0);
+            self.n = n;
+        }
+        self.v += a.v * b.v;
+        for i in 0..n {
+            self.d[i] += a.d[i] * b.v + a.v * b.d[i];
+        }
+    }
+
     /// The gradient as a slice.
     pub fn grad(&self) -> &[f64] {
         &self.d[..self.n]

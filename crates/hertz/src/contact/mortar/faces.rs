@@ -622,15 +622,18 @@ impl FaceMortar {
                         .collect();
                     maps.push(map);
                 }
+                // The integrands are linear in the points' terms: summed over the pair's points
+                // first, then added to each node's moments once.
+                terms.clear(nodes.len());
                 for p in &points {
-                    terms.fill(xs, xm, p);
-                    let terms = &*terms;
-                    for (a, map) in maps.iter().enumerate() {
-                        let m = out[self.slot_of[&sf.nodes[a]]].0.m();
-                        moments[a]
-                            .get_or_insert_with(|| Moments::new(kn, m))
-                            .add(map, a, terms);
-                    }
+                    terms.add_point(xs, xm, p);
+                }
+                let terms = &*terms;
+                for (a, map) in maps.iter().enumerate() {
+                    let m = out[self.slot_of[&sf.nodes[a]]].0.m();
+                    moments[a]
+                        .get_or_insert_with(|| Moments::new(kn, m))
+                        .add(map, a, terms);
                 }
             }
             for (a, &node) in sf.nodes.iter().enumerate() {
@@ -695,7 +698,7 @@ impl Moments {
         }
     }
 
-    /// A point's integrands `t`, for slave face node `a` (pair unknown i is the slot's
+    /// A pair's integrands `t`, for slave face node `a` (pair unknown i is the slot's
     /// `map[i]`).
     fn add(&mut self, map: &[usize], a: usize, t: &PointTerms) {
         let kn = self.d.len();
@@ -806,10 +809,10 @@ fn add_share(slip: &mut SlipForm, k: usize, map: &[usize], v: &PairDual) {
     add_pair(&mut slip.shares[at].1, map, v);
 }
 
-/// A point's integrands over the pair's unknowns, for each slave face node b's shape N_b in
-/// place of the dual function (the basis adapted to the overlaps is known only once every
-/// point is in): the same for every node of the slave face, so they are computed once a point
-/// and added to each node's [`Moments`].
+/// A pair of faces' integrands over the pair's unknowns, summed over its overlap points, for
+/// each slave face node b's shape N_b in place of the dual function (the basis adapted to the
+/// overlaps is known only once every point is in): the same for every node of the slave face,
+/// so they are computed once and added to each node's [`Moments`].
 struct PointTerms {
     /// Slave and master face nodes.
     nodes: usize,
@@ -843,8 +846,16 @@ impl Default for PointTerms {
 }
 
 impl PointTerms {
-    /// The terms of point `p` of the faces at `xs` (slave) and `xm` (master).
-    fn fill(&mut self, xs: &[[PairDual; 3]], xm: &[[PairDual; 3]], p: &Point<PairDual>) {
+    /// Zero terms of a pair of faces with `nodes` nodes.
+    fn clear(&mut self, nodes: usize) {
+        *self = PointTerms {
+            nodes,
+            ..PointTerms::default()
+        };
+    }
+
+    /// Add the terms of point `p` of the faces at `xs` (slave) and `xm` (master).
+    fn add_point(&mut self, xs: &[[PairDual; 3]], xm: &[[PairDual; 3]], p: &Point<PairDual>) {
         let zero = p.weight * 0.0;
         let (kn, nodes) = (xs.len(), xs.len() + xm.len());
         let mut g = zero;
@@ -873,22 +884,22 @@ impl PointTerms {
             }
         }
         let t = self;
-        t.nodes = nodes;
+        debug_assert_eq!(t.nodes, nodes);
         for b in 0..kn {
             let nw = p.slave[b] * p.weight;
-            t.nw[b] = nw;
-            t.gap[b] = nw * g;
+            t.nw[b] = t.nw[b] + nw;
+            t.gap[b].add_mul(&nw, &g);
             for q in 0..nodes {
                 for i in 0..3 {
-                    t.b[b][q][i] = nw * snu[q][i];
+                    t.b[b][q][i].add_mul(&nw, &snu[q][i]);
                 }
-                t.share[b][q] = nw * s[q];
+                t.share[b][q].add_mul(&nw, &s[q]);
             }
             for i in 0..3 {
-                t.normal[b][i] = nw * p.nu[i];
+                t.normal[b][i].add_mul(&nw, &p.nu[i]);
             }
             for c in 0..kn {
-                t.m[b][c] = nw * p.slave[c];
+                t.m[b][c].add_mul(&nw, &p.slave[c]);
             }
         }
     }
