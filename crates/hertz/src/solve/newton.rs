@@ -59,10 +59,10 @@ pub(super) struct NewtonContext<'a> {
     solver: Box<dyn LinearSolver>,
     /// The node of every free equation (the condensed solve's ordering groups them).
     groups: Option<Vec<usize>>,
-    /// Unknowns from which non-symmetric tangents go to GMRES (multipliers then stay unknowns).
+    /// Unknowns from which non-symmetric tangents go to GMRES.
     krylov_min: usize,
-    /// The solver is hertz's own (not one from outside, PETSc's): large symmetric tangents
-    /// may then have their multipliers eliminated by hertz rather than go whole to the solver.
+    /// The solver is hertz's own (not one from outside, PETSc's): large tangents may then have
+    /// their multipliers eliminated by hertz rather than go whole to the solver.
     own_solver: bool,
     /// The current factorization is the (constant) tangent of a linear problem.
     factor_valid: bool,
@@ -607,12 +607,13 @@ impl<'a> NewtonContext<'a> {
         self.times.assembly += since(t);
         let mut closed: Vec<Branch> = points.iter().zip(guess).map(|(p, &g)| p.guess(g)).collect();
         let mut search = BranchSearch::new(MAX_FULL_UPDATES);
-        // Multipliers eliminated through their slave rows: always where the tangent is
-        // symmetric (the reduced system is then symmetric too and goes to Cholesky), otherwise
-        // below the Krylov threshold; above it the general tangent's GMRES, preconditioned with
-        // the LDLᵀ of its symmetric part, serves better: the general reduced system's symmetric
-        // part (gap rows in place of slave rows) is no preconditioner for it. A solver from
-        // outside (PETSc) gets the large systems whole, as before.
+        // Multipliers eliminated through their slave rows (`solve::multipliers`): a symmetric
+        // tangent into a symmetric system for Cholesky, a general one by GMRES on its symmetric
+        // counterpart's elimination, at any size; else, below the Krylov threshold, the general
+        // elimination's LU, and above it the whole tangent's GMRES, preconditioned with the LDLᵀ
+        // of its symmetric part (the general reduced system's symmetric part, gap rows in place
+        // of slave rows, is no preconditioner for it). A solver from outside (PETSc) gets the
+        // large systems whole.
         let general = nf < self.krylov_min;
         let groups = if general || self.own_solver {
             self.multiplier_groups(points)

@@ -22,9 +22,10 @@
 //!   a square system in the displacements with the fill of the slave rows in the master and
 //!   constraint rows, for a sparse LU.
 //!
-//! The elimination is exact: a multiplier is eliminated only where the slave rows of the other
-//! eliminated points carry none of it (up to round-off, 1e-12 of its own coupling) and C has
-//! full column rank; the others stay unknowns of the reduced system.
+//! The elimination is exact (the GMRES way to 1e-12 of the right-hand side): a multiplier is
+//! eliminated only where the slave rows of the other eliminated points carry none of it (up to
+//! round-off, 1e-12 of its own coupling) and C has full column rank; the others stay unknowns
+//! of the reduced system.
 
 mod rows;
 mod symmetric;
@@ -142,6 +143,7 @@ fn qr(c: &[f64], r: usize, p: usize) -> (Vec<f64>, Vec<f64>) {
         .collect();
     (q, rm)
 }
+
 impl MultiplierElimination {
     /// Reduced systems of `krylov_min` unknowns and more are solved by GMRES (see
     /// [`FaerSolver`]).
@@ -176,8 +178,9 @@ impl MultiplierElimination {
 
     /// Solve T x = `rhs` in place (T: `values` on `pattern`, displacements and multipliers),
     /// eliminating the multipliers of `groups` where that is exact (see the module doc).
-    /// A symmetric T is always solved; a general one only with `general` (else false is
-    /// returned and `rhs` is untouched: the caller solves T itself).
+    /// A symmetric T, and a general one that GMRES solves on its symmetric counterpart's
+    /// elimination, are always solved; any other only with `general` (else false is returned
+    /// and `rhs` is untouched: the caller solves T itself).
     pub fn solve(
         &mut self,
         pattern: &Pattern,
