@@ -453,12 +453,7 @@ impl FaceMortar {
                 let (g, nu, moving, shape) = self.rigid_gap(ctx, &nodes, &x, &xp);
                 let phi: f64 = (0..4).map(|b| self.dual[k][a][b] * n[b]).sum();
                 let na = da * phi;
-                let add = |jet: &mut Jet, v: PairDual| {
-                    jet.v += v.v;
-                    for (i, &t) in map.iter().enumerate() {
-                        jet.d[t] += v.d[i];
-                    }
-                };
+                let add = |jet: &mut Jet, v: PairDual| add_pair(jet, &map, &v);
                 add(&mut w.gap, na * g);
                 add(&mut w.area, da * n[a]);
                 for b in 0..nf {
@@ -583,7 +578,7 @@ impl FaceMortar {
             };
             out.push((local, w));
         }
-        let mut terms = Box::new(PointTerms::default());
+        let mut terms = Box::new(PairTerms::default());
         for (k, sf) in self.slave.faces.iter().enumerate() {
             let kn = sf.nodes.len();
             // Per node of the face, in its slot's unknowns: the integrals weighted by each N_b
@@ -700,7 +695,7 @@ impl Moments {
 
     /// A pair's integrands `t`, for slave face node `a` (pair unknown i is the slot's
     /// `map[i]`).
-    fn add(&mut self, map: &[usize], a: usize, t: &PointTerms) {
+    fn add(&mut self, map: &[usize], a: usize, t: &PairTerms) {
         let kn = self.d.len();
         for b in 0..kn {
             let w = &mut self.by[b];
@@ -813,12 +808,12 @@ fn add_share(slip: &mut SlipForm, k: usize, map: &[usize], v: &PairDual) {
 /// each slave face node b's shape N_b in place of the dual function (the basis adapted to the
 /// overlaps is known only once every point is in): the same for every node of the slave face,
 /// so they are computed once and added to each node's [`Moments`].
-struct PointTerms {
+struct PairTerms {
     /// Slave and master face nodes.
     nodes: usize,
-    /// N_b w (w the point's weight).
+    /// Σ N_b w over the points (w a point's weight); the sums below likewise.
     nw: [PairDual; 4],
-    /// N_b w g, g = (x_S − x_M)·ν at the point.
+    /// N_b w g, g = (x_S − x_M)·ν at a point.
     gap: [PairDual; 4],
     /// N_b w s_q ν_i, s_q the shape of node q there (negative for the master's).
     b: [[[PairDual; 3]; 8]; 4],
@@ -830,10 +825,10 @@ struct PointTerms {
     m: [[PairDual; 4]; 4],
 }
 
-impl Default for PointTerms {
+impl Default for PairTerms {
     fn default() -> Self {
         let zero = PairDual::constant(0.0, 0);
-        PointTerms {
+        PairTerms {
             nodes: 0,
             nw: [zero; 4],
             gap: [zero; 4],
@@ -845,12 +840,12 @@ impl Default for PointTerms {
     }
 }
 
-impl PointTerms {
+impl PairTerms {
     /// Zero terms of a pair of faces with `nodes` nodes.
     fn clear(&mut self, nodes: usize) {
-        *self = PointTerms {
+        *self = PairTerms {
             nodes,
-            ..PointTerms::default()
+            ..PairTerms::default()
         };
     }
 

@@ -692,6 +692,20 @@ mod tests {
     /// Solve `a` x = `rhs` with the multipliers of `groups` eliminated, assert that x is the full
     /// LU solve's to 1e-13, and return the (eliminated, kept) multipliers.
     fn against_full_solve(a: &[Vec<f64>], rhs: &[f64], groups: &[Group]) -> (usize, usize) {
+        let el = solved_against_full_solve(a, rhs, groups, true, 1e-13);
+        (el.eliminated, el.kept)
+    }
+
+    /// Solve `a` x = `rhs` with the multipliers of `groups` eliminated (`general` as in
+    /// [`MultiplierElimination::solve`], which must take it), assert that x is the full LU
+    /// solve's to `tol`, and return the elimination.
+    fn solved_against_full_solve(
+        a: &[Vec<f64>],
+        rhs: &[f64],
+        groups: &[Group],
+        general: bool,
+        tol: f64,
+    ) -> MultiplierElimination {
         let (pattern, values) = dense(a);
         let mut full = FaerSolver::default();
         full.factorize(&pattern, &values, false, &|i| format!("{i}"))
@@ -701,14 +715,14 @@ mod tests {
         let mut got = rhs.to_vec();
         let mut el = MultiplierElimination::default();
         assert!(el
-            .solve(&pattern, &values, &mut got, groups, true, &|i| format!(
+            .solve(&pattern, &values, &mut got, groups, general, &|i| format!(
                 "{i}"
             ))
             .unwrap());
         for (g, w) in got.iter().zip(&want) {
-            assert!((g - w).abs() < 1e-13, "{got:?} vs {want:?}");
+            assert!((g - w).abs() < tol, "{got:?} vs {want:?}");
         }
-        (el.eliminated, el.kept)
+        el
     }
 
     #[test]
@@ -824,23 +838,8 @@ mod tests {
             slave: vec![1, 2],
             lambdas: vec![4],
         }];
-        let (pattern, values) = dense(&a);
-        let mut full = FaerSolver::default();
-        full.factorize(&pattern, &values, false, &|i| format!("{i}"))
-            .unwrap();
-        let mut want = rhs.to_vec();
-        full.solve_in_place(&mut want).unwrap();
-        let mut got = rhs.to_vec();
-        let mut el = MultiplierElimination::default();
         // Without `general`: only the preconditioned path can take it.
-        assert!(el
-            .solve(&pattern, &values, &mut got, &groups, false, &|i| format!(
-                "{i}"
-            ))
-            .unwrap());
-        for (g, w) in got.iter().zip(&want) {
-            assert!((g - w).abs() < 1e-12, "{got:?} vs {want:?}");
-        }
+        let el = solved_against_full_solve(&a, &rhs, &groups, false, 1e-12);
         let iterations = el.stats().krylov_iterations;
         assert!((1..=5).contains(&iterations), "{iterations}");
         assert_eq!(
