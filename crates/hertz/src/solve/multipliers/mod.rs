@@ -197,8 +197,9 @@ impl MultiplierElimination {
         if let Some((scale, out)) = rows.multiplier_scales(&multipliers) {
             if rows.is_symmetric_with(&scale, &out) {
                 let scaled_rhs: Vec<f64> = rhs.iter().zip(&scale).map(|(b, s)| b / s).collect();
-                let (red, reduced, vals) = Reduction::new(rows.scaled(&scale), groups);
+                let red = Reduction::new(rows.scaled(&scale), groups);
                 if general || red.kept_multipliers == 0 {
+                    let (reduced, vals) = red.reduced_matrix();
                     self.factorize_reduced(reduced, &vals, &|k| describe(red.unknown(k)))?;
                     let x = red.apply(&mut self.solver, &scaled_rhs, groups, describe)?;
                     rhs.copy_from_slice(&x);
@@ -266,10 +267,11 @@ impl MultiplierElimination {
         let Some(counterpart) = rows.symmetric_counterpart(&multiplier, scale, out) else {
             return Ok(None);
         };
-        let (red, reduced, vals) = Reduction::new(counterpart, groups);
+        let red = Reduction::new(counterpart, groups);
         if red.kept_multipliers > 0 {
             return Ok(None);
         }
+        let (reduced, vals) = red.reduced_matrix();
         if self
             .factorize_reduced(reduced, &vals, &|k| describe(red.unknown(k)))
             .is_err()

@@ -85,9 +85,9 @@ pub(super) struct Reduction {
 }
 
 impl Reduction {
-    /// The reduction of the symmetric matrix `rows` (both triangles) and its reduced matrix
-    /// (upper triangle).
-    pub(super) fn new(rows: Rows, groups: &[Group]) -> (Reduction, Pattern, Vec<f64>) {
+    /// The reduction of the symmetric matrix `rows` (both triangles); its reduced matrix is
+    /// [`Reduction::reduced_matrix`].
+    pub(super) fn new(rows: Rows, groups: &[Group]) -> Reduction {
         let n = rows.ptr.len() - 1;
         let (eliminated, decoupled) = eliminable(&rows, n, groups, true);
         let removed = eliminated.iter().map(|e| e.lambdas.len()).sum::<usize>()
@@ -133,7 +133,7 @@ impl Reduction {
                 in_subs[c].push((g, m));
             }
         }
-        let red = Reduction {
+        Reduction {
             rows,
             eliminated,
             decoupled,
@@ -144,9 +144,7 @@ impl Reduction {
             pos,
             in_subs,
             kept_multipliers: groups.iter().map(|g| g.lambdas.len()).sum::<usize>() - removed,
-        };
-        let (pattern, values) = red.reduced_matrix();
-        (red, pattern, values)
+        }
     }
 
     /// Multipliers eliminated (through slave rows or as open points' own).
@@ -186,7 +184,7 @@ impl Reduction {
     }
 
     /// Tᵀ K T, upper triangle.
-    fn reduced_matrix(&self) -> (Pattern, Vec<f64>) {
+    pub(super) fn reduced_matrix(&self) -> (Pattern, Vec<f64>) {
         let mut reduced_rows = RowBuilder::new(self.kept.len());
         // Column c of the full matrix times v in the reduced unknowns, right of t only.
         let column = |out: &mut RowBuilder, t: usize, c: usize, v: f64| {
