@@ -3,8 +3,8 @@
 use hertz::error::Error;
 use hertz::solve::ordering::OrderingKind;
 use hertz_bench::{
-    examples, print_contact3d, run, run_contact, run_contact3d, suite, write_contact_block_input,
-    Model3d,
+    examples, print_contact3d, run, run_contact, run_contact3d, suite, write_block_input,
+    write_contact_block_input, Model3d,
 };
 use std::path::Path;
 use std::process::ExitCode;
@@ -62,7 +62,8 @@ pub struct BenchArgs {
     /// Write the verification examples of examples/ to DIR
     #[arg(long, value_name = "DIR")]
     pub examples: Option<String>,
-    /// Write the generated input(s) to DIR instead of solving (--contact, --sphere, --patch, --suite)
+    /// Write the generated input(s) to DIR instead of solving (the block, --contact, --sphere,
+    /// --patch, --suite)
     #[arg(long, value_name = "DIR")]
     pub write: Option<String>,
 }
@@ -172,9 +173,11 @@ pub fn main(args: BenchArgs) -> ExitCode {
             }
         };
     }
-    // Refuse sizes that cannot fit before generating anything.
+    // Refuse sizes that cannot fit before generating anything; a written file is for another
+    // solver (`hertz run --petsc`), and only its size bounds it.
     let (unknowns, limit) = if dim == 3 && !contact {
-        (3.0 * (n as f64 + 1.0).powi(3), MAX_BENCH_UNKNOWNS[1])
+        let direct = if write.is_some() { 0 } else { 1 };
+        (3.0 * (n as f64 + 1.0).powi(3), MAX_BENCH_UNKNOWNS[direct])
     } else {
         (4.0 * (n as f64 + 1.0).powi(2), MAX_BENCH_UNKNOWNS[0])
     };
@@ -191,6 +194,22 @@ pub fn main(args: BenchArgs) -> ExitCode {
         let written = std::fs::create_dir_all(dir)
             .map_err(|e| Error::Output(format!("cannot create {dir}: {e}")))
             .and_then(|()| write_contact_block_input(&path, n, n as f64 / 40.0, multipliers));
+        return match written {
+            Ok(()) => {
+                println!("wrote {}", path.display());
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::from(e.exit_code() as u8)
+            }
+        };
+    }
+    if let Some(dir) = &write {
+        let path = Path::new(dir).join(format!("block{dim}d_{n}.in"));
+        let written = std::fs::create_dir_all(dir)
+            .map_err(|e| Error::Output(format!("cannot create {dir}: {e}")))
+            .and_then(|()| write_block_input(&path, dim, n));
         return match written {
             Ok(()) => {
                 println!("wrote {}", path.display());

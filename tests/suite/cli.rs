@@ -352,6 +352,43 @@ fn absurd_bench_sizes_are_refused_before_allocating() {
     }
 }
 
+/// `hertz bench --write DIR` writes the plain block too (for `hertz run --petsc` beyond the
+/// direct solver's size), and the file runs to the exact uniaxial field: the rollers' reaction on
+/// x = 0 balances the traction 100 on the 3 × 3 face x = 3.
+#[test]
+fn a_written_bench_block_runs_to_its_exact_reaction() {
+    let dir = std::env::temp_dir().join(format!("hertz-bench-write-{}", std::process::id()));
+    let out = hertz(&[
+        "bench",
+        "--dim",
+        "3",
+        "--n",
+        "3",
+        "--write",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let file = dir.join("block3d_3.in");
+    let out = hertz(&["run", "-q", file.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(dir.join("block.steps.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let row: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let at = header.iter().position(|h| *h == "bc1.r1").expect("bc1.r1");
+    let r: f64 = row[at].parse().unwrap();
+    assert!((r + 900.0).abs() < 1e-9, "reaction {r}");
+    std::fs::remove_dir_all(dir).ok();
+}
+
 #[test]
 fn version_and_completions() {
     let out = hertz(&["--version"]);
