@@ -210,7 +210,7 @@ impl Observer for CliObserver {
                 t.solve,
                 match r.krylov_iterations {
                     0 => String::new(),
-                    k => format!(" (last solve: {k} GMRES iterations)"),
+                    k => format!(" (last solve: {k} Krylov iterations)"),
                 }
             ));
         }

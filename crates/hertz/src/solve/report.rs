@@ -67,7 +67,7 @@ pub struct StepReport {
     pub substeps: usize,
     pub wall_seconds: f64,
     pub times: PhaseTimes,
-    /// GMRES iterations of the last solve (0: a direct solve).
+    /// Krylov iterations of the last solve (hertz's GMRES, or PETSc's KSP; 0: a direct solve).
     pub krylov_iterations: usize,
 }
 

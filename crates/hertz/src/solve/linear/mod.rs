@@ -104,7 +104,8 @@ pub struct SolverStats {
     pub solve_seconds: f64,
     pub factor_nnz: usize,
     pub used_lu: bool,
-    /// GMRES iterations of the last solve (0 for a direct solve).
+    /// Krylov iterations of the last solve (hertz's GMRES, or PETSc's KSP; 0 for a direct
+    /// solve).
     pub krylov_iterations: usize,
 }
 
