@@ -342,3 +342,53 @@ fn rigid_body_modes_are_orthonormal_and_strain_free() {
         }
     }
 }
+
+/// The elements a distributed solve splits among its processes (`solve::partition`): a
+/// 12 × 12 × 12 brick block in two and three parts has every element in a part, parts within
+/// 5 % of even, and a compact cut (a plane through the block has 144 element faces; contiguous
+/// blocks of the element list cut as many, but a scattered split cuts thousands).
+#[test]
+fn a_block_is_split_into_even_compact_parts() {
+    let n = 12;
+    let path = std::env::temp_dir().join(format!("hertz-partition-{}.in", std::process::id()));
+    hertz_bench::write_block_input(&path, 3, n).unwrap();
+    let model = hertz::input::read_model(&path).unwrap().model;
+    std::fs::remove_file(&path).ok();
+    assert_eq!(model.elements.len(), n * n * n);
+    // Element e = (k n + j) n + i, i fastest.
+    let id = |i: usize, j: usize, k: usize| (k * n + j) * n + i;
+    for parts in [2, 3] {
+        let part = hertz::solve::partition::elements(&model, parts).unwrap();
+        let mut count = vec![0usize; parts];
+        for &p in &part {
+            count[p] += 1;
+        }
+        let even = (n * n * n) as f64 / parts as f64;
+        for &c in &count {
+            assert!(
+                (c as f64 / even - 1.0).abs() < 0.05,
+                "{parts} parts: {count:?}"
+            );
+        }
+        let mut cut = 0;
+        for k in 0..n {
+            for j in 0..n {
+                for i in 0..n {
+                    let e = id(i, j, k);
+                    let next = [
+                        (i + 1 < n).then(|| id(i + 1, j, k)),
+                        (j + 1 < n).then(|| id(i, j + 1, k)),
+                        (k + 1 < n).then(|| id(i, j, k + 1)),
+                    ];
+                    for f in next.into_iter().flatten() {
+                        cut += usize::from(part[e] != part[f]);
+                    }
+                }
+            }
+        }
+        assert!(
+            cut <= 2 * 144 * (parts - 1),
+            "{parts} parts: {cut} faces cut"
+        );
+    }
+}

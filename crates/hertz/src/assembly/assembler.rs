@@ -131,6 +131,9 @@ pub struct Assembler<'m> {
     state_at: Vec<usize>,
     /// The material state committed with the last converged step (or substep).
     material_state: Vec<f64>,
+    /// Per element, whether this process assembles it in [`Assembler::evaluate_share`] (a
+    /// distributed solve, see [`crate::solve::partition`]); None: every element.
+    share: Option<Vec<bool>>,
 }
 
 const CHUNK: usize = 2048;
@@ -221,6 +224,7 @@ impl<'m> Assembler<'m> {
             laws,
             couplings: Vec::new(),
             linear_k: std::sync::Mutex::new(None),
+            share: None,
             small_strain: model.constant_element_stiffness(),
             state_at,
             material_state,
@@ -282,6 +286,13 @@ impl<'m> Assembler<'m> {
         }
         out.sort_unstable();
         out.dedup();
+    }
+
+    /// The elements this process assembles in [`Assembler::evaluate_share`] (one flag per
+    /// element).
+    pub fn set_share(&mut self, share: Vec<bool>) {
+        debug_assert_eq!(share.len(), self.elems.len());
+        self.share = Some(share);
     }
 
     /// Set the couplings of the contact pairs (location codes per pair); rebuilds the pattern and
@@ -543,6 +554,31 @@ impl<'m> Assembler<'m> {
         dup: Option<&[f64]>,
         extra: &[Contribution],
     ) -> Result<Evaluation> {
+        self.evaluate_elements(u, want_k, want_states, dup, extra, None)
+    }
+
+    /// [`Assembler::evaluate`] over this process's share of the elements ([`Assembler::set_share`];
+    /// all of them without one), without integration-point states: the internal forces, tangent
+    /// and K_fp·Δu_p of those elements alone, for a distributed solve to sum.
+    pub fn evaluate_share(
+        &self,
+        u: &[f64],
+        want_k: bool,
+        dup: Option<&[f64]>,
+        extra: &[Contribution],
+    ) -> Result<Evaluation> {
+        self.evaluate_elements(u, want_k, false, dup, extra, self.share.as_deref())
+    }
+
+    fn evaluate_elements(
+        &self,
+        u: &[f64],
+        want_k: bool,
+        want_states: bool,
+        dup: Option<&[f64]>,
+        extra: &[Contribution],
+        share: Option<&[bool]>,
+    ) -> Result<Evaluation> {
         let nf = self.dofs.n_free;
         let mut sink = Sink {
             f_int: vec![0.0; self.dofs.n_primary()],
@@ -553,8 +589,10 @@ impl<'m> Assembler<'m> {
         };
         let mut states = want_states.then(|| Vec::with_capacity(self.elems.len()));
         let need_k = want_k || dup.is_some();
-        // Small strain: the element stiffness is constant, reuse it on this pattern.
-        let cacheable = want_k && dup.is_none() && self.small_strain;
+        // Small strain: the element stiffness is constant, reuse it on this pattern (the whole
+        // model's; a share's is not kept).
+        let cacheable = want_k && dup.is_none() && self.small_strain && share.is_none();
+        let assembles = |e: usize| share.is_none_or(|s| s[e]);
         if cacheable {
             if let Some(k) = self.linear_k.lock().expect("not poisoned").as_ref() {
                 sink.k_values = Some(k.clone());
@@ -581,9 +619,13 @@ impl<'m> Assembler<'m> {
                 .map(|(a, b)| {
                     let mut buf = RunBuffer::default();
                     for e in a..b {
-                        let nd = self.elems[e].ndof;
                         let off = buf.values.len();
                         buf.offsets.push(off);
+                        if !assembles(e) {
+                            buf.states.push(Vec::new());
+                            continue;
+                        }
+                        let nd = self.elems[e].ndof;
                         buf.values
                             .resize(off + nd + if elem_k { nd * nd } else { 0 }, 0.0);
                         let (fe, ke) = buf.values[off..].split_at_mut(nd);
@@ -605,6 +647,10 @@ impl<'m> Assembler<'m> {
             for res in results {
                 let buf = res?;
                 for (k, st) in buf.states.into_iter().enumerate() {
+                    if !assembles(e) {
+                        e += 1;
+                        continue;
+                    }
                     let nd = self.elems[e].ndof;
                     let fe = &buf.values[buf.offsets[k]..buf.offsets[k] + nd];
                     let ke = &buf.values[buf.offsets[k] + nd..];

@@ -8,6 +8,7 @@ pub mod linear;
 pub mod multipliers;
 pub mod newton;
 pub mod ordering;
+pub mod partition;
 pub mod report;
 pub mod softening;
 pub mod stepping;

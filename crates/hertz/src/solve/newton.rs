@@ -102,6 +102,9 @@ pub(super) struct NewtonContext<'a> {
     max_condensed: usize,
     /// The full tangent's solve with the multipliers eliminated (see [`super::multipliers`]).
     eliminate: MultiplierElimination,
+    /// The solver spans processes: (this process's rank, their number). Each process then
+    /// assembles its share of the elements, and the first adds the contact's tangent.
+    ranks: Option<(usize, usize)>,
 }
 
 /// Seconds since `t`.
@@ -130,7 +133,7 @@ impl<'a> NewtonContext<'a> {
         params: &SolveParams,
         observer: &'a dyn Observer,
     ) -> Result<(NewtonContext<'a>, Vec<String>)> {
-        let asm = Assembler::new(model, dofs)?;
+        let mut asm = Assembler::new(model, dofs)?;
         let np = dofs.n_primary();
         let small_strain = model.constant_element_stiffness();
         let linear = small_strain && contact.is_empty();
@@ -166,6 +169,20 @@ impl<'a> NewtonContext<'a> {
                 solver
             }
         };
+        let ranks = solver
+            .distributed()
+            .map(|d| (d.rank(), d.size()))
+            .filter(|&(_, size)| size > 1);
+        if let Some((rank, size)) = ranks {
+            let part = super::partition::elements(model, size)?;
+            let share: Vec<bool> = part.iter().map(|&p| p == rank).collect();
+            let mine = share.iter().filter(|&&s| s).count();
+            observer.detail(&format!(
+                "rank {rank} assembles {mine} of {} elements (METIS, {size} parts)",
+                share.len()
+            ));
+            asm.set_share(share);
+        }
         let mut ctx = NewtonContext {
             asm,
             contact,
@@ -191,6 +208,7 @@ impl<'a> NewtonContext<'a> {
             regrowths: 0,
             max_condensed: params.max_condensed,
             eliminate: MultiplierElimination::new(params.krylov_min_unknowns),
+            ranks,
         };
         if !ctx.contact.is_empty() && !condense {
             ctx.condense_off();
@@ -346,6 +364,46 @@ impl<'a> NewtonContext<'a> {
         let ev = self.asm.evaluate(u, false, true, None, &contribs)?;
         self.times.assembly += since(t);
         Ok((ev, states))
+    }
+
+    /// The elements' internal forces (and tangent, and K_fp·Δu_p) at `u` for a Newton system,
+    /// with `extra` contributions: on one process the whole model's; across processes each
+    /// assembles its share of the elements (the first adds `extra`), the forces are summed on
+    /// every process and the tangent stays this process's share, for the solver to sum.
+    fn evaluate_newton(
+        &self,
+        u: &[f64],
+        want_k: bool,
+        dup: Option<&[f64]>,
+        extra: &[Contribution],
+    ) -> Result<Evaluation> {
+        let Some((rank, _)) = self.ranks else {
+            return self.asm.evaluate(u, want_k, false, dup, extra);
+        };
+        let mut ev =
+            self.asm
+                .evaluate_share(u, want_k, dup, if rank == 0 { extra } else { &[] })?;
+        let d = self.solver.distributed().expect("a distributed solver");
+        let (nf, ndup) = (ev.f_int.len(), ev.k_fp_dup.as_ref().map_or(0, |v| v.len()));
+        let mut all = Vec::with_capacity(nf + ndup + 4);
+        all.extend_from_slice(&ev.f_int);
+        if let Some(v) = &ev.k_fp_dup {
+            all.extend_from_slice(v);
+        }
+        all.extend_from_slice(&ev.ebe);
+        d.sum(&mut all)?;
+        ev.f_int.copy_from_slice(&all[..nf]);
+        if let Some(v) = ev.k_fp_dup.as_mut() {
+            v.copy_from_slice(&all[nf..nf + ndup]);
+        }
+        ev.ebe.copy_from_slice(&all[nf + ndup..]);
+        Ok(ev)
+    }
+
+    /// Whether this process adds the contact's tangent to the one it gives the solver (across
+    /// processes only the first does, the solver summing their shares).
+    fn adds_contact_tangent(&self) -> bool {
+        self.ranks.is_none_or(|(rank, _)| rank == 0)
     }
 
     /// Factorize a full tangent (values on the assembler's pattern).
@@ -603,7 +661,7 @@ impl<'a> NewtonContext<'a> {
             self.solver.reset();
         }
         let t = Instant::now();
-        let ks = self.asm.evaluate(u, true, false, None, &[])?;
+        let ks = self.evaluate_newton(u, true, None, &[])?;
         self.times.assembly += since(t);
         let mut closed: Vec<Branch> = points.iter().zip(guess).map(|(p, &g)| p.guess(g)).collect();
         let mut search = BranchSearch::new(MAX_FULL_UPDATES);
@@ -614,7 +672,8 @@ impl<'a> NewtonContext<'a> {
         // of its symmetric part (the general reduced system's symmetric part, gap rows in place
         // of slave rows, is no preconditioner for it). A solver from outside (PETSc) gets the
         // large systems whole.
-        let general = nf < self.krylov_min;
+        // Across processes each holds a share of the tangent: the solver has it whole.
+        let general = nf < self.krylov_min && self.ranks.is_none();
         let groups = if general || self.own_solver {
             self.multiplier_groups(points)
         } else {
@@ -644,7 +703,9 @@ impl<'a> NewtonContext<'a> {
                     }
                 })
                 .collect();
-            self.asm.add_tangents(&mut kv, &contribs);
+            if self.adds_contact_tangent() {
+                self.asm.add_tangents(&mut kv, &contribs);
+            }
             let eliminated = !groups.is_empty() && {
                 let (model, dofs) = (self.asm.model, self.dofs);
                 let describe = |eq: usize| describe_eq(model, dofs, eq);
@@ -762,13 +823,8 @@ impl<'a> NewtonContext<'a> {
             let contribs: Vec<Contribution> = points.iter().map(|p| p.contribution()).collect();
             self.observer.phase(&Phase::Assembly);
             let t = Instant::now();
-            let mut ev = self.asm.evaluate(
-                u,
-                want_k,
-                false,
-                None,
-                if has_contact { &[] } else { &contribs },
-            )?;
+            let mut ev =
+                self.evaluate_newton(u, want_k, None, if has_contact { &[] } else { &contribs })?;
             if has_contact {
                 self.asm.add_residuals(&mut ev.f_int, &contribs);
             }
@@ -958,7 +1014,7 @@ impl<'a> NewtonContext<'a> {
         };
         let need_k = !self.factor_valid && !has_contact;
         let t = Instant::now();
-        let ev = self.asm.evaluate(u, need_k, false, Some(dup), &[])?;
+        let ev = self.evaluate_newton(u, need_k, Some(dup), &[])?;
         self.times.assembly += since(t);
         let mut rhs: Vec<f64> = ev
             .k_fp_dup

@@ -171,4 +171,24 @@ pub trait LinearSolver {
     fn trailing_factor_block(&self) -> Option<(Vec<usize>, faer::Mat<f64>)> {
         None
     }
+
+    /// Optional: the processes this solver spans (PETSc under `mpirun -n N`, N > 1). Then each
+    /// process assembles its own share of the elements ([`super::partition`]), the residual is
+    /// the [`Distributed::sum`] of the shares, and [`LinearSolver::factorize`] gets this
+    /// process's share of the tangent, which the solver sums. None: one process assembles all.
+    fn distributed(&self) -> Option<&dyn Distributed> {
+        None
+    }
+}
+
+/// A solver's processes, for assembly by shares (see [`LinearSolver::distributed`]).
+pub trait Distributed {
+    /// This process's number, from 0.
+    fn rank(&self) -> usize;
+
+    /// The number of processes (more than one).
+    fn size(&self) -> usize;
+
+    /// Replace `v` on every process by the sum of every process's `v` (all of the same length).
+    fn sum(&self, v: &mut [f64]) -> Result<()>;
 }
