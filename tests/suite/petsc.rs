@@ -10,7 +10,8 @@ fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
-/// `hertz run FILE -o DIR ARGS`, under `mpirun -n ranks` if ranks > 1.
+/// `hertz run FILE -o DIR ARGS` (quiet unless ARGS has `-v`), under `mpirun -n ranks` if
+/// ranks > 1.
 fn run(file: &str, dir: &Path, args: &[&str], ranks: usize) -> Output {
     let hertz = env!("CARGO_BIN_EXE_hertz");
     let file = root().join(file);
@@ -34,12 +35,11 @@ fn run(file: &str, dir: &Path, args: &[&str], ranks: usize) -> Output {
     } else {
         Command::new(hertz)
     };
-    cmd.arg("run")
-        .arg(&file)
-        .arg("-q")
-        .arg("-o")
-        .arg(dir)
-        .args(args);
+    cmd.arg("run").arg(&file);
+    if !args.contains(&"-v") {
+        cmd.arg("-q");
+    }
+    cmd.arg("-o").arg(dir).args(args);
     cmd.output().expect("running hertz")
 }
 
@@ -162,4 +162,38 @@ fn bad_petsc_options_and_a_mechanism_are_clear_errors() {
         err.contains("singular") && !err.contains("halvings"),
         "{err}"
     );
+}
+
+/// On two ranks each assembles its METIS share of the elements (said with `-v`) and PETSc sums
+/// the shares: mortar multipliers (the Hertz cylinder) and Coulomb friction (Cattaneo–Mindlin)
+/// take hertz's own Newton iterations and give its reactions to 1e-10, and the friction's contact
+/// forces to 1e-10 of the largest.
+#[test]
+fn two_ranks_assemble_their_shares_and_match_hertz() {
+    for (file, stem) in [
+        ("examples/hertz_mortar.in", "hertz_mortar"),
+        ("examples/cattaneo_mindlin.in", "cattaneo_mindlin"),
+    ] {
+        let reference = tmp(&format!("{stem}-ref"));
+        assert!(run(file, &reference, &[], 1).status.success());
+        let dir = tmp(&format!("{stem}-2"));
+        let out = run(file, &dir, &["--petsc", "-v"], 2);
+        assert!(out.status.success(), "{stem}: {out:?}");
+        let log = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            log.contains("rank 0 assembles") && log.contains("(METIS, 2 parts)"),
+            "{log}"
+        );
+        let steps = |d: &Path| csv(&d.join(format!("{stem}.steps.csv")));
+        let its = |d: &Path| -> Vec<f64> { steps(d).iter().map(|r| r["iterations"]).collect() };
+        assert_eq!(its(&reference), its(&dir), "{stem}");
+        let name = format!("{stem}.steps.csv");
+        same_columns(&reference.join(&name), &dir.join(&name), 1e-10, |k| {
+            k.starts_with("bc") && k.contains(".r")
+        });
+        let name = format!("{stem}.contact.csv");
+        same_columns(&reference.join(&name), &dir.join(&name), 1e-10, |k| {
+            k == "force" || k == "friction"
+        });
+    }
 }

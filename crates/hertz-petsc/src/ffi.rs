@@ -41,6 +41,8 @@ opaque!(_p_Mat => Mat, _p_Vec => PetscVec, _p_KSP => KSP, _p_PC => PC, _p_PetscO
 
 pub type InsertMode = c_uint;
 pub const INSERT_VALUES: InsertMode = 1;
+pub const ADD_VALUES: InsertMode = 2;
+pub const PETSC_DECIDE: PetscInt = -1;
 pub type ScatterMode = c_uint;
 pub const SCATTER_FORWARD: ScatterMode = 0;
 pub type MatAssemblyType = c_uint;
@@ -67,6 +69,7 @@ extern "C" {
 
     pub fn MPI_Comm_rank(comm: MPI_Comm, rank: *mut c_int) -> c_int;
     pub fn MPI_Comm_size(comm: MPI_Comm, size: *mut c_int) -> c_int;
+    pub fn MPI_Abort(comm: MPI_Comm, code: c_int) -> c_int;
 
     pub fn PetscInitialize(
         argc: *mut c_int,
@@ -114,6 +117,7 @@ extern "C" {
         v: *const PetscScalar,
         mode: InsertMode,
     ) -> PetscErrorCode;
+    pub fn MatZeroEntries(a: Mat) -> PetscErrorCode;
     pub fn MatAssemblyBegin(a: Mat, t: MatAssemblyType) -> PetscErrorCode;
     pub fn MatAssemblyEnd(a: Mat, t: MatAssemblyType) -> PetscErrorCode;
     pub fn MatSetOption(a: Mat, op: MatOption, flg: PetscBool) -> PetscErrorCode;
@@ -129,6 +133,13 @@ extern "C" {
     pub fn MatSetNearNullSpace(a: Mat, sp: MatNullSpace) -> PetscErrorCode;
     pub fn MatNullSpaceDestroy(sp: *mut MatNullSpace) -> PetscErrorCode;
     pub fn VecDuplicate(x: PetscVec, y: *mut PetscVec) -> PetscErrorCode;
+    pub fn VecCreateMPI(
+        comm: MPI_Comm,
+        n: PetscInt,
+        big_n: PetscInt,
+        v: *mut PetscVec,
+    ) -> PetscErrorCode;
+    pub fn VecSet(x: PetscVec, alpha: PetscScalar) -> PetscErrorCode;
 
     pub fn VecSetValues(
         x: PetscVec,

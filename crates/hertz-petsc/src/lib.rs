@@ -6,9 +6,11 @@
 //! (`PETSC_OPTIONS`, or the options string given to [`Session::start`], e.g.
 //! `-ksp_type cg -pc_type hypre`).
 //!
-//! Under `mpirun -n N` every rank reads and assembles the whole model (assembly is replicated)
-//! and inserts its own rows; the factorization or the multigrid hierarchy, and the solve, are
-//! distributed, and every rank gets the whole solution back. Without the feature this crate is a
+//! Under `mpirun -n N` every rank reads the whole model and assembles its METIS share of the
+//! elements (`hertz::solve::partition`); PETSc sums the ranks' shares of the tangent, and the
+//! solver sums their residuals for hertz ([`hertz::solve::linear::Distributed`]). The
+//! factorization or the multigrid hierarchy, and the solve, are distributed, and every rank gets
+//! the whole solution back. Without the feature this crate is a
 //! stub whose [`Session::start`] says how to build with PETSc.
 
 use hertz::solve::SolverFactory;

@@ -4,21 +4,28 @@ use crate::ffi::*;
 use crate::Session;
 use hertz::assembly::Pattern;
 use hertz::error::{Error, Result};
-use hertz::solve::linear::{LinearSolver, SolverStats};
+use hertz::solve::linear::{Distributed, LinearSolver, SolverStats};
 use std::ffi::CString;
 use std::os::raw::c_int;
 use std::ptr::null_mut;
 use std::time::Instant;
 
-/// A PETSc call's error code as hertz's error.
+/// A PETSc call's error code as hertz's error. Across ranks a failed call ends the job: the
+/// other ranks would wait in their next collective call forever.
 fn check(code: PetscErrorCode, what: &str) -> Result<()> {
     if code == 0 {
-        Ok(())
-    } else {
-        Err(Error::Solve(format!(
-            "PETSc: {what} failed (error code {code})"
-        )))
+        return Ok(());
     }
+    let message = format!("PETSc: {what} failed (error code {code})");
+    let (rank, size) = ranks();
+    if size > 1 {
+        eprintln!("error: rank {rank}: {message}; ending the job");
+        // SAFETY: MPI is initialized; MPI_Abort does not return.
+        unsafe {
+            MPI_Abort(PETSC_COMM_WORLD, 3);
+        }
+    }
+    Err(Error::Solve(message))
 }
 
 fn cstr(s: &str) -> CString {
@@ -77,16 +84,21 @@ pub(crate) fn finish() {
     }
 }
 
-/// The rows [lo, hi) of this rank (PETSc's PETSC_DECIDE split: the first n mod size ranks get
-/// one row more).
-fn ownership(n: usize) -> (usize, usize) {
+/// This process's rank and the number of ranks.
+fn ranks() -> (usize, usize) {
     let (mut rank, mut size): (c_int, c_int) = (0, 1);
     // SAFETY: PETSc (and MPI) are initialized by the session that made this solver.
     unsafe {
         MPI_Comm_rank(PETSC_COMM_WORLD, &mut rank);
         MPI_Comm_size(PETSC_COMM_WORLD, &mut size);
     }
-    let (r, s) = (rank as usize, size as usize);
+    (rank as usize, size as usize)
+}
+
+/// The rows [lo, hi) of this rank (PETSc's PETSC_DECIDE split: the first n mod size ranks get
+/// one row more).
+fn ownership(n: usize) -> (usize, usize) {
+    let (r, s) = ranks();
     let base = n / s;
     let extra = n % s;
     let lo = r * base + r.min(extra);
@@ -121,7 +133,8 @@ impl OwnedRows {
     }
 }
 
-/// PETSc's KSP on an AIJ matrix distributed by rows.
+/// PETSc's KSP on an AIJ matrix distributed by rows. On more than one rank each rank gives it
+/// its share of the tangent (its elements', see [`LinearSolver::distributed`]), which PETSc sums.
 pub struct PetscSolver {
     mat: Mat,
     ksp: KSP,
@@ -132,6 +145,9 @@ pub struct PetscSolver {
     stats: SolverStats,
     /// The rigid-body motions (GAMG's near-null space), if told.
     modes: Vec<Vec<f64>>,
+    /// This process's rank and the number of ranks.
+    rank: usize,
+    size: usize,
 }
 
 impl Default for PetscSolver {
@@ -151,7 +167,109 @@ impl PetscSolver {
             owned: None,
             stats: SolverStats::default(),
             modes: Vec::new(),
+            rank: ranks().0,
+            size: ranks().1,
         }
+    }
+
+    /// Zeros at every entry of the owned rows, assembled: the first final assembly squeezes out
+    /// the preallocated entries nobody set, and an entry that a later share sets (a contact
+    /// point that closes) would then be a new nonzero, an error on the rank that owns it.
+    fn insert_structure(&self) -> Result<()> {
+        let owned = self.owned.as_ref().expect("created");
+        // SAFETY: the entries are the preallocated ones; the slices outlive the calls.
+        unsafe {
+            let mut cols: Vec<PetscInt> = Vec::new();
+            for (i, row) in owned.rows.iter().enumerate() {
+                cols.clear();
+                cols.extend(row.iter().map(|e| e.0));
+                let zeros = vec![0.0; cols.len()];
+                let r = (owned.lo + i) as PetscInt;
+                check(
+                    MatSetValues(
+                        self.mat,
+                        1,
+                        &r,
+                        cols.len() as PetscInt,
+                        cols.as_ptr(),
+                        zeros.as_ptr(),
+                        INSERT_VALUES,
+                    ),
+                    "MatSetValues",
+                )?;
+            }
+            check(
+                MatAssemblyBegin(self.mat, MAT_FINAL_ASSEMBLY),
+                "MatAssemblyBegin",
+            )?;
+            check(
+                MatAssemblyEnd(self.mat, MAT_FINAL_ASSEMBLY),
+                "MatAssemblyEnd",
+            )?;
+        }
+        Ok(())
+    }
+
+    /// Every entry of `values` on `pattern` (both triangles of a symmetric one) added to the
+    /// zeroed matrix, the zeros left out: this rank's share of a tangent that the ranks' shares
+    /// sum to; PETSc sends the entries of other ranks' rows to them at assembly.
+    fn add_share(&self, pattern: &Pattern, values: &[f64]) -> Result<()> {
+        let (mut rows, mut vals): (Vec<PetscInt>, Vec<f64>) = (Vec::new(), Vec::new());
+        // SAFETY: every entry is in the preallocated pattern; the slices outlive the calls.
+        unsafe {
+            check(MatZeroEntries(self.mat), "MatZeroEntries")?;
+            for c in 0..pattern.n {
+                rows.clear();
+                vals.clear();
+                let at = pattern.col_ptr[c]..pattern.col_ptr[c + 1];
+                for (&r, &v) in pattern.row_idx[at.clone()].iter().zip(&values[at]) {
+                    if v != 0.0 {
+                        rows.push(r as PetscInt);
+                        vals.push(v);
+                    }
+                }
+                if rows.is_empty() {
+                    continue;
+                }
+                let col = c as PetscInt;
+                check(
+                    MatSetValues(
+                        self.mat,
+                        rows.len() as PetscInt,
+                        rows.as_ptr(),
+                        1,
+                        &col,
+                        vals.as_ptr(),
+                        ADD_VALUES,
+                    ),
+                    "MatSetValues",
+                )?;
+                if pattern.symmetric {
+                    // The other triangle: row c, the same entries off the diagonal.
+                    let (r, v): (Vec<PetscInt>, Vec<f64>) = rows
+                        .iter()
+                        .zip(&vals)
+                        .filter(|(r, _)| **r != col)
+                        .map(|(r, v)| (*r, *v))
+                        .unzip();
+                    if !r.is_empty() {
+                        check(
+                            MatSetValues(
+                                self.mat,
+                                1,
+                                &col,
+                                r.len() as PetscInt,
+                                r.as_ptr(),
+                                v.as_ptr(),
+                                ADD_VALUES,
+                            ),
+                            "MatSetValues",
+                        )?;
+                    }
+                }
+            }
+        }
+        Ok(())
     }
 
     /// Give the matrix the rigid-body motions as its near-null space (what GAMG coarsens with).
@@ -349,16 +467,28 @@ impl LinearSolver for PetscSolver {
         _describe_eq: &dyn Fn(usize) -> String,
     ) -> Result<()> {
         let clock = Instant::now();
-        if self.owned.is_none() || self.n != pattern.n {
+        let fresh = self.owned.is_none() || self.n != pattern.n;
+        if fresh {
             self.create(pattern, spd)?;
         }
         let owned = self.owned.as_ref().expect("created");
+        if self.size > 1 {
+            if fresh {
+                self.insert_structure()?;
+            }
+            self.add_share(pattern, values)?;
+        }
         // SAFETY: the matrix was preallocated for exactly these entries; the slices outlive the
         // calls.
         unsafe {
             let mut cols: Vec<PetscInt> = Vec::new();
             let mut vals: Vec<f64> = Vec::new();
-            for (i, row) in owned.rows.iter().enumerate() {
+            let rows = if self.size > 1 {
+                &[][..]
+            } else {
+                &owned.rows[..]
+            };
+            for (i, row) in rows.iter().enumerate() {
                 cols.clear();
                 vals.clear();
                 cols.extend(row.iter().map(|e| e.0));
@@ -488,5 +618,62 @@ impl LinearSolver for PetscSolver {
 
     fn reset(&mut self) {
         self.destroy();
+    }
+
+    fn distributed(&self) -> Option<&dyn Distributed> {
+        (self.size > 1).then_some(self as &dyn Distributed)
+    }
+}
+
+impl Distributed for PetscSolver {
+    fn rank(&self) -> usize {
+        self.rank
+    }
+
+    fn size(&self) -> usize {
+        self.size
+    }
+
+    /// Each rank adds its `v` into a vector spread over the ranks, which is then gathered whole
+    /// on every rank.
+    fn sum(&self, v: &mut [f64]) -> Result<()> {
+        let n = v.len();
+        let idx: Vec<PetscInt> = (0..n as PetscInt).collect();
+        // SAFETY: the vectors are created and destroyed here; the arrays read are restored first.
+        unsafe {
+            let mut spread: PetscVec = null_mut();
+            check(
+                VecCreateMPI(PETSC_COMM_WORLD, PETSC_DECIDE, n as PetscInt, &mut spread),
+                "VecCreateMPI",
+            )?;
+            check(VecSet(spread, 0.0), "VecSet")?;
+            check(
+                VecSetValues(spread, n as PetscInt, idx.as_ptr(), v.as_ptr(), ADD_VALUES),
+                "VecSetValues",
+            )?;
+            check(VecAssemblyBegin(spread), "VecAssemblyBegin")?;
+            check(VecAssemblyEnd(spread), "VecAssemblyEnd")?;
+            let (mut all, mut ctx): (PetscVec, VecScatter) = (null_mut(), null_mut());
+            check(
+                VecScatterCreateToAll(spread, &mut ctx, &mut all),
+                "VecScatterCreateToAll",
+            )?;
+            check(
+                VecScatterBegin(ctx, spread, all, INSERT_VALUES, SCATTER_FORWARD),
+                "VecScatterBegin",
+            )?;
+            check(
+                VecScatterEnd(ctx, spread, all, INSERT_VALUES, SCATTER_FORWARD),
+                "VecScatterEnd",
+            )?;
+            let mut data: *const PetscScalar = std::ptr::null();
+            check(VecGetArrayRead(all, &mut data), "VecGetArrayRead")?;
+            v.copy_from_slice(std::slice::from_raw_parts(data, n));
+            check(VecRestoreArrayRead(all, &mut data), "VecRestoreArrayRead")?;
+            VecScatterDestroy(&mut ctx);
+            VecDestroy(&mut all);
+            VecDestroy(&mut spread);
+        }
+        Ok(())
     }
 }
