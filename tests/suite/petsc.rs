@@ -197,3 +197,44 @@ fn two_ranks_assemble_their_shares_and_match_hertz() {
         });
     }
 }
+
+/// An element that inverts does so on the rank that assembles it: every rank cuts the step
+/// back with it. The 3D die as wide as the block with a node-to-face penalty (elements invert
+/// in step 7, which takes 8 substeps) runs to its end on two ranks and gives hertz's reactions
+/// to 1e-9 in every step. Before, the failing rank cut back while the other waited in the
+/// residual's sum forever.
+#[test]
+fn an_element_failing_on_one_rank_cuts_the_step_on_every_rank() {
+    let dir = tmp("die");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("die.in");
+    std::fs::write(
+        &file,
+        hertz_bench::suite::die_as_wide_as_the_block(
+            3,
+            false,
+            hertz_bench::suite::Law::Penalty(hertz_bench::suite::DIE_PENALTY),
+        ),
+    )
+    .unwrap();
+    let file = file.to_str().unwrap();
+    let reference = dir.join("ref");
+    assert!(run(file, &reference, &[], 1).status.success());
+    let two = dir.join("two");
+    let mumps = "-ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps";
+    let out = run(file, &two, &["--petsc", "--petsc-options", mumps], 2);
+    assert!(out.status.success(), "{out:?}");
+    let substeps = |d: &Path| -> Vec<f64> {
+        csv(&d.join("suite.steps.csv"))
+            .iter()
+            .map(|r| r["substeps"])
+            .collect()
+    };
+    assert!(substeps(&reference)[6] > 1.0 && substeps(&two)[6] > 1.0);
+    same_columns(
+        &reference.join("suite.steps.csv"),
+        &two.join("suite.steps.csv"),
+        1e-9,
+        |k| k.starts_with("bc") && k.contains(".r"),
+    );
+}

@@ -377,26 +377,45 @@ impl<'a> NewtonContext<'a> {
         dup: Option<&[f64]>,
         extra: &[Contribution],
     ) -> Result<Evaluation> {
-        let Some((rank, _)) = self.ranks else {
+        let Some((rank, size)) = self.ranks else {
             return self.asm.evaluate(u, want_k, false, dup, extra);
         };
-        let mut ev =
-            self.asm
-                .evaluate_share(u, want_k, dup, if rank == 0 { extra } else { &[] })?;
+        let share = self
+            .asm
+            .evaluate_share(u, want_k, dup, if rank == 0 { extra } else { &[] });
+        // An element that fails (inverts) fails on its own rank: every rank must take the same
+        // way on (a cut-back), or the others wait in the sum forever. The sum carries a flag per
+        // rank.
         let d = self.solver.distributed().expect("a distributed solver");
-        let (nf, ndup) = (ev.f_int.len(), ev.k_fp_dup.as_ref().map_or(0, |v| v.len()));
-        let mut all = Vec::with_capacity(nf + ndup + 4);
-        all.extend_from_slice(&ev.f_int);
-        if let Some(v) = &ev.k_fp_dup {
-            all.extend_from_slice(v);
+        let nf = self.dofs.n_primary();
+        let ndup = dup.map_or(0, |_| self.dofs.n_free);
+        let mut all = vec![0.0; nf + ndup + 4 + size];
+        match &share {
+            Ok(ev) => {
+                all[..nf].copy_from_slice(&ev.f_int);
+                if let Some(v) = &ev.k_fp_dup {
+                    all[nf..nf + ndup].copy_from_slice(v);
+                }
+                all[nf + ndup..nf + ndup + 4].copy_from_slice(&ev.ebe);
+            }
+            Err(_) => all[nf + ndup + 4 + rank] = 1.0,
         }
-        all.extend_from_slice(&ev.ebe);
         d.sum(&mut all)?;
+        let failed = all[nf + ndup + 4..].iter().position(|&f| f != 0.0);
+        let mut ev = match (share, failed) {
+            (Err(e), _) => return Err(e),
+            (Ok(_), Some(r)) => {
+                return Err(Error::Solve(format!(
+                    "an element failed on rank {r} (its message is in that rank's output)"
+                )))
+            }
+            (Ok(ev), None) => ev,
+        };
         ev.f_int.copy_from_slice(&all[..nf]);
         if let Some(v) = ev.k_fp_dup.as_mut() {
             v.copy_from_slice(&all[nf..nf + ndup]);
         }
-        ev.ebe.copy_from_slice(&all[nf + ndup..]);
+        ev.ebe.copy_from_slice(&all[nf + ndup..nf + ndup + 4]);
         Ok(ev)
     }
 
