@@ -1,6 +1,8 @@
 //! The convergence test of a Newton iterate: OOFEM's relative force residual per DOF-id group
 //! (spec §1.3), the multipliers' gap rows against rtolf times the largest displacement, and the
-//! round-off floor of penalty forces, below which a residual that no longer falls is accepted.
+//! round-off floor of the forces (the penalty forces', and every element's and multiplier's
+//! force summed into a residual entry), below which a residual that no longer falls is
+//! accepted.
 
 use crate::assembly::DofMap;
 use crate::contact::{ContactPoint, PointLaw};
@@ -27,6 +29,8 @@ pub struct Check {
     pub converged: bool,
     /// Not converged, but every group is within its round-off floor.
     pub on_floor: bool,
+    /// The penalty forces' round-off is most of that floor (else the elements' and multipliers').
+    pub penalty_floor: bool,
     /// On the floor: the residual over the tolerance.
     pub floor_ratio: Option<f64>,
     /// The largest round-off floor estimate over the tolerance.
@@ -81,6 +85,16 @@ pub fn check(
             }
         }
     }
+    // The round-off of the sums themselves, in every entry: ε times the forces summed into the
+    // residual, the elements' (`ebe`, all their components: an element's x force is computed
+    // from all its stresses) and the closed multiplier points'. A block pressed along z has
+    // x and y residuals of ε times its z forces, not of its x and y forces (which vanish).
+    let multiplier_forces: f64 = points
+        .iter()
+        .filter(|p| p.closed && matches!(p.law, PointLaw::Multiplier { .. }))
+        .flat_map(|p| p.closed_fe.iter().map(|f| f * f))
+        .sum();
+    let base = (ebe.iter().sum::<f64>() + multiplier_forces) * f64::EPSILON * f64::EPSILON;
     let mut worst: f64 = 0.0;
     let mut ok = true;
     let mut within_floor = true;
@@ -105,9 +119,9 @@ pub fn check(
         let reference = if d < 1e-6 { 1.0 } else { d.sqrt() };
         let fe = num[g].sqrt() / reference;
         worst = worst.max(fe);
-        let floor_rel = ROUNDOFF_FACTOR * floor[g].sqrt() / reference;
-        // The estimate itself, without the safety factor of the acceptance test.
-        floor_excess = floor_excess.max(floor_rel / ROUNDOFF_FACTOR / a.rtolf);
+        let floor_rel = ROUNDOFF_FACTOR * (floor[g] + base).sqrt() / reference;
+        // The penalty's estimate itself, without the safety factor of the acceptance test.
+        floor_excess = floor_excess.max(floor[g].sqrt() / reference / a.rtolf);
         if !(fe <= a.rtolf) {
             ok = false;
             if fe <= floor_rel {
@@ -131,9 +145,20 @@ pub fn check(
         worst,
         converged: ok,
         on_floor: !ok && within_floor && floor_ratio.is_some(),
+        penalty_floor: floor.iter().sum::<f64>() > base,
         floor_ratio,
         floor_excess,
     }
+}
+
+/// The warning for a tolerance below the round-off of the forces themselves (no penalty's).
+pub fn precision_warning(ratio: f64, rtolf: f64) -> String {
+    format!(
+        "the residual stalled at {:.1e}, {ratio:.0e} times the tolerance rtolf {rtolf:.0e}, on the \
+         round-off floor of the element and contact forces summed into it: rtolf is below what \
+         double precision resolves here and the step was accepted there",
+        ratio * rtolf
+    )
 }
 
 /// The warning for penalty forces whose round-off exceeds the tolerance, with the penalty each

@@ -15,7 +15,7 @@
 
 use super::branches::{BranchSearch, ContactStep, OnCycle};
 use super::condensed::{nearest_equations, CondensedContact};
-use super::convergence::{check, penalty_warning, Residual};
+use super::convergence::{check, penalty_warning, precision_warning, Residual};
 use super::linear::{DenseLu, FaerSolver, LinearSolver, SolverSettings};
 use super::multipliers::{Group, MultiplierElimination};
 use super::report::{IterationReport, Observer, Phase};
@@ -875,7 +875,8 @@ impl<'a> NewtonContext<'a> {
                 prev.as_deref(),
             ));
             if check.converged && (it > 0 || check.worst == 0.0) {
-                self.accept(it, &ev, check.floor_ratio, states, a, info)?;
+                let floor = check.floor_ratio.map(|r| (r, check.penalty_floor));
+                self.accept(it, &ev, floor, states, a, info)?;
                 return Ok(true);
             }
             if !check.worst.is_finite() {
@@ -947,13 +948,14 @@ impl<'a> NewtonContext<'a> {
     }
 
     /// A converged iterate: a model whose first iterate is converged is factorized once all the
-    /// same (an unloaded mechanism must not pass), the penalty floor is warned of once, the
-    /// contact states are kept.
+    /// same (an unloaded mechanism must not pass), a round-off floor (its residual over the
+    /// tolerance, and whether the penalty's round-off makes it) is warned of once, the contact
+    /// states are kept.
     fn accept(
         &mut self,
         it: usize,
         ev: &Evaluation,
-        floor_ratio: Option<f64>,
+        floor: Option<(f64, bool)>,
         states: Vec<SlotState>,
         a: &Analysis,
         info: &mut StepInfo,
@@ -964,8 +966,12 @@ impl<'a> NewtonContext<'a> {
         {
             self.factorize(kv)?;
         }
-        if let Some(r) = floor_ratio.filter(|_| !self.floor_warned) {
-            let w = penalty_warning(self.asm.model, r, a.rtolf);
+        if let Some((r, penalty)) = floor.filter(|_| !self.floor_warned) {
+            let w = if penalty {
+                penalty_warning(self.asm.model, r, a.rtolf)
+            } else {
+                precision_warning(r, a.rtolf)
+            };
             self.observer.warning(&w);
             info.warnings.push(w);
             self.floor_warned = true;
