@@ -172,18 +172,19 @@ impl PetscSolver {
         }
     }
 
-    /// Zeros at every entry of the owned rows, assembled: the first final assembly squeezes out
-    /// the preallocated entries nobody set, and an entry that a later share sets (a contact
-    /// point that closes) would then be a new nonzero, an error on the rank that owns it.
-    fn insert_structure(&self) -> Result<()> {
+    /// Every entry of the owned rows inserted, entry k (a position in the pattern's values) with
+    /// `value(k)`.
+    fn insert_owned_rows(&self, value: impl Fn(usize) -> f64) -> Result<()> {
         let owned = self.owned.as_ref().expect("created");
-        // SAFETY: the entries are the preallocated ones; the slices outlive the calls.
+        let (mut cols, mut vals): (Vec<PetscInt>, Vec<f64>) = (Vec::new(), Vec::new());
+        // SAFETY: the matrix was preallocated for exactly these entries; the slices outlive the
+        // calls.
         unsafe {
-            let mut cols: Vec<PetscInt> = Vec::new();
             for (i, row) in owned.rows.iter().enumerate() {
                 cols.clear();
+                vals.clear();
                 cols.extend(row.iter().map(|e| e.0));
-                let zeros = vec![0.0; cols.len()];
+                vals.extend(row.iter().map(|e| value(e.1)));
                 let r = (owned.lo + i) as PetscInt;
                 check(
                     MatSetValues(
@@ -192,12 +193,20 @@ impl PetscSolver {
                         &r,
                         cols.len() as PetscInt,
                         cols.as_ptr(),
-                        zeros.as_ptr(),
+                        vals.as_ptr(),
                         INSERT_VALUES,
                     ),
                     "MatSetValues",
                 )?;
             }
+        }
+        Ok(())
+    }
+
+    /// The matrix's final assembly (entries of other ranks' rows sent to them).
+    fn assemble(&self) -> Result<()> {
+        // SAFETY: the matrix exists; assembly is collective and every rank calls it.
+        unsafe {
             check(
                 MatAssemblyBegin(self.mat, MAT_FINAL_ASSEMBLY),
                 "MatAssemblyBegin",
@@ -205,9 +214,8 @@ impl PetscSolver {
             check(
                 MatAssemblyEnd(self.mat, MAT_FINAL_ASSEMBLY),
                 "MatAssemblyEnd",
-            )?;
+            )
         }
-        Ok(())
     }
 
     /// Every entry of `values` on `pattern` (both triangles of a symmetric one) added to the
@@ -420,36 +428,49 @@ impl PetscSolver {
 
     /// The solution vector on every rank, into `out`.
     fn gather(&self, out: &mut [f64]) -> Result<()> {
-        // SAFETY: `x` is assembled; the arrays read are restored before the vectors are freed.
+        if self.size > 1 {
+            return gather_to_all(self.x, out);
+        }
+        // SAFETY: `x` is assembled; the array read is restored.
         unsafe {
-            let mut size: c_int = 1;
-            MPI_Comm_size(PETSC_COMM_WORLD, &mut size);
-            let (mut all, mut ctx): (PetscVec, VecScatter) = (self.x, null_mut());
-            if size > 1 {
-                check(
-                    VecScatterCreateToAll(self.x, &mut ctx, &mut all),
-                    "VecScatterCreateToAll",
-                )?;
-                check(
-                    VecScatterBegin(ctx, self.x, all, INSERT_VALUES, SCATTER_FORWARD),
-                    "VecScatterBegin",
-                )?;
-                check(
-                    VecScatterEnd(ctx, self.x, all, INSERT_VALUES, SCATTER_FORWARD),
-                    "VecScatterEnd",
-                )?;
-            }
             let mut data: *const PetscScalar = std::ptr::null();
-            check(VecGetArrayRead(all, &mut data), "VecGetArrayRead")?;
+            check(VecGetArrayRead(self.x, &mut data), "VecGetArrayRead")?;
             out.copy_from_slice(std::slice::from_raw_parts(data, self.n));
-            check(VecRestoreArrayRead(all, &mut data), "VecRestoreArrayRead")?;
-            if size > 1 {
-                VecScatterDestroy(&mut ctx);
-                VecDestroy(&mut all);
-            }
+            check(
+                VecRestoreArrayRead(self.x, &mut data),
+                "VecRestoreArrayRead",
+            )?;
         }
         Ok(())
     }
+}
+
+/// The whole of the distributed vector `v` (assembled) on every rank, into `out`.
+fn gather_to_all(v: PetscVec, out: &mut [f64]) -> Result<()> {
+    // SAFETY: the scatter and its vector are made and freed here; the array read is restored
+    // first.
+    unsafe {
+        let (mut all, mut ctx): (PetscVec, VecScatter) = (null_mut(), null_mut());
+        check(
+            VecScatterCreateToAll(v, &mut ctx, &mut all),
+            "VecScatterCreateToAll",
+        )?;
+        check(
+            VecScatterBegin(ctx, v, all, INSERT_VALUES, SCATTER_FORWARD),
+            "VecScatterBegin",
+        )?;
+        check(
+            VecScatterEnd(ctx, v, all, INSERT_VALUES, SCATTER_FORWARD),
+            "VecScatterEnd",
+        )?;
+        let mut data: *const PetscScalar = std::ptr::null();
+        check(VecGetArrayRead(all, &mut data), "VecGetArrayRead")?;
+        out.copy_from_slice(std::slice::from_raw_parts(data, out.len()));
+        check(VecRestoreArrayRead(all, &mut data), "VecRestoreArrayRead")?;
+        VecScatterDestroy(&mut ctx);
+        VecDestroy(&mut all);
+    }
+    Ok(())
 }
 
 impl Drop for PetscSolver {
@@ -471,50 +492,22 @@ impl LinearSolver for PetscSolver {
         if fresh {
             self.create(pattern, spd)?;
         }
-        let owned = self.owned.as_ref().expect("created");
         if self.size > 1 {
+            // The first final assembly squeezes out the preallocated entries nobody set, and an
+            // entry that a later share sets (a contact point that closes) would then be a new
+            // nonzero, an error on the rank that owns it: the owned rows' whole pattern goes in
+            // as zeros first.
             if fresh {
-                self.insert_structure()?;
+                self.insert_owned_rows(|_| 0.0)?;
+                self.assemble()?;
             }
             self.add_share(pattern, values)?;
+        } else {
+            self.insert_owned_rows(|k| values[k])?;
         }
-        // SAFETY: the matrix was preallocated for exactly these entries; the slices outlive the
-        // calls.
+        self.assemble()?;
+        // SAFETY: the matrix is assembled; the KSP is this solver's.
         unsafe {
-            let mut cols: Vec<PetscInt> = Vec::new();
-            let mut vals: Vec<f64> = Vec::new();
-            let rows = if self.size > 1 {
-                &[][..]
-            } else {
-                &owned.rows[..]
-            };
-            for (i, row) in rows.iter().enumerate() {
-                cols.clear();
-                vals.clear();
-                cols.extend(row.iter().map(|e| e.0));
-                vals.extend(row.iter().map(|e| values[e.1]));
-                let r = (owned.lo + i) as PetscInt;
-                check(
-                    MatSetValues(
-                        self.mat,
-                        1,
-                        &r,
-                        cols.len() as PetscInt,
-                        cols.as_ptr(),
-                        vals.as_ptr(),
-                        INSERT_VALUES,
-                    ),
-                    "MatSetValues",
-                )?;
-            }
-            check(
-                MatAssemblyBegin(self.mat, MAT_FINAL_ASSEMBLY),
-                "MatAssemblyBegin",
-            )?;
-            check(
-                MatAssemblyEnd(self.mat, MAT_FINAL_ASSEMBLY),
-                "MatAssemblyEnd",
-            )?;
             if pattern.symmetric {
                 // MUMPS then factorizes LDLᵀ (SYM = 2); SPD: Cholesky (SYM = 1).
                 check(
@@ -653,27 +646,9 @@ impl Distributed for PetscSolver {
             )?;
             check(VecAssemblyBegin(spread), "VecAssemblyBegin")?;
             check(VecAssemblyEnd(spread), "VecAssemblyEnd")?;
-            let (mut all, mut ctx): (PetscVec, VecScatter) = (null_mut(), null_mut());
-            check(
-                VecScatterCreateToAll(spread, &mut ctx, &mut all),
-                "VecScatterCreateToAll",
-            )?;
-            check(
-                VecScatterBegin(ctx, spread, all, INSERT_VALUES, SCATTER_FORWARD),
-                "VecScatterBegin",
-            )?;
-            check(
-                VecScatterEnd(ctx, spread, all, INSERT_VALUES, SCATTER_FORWARD),
-                "VecScatterEnd",
-            )?;
-            let mut data: *const PetscScalar = std::ptr::null();
-            check(VecGetArrayRead(all, &mut data), "VecGetArrayRead")?;
-            v.copy_from_slice(std::slice::from_raw_parts(data, n));
-            check(VecRestoreArrayRead(all, &mut data), "VecRestoreArrayRead")?;
-            VecScatterDestroy(&mut ctx);
-            VecDestroy(&mut all);
+            let gathered = gather_to_all(spread, v);
             VecDestroy(&mut spread);
+            gathered
         }
-        Ok(())
     }
 }
