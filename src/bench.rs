@@ -72,6 +72,28 @@ pub struct BenchArgs {
 /// memory grows faster in 3D.
 const MAX_BENCH_UNKNOWNS: [f64; 2] = [2e7, 1e6];
 
+/// Write one generated input as `dir`/`name` with `write`, saying where (exit 0) or why not.
+fn write_generated(
+    dir: &str,
+    name: &str,
+    write: impl FnOnce(&Path) -> hertz::error::Result<()>,
+) -> ExitCode {
+    let path = Path::new(dir).join(name);
+    let written = std::fs::create_dir_all(dir)
+        .map_err(|e| Error::Output(format!("cannot create {dir}: {e}")))
+        .and_then(|()| write(&path));
+    match written {
+        Ok(()) => {
+            println!("wrote {}", path.display());
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(e.exit_code() as u8)
+        }
+    }
+}
+
 /// CLI entry of `hertz bench` (see `hertz bench --help`).
 pub fn main(args: BenchArgs) -> ExitCode {
     let (dim, n) = (args.dim as usize, args.n as usize);
@@ -190,36 +212,14 @@ pub fn main(args: BenchArgs) -> ExitCode {
         return ExitCode::from(2);
     }
     if let (true, Some(dir)) = (contact, &write) {
-        let path = Path::new(dir).join(format!("contact_block_{n}.in"));
-        let written = std::fs::create_dir_all(dir)
-            .map_err(|e| Error::Output(format!("cannot create {dir}: {e}")))
-            .and_then(|()| write_contact_block_input(&path, n, n as f64 / 40.0, multipliers));
-        return match written {
-            Ok(()) => {
-                println!("wrote {}", path.display());
-                ExitCode::SUCCESS
-            }
-            Err(e) => {
-                eprintln!("error: {e}");
-                ExitCode::from(e.exit_code() as u8)
-            }
-        };
+        return write_generated(dir, &format!("contact_block_{n}.in"), |path| {
+            write_contact_block_input(path, n, n as f64 / 40.0, multipliers)
+        });
     }
     if let Some(dir) = &write {
-        let path = Path::new(dir).join(format!("block{dim}d_{n}.in"));
-        let written = std::fs::create_dir_all(dir)
-            .map_err(|e| Error::Output(format!("cannot create {dir}: {e}")))
-            .and_then(|()| write_block_input(&path, dim, n));
-        return match written {
-            Ok(()) => {
-                println!("wrote {}", path.display());
-                ExitCode::SUCCESS
-            }
-            Err(e) => {
-                eprintln!("error: {e}");
-                ExitCode::from(e.exit_code() as u8)
-            }
-        };
+        return write_generated(dir, &format!("block{dim}d_{n}.in"), |path| {
+            write_block_input(path, dim, n)
+        });
     }
     if contact {
         return match run_contact(n, multipliers) {
