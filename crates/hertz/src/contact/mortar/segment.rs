@@ -7,9 +7,9 @@
 //!   p(x) = ((x − c₀)·e₁, (x − c₀)·e₂). The projection is linear, so the face maps of S and M
 //!   project to plane maps Σ N_a(ξ) p(x_a) of the same shape functions;
 //! * clip polygon: the projected S cut by the projected M (Sutherland–Hodgman; both convex,
-//!   turned counter-clockwise), split into triangles from its vertex centroid, each integrated
-//!   by a 7-point rule of degree 5 (exact for the products of two bilinear shape functions on
-//!   parallelogram faces);
+//!   turned counter-clockwise), split into triangles (cells) from its area centroid, each
+//!   integrated with its signed area by a 7-point rule of degree 5 (exact for the products of
+//!   two bilinear shape functions on parallelogram faces);
 //! * at a point p of a cell: ξ_S and ξ_M with p(x_S(ξ_S)) = p(x_M(ξ_M)) = p (the inverse plane
 //!   maps), ν = −n₀ (towards the slave body), and dA the slave surface's area element:
 //!   the cell's plane area times |x_ξ × x_η| / |det ∂p/∂ξ| of S.
@@ -216,10 +216,14 @@ pub fn overlap<T: Scalar>(
     let mut out = Vec::new();
     for i in 0..poly.len() {
         let (b, c) = (&poly[i], &poly[(i + 1) % poly.len()]);
+        // Every cell counts with its signed area, also one of zero or negative area: the
+        // tolerant clip repeats a vertex that lies on a clipping line (the vertex itself and the
+        // intersection of its edge with the line), and the cell between the two has a round-off
+        // area of either sign but a derivative as large as the polygon. Dropping it when not
+        // positive dropped that derivative: the tangent of a slave face whose edge lay along a
+        // master's (a 3D extrusion's side, a symmetry plane) was off by 10⁴ × its size, and
+        // Newton cycled there.
         let cell = area2(&[centroid, *b, *c]) * 0.5;
-        if cell.val() <= 0.0 {
-            continue;
-        }
         for (l, w) in triangle_rule() {
             let p = [
                 centroid[0] * l[0] + b[0] * l[1] + c[0] * l[2],
@@ -506,5 +510,43 @@ mod tests {
             (above - below).abs() < 1e-7 * at,
             "jump across the crossing: {below} {at} {above}"
         );
+    }
+
+    #[test]
+    fn a_slave_vertex_on_a_master_edge_keeps_the_overlaps_derivative() {
+        // The slave trapezoid (0, 0), (2, 0), (2, 1), (1, 1) against the master [m, 3] × [−1, 3]
+        // at m = 1: the slave's vertex (1, 1) lies on the master's edge x = m, and the clip
+        // repeats it (as itself and as the intersection of the edge towards (0, 0)). The overlap
+        // is the slave right of x = m, of height 1 there on both sides: ∂A/∂m = −1, shared by the
+        // x of the master's nodes 0 and 3. The cell between the repeated vertices has zero area
+        // but carries that derivative.
+        type D = crate::contact::dual::DualN<24>;
+        let xs = [
+            [0.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [2.0, 1.0, 0.0],
+            [1.0, 1.0, 0.0],
+        ];
+        let xm = [
+            [1.0, -1.0, -0.1],
+            [3.0, -1.0, -0.1],
+            [3.0, 3.0, -0.1],
+            [1.0, 3.0, -0.1],
+        ];
+        let x: Vec<[D; 3]> = xs
+            .iter()
+            .chain(&xm)
+            .enumerate()
+            .map(|(a, p)| std::array::from_fn(|i| D::variable(p[i], 3 * a + i, 24)))
+            .collect();
+        let pts = overlap(FaceKind::Quad, &x[..4], -1.0, FaceKind::Quad, &x[4..]);
+        let area = pts.iter().fold(D::constant(0.0, 24), |a, p| a + p.weight);
+        assert!((area.v - 1.0).abs() < 1e-14, "area {}", area.v);
+        // Master nodes 0 and 3 are unknowns 4 and 7 of the pair: their x is 12 and 21.
+        let dm = area.d[12] + area.d[21];
+        assert!((dm + 1.0).abs() < 1e-12, "∂A/∂m = {dm}");
+        // The slave's right edge x = 2 moves the other side: ∂A/∂x = 1.
+        let ds = area.d[3] + area.d[6];
+        assert!((ds - 1.0).abs() < 1e-12, "∂A/∂x = {ds}");
     }
 }
