@@ -683,9 +683,19 @@ pub fn plate_drawn_on_a_block(dim: usize, keyword: &str, params: &str, mortar: b
 /// about z and its sideways drift are resisted by those nodes alone, while the die's edges,
 /// which it bulges past, push it out from under the die: a near mechanism that failed every law
 /// and formulation at 10 × 10 × 10 elements (node-to-face at step 6, mortar at step 5). The
-/// die's bottom is not held on the planes: with its edges and the block's on the same planes,
-/// mortar multipliers cycle in 3D at the die's corner (coincident boundary edges, open).
+/// die is held by its driven top alone ([`die_and_block_on_the_symmetry_planes`] holds it on
+/// the planes too).
 pub fn die_as_wide_as_the_block(dim: usize, mortar: bool, law: Law) -> String {
+    die_as_wide(dim, mortar, law, false)
+}
+
+/// [`die_as_wide_as_the_block`] in 3D as mortar, the die held on the symmetry planes as well as
+/// the block: the slave faces' sides along x = 0 and y = 0 lie on the master faces' sides.
+pub fn die_and_block_on_the_symmetry_planes(law: Law) -> String {
+    die_as_wide(3, true, law, true)
+}
+
+fn die_as_wide(dim: usize, mortar: bool, law: Law, die_on_planes: bool) -> String {
     let mut inp = Input::default();
     let (block, die) = if dim == 2 {
         let xs = uniform(0.0, 1.0, 8);
@@ -720,11 +730,15 @@ pub fn die_as_wide_as_the_block(dim: usize, mortar: bool, law: Law) -> String {
     // The bottom slides on its plane; in 2D the corner at the origin is held, in 3D the block
     // on the symmetry planes x = 0 and y = 0.
     let bottom = inp.node_set(&block.bottom);
-    let (first, last) = block.nodes;
+    let last = if die_on_planes {
+        die.nodes.1
+    } else {
+        block.nodes.1
+    };
     let on_plane = |i: usize| {
         inp.nodes_where(&|x| x[i].abs() < 1e-9)
             .into_iter()
-            .filter(|n| (first..=last).contains(n))
+            .filter(|n| (block.nodes.0..=last).contains(n))
             .collect::<Vec<_>>()
     };
     let held = if dim == 2 {
@@ -1070,6 +1084,33 @@ pub fn setups() -> Vec<Setup> {
                     ),
                 };
                 plate_drawn_on_a_block(3, keyword, &params, mortar)
+            },
+        ));
+    }
+    // The shallow ironing benchmark extruded to 3D, two elements through the depth (the slave
+    // faces' sides lie along the master's), every node held in y; pressed, then slid 0.2.
+    for kind in [Solid::Hex, Solid::Tet] {
+        out.push(Setup::new(
+            format!("shallow ironing extruded to 3D, two layers, {kind:?}, friction"),
+            "friction",
+            1e5,
+            move |l| {
+                let base = crate::verify::ShallowIroning {
+                    nx: 40,
+                    ny: 6,
+                    n_arc: 4,
+                    n_die: 4,
+                    slide_dt: 0.01,
+                    end: 1.02,
+                    mu: 0.3,
+                };
+                crate::verify::ShallowIroning3d {
+                    base,
+                    kind,
+                    layers: 2,
+                    plane_strain: true,
+                }
+                .input_with(l)
             },
         ));
     }

@@ -691,6 +691,7 @@ impl Ironing {
             "mat 2 crossSect 1 nlgeo 1",
         );
         PressAndSlide {
+            dim: 2,
             master: &die_edges,
             slave: &slab.top_edges,
             materials: [
@@ -762,17 +763,12 @@ impl ShallowIroning {
     pub fn input(&self) -> String {
         use super::mesh::Kind;
         let mut inp = Input::default();
-        let (r, xc) = (Self::RADIUS, Self::CENTRE_X);
-        let bottom_y = Self::HEIGHT + Self::GAP;
-        let (yc, top) = (bottom_y + r, bottom_y + Self::DIE_HEIGHT);
-        let half_angle = (Self::HALF_CHORD / r).asin();
-        // Die columns at equal angles along the arc, each from the arc up to the die's top.
-        let angles = uniform(-half_angle, half_angle, self.n_arc);
-        let xs: Vec<f64> = angles.iter().map(|a| xc + r * a.sin()).collect();
+        let (columns, top) = self.die_columns();
+        let xs: Vec<f64> = columns.iter().map(|c| c.0).collect();
         let die = inp.block2d(
             Kind::Q4,
             &xs,
-            &|i| uniform(yc - r * angles[i].cos(), top, self.n_die),
+            &|i| uniform(columns[i].1, top, self.n_die),
             "mat 1 crossSect 1 nlgeo 1",
         );
         let block = inp.block2d(
@@ -781,40 +777,156 @@ impl ShallowIroning {
             &|_| uniform(0.0, Self::HEIGHT, self.ny),
             "mat 2 crossSect 1 nlgeo 1",
         );
-        // The slide x = SPEED (t − 1) from t = 1 to the end (at least 2).
+        self.press_and_slide(
+            2,
+            &block.top_edges,
+            &die.bottom_edges,
+            &block.bottom,
+            &die.top,
+        )
+        .write(&mut inp);
+        inp.render("shallow_ironing", &self.analysis(), "PlaneStrain")
+    }
+
+    /// The die's columns at equal angles along its arc, each (x, the arc's height there), and
+    /// the height of the die's top.
+    fn die_columns(&self) -> (Vec<(f64, f64)>, f64) {
+        let r = Self::RADIUS;
+        let bottom = Self::HEIGHT + Self::GAP;
+        let half_angle = (Self::HALF_CHORD / r).asin();
+        let columns = uniform(-half_angle, half_angle, self.n_arc)
+            .iter()
+            .map(|a| (Self::CENTRE_X + r * a.sin(), bottom + r - r * a.cos()))
+            .collect();
+        (columns, bottom + Self::DIE_HEIGHT)
+    }
+
+    /// The die's `driven` top pressed into the block (its `held` bottom) and slid along it: the
+    /// slide x = SPEED (t − 1) from t = 1 to the end (at least 2).
+    fn press_and_slide<'a>(
+        &self,
+        dim: usize,
+        master: &'a [(usize, usize)],
+        slave: &'a [(usize, usize)],
+        held: &'a [usize],
+        driven: &'a [usize],
+    ) -> PressAndSlide<'a> {
         let end = self.end.max(2.0);
         PressAndSlide {
-            master: &block.top_edges,
-            slave: &die.bottom_edges,
+            dim,
+            master,
+            slave,
             materials: [
                 simo_pister_with(1, 6896.0, 0.32),
                 simo_pister_with(2, 689.6, 0.32),
             ],
-            held: &block.bottom,
-            driven: &die.top,
+            held,
+            driven,
             depth: Self::DEPTH,
             slide: Self::SPEED * (end - 1.0),
             slide_end: end,
             mu: self.mu,
         }
-        .write(&mut inp);
+    }
+
+    /// The analysis record: the steps of [`Self::times`].
+    fn analysis(&self) -> String {
         let times: Vec<String> = self.times().iter().map(|t| format!("{t}")).collect();
-        let analysis = format!(
+        format!(
             "StaticStructural nsteps {} prescribedTimes {} {} rtolf 1e-8 maxiter 25",
             times.len(),
             times.len(),
             times.join(" ")
+        )
+    }
+}
+
+/// [`ShallowIroning`] extruded to a unit depth along y in 3D (z up): `kind` elements over
+/// `layers` cells through the depth, every node held in y (plane strain) when `plane_strain`;
+/// mortar face contact, the die's arc the slave side, with multipliers ([`Self::input`]) or a
+/// penalty ([`Self::input_with`]). On bricks its force per unit depth is the 2D one.
+#[derive(Debug, Clone, Copy)]
+pub struct ShallowIroning3d {
+    pub base: ShallowIroning,
+    pub kind: Solid,
+    pub layers: usize,
+    pub plane_strain: bool,
+}
+
+impl ShallowIroning3d {
+    /// The input with the contact law `law` (a penalty per unit area, friction's ε_T the same).
+    pub fn input_with(&self, law: Law) -> String {
+        let text = self.input();
+        match law {
+            Law::Multiplier => text,
+            Law::Penalty(p) => text.replace(
+                "s2slagrangianmultipliercontact 4 loadTimeFunction 1 ",
+                &format!("s2spenaltycontact 4 loadTimeFunction 1 penalty {p:e} "),
+            ),
+        }
+    }
+
+    pub fn input(&self) -> String {
+        let b = &self.base;
+        let mut inp = Input::default();
+        let (columns, top) = b.die_columns();
+        let xs: Vec<f64> = columns.iter().map(|c| c.0).collect();
+        let depth = uniform(0.0, 1.0, self.layers);
+        let extra = |m: usize| format!("mat {m} crossSect 1 nlgeo 1");
+        // The die on a unit grid in z, then each column mapped from the arc up to the top.
+        let die = inp.solid3d(
+            self.kind,
+            &xs,
+            &depth,
+            &uniform(0.0, 1.0, b.n_die),
+            &extra(1),
+            0,
         );
-        inp.render("shallow_ironing", &analysis, "PlaneStrain")
+        let arc_at = |x: f64| {
+            columns
+                .iter()
+                .find(|c| c.0 == x)
+                .expect("die nodes on its columns")
+                .1
+        };
+        for id in die.nodes.0..=die.nodes.1 {
+            let p = &mut inp.nodes[id - 1];
+            let zb = arc_at(p[0]);
+            p[2] = zb + p[2] * (top - zb);
+        }
+        let block = inp.solid3d(
+            self.kind,
+            &uniform(0.0, ShallowIroning::LENGTH, b.nx),
+            &depth,
+            &uniform(0.0, ShallowIroning::HEIGHT, b.ny),
+            &extra(2),
+            0,
+        );
+        let h = ShallowIroning::HEIGHT;
+        let master = inp.faces_where(&block, &|p| (p[2] - h).abs() < 1e-12);
+        let slave = inp.faces_where(&die, &|p| p[2] == arc_at(p[0]));
+        b.press_and_slide(3, &master, &slave, &block.bottom, &die.top)
+            .write(&mut inp);
+        if self.plane_strain {
+            let all: Vec<usize> = (1..=inp.nodes.len()).collect();
+            let all = inp.node_set(&all);
+            let k = inp.bcs.len() + 1;
+            inp.bcs.push(format!(
+                "BoundaryCondition {k} loadTimeFunction 1 dofs 1 2 values 1 0 set {all}"
+            ));
+        }
+        inp.render("shallow_ironing3d", &b.analysis(), "3d")
     }
 }
 
 /// A die pressed into a body and slid along it, as [`Ironing`] and [`ShallowIroning`] write it:
-/// edge segments 1 (`master`) and 2 (`slave`), materials 1 and 2, the body's `held` nodes fixed
+/// edge (2D) or face (3D) segments 1 (`master`) and 2 (`slave`), materials 1 and 2, the body's `held` nodes fixed
 /// (BC 1), the die's `driven` nodes moved down by `depth` over t ∈ [0, 1] (BC 2) and along x by
 /// `slide` over t ∈ [1, `slide_end`] (BC 3), mortar multipliers with friction `mu` (BC 4), and
 /// the three time functions.
 struct PressAndSlide<'a> {
+    /// 2: edge segments, the press along y; 3: face segments, the press along z.
+    dim: usize,
     master: &'a [(usize, usize)],
     slave: &'a [(usize, usize)],
     materials: [String; 2],
@@ -830,21 +942,31 @@ impl PressAndSlide<'_> {
     fn write(self, inp: &mut Input) {
         let master = inp.boundary_set(self.master);
         let slave = inp.boundary_set(self.slave);
-        inp.segments.push(format!(
-            "linear2delementedgecontactsegment 1 edgeset {master}"
-        ));
-        inp.segments.push(format!(
-            "linear2delementedgecontactsegment 2 edgeset {slave}"
-        ));
+        let (segment, set, up, held_dofs) = match self.dim {
+            2 => (
+                "linear2delementedgecontactsegment",
+                "edgeset",
+                2,
+                "2 1 2 values 2 0 0",
+            ),
+            _ => (
+                "linear3delementsurfacecontactsegment",
+                "boundaryset",
+                3,
+                "3 1 2 3 values 3 0 0 0",
+            ),
+        };
+        inp.segments.push(format!("{segment} 1 {set} {master}"));
+        inp.segments.push(format!("{segment} 2 {set} {slave}"));
         inp.sections.push("SimpleCS 1 thick 1.0".into());
         inp.materials.extend(self.materials);
         let held = inp.node_set(self.held);
         let driven = inp.node_set(self.driven);
         inp.bcs.push(format!(
-            "BoundaryCondition 1 loadTimeFunction 1 dofs 2 1 2 values 2 0 0 set {held}"
+            "BoundaryCondition 1 loadTimeFunction 1 dofs {held_dofs} set {held}"
         ));
         inp.bcs.push(format!(
-            "BoundaryCondition 2 loadTimeFunction 2 dofs 1 2 values 1 -{} set {driven}",
+            "BoundaryCondition 2 loadTimeFunction 2 dofs 1 {up} values 1 -{} set {driven}",
             self.depth
         ));
         inp.bcs.push(format!(
