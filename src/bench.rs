@@ -19,7 +19,7 @@ pub enum OrderingArg {
 
 /// `hertz bench`: generated problems with sizes, phase times and errors against exact solutions.
 #[derive(Debug, clap::Args)]
-#[command(group(clap::ArgGroup::new("problem").args(["contact", "sphere", "patch", "suite", "examples"])))]
+#[command(group(clap::ArgGroup::new("problem").args(["contact", "sphere", "patch", "suite", "examples", "ironing3d"])))]
 pub struct BenchArgs {
     /// Dimension of the linear-elastic block
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(2..=3))]
@@ -59,11 +59,16 @@ pub struct BenchArgs {
     /// The robustness suite's table of setups
     #[arg(long)]
     pub suite: bool,
+    /// With --write: the shallow ironing benchmark on its published mesh extruded to 3D, LAYERS
+    /// bricks through a unit depth, every node held across it (solve it with `hertz run`)
+    #[arg(long, value_name = "LAYERS", requires = "write",
+          value_parser = clap::value_parser!(u64).range(1..=20))]
+    pub ironing3d: Option<u64>,
     /// Write the verification examples of examples/ to DIR
     #[arg(long, value_name = "DIR")]
     pub examples: Option<String>,
     /// Write the generated input(s) to DIR instead of solving (the block, --contact, --sphere,
-    /// --patch, --suite)
+    /// --patch, --suite, --ironing3d)
     #[arg(long, value_name = "DIR")]
     pub write: Option<String>,
 }
@@ -147,6 +152,19 @@ pub fn main(args: BenchArgs) -> ExitCode {
                 ExitCode::from(e.exit_code() as u8)
             }
         };
+    }
+    if let (Some(layers), Some(dir)) = (args.ironing3d, &write) {
+        let text = hertz_bench::verify::ShallowIroning3d {
+            base: examples::SHALLOW_IRONING,
+            kind: hertz_bench::mesh::Solid::Hex,
+            layers: layers as usize,
+            plane_strain: true,
+        }
+        .input();
+        return write_generated(dir, "shallow_ironing3d.in", |path| {
+            std::fs::write(path, text)
+                .map_err(|e| Error::Output(format!("cannot write {}: {e}", path.display())))
+        });
     }
     if let Some(m) = model3d {
         let law = if multipliers {

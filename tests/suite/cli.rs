@@ -389,6 +389,37 @@ fn a_written_bench_block_runs_to_its_exact_reaction() {
     std::fs::remove_dir_all(dir).ok();
 }
 
+/// `hertz bench --ironing3d LAYERS --write DIR` writes the shallow ironing benchmark's published
+/// mesh (120 × 20 block, 12 × 4 die) extruded to LAYERS bricks through the depth: its nodes and
+/// elements, and the die's arc (12 × LAYERS faces) as the mortar slave.
+#[test]
+fn bench_writes_the_shallow_ironing_extruded_to_3d() {
+    let dir = std::env::temp_dir().join(format!("hertz-bench-ironing-{}", std::process::id()));
+    let out = hertz(&[
+        "bench",
+        "--ironing3d",
+        "2",
+        "--write",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let model = hertz::input::read_model(&dir.join("shallow_ironing3d.in"))
+        .unwrap()
+        .model;
+    assert_eq!(model.nodes.len(), 121 * 3 * 21 + 13 * 3 * 5);
+    assert_eq!(model.elements.len(), 120 * 2 * 20 + 12 * 2 * 4);
+    let faces = |k: usize| match &model.segments[k].kind {
+        hertz::model::SegmentKind::Faces { faces } => faces.len(),
+        other => panic!("segment {k}: {other:?}"),
+    };
+    assert_eq!((faces(0), faces(1)), (120 * 2, 12 * 2));
+    std::fs::remove_dir_all(dir).ok();
+}
+
 #[test]
 fn version_and_completions() {
     let out = hertz(&["--version"]);
