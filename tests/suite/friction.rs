@@ -815,6 +815,20 @@ fn shallow_ironing_extruded_to_3d_irons_as_in_2d() {
             }
         }
     }
+    // Free to expand along y (the die held at its top alone), the block is softer than in plane
+    // strain: a lower force at the end of the press (0.89 of it), as quickly.
+    let free = forces(
+        &ShallowIroning3d {
+            base,
+            kind: Solid::Hex,
+            layers: 2,
+            plane_strain: false,
+        }
+        .input(),
+        3,
+    );
+    let ratio = free[9][1].abs() / pressed;
+    assert!(ratio > 0.5 && ratio < 0.99, "free / plane strain {ratio}");
 }
 
 /// Runs the shallow ironing input `multipliers` as mortar penalty, `penalty` the condition's

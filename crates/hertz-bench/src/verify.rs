@@ -842,9 +842,10 @@ impl ShallowIroning {
 }
 
 /// [`ShallowIroning`] extruded to a unit depth along y in 3D (z up): `kind` elements over
-/// `layers` cells through the depth, every node held in y (plane strain) when `plane_strain`;
-/// mortar face contact, the die's arc the slave side, with multipliers ([`Self::input`]) or a
-/// penalty ([`Self::input_with`]). On bricks its force per unit depth is the 2D one.
+/// `layers` cells through the depth, held in y at every node (plane strain) when `plane_strain`,
+/// else at the die's top alone; mortar face contact, the die's arc the slave side, with
+/// multipliers ([`Self::input`]) or a penalty ([`Self::input_with`]). On bricks in plane strain
+/// its force per unit depth is the 2D one.
 #[derive(Debug, Clone, Copy)]
 pub struct ShallowIroning3d {
     pub base: ShallowIroning,
@@ -907,14 +908,18 @@ impl ShallowIroning3d {
         let slave = inp.faces_where(&die, &|p| p[2] == arc_at(p[0]));
         b.press_and_slide(3, &master, &slave, &block.bottom, &die.top)
             .write(&mut inp);
-        if self.plane_strain {
-            let all: Vec<usize> = (1..=inp.nodes.len()).collect();
-            let all = inp.node_set(&all);
-            let k = inp.bcs.len() + 1;
-            inp.bcs.push(format!(
-                "BoundaryCondition {k} loadTimeFunction 1 dofs 1 2 values 1 0 set {all}"
-            ));
-        }
+        // Held in y: every node (plane strain), or else the die's driven top (which the die
+        // would otherwise be free to leave along y before it touches).
+        let across: Vec<usize> = if self.plane_strain {
+            (1..=inp.nodes.len()).collect()
+        } else {
+            die.top.clone()
+        };
+        let across = inp.node_set(&across);
+        let k = inp.bcs.len() + 1;
+        inp.bcs.push(format!(
+            "BoundaryCondition {k} loadTimeFunction 1 dofs 1 2 values 1 0 set {across}"
+        ));
         inp.render("shallow_ironing3d", &b.analysis(), "3d")
     }
 }
