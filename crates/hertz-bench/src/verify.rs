@@ -692,6 +692,7 @@ impl Ironing {
         );
         PressAndSlide {
             dim: 2,
+            law: Law::Multiplier,
             master: &die_edges,
             slave: &slab.top_edges,
             materials: [
@@ -779,6 +780,7 @@ impl ShallowIroning {
         );
         self.press_and_slide(
             2,
+            Law::Multiplier,
             &block.top_edges,
             &die.bottom_edges,
             &block.bottom,
@@ -802,10 +804,11 @@ impl ShallowIroning {
     }
 
     /// The die's `driven` top pressed into the block (its `held` bottom) and slid along it: the
-    /// slide x = SPEED (t − 1) from t = 1 to the end (at least 2).
+    /// slide x = SPEED (t − 1) from t = 1 to the end (at least 2); the contact law `law`.
     fn press_and_slide<'a>(
         &self,
         dim: usize,
+        law: Law,
         master: &'a [(usize, usize)],
         slave: &'a [(usize, usize)],
         held: &'a [usize],
@@ -814,6 +817,7 @@ impl ShallowIroning {
         let end = self.end.max(2.0);
         PressAndSlide {
             dim,
+            law,
             master,
             slave,
             materials: [
@@ -855,19 +859,13 @@ pub struct ShallowIroning3d {
 }
 
 impl ShallowIroning3d {
-    /// The input with the contact law `law` (a penalty per unit area, friction's ε_T the same).
-    pub fn input_with(&self, law: Law) -> String {
-        let text = self.input();
-        match law {
-            Law::Multiplier => text,
-            Law::Penalty(p) => text.replace(
-                "s2slagrangianmultipliercontact 4 loadTimeFunction 1 ",
-                &format!("s2spenaltycontact 4 loadTimeFunction 1 penalty {p:e} "),
-            ),
-        }
+    /// The input with multipliers.
+    pub fn input(&self) -> String {
+        self.input_with(Law::Multiplier)
     }
 
-    pub fn input(&self) -> String {
+    /// The input with the contact law `law` (a penalty per unit area, friction's ε_T the same).
+    pub fn input_with(&self, law: Law) -> String {
         let b = &self.base;
         let mut inp = Input::default();
         let (columns, top) = b.die_columns();
@@ -906,7 +904,7 @@ impl ShallowIroning3d {
         let h = ShallowIroning::HEIGHT;
         let master = inp.faces_where(&block, &|p| (p[2] - h).abs() < 1e-12);
         let slave = inp.faces_where(&die, &|p| p[2] == arc_at(p[0]));
-        b.press_and_slide(3, &master, &slave, &block.bottom, &die.top)
+        b.press_and_slide(3, law, &master, &slave, &block.bottom, &die.top)
             .write(&mut inp);
         // Held in y: every node (plane strain), or else the die's driven top (which the die
         // would otherwise be free to leave along y before it touches).
@@ -925,13 +923,14 @@ impl ShallowIroning3d {
 }
 
 /// A die pressed into a body and slid along it, as [`Ironing`] and [`ShallowIroning`] write it:
-/// edge (2D) or face (3D) segments 1 (`master`) and 2 (`slave`), materials 1 and 2, the body's `held` nodes fixed
-/// (BC 1), the die's `driven` nodes moved down by `depth` over t ∈ [0, 1] (BC 2) and along x by
-/// `slide` over t ∈ [1, `slide_end`] (BC 3), mortar multipliers with friction `mu` (BC 4), and
-/// the three time functions.
+/// edge (2D) or face (3D) segments 1 (`master`) and 2 (`slave`), materials 1 and 2, the body's
+/// `held` nodes fixed (BC 1), the die's `driven` nodes moved down by `depth` over t ∈ [0, 1]
+/// (BC 2) and along x by `slide` over t ∈ [1, `slide_end`] (BC 3), the mortar condition of
+/// `law` with friction `mu` (BC 4), and the three time functions.
 struct PressAndSlide<'a> {
     /// 2: edge segments, the press along y; 3: face segments, the press along z.
     dim: usize,
+    law: Law,
     master: &'a [(usize, usize)],
     slave: &'a [(usize, usize)],
     materials: [String; 2],
@@ -978,11 +977,8 @@ impl PressAndSlide<'_> {
             "BoundaryCondition 3 loadTimeFunction 3 dofs 1 1 values 1 {} set {driven}",
             self.slide
         ));
-        inp.bcs.push(format!(
-            "s2slagrangianmultipliercontact 4 loadTimeFunction 1 slavesegment 2 segmentset 1 1 \
-             friction {}",
-            self.mu
-        ));
+        inp.bcs
+            .push(format!("{} friction {}", s2s(4, self.law), self.mu));
         let end = self.slide_end;
         inp.functions.push("ConstantFunction 1 f(t) 1.0".into());
         inp.functions.push(format!(
