@@ -14,6 +14,17 @@ fn hertz(args: &[&str]) -> Output {
         .expect("run hertz")
 }
 
+/// `hertz` with `args`, which must succeed (else its stderr is the failure).
+fn hertz_ok(args: &[&str]) -> Output {
+    let out = hertz(args);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}
+
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
@@ -229,12 +240,7 @@ fn run_writes_out_vtu_and_pvd_next_to_the_input() {
         dir.join("b.in"),
     )
     .unwrap();
-    let out = hertz(&["run", "-q", dir.join("b.in").to_str().unwrap()]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    hertz_ok(&["run", "-q", dir.join("b.in").to_str().unwrap()]);
     let text = std::fs::read_to_string(dir.join("brick_nlgeo_1.out")).unwrap();
     // Step 5: all nodes translated by 0.5·(f(5) = 4) = 2 in every direction.
     assert!(text.contains("  dof 3   d  2.00000000e+00"), "{text}");
@@ -260,12 +266,7 @@ fn byte_order_mark_is_skipped() {
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("bom.in");
     std::fs::write(&path, [&b"\xEF\xBB\xBF"[..], &src].concat()).unwrap();
-    let out = hertz(&["run", "-q", path.to_str().unwrap()]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    hertz_ok(&["run", "-q", path.to_str().unwrap()]);
     let names: Vec<String> = std::fs::read_dir(&dir)
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
@@ -357,8 +358,8 @@ fn absurd_bench_sizes_are_refused_before_allocating() {
 /// x = 0 balances the traction 100 on the 3 × 3 face x = 3.
 #[test]
 fn a_written_bench_block_runs_to_its_exact_reaction() {
-    let dir = std::env::temp_dir().join(format!("hertz-bench-write-{}", std::process::id()));
-    let out = hertz(&[
+    let dir = temp_dir("bench-write");
+    hertz_ok(&[
         "bench",
         "--dim",
         "3",
@@ -367,18 +368,8 @@ fn a_written_bench_block_runs_to_its_exact_reaction() {
         "--write",
         dir.to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
     let file = dir.join("block3d_3.in");
-    let out = hertz(&["run", "-q", file.to_str().unwrap()]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    hertz_ok(&["run", "-q", file.to_str().unwrap()]);
     let csv = std::fs::read_to_string(dir.join("block.steps.csv")).unwrap();
     let mut lines = csv.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
@@ -394,19 +385,14 @@ fn a_written_bench_block_runs_to_its_exact_reaction() {
 /// elements, and the die's arc (12 × LAYERS faces) as the mortar slave.
 #[test]
 fn bench_writes_the_shallow_ironing_extruded_to_3d() {
-    let dir = std::env::temp_dir().join(format!("hertz-bench-ironing-{}", std::process::id()));
-    let out = hertz(&[
+    let dir = temp_dir("bench-ironing");
+    hertz_ok(&[
         "bench",
         "--ironing3d",
         "2",
         "--write",
         dir.to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
     let model = hertz::input::read_model(&dir.join("shallow_ironing3d.in"))
         .unwrap()
         .model;
@@ -504,17 +490,12 @@ fn import_never_overwrites_a_users_file() {
     assert_eq!(std::fs::read_to_string(&users).unwrap(), "my own model\n");
     let target = dir.join("square_mesh.in");
     for _ in 0..2 {
-        let out = hertz(&[
+        hertz_ok(&[
             "import",
             mesh.to_str().unwrap(),
             "-o",
             target.to_str().unwrap(),
         ]);
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
     }
     assert!(std::fs::read_to_string(&target)
         .unwrap()
@@ -651,12 +632,7 @@ fn steps_csv_columns_follow_the_condition_numbers() {
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("plate.in");
     std::fs::write(&path, text).unwrap();
-    let out = hertz(&["run", "-q", path.to_str().unwrap()]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    hertz_ok(&["run", "-q", path.to_str().unwrap()]);
     let csv = std::fs::read_to_string(dir.join("plate.steps.csv")).unwrap();
     assert_eq!(
         csv.lines().next().unwrap(),
