@@ -47,7 +47,7 @@ pub struct BenchArgs {
     pub mortar: bool,
     /// --sphere: quadratic elements (10-node tetrahedra with --tet, else 20-node bricks, whose
     /// faces cannot be node-to-face slaves); node-to-face only
-    #[arg(long, requires = "sphere", conflicts_with = "mortar")]
+    #[arg(long, requires = "sphere")]
     pub quadratic: bool,
     /// --sphere: the cap's whole bottom face as the slave side, as a user meshing the whole
     /// face would (else the part near the axis)

@@ -840,8 +840,8 @@ fn traction_on_quadratic_faces(kind: &'static str, shape: Shape, corners: usize,
 }
 
 /// Where contact on quadratic faces is not supported, a condition on them is an input error at
-/// its record, never read as linear faces: mortar on the 6-node faces of QTRSpace (not written
-/// yet), and node-to-segment contact of the nodes of QSpace's 8-node faces (a uniform pressure
+/// its record, never read as linear faces: mortar from the 6-node faces of QTRSpace against a
+/// rigid plane (mortar on quadratic faces meets element faces only), and node-to-segment contact of the nodes of QSpace's 8-node faces (a uniform pressure
 /// pulls on their corners, which no node-to-face constraint can hold).
 #[test]
 fn contact_on_quadratic_faces_is_refused_where_unsupported() {
@@ -850,7 +850,7 @@ fn contact_on_quadratic_faces_is_refused_where_unsupported() {
             "QTRSpace",
             Shape::Tet10,
             "s2spenaltycontact 2 loadTimeFunction 1 penalty 10 slavesegment 1 segmentset 1 2",
-            "mortar contact on them is not supported yet",
+            "meets element faces, not rigid shapes",
         ),
         (
             "QSpace",

@@ -1214,6 +1214,90 @@ impl TwoCylinders {
     }
 }
 
+/// [`ConcentricRings`] in 3D: each ring `RING_DEPTH` deep in `layers` cells, every node held
+/// in z (plane strain), in 10-node tetrahedra (QTRSpace, the Kuhn split) or 20-node bricks
+/// (QSpace) whose faces on the arcs are curved (mid-side nodes on the circles); `inner` and
+/// `outer` cells around the quarter, `radial` through each thickness. Mortar contact of the outer
+/// ring's inner faces (slave, segment 2) on the inner ring's outer faces (segment 1). The
+/// answer is the rings' Lamé cylinder ([`ConcentricRings::pressure`]).
+#[derive(Debug, Clone, Copy)]
+pub struct ConcentricCylinders {
+    pub kind: Solid,
+    pub inner: usize,
+    pub outer: usize,
+    pub radial: usize,
+    pub layers: usize,
+    pub law: Law,
+}
+
+/// The depth of [`ConcentricCylinders`].
+pub const RING_DEPTH: f64 = 0.2;
+
+impl ConcentricCylinders {
+    pub fn input(&self) -> String {
+        use std::f64::consts::FRAC_PI_2;
+        let mut inp = Input::default();
+        // One ring as a block over (r, θ, z), made quadratic, its contact faces at r = `at`,
+        // then bent onto the circles (mid-side nodes at mid θ land on the arcs).
+        let ring = |inp: &mut Input, r0: f64, r1: f64, nt: usize, at: f64| {
+            let block = inp.solid3d(
+                self.kind,
+                &uniform(r0, r1, self.radial),
+                &uniform(0.0, FRAC_PI_2, nt),
+                &uniform(0.0, RING_DEPTH, self.layers),
+                "mat 1 crossSect 1",
+                0,
+            );
+            let mids = inp.make_quadratic(block.elements);
+            let faces = inp.faces_where(&block, &|p| (p[0] - at).abs() < 1e-12);
+            for n in (block.nodes.0..=block.nodes.1).chain(mids) {
+                let [r, t, z] = inp.nodes[n - 1];
+                inp.nodes[n - 1] = [r * t.cos(), r * t.sin(), z];
+            }
+            faces
+        };
+        let master = ring(&mut inp, RING_A, RING_B, self.inner, RING_B);
+        let slave = ring(&mut inp, RING_B, RING_C, self.outer, RING_B);
+        for (k, faces) in [master, slave].iter().enumerate() {
+            let set = inp.boundary_set(faces);
+            inp.segments.push(format!(
+                "linear3delementsurfacecontactsegment {} boundaryset {set}",
+                k + 1
+            ));
+        }
+        inp.sections.push("SimpleCS 1".into());
+        inp.materials
+            .push(format!("IsoLE 1 d 0 E {E} n {NU} tAlpha 0"));
+        let all: Vec<usize> = (1..=inp.nodes.len()).collect();
+        let x0 = inp.nodes_where(&|p| p[0].abs() < 1e-12);
+        let y0 = inp.nodes_where(&|p| p[1].abs() < 1e-12);
+        for (k, (dof, nodes)) in [(1, x0), (2, y0), (3, all)].into_iter().enumerate() {
+            let set = inp.node_set(&nodes);
+            inp.bcs.push(format!(
+                "BoundaryCondition {} loadTimeFunction 2 dofs 1 {dof} values 1 0 set {set}",
+                k + 1
+            ));
+        }
+        // The inner surface pushed out radially: one condition per node (its own direction).
+        let inside = inp.nodes_where(&|p| (p[0].hypot(p[1]) - RING_A).abs() < 1e-9);
+        for n in inside {
+            let p = inp.nodes[n - 1];
+            let set = inp.node_set(&[n]);
+            let k = inp.bcs.len() + 1;
+            inp.bcs.push(format!(
+                "BoundaryCondition {k} loadTimeFunction 1 dofs 2 1 2 values 2 {} {} set {set}",
+                RING_PUSH * p[0] / RING_A,
+                RING_PUSH * p[1] / RING_A
+            ));
+        }
+        let k = inp.bcs.len() + 1;
+        inp.bcs.push(s2s(k, self.law));
+        inp.functions.push(history(&[1.0]));
+        inp.functions.push("ConstantFunction 2 f(t) 1.0".into());
+        inp.render("cylinders", &analysis(1), "3d")
+    }
+}
+
 /// Two concentric elastic rings in plane strain, quarter model, 8-node quadrilaterals
 /// (`QPlaneStrain`) with curved edges (mid-side nodes on the arcs): the inner ring a ≤ r ≤ b,
 /// the outer one b ≤ r ≤ c, touching at r = b with non-matching meshes (`inner` and `outer`

@@ -3,7 +3,6 @@
 
 use super::record::Record;
 use crate::error::{Error, Result, Span};
-use crate::fem::Shape;
 use crate::model::{
     ContactCondition, ContactLaw, ContactSegment, Element, Friction, Pairing, SegmentKind, Set,
 };
@@ -432,29 +431,6 @@ pub fn resolve(
                             segments[slave].number
                         ),
                     ));
-                }
-                // Mortar on curved (6- and 8-node) faces is not written yet: refused, never
-                // taken as linear faces. Node-to-face handles them.
-                for &g in std::iter::once(&slave).chain(&c.segments) {
-                    let SegmentKind::Faces { faces } = &segments[g].kind else {
-                        continue;
-                    };
-                    if let Some(&(e, _)) = faces.iter().find(|&&(e, _)| {
-                        matches!(elements[e].etype.shape(), Shape::Tet10 | Shape::Hexa20)
-                    }) {
-                        return Err(err(
-                            &c.span,
-                            format!(
-                                "segment {} has the curved (quadratic) faces of element {} ({}): \
-                                 mortar contact on them is not supported yet (node-to-segment \
-                                 contact, n2s..., is; or use LTRSpace or LSpace elements on the \
-                                 contact surface)",
-                                segments[g].number,
-                                elements[e].label,
-                                elements[e].etype.name()
-                            ),
-                        ));
-                    }
                 }
                 Pairing::Mortar {
                     slave,

@@ -23,11 +23,12 @@
 //! each overlapping pair is segmented at the current state in duals over its two faces'
 //! coordinates and its integrals are scattered into the constraints of the slave face's nodes.
 
+use super::curved::{self, CurvedPoint};
 use super::segment::{dual_basis, face_rule, overlap, Point};
 use super::{nearest_sheet, rigid_node, search_limit, Facing, SlipForm, SlotLaw, Weighted};
 use crate::contact::dual::{DualN, Jet};
 use crate::contact::geometry::faces::{
-    self, cross, dot, face_normal, shape, sub, Face, FaceSurface,
+    self, cross, dot, face_normal, shape, sub, Face, FaceKind, FaceSurface,
 };
 use crate::contact::geometry::rigid;
 use crate::contact::search::broad::BroadPhase;
@@ -51,6 +52,41 @@ struct LinearSlot {
     /// (node, w_jn) and ∫ Φ_j ν: the weighted relative position of friction ([`SlipForm`]).
     shares: Vec<(usize, f64)>,
     normal: [f64; 3],
+}
+
+impl LinearSlot {
+    /// Add one integration point against master face `mi`: Φ_j dA (`phi`), N_j dA (`support`),
+    /// ν, and the shape values of the slave nodes and (negated) the master nodes there.
+    fn add(
+        &mut self,
+        mi: usize,
+        phi: f64,
+        support: f64,
+        nu: &[f64; 3],
+        shapes: impl Iterator<Item = (usize, f64)>,
+    ) {
+        if self.partner == Partner::None {
+            self.partner = Partner::Face(mi);
+        }
+        self.area += support;
+        for i in 0..3 {
+            self.normal[i] += phi * nu[i];
+        }
+        for (n, shape) in shapes {
+            let k = match self.coeffs.iter().position(|(m, _)| *m == n) {
+                Some(k) => k,
+                None => {
+                    self.coeffs.push((n, [0.0; 3]));
+                    self.shares.push((n, 0.0));
+                    self.coeffs.len() - 1
+                }
+            };
+            for i in 0..3 {
+                self.coeffs[k].1[i] += phi * shape * nu[i];
+            }
+            self.shares[k].1 += phi * shape;
+        }
+    }
 }
 
 pub struct FaceMortar {
@@ -132,6 +168,26 @@ impl FaceMortar {
                 "the slave and master segments share nodes: a surface cannot contact itself",
             ));
         }
+        // Quadratic faces are segmented through flat sub-faces ([`super::curved`]) in the
+        // reference configuration only.
+        let quadratic = |f: &Face| matches!(f.kind, FaceKind::Tri6 | FaceKind::Quad8);
+        let nlgeo = slave.faces.iter().any(|f| f.nlgeo);
+        if slave.faces.iter().chain(&master.faces).any(quadratic) {
+            if nlgeo {
+                return Err(err(
+                    "mortar contact on quadratic (6- and 8-node) faces is written for small \
+                     deformation (nlgeo 0) only; with nlgeo 1 use node-to-segment contact \
+                     (n2s...) on them",
+                ));
+            }
+            if !rigid.is_empty() {
+                return Err(err(
+                    "mortar contact of quadratic (6- and 8-node) slave faces meets element \
+                     faces, not rigid shapes; use node-to-segment contact (n2s...) against a \
+                     rigid shape",
+                ));
+            }
+        }
         let mut slots: Vec<(usize, Vec<usize>)> = Vec::new();
         let mut slot_of = HashMap::new();
         for (k, f) in slave.faces.iter().enumerate() {
@@ -151,13 +207,26 @@ impl FaceMortar {
             .iter()
             .map(|f| Facet::at(f, &reference).size)
             .collect();
-        // ∫ N_j over a flat face: its area over its corner count.
+        // ∫ N_j over a flat face: its area over its corner count; ∫ N̂_j over a curved one.
+        let curved_supports: Vec<Option<Vec<f64>>> = slave
+            .faces
+            .iter()
+            .map(|f| {
+                quadratic(f).then(|| {
+                    let x: Vec<[f64; 3]> = f.nodes.iter().map(|&n| reference(n)).collect();
+                    curved::supports(f.kind, &x)
+                })
+            })
+            .collect();
         let full_support = slots
             .iter()
-            .map(|(_, faces)| {
+            .map(|(node, faces)| {
                 faces
                     .iter()
-                    .map(|&k| size[k].powi(2) / slave.faces[k].nodes.len() as f64)
+                    .map(|&k| match &curved_supports[k] {
+                        Some(s) => s[slave.faces[k].nodes.iter().position(|n| n == node).unwrap()],
+                        None => size[k].powi(2) / slave.faces[k].nodes.len() as f64,
+                    })
                     .sum()
             })
             .collect();
@@ -171,15 +240,19 @@ impl FaceMortar {
             },
             full_support,
         );
+        // Against rigid shapes only, where the slave faces are linear.
         let dual = slave
             .faces
             .iter()
             .map(|f| {
                 let x: Vec<[f64; 3]> = f.nodes.iter().map(|&n| reference(n)).collect();
-                dual_basis(f.kind, &x)
+                if rigid.is_empty() {
+                    [[0.0; 4]; 4]
+                } else {
+                    dual_basis(f.kind, &x)
+                }
             })
             .collect();
-        let nlgeo = slave.faces.iter().any(|f| f.nlgeo);
         let nodes = slave
             .faces
             .iter()
@@ -274,8 +347,17 @@ impl FaceMortar {
         for k in 0..self.slave.faces.len() {
             let sf = &self.slave.faces[k];
             let xs: Vec<[f64; 3]> = sf.nodes.iter().map(|&n| pos(n)).collect();
-            let pieces: Vec<(usize, Vec<Point<f64>>)> = self
-                .candidates(&masters, k, &pos)
+            let candidates = self.candidates(&masters, k, &pos);
+            let quadratic = |f: &Face| matches!(f.kind, FaceKind::Tri6 | FaceKind::Quad8);
+            if quadratic(sf)
+                || candidates
+                    .iter()
+                    .any(|&mi| quadratic(&self.master.faces[mi]))
+            {
+                self.curved_forms(model, k, &xs, &candidates, &mut forms);
+                continue;
+            }
+            let pieces: Vec<(usize, Vec<Point<f64>>)> = candidates
                 .into_iter()
                 .map(|mi| {
                     let mf = &self.master.faces[mi];
@@ -291,45 +373,86 @@ impl FaceMortar {
                 let (cx, ce) = faces::centre(mf.kind);
                 let nm = face_normal(mf.kind, &xm, mf.side, cx, ce);
                 let (ws, wm) = interface_weights(model, sf.element, mf.element);
-                for mut p in points {
+                for p in points {
                     let nu: [f64; 3] = std::array::from_fn(|i| ws * p.nu[i] + wm * nm[i]);
                     let len = dot(&nu, &nu).sqrt();
-                    p.nu = nu.map(|v| v / len);
-                    for (a, &node) in sf.nodes.iter().enumerate() {
-                        let form = &mut forms[self.slot_of[&node]];
-                        if form.partner == Partner::None {
-                            form.partner = Partner::Face(mi);
-                        }
-                        let phi: f64 = (0..4).map(|b| dual[a][b] * p.slave[b]).sum();
-                        let na = phi * p.weight;
-                        form.area += p.slave[a] * p.weight;
-                        let pairs = sf
-                            .nodes
+                    let nu = nu.map(|v| v / len);
+                    let shapes = || {
+                        sf.nodes
                             .iter()
+                            .copied()
                             .zip(p.slave)
-                            .chain(mf.nodes.iter().zip(p.master.map(|v| -v)));
-                        for i in 0..3 {
-                            form.normal[i] += na * p.nu[i];
-                        }
-                        for (&n, shape) in pairs {
-                            let k = match form.coeffs.iter().position(|(m, _)| *m == n) {
-                                Some(k) => k,
-                                None => {
-                                    form.coeffs.push((n, [0.0; 3]));
-                                    form.shares.push((n, 0.0));
-                                    form.coeffs.len() - 1
-                                }
-                            };
-                            for i in 0..3 {
-                                form.coeffs[k].1[i] += na * shape * p.nu[i];
-                            }
-                            form.shares[k].1 += na * shape;
-                        }
+                            .chain(mf.nodes.iter().copied().zip(p.master.map(|v| -v)))
+                    };
+                    for (a, &node) in sf.nodes.iter().enumerate() {
+                        let phi: f64 = (0..4).map(|b| dual[a][b] * p.slave[b]).sum();
+                        forms[self.slot_of[&node]].add(
+                            mi,
+                            phi * p.weight,
+                            p.slave[a] * p.weight,
+                            &nu,
+                            shapes(),
+                        );
                     }
                 }
             }
         }
         forms
+    }
+
+    /// Add slave face `k`'s integrals (nodes at `xs`) to the slots' linear forms when it or one
+    /// of its `candidates` is quadratic: segmented through flat sub-faces, weighted with the dual
+    /// basis of the modified shape functions ([`curved`]).
+    fn curved_forms(
+        &self,
+        model: &Model,
+        k: usize,
+        xs: &[[f64; 3]],
+        candidates: &[usize],
+        forms: &mut [LinearSlot],
+    ) {
+        let sf = &self.slave.faces[k];
+        let pieces: Vec<(usize, Vec<CurvedPoint>)> = candidates
+            .iter()
+            .map(|&mi| {
+                let mf = &self.master.faces[mi];
+                let xm: Vec<[f64; 3]> = mf.nodes.iter().map(|&n| model.nodes[n].coords).collect();
+                let points =
+                    curved::overlap_curved((sf.kind, xs, sf.side), (mf.kind, &xm, mf.side));
+                (mi, points)
+            })
+            .filter(|(_, points)| !points.is_empty())
+            .collect();
+        let kn = sf.nodes.len();
+        let dual = curved::dual_coefficients(kn, pieces.iter().flat_map(|p| &p.1));
+        for (mi, points) in pieces {
+            let mf = &self.master.faces[mi];
+            let (ws, wm) = interface_weights(model, sf.element, mf.element);
+            for p in points {
+                // Towards the slave body: the blend of the two surfaces' normals there.
+                let nu: [f64; 3] =
+                    std::array::from_fn(|i| -ws * p.slave_normal[i] + wm * p.master_normal[i]);
+                let len = dot(&nu, &nu).sqrt();
+                let nu = nu.map(|v| v / len);
+                let shapes = || {
+                    sf.nodes
+                        .iter()
+                        .copied()
+                        .zip(p.slave)
+                        .chain(mf.nodes.iter().copied().zip(p.master.map(|v| -v)))
+                };
+                for (a, &node) in sf.nodes.iter().enumerate() {
+                    let phi: f64 = (0..kn).map(|b| dual[a][b] * p.modified[b]).sum();
+                    forms[self.slot_of[&node]].add(
+                        mi,
+                        phi * p.weight,
+                        p.modified[a] * p.weight,
+                        &nu,
+                        shapes(),
+                    );
+                }
+            }
+        }
     }
 
     /// Slot `j` in small deformation: its linear form at the current positions.
@@ -928,8 +1051,8 @@ impl Facet {
             [c[0] + p[0] / k, c[1] + p[1] / k, c[2] + p[2] / k]
         });
         let (cx, ce) = faces::centre(face.kind);
-        // The area from the diagonals' (a triangle's sides') cross product.
-        let (d1, d2) = if x.len() == 4 {
+        // The area from the diagonals' (a triangle's sides') cross product, on the corners.
+        let (d1, d2) = if face.kind.corners() == 4 {
             (sub(&x[2], &x[0]), sub(&x[3], &x[1]))
         } else {
             (sub(&x[1], &x[0]), sub(&x[2], &x[0]))

@@ -28,6 +28,7 @@
 //! triangle and quadrilateral faces against faces (segmented by [`segment`]) or rigid planes and
 //! spheres.
 
+pub mod curved;
 pub mod edges;
 pub mod faces;
 pub mod segment;

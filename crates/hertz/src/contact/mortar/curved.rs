@@ -1,0 +1,245 @@
+//! Mortar segmentation of quadratic (curved, 6- and 8-node) faces, in small deformation.
+//!
+//! Each face is split into flat sub-faces through points of the curved face (a 6-node triangle
+//! into the 4 triangles of its corners and mid-sides, an 8-node quadrilateral into the 4
+//! quadrilaterals of its corners, mid-sides and centre; a linear face is its own sub-face); the
+//! sub-faces are segmented pair by pair as linear faces ([`super::segment::overlap`]) and each
+//! integration point is carried back to the parameters of the parent faces, where the quadratic
+//! shape functions, the curved surfaces' normals and the curved slave's area element are taken
+//! (the integration cells of Puso, Laursen & Solberg 2008 and Popp, Wohlmuth, Gee & Wall 2012).
+//! The gap is then that of the curved surfaces, not of their facets, which overlap each other by
+//! their sagittas.
+//!
+//! The multipliers' basis: a 6-node triangle's corner functions integrate to 0 and an 8-node
+//! quadrilateral's to −A/12, so no dual basis biorthogonal to them carries a force at the
+//! corners. Φ_j is made biorthogonal to the modified basis of Wohlmuth, Popp, Gee & Wall (2012,
+//! Comput. Mech. 49) instead, N̂_c = N_c + α Σ N_m over the corner's two mid-sides and
+//! N̂_m = (1 − 2α) N_m, α = 1/5 ([`modified`]): a partition of unity (a uniform pressure still
+//! gives λ_j = p at every node) whose integrals are positive (flat faces: 2A/15 at a triangle's
+//! corners and A/5 at its mid-sides, A/20 and A/5 on a quadrilateral), so every slave node has a
+//! support D_j = ∫ N̂_j > 0.
+
+use super::segment::{face_rule, overlap};
+use crate::contact::geometry::faces::{cross, dot, face_normal, shape, shape_values, FaceKind};
+
+type V3 = [f64; 3];
+
+/// The modified basis' weight of the mid-side functions at the corners.
+const ALPHA: f64 = 0.2;
+
+/// One integration point of a slave face against a master face (any of them curved).
+#[derive(Debug, Clone)]
+pub struct CurvedPoint {
+    /// Shape values of the slave and master faces (their node counts; zero past them).
+    pub slave: [f64; 8],
+    pub master: [f64; 8],
+    /// The slave's modified shape values N̂ ([`modified`]): the multipliers' basis is
+    /// biorthogonal to them.
+    pub modified: [f64; 8],
+    /// Unit outward normals of the slave and the master surfaces there.
+    pub slave_normal: V3,
+    pub master_normal: V3,
+    /// Quadrature weight times the curved slave surface's area element.
+    pub weight: f64,
+}
+
+/// The parameters of the vertices of a face's flat sub-faces, each with its linear kind, in
+/// the face's own orientation.
+pub fn sub_faces(kind: FaceKind) -> Vec<(FaceKind, Vec<(f64, f64)>)> {
+    match kind {
+        FaceKind::Tri => vec![(kind, vec![(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)])],
+        FaceKind::Quad => vec![(
+            kind,
+            vec![(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)],
+        )],
+        FaceKind::Tri6 => {
+            let (c0, c1, c2) = ((0.0, 0.0), (1.0, 0.0), (0.0, 1.0));
+            let (m01, m12, m20) = ((0.5, 0.0), (0.5, 0.5), (0.0, 0.5));
+            [
+                [c0, m01, m20],
+                [m01, c1, m12],
+                [m20, m12, c2],
+                [m01, m12, m20],
+            ]
+            .into_iter()
+            .map(|t| (FaceKind::Tri, t.to_vec()))
+            .collect()
+        }
+        // The quadrants, each from its lower-left corner.
+        FaceKind::Quad8 => [(-1.0, -1.0), (0.0, -1.0), (0.0, 0.0), (-1.0, 0.0)]
+            .into_iter()
+            .map(|(x, y)| {
+                let v = vec![(x, y), (x + 1.0, y), (x + 1.0, y + 1.0), (x, y + 1.0)];
+                (FaceKind::Quad, v)
+            })
+            .collect(),
+    }
+}
+
+/// The modified shape values N̂ of a face from its shape values `n` (see the module doc); a
+/// linear face's are its own.
+pub fn modified(kind: FaceKind, n: &[f64; 8]) -> [f64; 8] {
+    let k = match kind {
+        FaceKind::Tri6 => 3,
+        FaceKind::Quad8 => 4,
+        _ => return *n,
+    };
+    let mut out = *n;
+    for c in 0..k {
+        // Mid-side c lies between corners c and c + 1.
+        out[c] += ALPHA * (n[k + c] + n[k + (c + k - 1) % k]);
+        out[k + c] = (1.0 - 2.0 * ALPHA) * n[k + c];
+    }
+    out
+}
+
+/// The point of the face with nodes `x` at parameters (ξ, η), and the surface's tangents there.
+fn point_of(kind: FaceKind, x: &[V3], xi: f64, eta: f64) -> (V3, V3, V3) {
+    let (n, dx, de) = shape_values(kind, xi, eta);
+    let (mut p, mut t1, mut t2) = ([0.0; 3], [0.0; 3], [0.0; 3]);
+    for a in 0..x.len() {
+        for i in 0..3 {
+            p[i] += n[a] * x[a][i];
+            t1[i] += dx[a] * x[a][i];
+            t2[i] += de[a] * x[a][i];
+        }
+    }
+    (p, t1, t2)
+}
+
+/// The parameters in a sub-face's own coordinates of a point with sub-face shape values `s`
+/// (a triangle's (N₁, N₂), a quadrilateral's from its bilinear values).
+fn sub_params(kind: FaceKind, s: &[f64; 4]) -> (f64, f64) {
+    match kind {
+        FaceKind::Tri => (s[1], s[2]),
+        _ => (s[1] + s[2] - s[0] - s[3], s[2] + s[3] - s[0] - s[1]),
+    }
+}
+
+/// The integration points of slave face (`sk`, nodes `xs`, orientation `side`) against master
+/// face (`mk`, nodes `xm`, orientation `mside`), through their flat sub-faces: empty when they
+/// do not overlap.
+pub fn overlap_curved(
+    (sk, xs, side): (FaceKind, &[V3], f64),
+    (mk, xm, mside): (FaceKind, &[V3], f64),
+) -> Vec<CurvedPoint> {
+    let vertices = |kind: FaceKind, x: &[V3], params: &[(f64, f64)]| -> Vec<V3> {
+        params
+            .iter()
+            .map(|&(a, b)| point_of(kind, x, a, b).0)
+            .collect()
+    };
+    let masters: Vec<(FaceKind, Vec<(f64, f64)>, Vec<V3>)> = sub_faces(mk)
+        .into_iter()
+        .map(|(k, q)| {
+            let v = vertices(mk, xm, &q);
+            (k, q, v)
+        })
+        .collect();
+    let mut out = Vec::new();
+    for (ssk, sq) in sub_faces(sk) {
+        let sv = vertices(sk, xs, &sq);
+        for (msk, mq, mv) in &masters {
+            for p in overlap(ssk, &sv, side, *msk, mv) {
+                // The sub-faces' maps are affine in the parent's parameters.
+                let parent = |q: &[(f64, f64)], s: &[f64; 4]| {
+                    (0..q.len()).fold((0.0, 0.0), |(a, b), v| {
+                        (a + s[v] * q[v].0, b + s[v] * q[v].1)
+                    })
+                };
+                let (sxi, seta) = parent(&sq, &p.slave);
+                let (mxi, meta) = parent(mq, &p.master);
+                // p.weight carries the flat sub-face's area element; the curved face's is
+                // |x_ξ × x_η| |det ∂ξ/∂ξ_sub| over the sub-face's |y_ξ × y_η|.
+                let (a, b) = sub_params(ssk, &p.slave);
+                let (_, dx, de) = shape(ssk, a, b);
+                let (mut y1, mut y2, mut q1, mut q2) = ([0.0; 3], [0.0; 3], [0.0; 2], [0.0; 2]);
+                for v in 0..sq.len() {
+                    for i in 0..3 {
+                        y1[i] += dx[v] * sv[v][i];
+                        y2[i] += de[v] * sv[v][i];
+                    }
+                    q1[0] += dx[v] * sq[v].0;
+                    q1[1] += dx[v] * sq[v].1;
+                    q2[0] += de[v] * sq[v].0;
+                    q2[1] += de[v] * sq[v].1;
+                }
+                let flat = cross(&y1, &y2);
+                let (_, t1, t2) = point_of(sk, xs, sxi, seta);
+                let curved = cross(&t1, &t2);
+                let det = (q1[0] * q2[1] - q1[1] * q2[0]).abs();
+                let ratio = dot(&curved, &curved).sqrt() * det / dot(&flat, &flat).sqrt();
+                let slave = shape_values(sk, sxi, seta).0;
+                out.push(CurvedPoint {
+                    slave,
+                    master: shape_values(mk, mxi, meta).0,
+                    modified: modified(sk, &slave),
+                    slave_normal: face_normal(sk, xs, side, sxi, seta),
+                    master_normal: face_normal(mk, xm, mside, mxi, meta),
+                    weight: p.weight * ratio,
+                });
+            }
+        }
+    }
+    out
+}
+
+/// The coefficients A = D M⁻¹ of the dual basis Φ_a = Σ_b A_ab N̂_b of a slave face with `k`
+/// nodes biorthogonal to N̂ over `points` (M = Σ N̂_a N̂_b w, D = Σ N̂_a w), by Gauss–Jordan.
+pub fn dual_coefficients<'a>(
+    k: usize,
+    points: impl Iterator<Item = &'a CurvedPoint>,
+) -> Vec<Vec<f64>> {
+    let mut aug = vec![vec![0.0; 2 * k]; k];
+    for p in points {
+        for a in 0..k {
+            aug[a][k + a] += p.modified[a] * p.weight;
+            for b in 0..k {
+                aug[a][b] += p.modified[a] * p.modified[b] * p.weight;
+            }
+        }
+    }
+    for c in 0..k {
+        let piv = (c..k)
+            .max_by(|&i, &j| aug[i][c].abs().total_cmp(&aug[j][c].abs()))
+            .expect("rows");
+        aug.swap(c, piv);
+        let p = aug[c][c];
+        if p == 0.0 {
+            // A node the overlaps do not reach: no basis function of its own.
+            continue;
+        }
+        for v in aug[c].iter_mut() {
+            *v /= p;
+        }
+        for r in 0..k {
+            if r != c {
+                let f = aug[r][c];
+                let row = aug[c].clone();
+                for (v, w) in aug[r].iter_mut().zip(row) {
+                    *v -= f * w;
+                }
+            }
+        }
+    }
+    // The right half is M⁻¹ D = (D M⁻¹)ᵀ.
+    (0..k)
+        .map(|a| (0..k).map(|b| aug[b][k + a]).collect())
+        .collect()
+}
+
+/// ∫ N̂_a dA over a whole face with nodes `x` (curved area element): a slave node's full
+/// support from this face.
+pub fn supports(kind: FaceKind, x: &[V3]) -> Vec<f64> {
+    let mut out = vec![0.0; x.len()];
+    for (xi, eta, w) in face_rule(kind) {
+        let (_, t1, t2) = point_of(kind, x, xi, eta);
+        let c = cross(&t1, &t2);
+        let da = w * dot(&c, &c).sqrt();
+        let n = modified(kind, &shape_values(kind, xi, eta).0);
+        for (s, v) in out.iter_mut().zip(n) {
+            *s += v * da;
+        }
+    }
+    out
+}
