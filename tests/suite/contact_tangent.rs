@@ -850,6 +850,67 @@ fn mortar_tangents_in_3d_are_jacobians_of_residuals() {
     }
 }
 
+/// The mortar tangent on quadratic faces (small deformation: the reference segmentation through
+/// flat sub-faces, the curved surfaces' normals) is the Jacobian of its residual: the patch in
+/// 10-node tetrahedra and 20-node bricks (slave 2 × 2 across on a master 1 × 1), the slave
+/// block sunk and sheared, the master's top nodes moved out of plane, penalty and multipliers.
+#[test]
+fn mortar_tangents_on_quadratic_faces_are_jacobians_of_residuals() {
+    use hertz_bench::mesh::Solid;
+    use hertz_bench::suite::Law;
+    for kind in [Solid::Hex, Solid::Tet] {
+        for (law, lambda) in [(Law::Penalty(1e4), 0.0), (Law::Multiplier, 3.0)] {
+            let text = hertz_bench::verify::Patch {
+                kind,
+                slave_kind: None,
+                sym: 0,
+                n: 1,
+                nlgeo: false,
+                delta: 0.01,
+                steps: 1,
+                law,
+                slave_n: Some(2),
+                mortar: true,
+            }
+            .input_quadratic();
+            let model = common::model_from_text(&text).unwrap();
+            // The slave block's nodes: those of the elements above z = 0.
+            let mut slave = std::collections::BTreeSet::new();
+            for e in &model.elements {
+                let z: f64 = e.nodes.iter().map(|&n| model.nodes[n].coords[2]).sum();
+                if z > 0.0 {
+                    slave.extend(e.nodes.iter().copied());
+                }
+            }
+            let disp = model
+                .nodes
+                .iter()
+                .enumerate()
+                .filter_map(|(i, n)| {
+                    let [x, y, z] = n.coords;
+                    let k = n.label as f64;
+                    if slave.contains(&i) {
+                        Some((
+                            n.label,
+                            [0.013 + 0.02 * z, -0.007 + 0.01 * z, -0.01 + 0.003 * k.sin()],
+                        ))
+                    } else if z.abs() < 1e-9 {
+                        Some((n.label, [0.004 * k.cos(), 0.002 * x, 0.003 * (k + y).sin()]))
+                    } else {
+                        None
+                    }
+                })
+                .collect();
+            check_mortar3d(
+                &format!("quadratic mortar3d {kind:?} {law:?}"),
+                &text,
+                disp,
+                lambda,
+            );
+        }
+    }
+}
+
 /// The 3D mortar tangent against rigid shapes is the Jacobian of its residual: the patch's slave
 /// block ([`mortar3d_case`], sunk and sheared) on a rigid sphere moving with a node and on a
 /// tilted plane, hexahedra, tetrahedra and wedges, small and large deformation, penalty and
