@@ -45,9 +45,9 @@ pub struct BenchArgs {
     /// --sphere, --patch: mortar contact of the slave's bottom faces instead of node-to-face
     #[arg(long)]
     pub mortar: bool,
-    /// --sphere: quadratic elements (10-node tetrahedra with --tet, else 20-node bricks, whose
-    /// faces cannot be node-to-face slaves); node-to-face only
-    #[arg(long, requires = "sphere")]
+    /// --sphere, --patch: quadratic elements (10-node tetrahedra with --tet, else 20-node
+    /// bricks, whose faces are mortar slaves only)
+    #[arg(long)]
     pub quadratic: bool,
     /// --sphere: the cap's whole bottom face as the slave side, as a user meshing the whole
     /// face would (else the part near the axis)
@@ -114,9 +114,11 @@ pub fn main(args: BenchArgs) -> ExitCode {
         args.write,
         args.examples,
     );
-    if args.mortar && args.sphere.is_none() && args.patch.is_none() {
-        eprintln!("error: --mortar needs --sphere or --patch");
-        return ExitCode::from(2);
+    for (set, flag) in [(args.mortar, "--mortar"), (args.quadratic, "--quadratic")] {
+        if set && args.sphere.is_none() && args.patch.is_none() {
+            eprintln!("error: {flag} needs --sphere or --patch");
+            return ExitCode::from(2);
+        }
     }
     let model3d = match (args.sphere, args.patch) {
         // Spacing 0.03: about 10^6 unknowns.
@@ -138,6 +140,7 @@ pub fn main(args: BenchArgs) -> ExitCode {
         (_, Some(p)) => Some(Model3d::Patch(hertz_bench::PatchBench {
             n: p as usize,
             mortar: args.mortar,
+            quadratic: args.quadratic,
         })),
         _ => None,
     };

@@ -400,8 +400,12 @@ fn a_block_is_split_into_even_compact_parts() {
 /// and the step ran 25 iterations at the floor through five halvings to exit 3.
 #[test]
 fn multipliers_converge_on_the_round_off_floor_of_their_forces() {
-    let text = hertz_bench::Model3d::Patch(hertz_bench::PatchBench { n: 4, mortar: true })
-        .input(hertz_bench::suite::Law::Multiplier);
+    let text = hertz_bench::Model3d::Patch(hertz_bench::PatchBench {
+        n: 4,
+        mortar: true,
+        quadratic: false,
+    })
+    .input(hertz_bench::suite::Law::Multiplier);
     assert!(text.contains("rtolf 1e-12"));
     let model = common::model_from_text(&text.replace("rtolf 1e-12", "rtolf 1e-16")).unwrap();
     let mut steps = Vec::new();

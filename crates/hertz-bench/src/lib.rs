@@ -313,6 +313,8 @@ pub struct PatchBench {
     pub n: usize,
     /// Mortar (the slave's bottom faces) instead of node-to-face (its bottom nodes).
     pub mortar: bool,
+    /// 20-node bricks (QSpace).
+    pub quadratic: bool,
 }
 
 /// Compression of the patch benchmark.
@@ -346,19 +348,25 @@ impl Model3d {
                 },
                 b.quadratic,
             ),
-            Model3d::Patch(b) => verify::Patch {
-                kind: mesh::Solid::Hex,
-                slave_kind: None,
-                sym: 0,
-                n: b.n,
-                nlgeo: false,
-                delta: PATCH_DELTA,
-                steps: 1,
-                law,
-                slave_n: None,
-                mortar: b.mortar,
+            Model3d::Patch(b) => {
+                let patch = verify::Patch {
+                    kind: mesh::Solid::Hex,
+                    slave_kind: None,
+                    sym: 0,
+                    n: b.n,
+                    nlgeo: false,
+                    delta: PATCH_DELTA,
+                    steps: 1,
+                    law,
+                    slave_n: None,
+                    mortar: b.mortar,
+                };
+                if b.quadratic {
+                    patch.input_quadratic()
+                } else {
+                    patch.input()
+                }
             }
-            .input(),
         }
     }
 
@@ -381,9 +389,10 @@ impl Model3d {
                 }
             ),
             Model3d::Patch(b) => format!(
-                "contact patch test, {n} x {n} x 2 master bricks, {m} x {m} x 2 slave bricks, {f}",
+                "contact patch test, {n} x {n} x 2 master {q}bricks, {m} x {m} x 2 slave bricks, {f}",
                 n = b.n,
                 m = 2 * b.n,
+                q = if b.quadratic { "20-node " } else { "" },
                 f = if b.mortar { "mortar" } else { "node-to-face" }
             ),
         }
