@@ -243,6 +243,14 @@ pub trait Formulation {
     fn partner_nodes(&self, _partner: Partner) -> &[usize] {
         &[]
     }
+    /// The rows (node k, node l, T_kl) of the slave nodes' basis transformation T whose
+    /// multipliers are biorthogonal to modified shape functions N̂ = T N (mortar on quadratic
+    /// faces): multiplier j acts on the slave nodes n with (T⁻¹)_nj, so its force is its own
+    /// node's alone only in the equilibrium rows combined by T (row k ← Σ_l T_kl row l), where
+    /// `solve::multipliers` eliminates it. Rows not listed are the identity's; none by default.
+    fn slave_transform(&self) -> Vec<(usize, usize, f64)> {
+        Vec::new()
+    }
     /// Evaluate every slot at `ctx`; `first_lambda` is the equation of its first multiplier,
     /// `history` the converged states of the last step (the friction history), if any.
     /// Returns the seconds spent searching partners.

@@ -85,6 +85,14 @@ impl ContactSystem {
         !self.frictional && self.formulations.iter().all(|f| f.symmetric())
     }
 
+    /// Every condition's [`Formulation::slave_transform`] rows.
+    pub fn slave_transform(&self) -> Vec<(usize, usize, f64)> {
+        self.formulations
+            .iter()
+            .flat_map(|f| f.slave_transform())
+            .collect()
+    }
+
     /// What the DOF numbering must provide for the contact conditions.
     pub fn extra_dofs(&self) -> ExtraDofs {
         ExtraDofs {

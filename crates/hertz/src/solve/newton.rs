@@ -657,6 +657,27 @@ impl<'a> NewtonContext<'a> {
             .collect()
     }
 
+    /// The contact's slave basis transformation ([`crate::contact::Formulation::slave_transform`])
+    /// over the free displacement equations: each node pair's entry for every component both
+    /// nodes have free.
+    fn slave_transform(&self) -> Vec<(usize, usize, f64)> {
+        let dofs = self.dofs;
+        let n_disp = dofs.n_free - dofs.n_lambda;
+        let mut out = Vec::new();
+        for (k, l, w) in self.contact.slave_transform() {
+            for &(id, ek) in &dofs.node_dofs[k] {
+                let el = dofs.node_dofs[l]
+                    .iter()
+                    .find(|(i, _)| *i == id)
+                    .map(|p| p.1);
+                if let Some(el) = el.filter(|&el| ek < n_disp && el < n_disp) {
+                    out.push((ek, el, w));
+                }
+            }
+        }
+        out
+    }
+
     /// Give up condensing for the rest of the analysis: full tangents, on a pattern with both
     /// triangles if a contact tangent is not symmetric.
     pub(super) fn condense_off(&mut self) {
@@ -697,6 +718,11 @@ impl<'a> NewtonContext<'a> {
             self.multiplier_groups(points)
         } else {
             Vec::new()
+        };
+        let transform = if groups.is_empty() {
+            Vec::new()
+        } else {
+            self.slave_transform()
         };
         loop {
             let mut kv = ks.k_values.clone().expect("requested");
@@ -739,6 +765,7 @@ impl<'a> NewtonContext<'a> {
                     &mut step,
                     &groups,
                     general,
+                    &transform,
                     &describe,
                 )?;
                 self.times.factor += since(t);

@@ -93,6 +93,38 @@ pub fn modified(kind: FaceKind, n: &[f64; 8]) -> [f64; 8] {
     out
 }
 
+/// The rows (node k, node l, T_kl) of the modified basis N̂ = T N over quadratic slave faces
+/// (`faces`: kind and node list, corners then mid-sides): a corner's row has 1 at itself and α
+/// at each mid-side of its sides, a mid-side's 1 − 2α at itself. A mid-side shared by two faces
+/// sits between the same two corners in both, so T is one matrix over the surface.
+pub fn transform_rows<'a>(
+    faces: impl Iterator<Item = (FaceKind, &'a [usize])>,
+) -> Vec<(usize, usize, f64)> {
+    let mut rows = std::collections::BTreeSet::new();
+    let mut out = Vec::new();
+    for (kind, nodes) in faces {
+        let k = match kind {
+            FaceKind::Tri6 => 3,
+            FaceKind::Quad8 => 4,
+            _ => continue,
+        };
+        for c in 0..k {
+            let (m, next) = (nodes[k + c], nodes[(c + 1) % k]);
+            for (row, col, w) in [
+                (nodes[c], nodes[c], 1.0),
+                (nodes[c], m, ALPHA),
+                (next, m, ALPHA),
+                (m, m, 1.0 - 2.0 * ALPHA),
+            ] {
+                if rows.insert((row, col)) {
+                    out.push((row, col, w));
+                }
+            }
+        }
+    }
+    out
+}
+
 /// The point of the face with nodes `x` at parameters (ξ, η), and the surface's tangents there.
 fn point_of(kind: FaceKind, x: &[V3], xi: f64, eta: f64) -> (V3, V3, V3) {
     let (n, dx, de) = shape_values(kind, xi, eta);

@@ -1121,6 +1121,13 @@ impl Formulation for FaceMortar {
         }
     }
 
+    fn slave_transform(&self) -> Vec<(usize, usize, f64)> {
+        if self.law.n_multipliers(1) == 0 {
+            return Vec::new();
+        }
+        curved::transform_rows(self.slave.faces.iter().map(|f| (f.kind, &f.nodes[..])))
+    }
+
     fn evaluate(
         &self,
         ctx: &Ctx,

@@ -22,6 +22,11 @@
 //!   a square system in the displacements with the fill of the slave rows in the master and
 //!   constraint rows, for a sparse LU.
 //!
+//! Mortar on quadratic faces weighs with a dual basis biorthogonal to modified shape functions
+//! N̂ = T N, whose multiplier also pushes the corners beside its mid-side node: the slave rows
+//! are first combined by T and the unknowns changed to match (`Transform`: P A Pᵀ y = P b,
+//! x = Pᵀ y), after which each multiplier acts on its own node's rows alone.
+//!
 //! The elimination is exact (the GMRES way to 1e-12 of the right-hand side): a multiplier is
 //! eliminated only where the slave rows of the other eliminated points carry none of it (up to
 //! round-off, 1e-12 of its own coupling) and C has full column rank; the others stay unknowns
@@ -85,6 +90,53 @@ pub struct MultiplierElimination {
     /// GMRES iterations of the last solve (a general tangent preconditioned by the symmetric
     /// elimination of its symmetric counterpart), 0 for a direct solve.
     krylov_iterations: usize,
+}
+
+/// A change of basis of the displacement unknowns, x = Pᵀ y, with the equations combined by
+/// the same P: (P T Pᵀ) y = P b, symmetric where T is. P is the identity but for the rows
+/// listed (a slave corner's row plus α times its mid-sides' rows, a mid-side's scaled: see
+/// `Formulation::slave_transform`), so that a multiplier biorthogonal to a modified basis acts
+/// on its own slave node alone and is eliminated through its rows.
+struct Transform {
+    /// Per equation: its row of P, None for the identity's.
+    rows: Vec<Option<Vec<(usize, f64)>>>,
+    /// Per equation l: the (k, P_kl) of every row k reaching it (Pᵀ's row l).
+    cols: Vec<Vec<(usize, f64)>>,
+}
+
+impl Transform {
+    fn new(n: usize, entries: &[(usize, usize, f64)]) -> Transform {
+        let mut rows: Vec<Option<Vec<(usize, f64)>>> = vec![None; n];
+        for &(k, l, w) in entries {
+            rows[k].get_or_insert_with(Vec::new).push((l, w));
+        }
+        let mut cols: Vec<Vec<(usize, f64)>> = vec![Vec::new(); n];
+        for (k, row) in rows.iter().enumerate() {
+            match row {
+                Some(r) => r.iter().for_each(|&(l, w)| cols[l].push((k, w))),
+                None => cols[k].push((k, 1.0)),
+            }
+        }
+        Transform { rows, cols }
+    }
+
+    /// P b.
+    fn apply(&self, b: &[f64]) -> Vec<f64> {
+        (0..b.len())
+            .map(|k| match &self.rows[k] {
+                Some(r) => r.iter().map(|&(l, w)| w * b[l]).sum(),
+                None => b[k],
+            })
+            .collect()
+    }
+
+    /// Pᵀ y.
+    fn back(&self, y: &[f64]) -> Vec<f64> {
+        self.cols
+            .iter()
+            .map(|c| c.iter().map(|&(k, w)| w * y[k]).sum())
+            .collect()
+    }
 }
 
 /// An eliminated group: its rows, multipliers, Q (r × r, row-major) and E = R⁻¹Q₁ᵀ (p × r).
@@ -180,7 +232,10 @@ impl MultiplierElimination {
     /// eliminating the multipliers of `groups` where that is exact (see the module doc).
     /// A symmetric T, and a general one that GMRES solves on its symmetric counterpart's
     /// elimination, are always solved; any other only with `general` (else false is returned
-    /// and `rhs` is untouched: the caller solves T itself).
+    /// and `rhs` is untouched: the caller solves T itself). `transform` (equations k, l and
+    /// P_kl, [`Transform`]) combines the slave rows first where the multipliers' forces are
+    /// diagonal only in combined rows (mortar on quadratic faces).
+    #[allow(clippy::too_many_arguments)]
     pub fn solve(
         &mut self,
         pattern: &Pattern,
@@ -188,9 +243,37 @@ impl MultiplierElimination {
         rhs: &mut [f64],
         groups: &[Group],
         general: bool,
+        transform: &[(usize, usize, f64)],
         describe: &dyn Fn(usize) -> String,
     ) -> Result<bool> {
         let rows = Rows::new(pattern, values);
+        if transform.is_empty() {
+            return self.solve_rows(rows, rhs, groups, general, describe);
+        }
+        let t = Transform::new(rhs.len(), transform);
+        let mut combined = t.apply(rhs);
+        let solved = self.solve_rows(
+            rows.transformed(&t),
+            &mut combined,
+            groups,
+            general,
+            describe,
+        )?;
+        if solved {
+            rhs.copy_from_slice(&t.back(&combined));
+        }
+        Ok(solved)
+    }
+
+    /// [`MultiplierElimination::solve`] on the tangent by rows.
+    fn solve_rows(
+        &mut self,
+        rows: Rows,
+        rhs: &mut [f64],
+        groups: &[Group],
+        general: bool,
+        describe: &dyn Fn(usize) -> String,
+    ) -> Result<bool> {
         let multipliers: Vec<usize> = groups.iter().flat_map(|g| g.lambdas.clone()).collect();
         self.method = Method::General;
         self.krylov_iterations = 0;
@@ -717,9 +800,15 @@ mod tests {
         let mut got = rhs.to_vec();
         let mut el = MultiplierElimination::default();
         assert!(el
-            .solve(&pattern, &values, &mut got, groups, general, &|i| format!(
-                "{i}"
-            ))
+            .solve(
+                &pattern,
+                &values,
+                &mut got,
+                groups,
+                general,
+                &[],
+                &|i| format!("{i}")
+            )
             .unwrap());
         for (g, w) in got.iter().zip(&want) {
             assert!((g - w).abs() < tol, "{got:?} vs {want:?}");
@@ -741,6 +830,66 @@ mod tests {
                 assert!((o - f64::from(u8::from(i == k))).abs() < 1e-14);
             }
         }
+    }
+
+    /// A multiplier biorthogonal to a modified basis (mortar on a quadratic face): λ_m (5) acts
+    /// on its mid-side node 1 with D/(1 − 2α) and on the corner 0 beside it with −α D/(1 − 2α),
+    /// λ_c (4) on the corner alone; both also on a master node 3. Taken as they are, λ_m cannot
+    /// be eliminated through node 1's row (the corner's row carries it too) and is kept; with
+    /// the rows combined by T (corner row + α mid row, mid row × (1 − 2α)) both are, and the
+    /// solution is the full solve's.
+    #[test]
+    fn a_slave_transform_lets_modified_basis_multipliers_be_eliminated() {
+        let (alpha, d) = (0.2, 0.5);
+        let (own, side) = (d / (1.0 - 2.0 * alpha), -alpha * d / (1.0 - 2.0 * alpha));
+        let a = vec![
+            vec![4.0, -1.0, 0.0, -0.5, 0.8, side],
+            vec![-1.0, 3.0, -0.5, 0.0, 0.0, own],
+            vec![0.0, -0.5, 2.0, 0.0, 0.0, 0.0],
+            vec![-0.5, 0.0, 0.0, 3.0, -0.8, -d],
+            vec![0.8, 0.0, 0.0, -0.8, 0.0, 0.0],
+            vec![side, own, 0.0, -d, 0.0, 0.0],
+        ];
+        let rhs = [1.0, -0.3, 0.2, 0.25, 0.01, -0.02];
+        let groups = [
+            Group {
+                slave: vec![0],
+                lambdas: vec![4],
+            },
+            Group {
+                slave: vec![1],
+                lambdas: vec![5],
+            },
+        ];
+        let plain = solved_against_full_solve(&a, &rhs, &groups, true, 1e-13);
+        assert_eq!((plain.eliminated, plain.kept), (1, 1));
+        let (pattern, values) = dense(&a);
+        let mut full = FaerSolver::default();
+        full.factorize(&pattern, &values, false, &|i| format!("{i}"))
+            .unwrap();
+        let mut want = rhs.to_vec();
+        full.solve_in_place(&mut want).unwrap();
+        let mut got = rhs.to_vec();
+        let mut el = MultiplierElimination::default();
+        let t = [(0, 0, 1.0), (0, 1, alpha), (1, 1, 1.0 - 2.0 * alpha)];
+        assert!(el
+            .solve(
+                &pattern,
+                &values,
+                &mut got,
+                &groups,
+                true,
+                &t,
+                &|i| format!("{i}")
+            )
+            .unwrap());
+        for (g, w) in got.iter().zip(&want) {
+            assert!((g - w).abs() < 1e-13, "{got:?} vs {want:?}");
+        }
+        assert_eq!(
+            (el.eliminated, el.kept, el.method),
+            (2, 0, Method::Symmetric)
+        );
     }
 
     /// Two springs in series, the middle node held against a wall by a multiplier acting on it

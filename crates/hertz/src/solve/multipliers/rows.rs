@@ -171,6 +171,40 @@ impl Rows {
         }
     }
 
+    /// P A Pᵀ ([`super::Transform`]), summed row by row in a dense work row.
+    pub(super) fn transformed(&self, t: &super::Transform) -> Rows {
+        let n = self.ptr.len() - 1;
+        let (mut ptr, mut col, mut val) = (vec![0usize], Vec::new(), Vec::new());
+        let mut work = vec![0.0; n];
+        let mut used = vec![false; n];
+        let mut touched: Vec<usize> = Vec::new();
+        for i in 0..n {
+            let own = [(i, 1.0)];
+            let combination: &[(usize, f64)] = t.rows[i].as_deref().unwrap_or(&own);
+            for &(k, pk) in combination {
+                for (l, v) in self.row(k) {
+                    for &(j, pj) in &t.cols[l] {
+                        if !used[j] {
+                            used[j] = true;
+                            touched.push(j);
+                        }
+                        work[j] += pk * v * pj;
+                    }
+                }
+            }
+            touched.sort_unstable();
+            for &j in &touched {
+                col.push(j);
+                val.push(work[j]);
+                work[j] = 0.0;
+                used[j] = false;
+            }
+            touched.clear();
+            ptr.push(col.len());
+        }
+        Rows { ptr, col, val }
+    }
+
     pub(super) fn row(&self, i: usize) -> impl Iterator<Item = (usize, f64)> + '_ {
         (self.ptr[i]..self.ptr[i + 1]).map(|k| (self.col[k], self.val[k]))
     }
