@@ -21,26 +21,28 @@
 
 use super::segment::{face_rule, overlap};
 use crate::contact::geometry::faces::{cross, dot, face_normal, shape, shape_values, FaceKind};
+use crate::contact::geometry::scalar::Scalar;
 
-type V3 = [f64; 3];
+type V3<T = f64> = [T; 3];
 
 /// The modified basis' weight of the mid-side functions at the corners.
 const ALPHA: f64 = 0.2;
 
-/// One integration point of a slave face against a master face (any of them curved).
+/// One integration point of a slave face against a master face (any of them curved), in `f64`
+/// (the reference segmentation) or in duals over the two faces' coordinates (the current one).
 #[derive(Debug, Clone)]
-pub struct CurvedPoint {
+pub struct CurvedPoint<T = f64> {
     /// Shape values of the slave and master faces (their node counts; zero past them).
-    pub slave: [f64; 8],
-    pub master: [f64; 8],
+    pub slave: [T; 8],
+    pub master: [T; 8],
     /// The slave's modified shape values N̂ ([`modified`]): the multipliers' basis is
     /// biorthogonal to them.
-    pub modified: [f64; 8],
+    pub modified: [T; 8],
     /// Unit outward normals of the slave and the master surfaces there.
-    pub slave_normal: V3,
-    pub master_normal: V3,
+    pub slave_normal: V3<T>,
+    pub master_normal: V3<T>,
     /// Quadrature weight times the curved slave surface's area element.
-    pub weight: f64,
+    pub weight: T,
 }
 
 /// The parameters of the vertices of a face's flat sub-faces, each with its linear kind, in
@@ -78,7 +80,7 @@ pub fn sub_faces(kind: FaceKind) -> Vec<(FaceKind, Vec<(f64, f64)>)> {
 
 /// The modified shape values N̂ of a face from its shape values `n` (see the module doc); a
 /// linear face's are its own.
-pub fn modified(kind: FaceKind, n: &[f64; 8]) -> [f64; 8] {
+pub fn modified<T: Scalar>(kind: FaceKind, n: &[T; 8]) -> [T; 8] {
     let k = match kind {
         FaceKind::Tri6 => 3,
         FaceKind::Quad8 => 4,
@@ -87,8 +89,8 @@ pub fn modified(kind: FaceKind, n: &[f64; 8]) -> [f64; 8] {
     let mut out = *n;
     for c in 0..k {
         // Mid-side c lies between corners c and c + 1.
-        out[c] += ALPHA * (n[k + c] + n[k + (c + k - 1) % k]);
-        out[k + c] = (1.0 - 2.0 * ALPHA) * n[k + c];
+        out[c] = out[c] + (n[k + c] + n[k + (c + k - 1) % k]) * ALPHA;
+        out[k + c] = n[k + c] * (1.0 - 2.0 * ALPHA);
     }
     out
 }
@@ -126,14 +128,15 @@ pub fn transform_rows<'a>(
 }
 
 /// The point of the face with nodes `x` at parameters (ξ, η), and the surface's tangents there.
-fn point_of(kind: FaceKind, x: &[V3], xi: f64, eta: f64) -> (V3, V3, V3) {
+fn point_of<T: Scalar>(kind: FaceKind, x: &[V3<T>], xi: T, eta: T) -> (V3<T>, V3<T>, V3<T>) {
     let (n, dx, de) = shape_values(kind, xi, eta);
-    let (mut p, mut t1, mut t2) = ([0.0; 3], [0.0; 3], [0.0; 3]);
+    let z = xi.cst(0.0);
+    let (mut p, mut t1, mut t2) = ([z; 3], [z; 3], [z; 3]);
     for a in 0..x.len() {
         for i in 0..3 {
-            p[i] += n[a] * x[a][i];
-            t1[i] += dx[a] * x[a][i];
-            t2[i] += de[a] * x[a][i];
+            p[i] = p[i] + n[a] * x[a][i];
+            t1[i] = t1[i] + dx[a] * x[a][i];
+            t2[i] = t2[i] + de[a] * x[a][i];
         }
     }
     (p, t1, t2)
@@ -141,7 +144,7 @@ fn point_of(kind: FaceKind, x: &[V3], xi: f64, eta: f64) -> (V3, V3, V3) {
 
 /// The parameters in a sub-face's own coordinates of a point with sub-face shape values `s`
 /// (a triangle's (N₁, N₂), a quadrilateral's from its bilinear values).
-fn sub_params(kind: FaceKind, s: &[f64; 4]) -> (f64, f64) {
+fn sub_params<T: Scalar>(kind: FaceKind, s: &[T; 4]) -> (T, T) {
     match kind {
         FaceKind::Tri => (s[1], s[2]),
         _ => (s[1] + s[2] - s[0] - s[3], s[2] + s[3] - s[0] - s[1]),
@@ -150,56 +153,56 @@ fn sub_params(kind: FaceKind, s: &[f64; 4]) -> (f64, f64) {
 
 /// The integration points of slave face (`sk`, nodes `xs`, orientation `side`) against master
 /// face (`mk`, nodes `xm`, orientation `mside`), through their flat sub-faces: empty when they
-/// do not overlap.
-pub fn overlap_curved(
-    (sk, xs, side): (FaceKind, &[V3], f64),
-    (mk, xm, mside): (FaceKind, &[V3], f64),
-) -> Vec<CurvedPoint> {
-    let vertices = |kind: FaceKind, x: &[V3], params: &[(f64, f64)]| -> Vec<V3> {
+/// do not overlap. In duals every quantity follows the nodes (the sub-faces' vertices are
+/// points of the curved faces).
+pub fn overlap_curved<T: Scalar>(
+    (sk, xs, side): (FaceKind, &[V3<T>], f64),
+    (mk, xm, mside): (FaceKind, &[V3<T>], f64),
+) -> Vec<CurvedPoint<T>> {
+    let z = xs[0][0].cst(0.0);
+    let vertices = |kind: FaceKind, x: &[V3<T>], params: &[(f64, f64)]| -> Vec<V3<T>> {
         params
             .iter()
-            .map(|&(a, b)| point_of(kind, x, a, b).0)
+            .map(|&(a, b)| point_of(kind, x, z + a, z + b).0)
             .collect()
     };
-    let masters: Vec<(FaceKind, Vec<(f64, f64)>, Vec<V3>)> = sub_faces(mk)
+    let masters: Vec<(FaceKind, Vec<(f64, f64)>, Vec<V3<T>>)> = sub_faces(mk)
         .into_iter()
         .map(|(k, q)| {
             let v = vertices(mk, xm, &q);
             (k, q, v)
         })
         .collect();
+    // The sub-faces' maps are affine in the parent's parameters.
+    let parent = |q: &[(f64, f64)], s: &[T; 4]| {
+        (0..q.len()).fold((z, z), |(a, b), v| (a + s[v] * q[v].0, b + s[v] * q[v].1))
+    };
     let mut out = Vec::new();
     for (ssk, sq) in sub_faces(sk) {
         let sv = vertices(sk, xs, &sq);
         for (msk, mq, mv) in &masters {
             for p in overlap(ssk, &sv, side, *msk, mv) {
-                // The sub-faces' maps are affine in the parent's parameters.
-                let parent = |q: &[(f64, f64)], s: &[f64; 4]| {
-                    (0..q.len()).fold((0.0, 0.0), |(a, b), v| {
-                        (a + s[v] * q[v].0, b + s[v] * q[v].1)
-                    })
-                };
                 let (sxi, seta) = parent(&sq, &p.slave);
                 let (mxi, meta) = parent(mq, &p.master);
                 // p.weight carries the flat sub-face's area element; the curved face's is
                 // |x_ξ × x_η| |det ∂ξ/∂ξ_sub| over the sub-face's |y_ξ × y_η|.
                 let (a, b) = sub_params(ssk, &p.slave);
                 let (_, dx, de) = shape(ssk, a, b);
-                let (mut y1, mut y2, mut q1, mut q2) = ([0.0; 3], [0.0; 3], [0.0; 2], [0.0; 2]);
+                let (mut y1, mut y2) = ([z; 3], [z; 3]);
+                let (mut q1, mut q2) = ([z; 2], [z; 2]);
                 for v in 0..sq.len() {
                     for i in 0..3 {
-                        y1[i] += dx[v] * sv[v][i];
-                        y2[i] += de[v] * sv[v][i];
+                        y1[i] = y1[i] + dx[v] * sv[v][i];
+                        y2[i] = y2[i] + de[v] * sv[v][i];
                     }
-                    q1[0] += dx[v] * sq[v].0;
-                    q1[1] += dx[v] * sq[v].1;
-                    q2[0] += de[v] * sq[v].0;
-                    q2[1] += de[v] * sq[v].1;
+                    q1 = [q1[0] + dx[v] * sq[v].0, q1[1] + dx[v] * sq[v].1];
+                    q2 = [q2[0] + de[v] * sq[v].0, q2[1] + de[v] * sq[v].1];
                 }
                 let flat = cross(&y1, &y2);
                 let (_, t1, t2) = point_of(sk, xs, sxi, seta);
                 let curved = cross(&t1, &t2);
-                let det = (q1[0] * q2[1] - q1[1] * q2[0]).abs();
+                // The sub-face's parametric map is affine with constant coefficients.
+                let det = (q1[0] * q2[1] - q1[1] * q2[0]).val().abs();
                 let ratio = dot(&curved, &curved).sqrt() * det / dot(&flat, &flat).sqrt();
                 let slave = shape_values(sk, sxi, seta).0;
                 out.push(CurvedPoint {
@@ -216,21 +219,16 @@ pub fn overlap_curved(
     out
 }
 
-/// The coefficients A = D M⁻¹ of the dual basis Φ_a = Σ_b A_ab N̂_b of a slave face with `k`
-/// nodes biorthogonal to N̂ over `points` (M = Σ N̂_a N̂_b w, D = Σ N̂_a w), by Gauss–Jordan.
-pub fn dual_coefficients<'a>(
-    k: usize,
-    points: impl Iterator<Item = &'a CurvedPoint>,
-) -> Vec<Vec<f64>> {
-    let mut aug = vec![vec![0.0; 2 * k]; k];
-    for p in points {
-        for a in 0..k {
-            aug[a][k + a] += p.modified[a] * p.weight;
-            for b in 0..k {
-                aug[a][b] += p.modified[a] * p.modified[b] * p.weight;
-            }
-        }
-    }
+/// The inverse of the symmetric positive-definite k × k matrix `m` (k ≤ 8), by Gauss–Jordan.
+pub fn inverse(m: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    let k = m.len();
+    let mut aug: Vec<Vec<f64>> = (0..k)
+        .map(|a| {
+            let mut row = m[a].clone();
+            row.extend((0..k).map(|b| if a == b { 1.0 } else { 0.0 }));
+            row
+        })
+        .collect();
     for c in 0..k {
         let piv = (c..k)
             .max_by(|&i, &j| aug[i][c].abs().total_cmp(&aug[j][c].abs()))
@@ -238,7 +236,6 @@ pub fn dual_coefficients<'a>(
         aug.swap(c, piv);
         let p = aug[c][c];
         if p == 0.0 {
-            // A node the overlaps do not reach: no basis function of its own.
             continue;
         }
         for v in aug[c].iter_mut() {
@@ -254,9 +251,27 @@ pub fn dual_coefficients<'a>(
             }
         }
     }
-    // The right half is M⁻¹ D = (D M⁻¹)ᵀ.
+    aug.into_iter().map(|row| row[k..].to_vec()).collect()
+}
+
+/// The coefficients A = D M⁻¹ of the dual basis Φ_a = Σ_b A_ab N̂_b of a slave face with `k`
+/// nodes biorthogonal to N̂ over `points` (M = Σ N̂_a N̂_b w, D = Σ N̂_a w).
+pub fn dual_coefficients<'a>(
+    k: usize,
+    points: impl Iterator<Item = &'a CurvedPoint>,
+) -> Vec<Vec<f64>> {
+    let (mut m, mut d) = (vec![vec![0.0; k]; k], vec![0.0; k]);
+    for p in points {
+        for a in 0..k {
+            d[a] += p.modified[a] * p.weight;
+            for b in 0..k {
+                m[a][b] += p.modified[a] * p.modified[b] * p.weight;
+            }
+        }
+    }
+    let inv = inverse(&m);
     (0..k)
-        .map(|a| (0..k).map(|b| aug[b][k + a]).collect())
+        .map(|a| (0..k).map(|b| d[a] * inv[a][b]).collect())
         .collect()
 }
 
