@@ -954,12 +954,13 @@ fn node_to_face_on_quadratic_tetrahedra_passes_the_patch_test() {
 }
 
 /// Mortar contact between quadratic solids (QTRSpace's 6-node and QSpace's 8-node faces, small
-/// deformation) passes the contact patch test on non-matching meshes (slave 3 × 3, master
-/// 2 × 2 across): σ_zz the same at every integration point of both blocks and every slave node,
-/// corners and mid-sides, carrying the pressure −σ_zz as its multiplier. The multipliers' dual
-/// basis is biorthogonal to the modified quadratic basis (positive supports at the corners,
-/// where the plain basis gives 0 or −A/12), so a uniform pressure is exact. Also a quadratic
-/// slave on a linear master (LSpace bricks).
+/// and large deformation) passes the contact patch test on non-matching meshes (slave 3 × 3,
+/// master 2 × 2 across): σ_zz the same at every integration point of both blocks and every slave
+/// node, corners and mid-sides, carrying the same pressure as its multiplier, −σ_zz in small
+/// deformation (in large the nominal pressure on the reference area, 1.6 % off the Cauchy σ).
+/// The multipliers' dual basis is biorthogonal to the modified quadratic basis (positive
+/// supports at the corners, where the plain basis gives 0 or −A/12), so a uniform pressure is
+/// exact.
 #[test]
 fn mortar_on_quadratic_faces_passes_the_patch_test() {
     use hertz::solve::run_analysis;
@@ -971,18 +972,20 @@ fn mortar_on_quadratic_faces_passes_the_patch_test() {
             });
         (hi - lo) / hi.abs().max(lo.abs())
     };
-    for (kind, slave_kind, law, bound) in [
-        (Solid::Tet, None, Law::Multiplier, 1e-10),
-        (Solid::Hex, None, Law::Multiplier, 1e-10),
-        (Solid::Tet, None, Law::Penalty(1e8), 1e-10),
-        (Solid::Hex, None, Law::Penalty(1e8), 1e-10),
+    for (kind, nlgeo, law, bound) in [
+        (Solid::Tet, false, Law::Multiplier, 1e-10),
+        (Solid::Hex, false, Law::Multiplier, 1e-10),
+        (Solid::Tet, false, Law::Penalty(1e8), 1e-10),
+        (Solid::Hex, false, Law::Penalty(1e8), 1e-10),
+        (Solid::Tet, true, Law::Multiplier, 1e-10),
+        (Solid::Hex, true, Law::Multiplier, 1e-10),
     ] {
         let text = Patch {
             kind,
-            slave_kind,
+            slave_kind: None,
             sym: 0,
             n: 2,
-            nlgeo: false,
+            nlgeo,
             delta: 0.01,
             steps: 1,
             law,
@@ -1006,12 +1009,13 @@ fn mortar_on_quadratic_faces_passes_the_patch_test() {
         let (ds, dp) = (spread(&stress), spread(&pressure));
         let mismatch = (pressure[0] / -stress[0] - 1.0).abs();
         println!(
-            "{kind:?} {law:?}: {} slots, σ spread {ds:e}, p spread {dp:e}, p/σ {mismatch:e}",
+            "{kind:?} nlgeo {nlgeo} {law:?}: {} slots, σ spread {ds:e}, p spread {dp:e}, \
+             p/σ {mismatch:e}",
             pressure.len()
         );
         assert!(
-            ds < bound && dp < bound && mismatch < bound,
-            "{kind:?} {law:?}: σ spread {ds:e}, p spread {dp:e}, p/σ {mismatch:e}"
+            ds < bound && dp < bound && (nlgeo || mismatch < bound),
+            "{kind:?} nlgeo {nlgeo} {law:?}: σ spread {ds:e}, p spread {dp:e}, p/σ {mismatch:e}"
         );
     }
 }

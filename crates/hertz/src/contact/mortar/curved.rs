@@ -20,7 +20,7 @@
 //! support D_j = ∫ N̂_j > 0.
 
 use super::segment::{face_rule, overlap};
-use crate::contact::geometry::faces::{cross, dot, face_normal, shape, shape_values, FaceKind};
+use crate::contact::geometry::faces::{cross, dot, shape, shape_values, FaceKind};
 use crate::contact::geometry::scalar::Scalar;
 
 type V3<T = f64> = [T; 3];
@@ -156,9 +156,21 @@ fn sub_params<T: Scalar>(kind: FaceKind, s: &[T; 4]) -> (T, T) {
 /// do not overlap. In duals every quantity follows the nodes (the sub-faces' vertices are
 /// points of the curved faces).
 pub fn overlap_curved<T: Scalar>(
+    slave: (FaceKind, &[V3<T>], f64),
+    master: (FaceKind, &[V3<T>], f64),
+) -> Vec<CurvedPoint<T>> {
+    let mut out = Vec::new();
+    each_curved_point(slave, master, |p| out.push(p));
+    out
+}
+
+/// [`overlap_curved`]'s points handed to `f` one by one (in duals a point is large: collecting
+/// them was most of the large-deformation pair's time).
+pub fn each_curved_point<T: Scalar>(
     (sk, xs, side): (FaceKind, &[V3<T>], f64),
     (mk, xm, mside): (FaceKind, &[V3<T>], f64),
-) -> Vec<CurvedPoint<T>> {
+    mut f: impl FnMut(CurvedPoint<T>),
+) {
     let z = xs[0][0].cst(0.0);
     let vertices = |kind: FaceKind, x: &[V3<T>], params: &[(f64, f64)]| -> Vec<V3<T>> {
         params
@@ -177,10 +189,12 @@ pub fn overlap_curved<T: Scalar>(
     let parent = |q: &[(f64, f64)], s: &[T; 4]| {
         (0..q.len()).fold((z, z), |(a, b), v| (a + s[v] * q[v].0, b + s[v] * q[v].1))
     };
-    let mut out = Vec::new();
     for (ssk, sq) in sub_faces(sk) {
         let sv = vertices(sk, xs, &sq);
         for (msk, mq, mv) in &masters {
+            if apart(&sv, mv) {
+                continue;
+            }
             for p in overlap(ssk, &sv, side, *msk, mv) {
                 let (sxi, seta) = parent(&sq, &p.slave);
                 let (mxi, meta) = parent(mq, &p.master);
@@ -199,24 +213,75 @@ pub fn overlap_curved<T: Scalar>(
                     q2 = [q2[0] + de[v] * sq[v].0, q2[1] + de[v] * sq[v].1];
                 }
                 let flat = cross(&y1, &y2);
-                let (_, t1, t2) = point_of(sk, xs, sxi, seta);
-                let curved = cross(&t1, &t2);
+                // Each face's shape functions once (in duals they are most of the work).
+                let (slave, dxs, des) = shape_values(sk, sxi, seta);
+                let (master, dxm, dem) = shape_values(mk, mxi, meta);
+                let curved = tangent_cross(xs, &dxs, &des);
+                let curved_len = dot(&curved, &curved).sqrt();
+                let nm = tangent_cross(xm, &dxm, &dem);
+                let nm_len = dot(&nm, &nm).sqrt();
                 // The sub-face's parametric map is affine with constant coefficients.
                 let det = (q1[0] * q2[1] - q1[1] * q2[0]).val().abs();
-                let ratio = dot(&curved, &curved).sqrt() * det / dot(&flat, &flat).sqrt();
-                let slave = shape_values(sk, sxi, seta).0;
-                out.push(CurvedPoint {
+                let ratio = curved_len * det / dot(&flat, &flat).sqrt();
+                f(CurvedPoint {
                     slave,
-                    master: shape_values(mk, mxi, meta).0,
+                    master,
                     modified: modified(sk, &slave),
-                    slave_normal: face_normal(sk, xs, side, sxi, seta),
-                    master_normal: face_normal(mk, xm, mside, mxi, meta),
+                    slave_normal: curved.map(|v| v * side / curved_len),
+                    master_normal: nm.map(|v| v * mside / nm_len),
                     weight: p.weight * ratio,
                 });
             }
         }
     }
-    out
+}
+
+/// x_ξ × x_η of the face with nodes `x` from its shape derivatives `dx`, `de`.
+fn tangent_cross<T: Scalar>(x: &[V3<T>], dx: &[T; 8], de: &[T; 8]) -> V3<T> {
+    let z = dx[0].cst(0.0);
+    let (mut t1, mut t2) = ([z; 3], [z; 3]);
+    for a in 0..x.len() {
+        for i in 0..3 {
+            t1[i] = t1[i] + dx[a] * x[a][i];
+            t2[i] = t2[i] + de[a] * x[a][i];
+        }
+    }
+    cross(&t1, &t2)
+}
+
+/// Whether two flat sub-faces (vertices `s` and `m`) cannot overlap: their projections on the
+/// plane of `s` have disjoint bounding boxes (on the values: a pair kept here is segmented in
+/// full, so the test only spares the work of the pairs that [`overlap`] would find empty).
+fn apart<T: Scalar>(s: &[V3<T>], m: &[V3<T>]) -> bool {
+    let val = |x: &V3<T>| x.map(|v| v.val());
+    let (s0, s1, s2) = (val(&s[0]), val(&s[1]), val(&s[s.len() - 1]));
+    let d1 = [0, 1, 2].map(|i| s1[i] - s0[i]);
+    let d2 = [0, 1, 2].map(|i| s2[i] - s0[i]);
+    let n = cross(&d1, &d2);
+    let e2 = cross(&n, &d1);
+    let (l1, l2) = (dot(&d1, &d1).sqrt(), dot(&e2, &e2).sqrt());
+    if !(l1 > 0.0 && l2 > 0.0) {
+        return false;
+    }
+    let (e1, e2) = (d1.map(|v| v / l1), e2.map(|v| v / l2));
+    let bounds = |x: &[V3<T>]| {
+        x.iter().fold(
+            [
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+            ],
+            |b, p| {
+                let r = [0, 1, 2].map(|i| p[i].val() - s0[i]);
+                let (u, v) = (dot(&r, &e1), dot(&r, &e2));
+                [b[0].min(u), b[1].max(u), b[2].min(v), b[3].max(v)]
+            },
+        )
+    };
+    let (a, b) = (bounds(s), bounds(m));
+    let tol = 1e-9 * l1;
+    a[0] > b[1] + tol || b[0] > a[1] + tol || a[2] > b[3] + tol || b[2] > a[3] + tol
 }
 
 /// The inverse of the symmetric positive-definite k × k matrix `m` (k ≤ 8), by Gauss–Jordan.

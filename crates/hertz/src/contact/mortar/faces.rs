@@ -168,25 +168,14 @@ impl FaceMortar {
                 "the slave and master segments share nodes: a surface cannot contact itself",
             ));
         }
-        // Quadratic faces are segmented through flat sub-faces ([`super::curved`]) in the
-        // reference configuration only.
+        // Quadratic faces are segmented through flat sub-faces ([`super::curved`]), against
+        // element faces only.
         let quadratic = |f: &Face| matches!(f.kind, FaceKind::Tri6 | FaceKind::Quad8);
-        let nlgeo = slave.faces.iter().any(|f| f.nlgeo);
-        if slave.faces.iter().chain(&master.faces).any(quadratic) {
-            if nlgeo {
-                return Err(err(
-                    "mortar contact on quadratic (6- and 8-node) faces is written for small \
-                     deformation (nlgeo 0) only; with nlgeo 1 use node-to-segment contact \
-                     (n2s...) on them",
-                ));
-            }
-            if !rigid.is_empty() {
-                return Err(err(
-                    "mortar contact of quadratic (6- and 8-node) slave faces meets element \
-                     faces, not rigid shapes; use node-to-segment contact (n2s...) against a \
-                     rigid shape",
-                ));
-            }
+        if slave.faces.iter().any(quadratic) && !rigid.is_empty() {
+            return Err(err(
+                "mortar contact of quadratic (6- and 8-node) slave faces meets element faces, \
+                 not rigid shapes; use node-to-segment contact (n2s...) against a rigid shape",
+            ));
         }
         let mut slots: Vec<(usize, Vec<usize>)> = Vec::new();
         let mut slot_of = HashMap::new();
@@ -262,7 +251,7 @@ impl FaceMortar {
             search_limit: search_limit(model, nodes),
             dual,
             law,
-            nlgeo,
+            nlgeo: slave.faces.iter().any(|f| f.nlgeo),
             slave,
             master,
             slots,
@@ -701,7 +690,9 @@ impl FaceMortar {
             };
             out.push((local, w));
         }
-        let mut terms = Box::new(PairTerms::default());
+        let mut terms = Box::<PairTerms<24, 4, 8>>::default();
+        let mut curved_terms: Option<Box<PairTerms<48, 8, 16>>> = None;
+        let quadratic = |f: &Face| matches!(f.kind, FaceKind::Tri6 | FaceKind::Quad8);
         for (k, sf) in self.slave.faces.iter().enumerate() {
             let kn = sf.nodes.len();
             // Per node of the face, in its slot's unknowns: the integrals weighted by each N_b
@@ -709,21 +700,20 @@ impl FaceMortar {
             let mut moments: Vec<Option<Moments>> = (0..kn).map(|_| None).collect();
             for &mi in &candidates[k] {
                 let mf = &self.master.faces[mi];
-                let nodes: Vec<usize> = sf.nodes.iter().chain(&mf.nodes).copied().collect();
-                let nv = 3 * nodes.len();
-                let x: Vec<[PairDual; 3]> = nodes
-                    .iter()
-                    .enumerate()
-                    .map(|(b, &n)| {
-                        let p = pos(n);
-                        std::array::from_fn(|i| PairDual::variable(p[i], 3 * b + i, nv))
-                    })
-                    .collect();
-                let (xs, xm) = x.split_at(kn);
-                let points = overlap(sf.kind, xs, sf.side, mf.kind, xm);
-                if points.is_empty() {
+                // The integrands are linear in the points' terms: summed over the pair's points
+                // first, then added to each node's moments once.
+                let curved = quadratic(sf) || quadratic(mf);
+                let overlapping = if curved {
+                    curved_terms
+                        .get_or_insert_with(Default::default)
+                        .fill(sf, mf, &pos)
+                } else {
+                    terms.fill(sf, mf, &pos)
+                };
+                if !overlapping {
                     continue;
                 }
+                let nodes: Vec<usize> = sf.nodes.iter().chain(&mf.nodes).copied().collect();
                 // Each face node's map: pair unknown p is its slot's unknown map[p].
                 let mut maps: Vec<Vec<usize>> = Vec::with_capacity(kn);
                 for &node in &sf.nodes {
@@ -740,18 +730,13 @@ impl FaceMortar {
                         .collect();
                     maps.push(map);
                 }
-                // The integrands are linear in the points' terms: summed over the pair's points
-                // first, then added to each node's moments once.
-                terms.clear(nodes.len());
-                for p in &points {
-                    terms.add_point(xs, xm, p);
-                }
-                let terms = &*terms;
                 for (a, map) in maps.iter().enumerate() {
                     let m = out[self.slot_of[&sf.nodes[a]]].0.m();
-                    moments[a]
-                        .get_or_insert_with(|| Moments::new(kn, m))
-                        .add(map, a, terms);
+                    let mo = moments[a].get_or_insert_with(|| Moments::new(kn, m));
+                    match (&curved_terms, curved) {
+                        (Some(t), true) => mo.add(map, a, t),
+                        _ => mo.add(map, a, &terms),
+                    }
                 }
             }
             for (a, &node) in sf.nodes.iter().enumerate() {
@@ -818,7 +803,12 @@ impl Moments {
 
     /// A pair's integrands `t`, for slave face node `a` (pair unknown i is the slot's
     /// `map[i]`).
-    fn add(&mut self, map: &[usize], a: usize, t: &PairTerms) {
+    fn add<const N: usize, const S: usize, const Q: usize>(
+        &mut self,
+        map: &[usize],
+        a: usize,
+        t: &PairTerms<N, S, Q>,
+    ) {
         let kn = self.d.len();
         for b in 0..kn {
             let w = &mut self.by[b];
@@ -849,14 +839,10 @@ impl Moments {
     fn weigh(self, a: usize, w: &mut Weighted) {
         let kn = self.d.len();
         let nu = w.gap.d.len();
-        let mut m0 = [[0.0; 4]; 4];
-        for b in 0..kn {
-            for c in 0..kn {
-                m0[b][c] = self.m[b][c].v;
-            }
-        }
-        // M⁻¹ (symmetric): the biorthogonal coefficients of D = I.
-        let inv = super::segment::biorthogonal(&m0, &[1.0; 4], kn);
+        let m0: Vec<Vec<f64>> = (0..kn)
+            .map(|b| (0..kn).map(|c| self.m[b][c].v).collect())
+            .collect();
+        let inv = curved::inverse(&m0);
         let row: Vec<f64> = (0..kn).map(|c| self.d[a].v * inv[a][c]).collect();
         let coeffs: Vec<Jet> = (0..kn)
             .map(|c| {
@@ -906,7 +892,7 @@ impl Moments {
 }
 
 /// Add `v` (over a pair's unknowns, pair unknown i being `map[i]`) to `jet`.
-fn add_pair(jet: &mut Jet, map: &[usize], v: &PairDual) {
+fn add_pair<const N: usize>(jet: &mut Jet, map: &[usize], v: &DualN<N>) {
     jet.v += v.v;
     for (&t, &x) in map.iter().zip(&v.d[..map.len()]) {
         jet.d[t] += x;
@@ -915,7 +901,7 @@ fn add_pair(jet: &mut Jet, map: &[usize], v: &PairDual) {
 
 /// Add `v` (over a pair's unknowns, pair unknown i being the slot's `map[i]`) to the share of
 /// local node `k` in `slip`.
-fn add_share(slip: &mut SlipForm, k: usize, map: &[usize], v: &PairDual) {
+fn add_share<const N: usize>(slip: &mut SlipForm, k: usize, map: &[usize], v: &DualN<N>) {
     let at = match slip.shares.iter().position(|s| s.0 == k) {
         Some(at) => at,
         None => {
@@ -927,84 +913,135 @@ fn add_share(slip: &mut SlipForm, k: usize, map: &[usize], v: &PairDual) {
     add_pair(&mut slip.shares[at].1, map, v);
 }
 
-/// A pair of faces' integrands over the pair's unknowns, summed over its overlap points, for
-/// each slave face node b's shape N_b in place of the dual function (the basis adapted to the
-/// overlaps is known only once every point is in): the same for every node of the slave face,
-/// so they are computed once and added to each node's [`Moments`].
-struct PairTerms {
+/// A pair of faces' integrands over the pair's unknowns (in duals of N: 24 for linear faces, 48
+/// where one is quadratic), summed over its overlap points, for each slave face node b's weight
+/// function (its shape N_b, a quadratic face's modified N̂_b) in place of the dual function (the
+/// basis adapted to the overlaps is known only once every point is in): the same for every
+/// node of the slave face, so they are computed once and added to each node's [`Moments`].
+/// S bounds the slave face's nodes, Q the pair's.
+struct PairTerms<const N: usize, const S: usize, const Q: usize> {
     /// Slave and master face nodes.
     nodes: usize,
     /// Σ N_b w over the points (w a point's weight); the sums below likewise.
-    nw: [PairDual; 4],
+    nw: [DualN<N>; S],
     /// N_b w g, g = (x_S − x_M)·ν at a point.
-    gap: [PairDual; 4],
+    gap: [DualN<N>; S],
     /// N_b w s_q ν_i, s_q the shape of node q there (negative for the master's).
-    b: [[[PairDual; 3]; 8]; 4],
+    b: [[[DualN<N>; 3]; Q]; S],
     /// N_b w s_q.
-    share: [[PairDual; 8]; 4],
+    share: [[DualN<N>; Q]; S],
     /// N_b w ν_i.
-    normal: [[PairDual; 3]; 4],
+    normal: [[DualN<N>; 3]; S],
     /// N_b N_c w.
-    m: [[PairDual; 4]; 4],
+    m: [[DualN<N>; S]; S],
 }
 
-impl Default for PairTerms {
+impl<const N: usize, const S: usize, const Q: usize> Default for PairTerms<N, S, Q> {
     fn default() -> Self {
-        let zero = PairDual::constant(0.0, 0);
+        let zero = DualN::constant(0.0, 0);
         PairTerms {
             nodes: 0,
-            nw: [zero; 4],
-            gap: [zero; 4],
-            b: [[[zero; 3]; 8]; 4],
-            share: [[zero; 8]; 4],
-            normal: [[zero; 3]; 4],
-            m: [[zero; 4]; 4],
+            nw: [zero; S],
+            gap: [zero; S],
+            b: [[[zero; 3]; Q]; S],
+            share: [[zero; Q]; S],
+            normal: [[zero; 3]; S],
+            m: [[zero; S]; S],
         }
     }
 }
 
-impl PairTerms {
-    /// Zero terms of a pair of faces with `nodes` nodes.
-    fn clear(&mut self, nodes: usize) {
-        *self = PairTerms {
-            nodes,
-            ..PairTerms::default()
-        };
+impl<const N: usize, const S: usize, const Q: usize> PairTerms<N, S, Q> {
+    /// The terms of slave face `sf` against master face `mf` at positions `pos`, in duals over
+    /// their coordinates; false when they do not overlap. Quadratic faces are segmented through
+    /// their flat sub-faces ([`curved`]), ν the curved slave's normal at each point.
+    fn fill(&mut self, sf: &Face, mf: &Face, pos: &dyn Fn(usize) -> [f64; 3]) -> bool {
+        let (kn, mn) = (sf.nodes.len(), mf.nodes.len());
+        let nv = 3 * (kn + mn);
+        let x: Vec<[DualN<N>; 3]> = sf
+            .nodes
+            .iter()
+            .chain(&mf.nodes)
+            .enumerate()
+            .map(|(b, &n)| {
+                let p = pos(n);
+                std::array::from_fn(|i| DualN::variable(p[i], 3 * b + i, nv))
+            })
+            .collect();
+        let (xs, xm) = x.split_at(kn);
+        self.clear(kn, kn + mn);
+        let quadratic = |f: &Face| matches!(f.kind, FaceKind::Tri6 | FaceKind::Quad8);
+        if quadratic(sf) || quadratic(mf) {
+            let mut any = false;
+            let (slave, master) = ((sf.kind, xs, sf.side), (mf.kind, xm, mf.side));
+            curved::each_curved_point(slave, master, |p| {
+                let nu = p.slave_normal.map(|v| -v);
+                self.add_point(xs, xm, (&p.slave, &p.master, &p.modified), &nu, p.weight);
+                any = true;
+            });
+            any
+        } else {
+            let points = overlap(sf.kind, xs, sf.side, mf.kind, xm);
+            for p in &points {
+                self.add_point(xs, xm, (&p.slave, &p.master, &p.slave), &p.nu, p.weight);
+            }
+            !points.is_empty()
+        }
     }
 
-    /// Add the terms of point `p` of the faces at `xs` (slave) and `xm` (master).
-    fn add_point(&mut self, xs: &[[PairDual; 3]], xm: &[[PairDual; 3]], p: &Point<PairDual>) {
-        let zero = p.weight * 0.0;
+    /// Zero the terms of a pair with `kn` slave and `nodes` nodes in all (in place: the terms
+    /// are large in duals).
+    fn clear(&mut self, kn: usize, nodes: usize) {
+        let zero = DualN::constant(0.0, 0);
+        for b in 0..kn {
+            self.nw[b] = zero;
+            self.gap[b] = zero;
+            self.b[b][..nodes].fill([zero; 3]);
+            self.share[b][..nodes].fill(zero);
+            self.normal[b] = [zero; 3];
+            self.m[b][..kn].fill(zero);
+        }
+        self.nodes = nodes;
+    }
+
+    /// Add the terms of a point of the faces at `xs` (slave) and `xm` (master): the slave's and
+    /// the master's shape values there and the slave's weight functions (`shapes`), ν and the
+    /// point's weight.
+    fn add_point(
+        &mut self,
+        xs: &[[DualN<N>; 3]],
+        xm: &[[DualN<N>; 3]],
+        (slave, master, basis): (&[DualN<N>], &[DualN<N>], &[DualN<N>]),
+        nu: &[DualN<N>; 3],
+        weight: DualN<N>,
+    ) {
+        let zero = weight * 0.0;
         let (kn, nodes) = (xs.len(), xs.len() + xm.len());
         let mut g = zero;
         for i in 0..3 {
             let mut d = zero;
             for (b, x) in xs.iter().enumerate() {
-                d = d + p.slave[b] * x[i];
+                d = d + slave[b] * x[i];
             }
             for (l, y) in xm.iter().enumerate() {
-                d = d - p.master[l] * y[i];
+                d = d - master[l] * y[i];
             }
-            g = g + d * p.nu[i];
+            g = g + d * nu[i];
         }
-        let mut s = [zero; 8];
+        let mut s = [zero; Q];
         for (q, sq) in s.iter_mut().enumerate().take(nodes) {
-            *sq = if q < kn {
-                p.slave[q]
-            } else {
-                -p.master[q - kn]
-            };
+            *sq = if q < kn { slave[q] } else { -master[q - kn] };
         }
-        let mut snu = [[zero; 3]; 8];
+        let mut snu = [[zero; 3]; Q];
         for q in 0..nodes {
             for i in 0..3 {
-                snu[q][i] = s[q] * p.nu[i];
+                snu[q][i] = s[q] * nu[i];
             }
         }
         let t = self;
         debug_assert_eq!(t.nodes, nodes);
         for b in 0..kn {
-            let nw = p.slave[b] * p.weight;
+            let nw = basis[b] * weight;
             t.nw[b] = t.nw[b] + nw;
             t.gap[b].add_mul(&nw, &g);
             for q in 0..nodes {
@@ -1014,10 +1051,10 @@ impl PairTerms {
                 t.share[b][q].add_mul(&nw, &s[q]);
             }
             for i in 0..3 {
-                t.normal[b][i].add_mul(&nw, &p.nu[i]);
+                t.normal[b][i].add_mul(&nw, &nu[i]);
             }
             for c in 0..kn {
-                t.m[b][c].add_mul(&nw, &p.slave[c]);
+                t.m[b][c].add_mul(&nw, &basis[c]);
             }
         }
     }
