@@ -540,13 +540,7 @@ impl FaceMortar {
                     }
                 })
                 .collect();
-            let map: Vec<usize> = nodes
-                .iter()
-                .flat_map(|&n| {
-                    let i = local.index(n);
-                    [3 * i, 3 * i + 1, 3 * i + 2]
-                })
-                .collect();
+            let map = unknowns(&nodes, |n| local.index(n));
             let nf = face.nodes.len();
             for (xi, eta, wq) in face_rule(face.kind) {
                 let (n, dxi, deta) = shape(face.kind, xi, eta);
@@ -695,13 +689,29 @@ impl FaceMortar {
         let quadratic = |f: &Face| matches!(f.kind, FaceKind::Tri6 | FaceKind::Quad8);
         for (k, sf) in self.slave.faces.iter().enumerate() {
             let kn = sf.nodes.len();
-            // Per node of the face, in its slot's unknowns: the integrals weighted by each N_b
-            // and the face's M and D over the overlaps (the dual basis adapted to them).
-            let mut moments: Vec<Option<Moments>> = (0..kn).map(|_| None).collect();
+            // The face's unknowns: its nodes and its candidates' (face node i holds face
+            // unknowns 3i..3i + 3).
+            let mut face_nodes: Vec<usize> = sf.nodes.clone();
+            for &mi in &candidates[k] {
+                for &n in &self.master.faces[mi].nodes {
+                    if !face_nodes.contains(&n) {
+                        face_nodes.push(n);
+                    }
+                }
+            }
+            let at = |n: usize| {
+                face_nodes
+                    .iter()
+                    .position(|&m| m == n)
+                    .expect("a face node")
+            };
+            // The integrals weighted by each N_b and the face's M and D over the overlaps (the
+            // dual basis adapted to them), over the face's unknowns.
+            let mut moments: Option<Moments> = None;
             for &mi in &candidates[k] {
                 let mf = &self.master.faces[mi];
                 // The integrands are linear in the points' terms: summed over the pair's points
-                // first, then added to each node's moments once.
+                // first, then added to the face's moments once.
                 let curved = quadratic(sf) || quadratic(mf);
                 let overlapping = if curved {
                     curved_terms
@@ -713,36 +723,29 @@ impl FaceMortar {
                 if !overlapping {
                     continue;
                 }
-                let nodes: Vec<usize> = sf.nodes.iter().chain(&mf.nodes).copied().collect();
-                // Each face node's map: pair unknown p is its slot's unknown map[p].
-                let mut maps: Vec<Vec<usize>> = Vec::with_capacity(kn);
                 for &node in &sf.nodes {
-                    let (local, w) = &mut out[self.slot_of[&node]];
+                    let w = &mut out[self.slot_of[&node]].1;
                     if w.partner == Partner::None {
                         w.partner = Partner::Face(mi);
                     }
-                    let map: Vec<usize> = nodes
-                        .iter()
-                        .flat_map(|&n| {
-                            let k = local.index(n);
-                            [3 * k, 3 * k + 1, 3 * k + 2]
-                        })
-                        .collect();
-                    maps.push(map);
                 }
-                for (a, map) in maps.iter().enumerate() {
-                    let m = out[self.slot_of[&sf.nodes[a]]].0.m();
-                    let mo = moments[a].get_or_insert_with(|| Moments::new(kn, m));
-                    match (&curved_terms, curved) {
-                        (Some(t), true) => mo.add(map, a, t),
-                        _ => mo.add(map, a, &terms),
-                    }
+                // Pair unknown p is the face's unknown map[p].
+                let pair: Vec<usize> = sf.nodes.iter().chain(&mf.nodes).copied().collect();
+                let map = unknowns(&pair, at);
+                let mo = moments.get_or_insert_with(|| Moments::new(kn, face_nodes.len()));
+                match (&curved_terms, curved) {
+                    (Some(t), true) => mo.add(&map, t),
+                    _ => mo.add(&map, &terms),
                 }
             }
+            let Some(mo) = moments else {
+                continue;
+            };
             for (a, &node) in sf.nodes.iter().enumerate() {
-                if let Some(mo) = moments[a].take() {
-                    mo.weigh(a, &mut out[self.slot_of[&node]].1);
-                }
+                let (local, w) = &mut out[self.slot_of[&node]];
+                // Face unknown e is the slot's unknown to_slot[e].
+                let to_slot = unknowns(&face_nodes, |n| local.index(n));
+                mo.weigh(a, &to_slot, w);
             }
         }
         for (j, (local, w)) in out.iter_mut().enumerate() {
@@ -771,61 +774,61 @@ fn overlap_dual_basis<'a>(k: usize, points: impl Iterator<Item = &'a Point<f64>>
     super::segment::biorthogonal(&m, &d, k)
 }
 
-/// One slave node's integrals over one slave face in large deformation, before the face's dual
-/// basis is known: `by[b]` weighted by N_b instead of Φ, and the face's M = ∫ N_b N_c and
-/// D = ∫ N_b over its overlaps with the master — all over the slot's unknowns, since the basis
-/// adapted to the overlaps moves with every master face under the slave face.
+/// One slave face's integrals in large deformation, before its dual basis is known: for each
+/// of its weight functions b (N_b, a quadratic face's N̂_b) the weighted gap, force direction,
+/// slip shares and normal, and the face's M = ∫ N_b N_c and D = ∫ N_b over its overlaps with the
+/// master — all over the face's unknowns (its nodes' and its candidate master faces'), since
+/// the basis adapted to the overlaps moves with every master face under the slave face. Shared
+/// by the face's nodes, each of which weighs them with its own dual function
+/// ([`Moments::weigh`]): summed once per pair, not once per node, and over the face's unknowns,
+/// not each slot's (which hold every face around the node).
 struct Moments {
-    by: Vec<Weighted>,
+    /// [b]: ∫ N_b g.
+    gap: Vec<Jet>,
+    /// [b][face unknown]: ∫ N_b s_q ν_i.
+    b: Vec<Vec<Jet>>,
+    /// [b][face node]: ∫ N_b s_q.
+    share: Vec<Vec<Jet>>,
+    /// [b]: ∫ N_b ν.
+    normal: Vec<[Jet; 3]>,
     m: Vec<Vec<Jet>>,
     d: Vec<Jet>,
 }
 
 impl Moments {
-    fn new(kn: usize, m: usize) -> Moments {
-        let zero = || Jet::constant(0.0, m);
-        let weighted = || Weighted {
-            gap: zero(),
-            area: zero(),
-            b: vec![zero(); m],
-            partner: Partner::None,
-            slip: Some(SlipForm {
-                shares: Vec::new(),
-                normal: std::array::from_fn(|_| zero()),
-            }),
-        };
+    /// Zero moments of a face with `kn` nodes and `nodes` face nodes in all.
+    fn new(kn: usize, nodes: usize) -> Moments {
+        let nu = 3 * nodes;
+        let zero = || Jet::constant(0.0, nu);
         Moments {
-            by: (0..kn).map(|_| weighted()).collect(),
+            gap: (0..kn).map(|_| zero()).collect(),
+            b: (0..kn).map(|_| (0..nu).map(|_| zero()).collect()).collect(),
+            share: (0..kn)
+                .map(|_| (0..nodes).map(|_| zero()).collect())
+                .collect(),
+            normal: (0..kn).map(|_| std::array::from_fn(|_| zero())).collect(),
             m: (0..kn).map(|_| (0..kn).map(|_| zero()).collect()).collect(),
             d: (0..kn).map(|_| zero()).collect(),
         }
     }
 
-    /// A pair's integrands `t`, for slave face node `a` (pair unknown i is the slot's
-    /// `map[i]`).
+    /// A pair's integrands `t` (pair unknown i is the face's unknown `map[i]`).
     fn add<const N: usize, const S: usize, const Q: usize>(
         &mut self,
         map: &[usize],
-        a: usize,
         t: &PairTerms<N, S, Q>,
     ) {
         let kn = self.d.len();
         for b in 0..kn {
-            let w = &mut self.by[b];
-            add_pair(&mut w.gap, map, &t.gap[b]);
-            add_pair(&mut w.area, map, &t.nw[a]);
+            add_pair(&mut self.gap[b], map, &t.gap[b]);
             for q in 0..t.nodes {
                 for i in 0..3 {
-                    add_pair(&mut w.b[map[3 * q + i]], map, &t.b[b][q][i]);
+                    add_pair(&mut self.b[b][map[3 * q + i]], map, &t.b[b][q][i]);
                 }
-                if let Some(slip) = &mut w.slip {
-                    add_share(slip, map[3 * q] / 3, map, &t.share[b][q]);
-                }
+                add_pair(&mut self.share[b][map[3 * q] / 3], map, &t.share[b][q]);
             }
-            if let Some(slip) = &mut w.slip {
-                for i in 0..3 {
-                    add_pair(&mut slip.normal[i], map, &t.normal[b][i]);
-                }
+            for i in 0..3 {
+                add_pair(&mut self.normal[b][i], map, &t.normal[b][i]);
             }
             add_pair(&mut self.d[b], map, &t.nw[b]);
             for c in 0..kn {
@@ -834,11 +837,12 @@ impl Moments {
         }
     }
 
-    /// Add node `a`'s integrals weighted by its adapted dual function Φ_a = Σ_b A_ab N_b,
-    /// A = D M⁻¹ with its derivative dA = (dD − A dM) M⁻¹, to `w`.
-    fn weigh(self, a: usize, w: &mut Weighted) {
+    /// Add face node `a`'s integrals weighted by its adapted dual function Φ_a = Σ_b A_ab N_b,
+    /// A = D M⁻¹ with its derivative dA = (dD − A dM) M⁻¹, to its slot's `w` (face unknown e is
+    /// the slot's unknown `to_slot[e]`).
+    fn weigh(&self, a: usize, to_slot: &[usize], w: &mut Weighted) {
         let kn = self.d.len();
-        let nu = w.gap.d.len();
+        let nu = to_slot.len();
         let m0: Vec<Vec<f64>> = (0..kn)
             .map(|b| (0..kn).map(|c| self.m[b][c].v).collect())
             .collect();
@@ -860,34 +864,57 @@ impl Moments {
                 Jet { v: row[c], d }
             })
             .collect();
-        // D_j is ∫ N_a over the overlaps (the same in every by[b]).
-        let area = &self.by[0].area;
-        w.area.v += area.v;
-        for (s, t) in w.area.d.iter_mut().zip(&area.d) {
-            *s += t;
-        }
-        for (c, by) in self.by.into_iter().enumerate() {
-            let coeff = &coeffs[c];
-            w.gap.add_product(coeff, &by.gap);
-            for (wb, bb) in w.b.iter_mut().zip(&by.b) {
-                wb.add_product(coeff, bb);
+        // D_j is ∫ N_a over the overlaps.
+        let one = Jet::constant(1.0, nu);
+        mapped_product(&mut w.area, &one, &self.d[a], to_slot);
+        for (c, coeff) in coeffs.iter().enumerate() {
+            mapped_product(&mut w.gap, coeff, &self.gap[c], to_slot);
+            for (e, b) in self.b[c].iter().enumerate() {
+                mapped_product(&mut w.b[to_slot[e]], coeff, b, to_slot);
             }
-            if let (Some(slip), Some(from)) = (&mut w.slip, by.slip) {
-                for (i, n) in from.normal.iter().enumerate() {
-                    slip.normal[i].add_product(coeff, n);
+            if let Some(slip) = &mut w.slip {
+                for (i, n) in self.normal[c].iter().enumerate() {
+                    mapped_product(&mut slip.normal[i], coeff, n, to_slot);
                 }
-                for (k, share) in &from.shares {
-                    let at = match slip.shares.iter().position(|s| s.0 == *k) {
+                for (node, share) in self.share[c].iter().enumerate() {
+                    if share.v == 0.0 && share.d.iter().all(|&x| x == 0.0) {
+                        continue;
+                    }
+                    let k = to_slot[3 * node] / 3;
+                    let at = match slip.shares.iter().position(|s| s.0 == k) {
                         Some(at) => at,
                         None => {
-                            slip.shares.push((*k, Jet::constant(0.0, nu)));
+                            slip.shares.push((k, Jet::constant(0.0, w.gap.d.len())));
                             slip.shares.len() - 1
                         }
                     };
-                    slip.shares[at].1.add_product(coeff, share);
+                    mapped_product(&mut slip.shares[at].1, coeff, share, to_slot);
                 }
             }
         }
+    }
+}
+
+/// The unknowns (x, y, z of each) of `nodes` in a numbering where node n is `index(n)`.
+fn unknowns(nodes: &[usize], index: impl Fn(usize) -> usize) -> Vec<usize> {
+    nodes
+        .iter()
+        .flat_map(|&n| {
+            let i = index(n);
+            [3 * i, 3 * i + 1, 3 * i + 2]
+        })
+        .collect()
+}
+
+/// dst += a·b for `a` and `b` over the face's unknowns, `dst` over a slot's (face unknown e is
+/// the slot's unknown `map[e]`); nothing to do where b is zero (its value and gradient).
+fn mapped_product(dst: &mut Jet, a: &Jet, b: &Jet, map: &[usize]) {
+    if b.v == 0.0 && b.d.iter().all(|&x| x == 0.0) {
+        return;
+    }
+    dst.v += a.v * b.v;
+    for ((&t, x), y) in map.iter().zip(&a.d).zip(&b.d) {
+        dst.d[t] += x * b.v + a.v * y;
     }
 }
 
