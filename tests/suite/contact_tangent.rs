@@ -895,6 +895,57 @@ fn mortar_tangents_in_3d_are_jacobians_of_residuals() {
     }
 }
 
+/// [`mortar3d_case`] in quadratic elements (slave 2 × 2 across on a master 1 × 1): the slave
+/// block's nodes (of the elements above z = 0) sunk and sheared, the master's top nodes moved out
+/// of plane.
+fn mortar3d_quadratic_case(
+    kind: hertz_bench::mesh::Solid,
+    nlgeo: bool,
+    law: hertz_bench::suite::Law,
+) -> (String, Disp) {
+    let text = hertz_bench::verify::Patch {
+        kind,
+        slave_kind: None,
+        sym: 0,
+        n: 1,
+        nlgeo,
+        delta: 0.01,
+        steps: 1,
+        law,
+        slave_n: Some(2),
+        mortar: true,
+    }
+    .input_quadratic();
+    let model = common::model_from_text(&text).unwrap();
+    let mut slave = std::collections::BTreeSet::new();
+    for e in &model.elements {
+        let z: f64 = e.nodes.iter().map(|&n| model.nodes[n].coords[2]).sum();
+        if z > 0.0 {
+            slave.extend(e.nodes.iter().copied());
+        }
+    }
+    let disp = model
+        .nodes
+        .iter()
+        .enumerate()
+        .filter_map(|(i, n)| {
+            let [x, y, z] = n.coords;
+            let k = n.label as f64;
+            if slave.contains(&i) {
+                Some((
+                    n.label,
+                    [0.013 + 0.02 * z, -0.007 + 0.01 * z, -0.01 + 0.003 * k.sin()],
+                ))
+            } else if z.abs() < 1e-9 {
+                Some((n.label, [0.004 * k.cos(), 0.002 * x, 0.003 * (k + y).sin()]))
+            } else {
+                None
+            }
+        })
+        .collect();
+    (text, disp)
+}
+
 /// The mortar tangent on quadratic faces is the Jacobian of its residual, in small deformation
 /// (the reference segmentation through flat sub-faces, the curved surfaces' normals) and in
 /// large (the current one, every quantity differentiated through the sub-faces' vertices): the
@@ -911,47 +962,8 @@ fn mortar_tangents_on_quadratic_faces_are_jacobians_of_residuals() {
         .flat_map(|k| [(k, false), (k, true)])
     {
         for (law, lambda) in [(Law::Penalty(1e4), 0.0), (Law::Multiplier, 3.0)] {
-            let text = hertz_bench::verify::Patch {
-                kind,
-                slave_kind: None,
-                sym: 0,
-                n: 1,
-                nlgeo,
-                delta: 0.01,
-                steps: 1,
-                law,
-                slave_n: Some(2),
-                mortar: true,
-            }
-            .input_quadratic();
+            let (text, disp) = mortar3d_quadratic_case(kind, nlgeo, law);
             let model = common::model_from_text(&text).unwrap();
-            // The slave block's nodes: those of the elements above z = 0.
-            let mut slave = std::collections::BTreeSet::new();
-            for e in &model.elements {
-                let z: f64 = e.nodes.iter().map(|&n| model.nodes[n].coords[2]).sum();
-                if z > 0.0 {
-                    slave.extend(e.nodes.iter().copied());
-                }
-            }
-            let disp = model
-                .nodes
-                .iter()
-                .enumerate()
-                .filter_map(|(i, n)| {
-                    let [x, y, z] = n.coords;
-                    let k = n.label as f64;
-                    if slave.contains(&i) {
-                        Some((
-                            n.label,
-                            [0.013 + 0.02 * z, -0.007 + 0.01 * z, -0.01 + 0.003 * k.sin()],
-                        ))
-                    } else if z.abs() < 1e-9 {
-                        Some((n.label, [0.004 * k.cos(), 0.002 * x, 0.003 * (k + y).sin()]))
-                    } else {
-                        None
-                    }
-                })
-                .collect();
             let name = format!("quadratic mortar3d {kind:?} nlgeo {nlgeo} {law:?}");
             let mut contact = ContactSystem::new(&model).unwrap();
             let dofs = hertz::solve::number_dofs(&model).unwrap();
@@ -1059,7 +1071,8 @@ fn check_mortar3d(name: &str, text: &str, disp: Disp, lambda: f64) {
 /// slip (μ = 0.01), small and large deformation (the shares of the current segmentation
 /// differentiated too), on the cases of the frictionless mortar tests: 2D straight
 /// and quadratic edges and a rigid circle moving with a node, 3D hexahedra, tetrahedra and
-/// wedges against faces and against a rigid sphere moving with a node; the history is the state
+/// wedges against faces and against a rigid sphere moving with a node, 10-node tetrahedra and
+/// 20-node bricks on their curved faces (small deformation); the history is the state
 /// at u = 0. Penalty (solved in multiplier form) and multipliers, the pressures and the friction
 /// tractions' components at 1000: the tangent over the multipliers too.
 #[test]
@@ -1098,6 +1111,11 @@ fn mortar_friction_tangents_are_jacobians_in_stick_and_slip() {
             let (sphere, on_sphere) = on_rigid_sphere(&text, disp.clone());
             cases.push((kind.clone(), text, disp));
             cases.push((format!("{kind} sphere"), sphere, on_sphere));
+        }
+        // Quadratic faces in small deformation (the shares of the modified basis' dual).
+        for kind in [Solid::Hex, Solid::Tet] {
+            let (text, disp) = mortar3d_quadratic_case(kind, false, law3d);
+            cases.push((format!("quadratic {kind:?} nlgeo 0"), text, disp));
         }
         for (name, text, disp) in cases {
             for (mu, stick) in [(5.0, true), (0.01, false)] {
