@@ -45,9 +45,12 @@ pub struct CurvedPoint<T = f64> {
     pub weight: T,
 }
 
+/// A flat sub-face: its linear kind and its vertices' parameters in the parent face.
+type SubFace = (FaceKind, Vec<(f64, f64)>);
+
 /// The parameters of the vertices of a face's flat sub-faces, each with its linear kind, in
 /// the face's own orientation.
-pub fn sub_faces(kind: FaceKind) -> Vec<(FaceKind, Vec<(f64, f64)>)> {
+pub fn sub_faces(kind: FaceKind) -> Vec<SubFace> {
     match kind {
         FaceKind::Tri => vec![(kind, vec![(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)])],
         FaceKind::Quad => vec![(
@@ -178,11 +181,12 @@ pub fn each_curved_point<T: Scalar>(
             .map(|&(a, b)| point_of(kind, x, z + a, z + b).0)
             .collect()
     };
-    let masters: Vec<(FaceKind, Vec<(f64, f64)>, Vec<V3<T>>)> = sub_faces(mk)
+    // The master's sub-faces with their vertices.
+    let masters: Vec<(SubFace, Vec<V3<T>>)> = sub_faces(mk)
         .into_iter()
-        .map(|(k, q)| {
-            let v = vertices(mk, xm, &q);
-            (k, q, v)
+        .map(|sub| {
+            let v = vertices(mk, xm, &sub.1);
+            (sub, v)
         })
         .collect();
     // The sub-faces' maps are affine in the parent's parameters.
@@ -191,7 +195,7 @@ pub fn each_curved_point<T: Scalar>(
     };
     for (ssk, sq) in sub_faces(sk) {
         let sv = vertices(sk, xs, &sq);
-        for (msk, mq, mv) in &masters {
+        for ((msk, mq), mv) in &masters {
             if apart(&sv, mv) {
                 continue;
             }
