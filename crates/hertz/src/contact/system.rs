@@ -85,11 +85,14 @@ impl ContactSystem {
         !self.frictional && self.formulations.iter().all(|f| f.symmetric())
     }
 
-    /// Every condition's [`Formulation::slave_transform`] rows.
+    /// Every condition's [`Formulation::slave_transform`] rows, each entry once (a node slave
+    /// of two conditions on quadratic faces has the same row in both).
     pub fn slave_transform(&self) -> Vec<(usize, usize, f64)> {
+        let mut seen = std::collections::HashSet::new();
         self.formulations
             .iter()
             .flat_map(|f| f.slave_transform())
+            .filter(|&(k, l, _)| seen.insert((k, l)))
             .collect()
     }
 

@@ -1,4 +1,6 @@
-//! Mortar segmentation of quadratic (curved, 6- and 8-node) faces, in small deformation.
+//! Mortar segmentation of quadratic (curved, 6- and 8-node) faces: of the reference
+//! configuration in `f64` (small deformation), of the current one in duals over the two faces'
+//! coordinates (large deformation).
 //!
 //! Each face is split into flat sub-faces through points of the curved face (a 6-node triangle
 //! into the 4 triangles of its corners and mid-sides, an 8-node quadrilateral into the 4
@@ -167,8 +169,8 @@ pub fn overlap_curved<T: Scalar>(
     out
 }
 
-/// [`overlap_curved`]'s points handed to `f` one by one (in duals a point is large: collecting
-/// them was most of the large-deformation pair's time).
+/// [`overlap_curved`]'s points handed to `f` one by one, not collected (in duals of 48 a point
+/// is 12 kB).
 pub fn each_curved_point<T: Scalar>(
     (sk, xs, side): (FaceKind, &[V3<T>], f64),
     (mk, xm, mside): (FaceKind, &[V3<T>], f64),
@@ -196,9 +198,6 @@ pub fn each_curved_point<T: Scalar>(
     for (ssk, sq) in sub_faces(sk) {
         let sv = vertices(sk, xs, &sq);
         for ((msk, mq), mv) in &masters {
-            if apart(&sv, mv) {
-                continue;
-            }
             for p in overlap(ssk, &sv, side, *msk, mv) {
                 let (sxi, seta) = parent(&sq, &p.slave);
                 let (mxi, meta) = parent(mq, &p.master);
@@ -251,41 +250,6 @@ fn tangent_cross<T: Scalar>(x: &[V3<T>], dx: &[T; 8], de: &[T; 8]) -> V3<T> {
         }
     }
     cross(&t1, &t2)
-}
-
-/// Whether two flat sub-faces (vertices `s` and `m`) cannot overlap: their projections on the
-/// plane of `s` have disjoint bounding boxes (on the values: a pair kept here is segmented in
-/// full, so the test only spares the work of the pairs that [`overlap`] would find empty).
-fn apart<T: Scalar>(s: &[V3<T>], m: &[V3<T>]) -> bool {
-    let val = |x: &V3<T>| x.map(|v| v.val());
-    let (s0, s1, s2) = (val(&s[0]), val(&s[1]), val(&s[s.len() - 1]));
-    let d1 = [0, 1, 2].map(|i| s1[i] - s0[i]);
-    let d2 = [0, 1, 2].map(|i| s2[i] - s0[i]);
-    let n = cross(&d1, &d2);
-    let e2 = cross(&n, &d1);
-    let (l1, l2) = (dot(&d1, &d1).sqrt(), dot(&e2, &e2).sqrt());
-    if !(l1 > 0.0 && l2 > 0.0) {
-        return false;
-    }
-    let (e1, e2) = (d1.map(|v| v / l1), e2.map(|v| v / l2));
-    let bounds = |x: &[V3<T>]| {
-        x.iter().fold(
-            [
-                f64::INFINITY,
-                f64::NEG_INFINITY,
-                f64::INFINITY,
-                f64::NEG_INFINITY,
-            ],
-            |b, p| {
-                let r = [0, 1, 2].map(|i| p[i].val() - s0[i]);
-                let (u, v) = (dot(&r, &e1), dot(&r, &e2));
-                [b[0].min(u), b[1].max(u), b[2].min(v), b[3].max(v)]
-            },
-        )
-    };
-    let (a, b) = (bounds(s), bounds(m));
-    let tol = 1e-9 * l1;
-    a[0] > b[1] + tol || b[0] > a[1] + tol || a[2] > b[3] + tol || b[2] > a[3] + tol
 }
 
 /// The inverse of the symmetric positive-definite k × k matrix `m` (k ≤ 8), by Gauss–Jordan.
