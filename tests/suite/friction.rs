@@ -1029,3 +1029,63 @@ fn friction_multipliers_on_nodes_held_along_an_axis_give_the_plane_strain_answer
         }
     }
 }
+
+/// 3D mortar multipliers with friction solved on full tangents (`max_condensed` 0, as a contact
+/// zone too large to condense is): the brick patch pressed together sticks in one iteration with
+/// the exact pressure at every slave node, in 8-node and 20-node bricks. The slave nodes on the
+/// symmetry planes have a friction traction component along the plane's normal that acts only
+/// on held unknowns: its row of the tangent was zero, and the first step went to a residual of
+/// 1.8e20 and never converged (the condensed step solved it).
+#[test]
+fn mortar_friction_multipliers_on_full_tangents_converge() {
+    use hertz_bench::mesh::Solid;
+    use hertz_bench::suite::Law;
+    use hertz_bench::verify::{Patch, E, PATCH_H};
+    for quadratic in [false, true] {
+        let patch = Patch {
+            kind: Solid::Hex,
+            slave_kind: None,
+            sym: 0,
+            n: 2,
+            nlgeo: false,
+            delta: 0.01,
+            steps: 1,
+            law: Law::Multiplier,
+            slave_n: None,
+            mortar: true,
+        };
+        let text = if quadratic {
+            patch.input_quadratic()
+        } else {
+            patch.input()
+        }
+        .replace("slavesegment", "friction 0.3 slavesegment");
+        let model = common::model_from_text(&text).unwrap();
+        let params = SolveParams {
+            max_condensed: 0,
+            max_cutbacks: 0,
+            ..Default::default()
+        };
+        let exact = E * 0.01 / (2.0 * PATCH_H);
+        let (mut its, mut worst, mut slipping) = (0, f64::NAN, usize::MAX);
+        run_analysis(&model, &params, |r| {
+            its = r.info.iterations;
+            worst = r
+                .contact
+                .iter()
+                .map(|s| (s.pressure / exact - 1.0).abs())
+                .fold(0.0, f64::max);
+            slipping = r
+                .contact
+                .iter()
+                .filter(|s| s.friction.is_some_and(|f| !f.0))
+                .count();
+            Ok(())
+        })
+        .unwrap_or_else(|e| panic!("quadratic {quadratic}: {e}"));
+        assert!(
+            its == 1 && worst < 1e-10 && slipping == 0,
+            "quadratic {quadratic}: {its} iterations, pressure {worst:e}, {slipping} slipping"
+        );
+    }
+}

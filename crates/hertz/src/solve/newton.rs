@@ -20,7 +20,7 @@ use super::linear::{DenseLu, FaerSolver, LinearSolver, SolverSettings};
 use super::multipliers::{Group, MultiplierElimination};
 use super::report::{IterationReport, Observer, Phase};
 use super::stepping::{PhaseTimes, SolveParams, SolverChoice, StepInfo};
-use crate::assembly::{Assembler, Contribution, DofMap, Evaluation, NodalState};
+use crate::assembly::{Assembler, Contribution, DofMap, Evaluation, NodalState, Pattern};
 use crate::contact::point::Branch;
 use crate::contact::{ContactPoint, ContactSystem, PointLaw, Search, SlotState};
 use crate::error::{Error, Result};
@@ -751,6 +751,10 @@ impl<'a> NewtonContext<'a> {
             if self.adds_contact_tangent() {
                 self.asm.add_tangents(&mut kv, &contribs);
             }
+            // Across processes a row is whole only in the sum of the shares.
+            if self.ranks.is_none() {
+                pin_empty_multiplier_rows(&self.asm.pattern, &mut kv, nf - self.dofs.n_lambda..nf);
+            }
             let eliminated = !groups.is_empty() && {
                 let (model, dofs) = (self.asm.model, self.dofs);
                 let describe = |eq: usize| describe_eq(model, dofs, eq);
@@ -1163,5 +1167,40 @@ impl<'a> NewtonContext<'a> {
             }
         }
         (!why.is_empty()).then(|| why.join("; "))
+    }
+}
+
+/// Give each multiplier among `range` whose row of the tangent `kv` is zero (to round-off of the
+/// largest multiplier row) a diagonal of that row's size:
+/// a friction traction component along a direction in which every unknown it acts on is held
+/// (a slave node on a symmetry plane, whose slip and force along the plane's normal are both
+/// fixed) has no equation of its own among the free unknowns, and left so the full tangent is
+/// singular (the first step of a 3D mortar patch with friction multipliers, too large to
+/// condense, went to a residual of 1e20). Its residual is zero there (the slip it holds cannot
+/// change), so the pinned row keeps it where it is; a tangent without such rows is untouched.
+fn pin_empty_multiplier_rows(pattern: &Pattern, kv: &mut [f64], range: std::ops::Range<usize>) {
+    if range.is_empty() {
+        return;
+    }
+    let mut largest = vec![0.0f64; range.len()];
+    for c in 0..pattern.n {
+        for k in pattern.col_ptr[c]..pattern.col_ptr[c + 1] {
+            let r = pattern.row_idx[k];
+            let v = kv[k].abs();
+            if range.contains(&r) {
+                largest[r - range.start] = largest[r - range.start].max(v);
+            }
+            if pattern.symmetric && r != c && range.contains(&c) {
+                largest[c - range.start] = largest[c - range.start].max(v);
+            }
+        }
+    }
+    // Zero to round-off: entries of (I − n nᵀ)/c along a plane's normal.
+    let scale = largest.iter().copied().fold(0.0, f64::max);
+    for (i, &l) in largest.iter().enumerate() {
+        if l <= 1e-10 * scale {
+            let e = range.start + i;
+            kv[pattern.position(e, e)] = scale;
+        }
     }
 }
