@@ -211,7 +211,7 @@ pub fn centre(kind: FaceKind) -> (f64, f64) {
 }
 
 /// Parameters of node `a` (a corner, or a quadratic face's mid-side).
-fn node_param(kind: FaceKind, a: usize) -> (f64, f64) {
+pub fn node_param(kind: FaceKind, a: usize) -> (f64, f64) {
     let tri = [
         (0.0, 0.0),
         (1.0, 0.0),

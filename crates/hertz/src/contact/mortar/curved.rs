@@ -22,7 +22,7 @@
 //! support D_j = ∫ N̂_j > 0.
 
 use super::segment::{face_rule, overlap};
-use crate::contact::geometry::faces::{cross, dot, shape, shape_values, FaceKind};
+use crate::contact::geometry::faces::{cross, dot, node_param, shape, shape_values, FaceKind};
 use crate::contact::geometry::scalar::Scalar;
 
 type V3<T = f64> = [T; 3];
@@ -53,34 +53,24 @@ type SubFace = (FaceKind, Vec<(f64, f64)>);
 /// The parameters of the vertices of a face's flat sub-faces, each with its linear kind, in
 /// the face's own orientation.
 pub fn sub_faces(kind: FaceKind) -> Vec<SubFace> {
-    match kind {
-        FaceKind::Tri => vec![(kind, vec![(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)])],
-        FaceKind::Quad => vec![(
-            kind,
-            vec![(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)],
-        )],
-        FaceKind::Tri6 => {
-            let (c0, c1, c2) = ((0.0, 0.0), (1.0, 0.0), (0.0, 1.0));
-            let (m01, m12, m20) = ((0.5, 0.0), (0.5, 0.5), (0.0, 0.5));
-            [
-                [c0, m01, m20],
-                [m01, c1, m12],
-                [m20, m12, c2],
-                [m01, m12, m20],
-            ]
-            .into_iter()
-            .map(|t| (FaceKind::Tri, t.to_vec()))
-            .collect()
-        }
-        // The quadrants, each from its lower-left corner.
-        FaceKind::Quad8 => [(-1.0, -1.0), (0.0, -1.0), (0.0, 0.0), (-1.0, 0.0)]
-            .into_iter()
-            .map(|(x, y)| {
-                let v = vec![(x, y), (x + 1.0, y), (x + 1.0, y + 1.0), (x, y + 1.0)];
-                (FaceKind::Quad, v)
-            })
-            .collect(),
-    }
+    let q = |a: usize| node_param(kind, a);
+    // Node indices: corners, then mid-sides (the centre of a quadrilateral: 8).
+    let cells: &[&[usize]] = match kind {
+        FaceKind::Tri => &[&[0, 1, 2]],
+        FaceKind::Quad => &[&[0, 1, 2, 3]],
+        FaceKind::Tri6 => &[&[0, 3, 5], &[3, 1, 4], &[5, 4, 2], &[3, 4, 5]],
+        FaceKind::Quad8 => &[&[0, 4, 8, 7], &[4, 1, 5, 8], &[8, 5, 2, 6], &[7, 8, 6, 3]],
+    };
+    cells
+        .iter()
+        .map(|cell| {
+            let v = cell
+                .iter()
+                .map(|&a| if a == 8 { (0.0, 0.0) } else { q(a) })
+                .collect();
+            (kind.linear(), v)
+        })
+        .collect()
 }
 
 /// The modified shape values N̂ of a face from its shape values `n` (see the module doc); a
@@ -331,26 +321,9 @@ mod tests {
     /// A 6-node triangle and an 8-node quadrilateral on the sphere of radius 2 about the origin
     /// (nodes on the sphere, the faces' normals outward).
     fn on_sphere(kind: FaceKind) -> Vec<V3> {
-        let params: Vec<(f64, f64)> = match kind {
-            FaceKind::Tri6 => vec![
-                (0.0, 0.0),
-                (1.0, 0.0),
-                (0.0, 1.0),
-                (0.5, 0.0),
-                (0.5, 0.5),
-                (0.0, 0.5),
-            ],
-            _ => vec![
-                (-1.0, -1.0),
-                (1.0, -1.0),
-                (1.0, 1.0),
-                (-1.0, 1.0),
-                (0.0, -1.0),
-                (1.0, 0.0),
-                (0.0, 1.0),
-                (-1.0, 0.0),
-            ],
-        };
+        let params: Vec<(f64, f64)> = (0..if kind == FaceKind::Tri6 { 6 } else { 8 })
+            .map(|a| node_param(kind, a))
+            .collect();
         params
             .iter()
             .map(|&(a, b)| {

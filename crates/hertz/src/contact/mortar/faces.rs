@@ -366,23 +366,9 @@ impl FaceMortar {
                     let nu: [f64; 3] = std::array::from_fn(|i| ws * p.nu[i] + wm * nm[i]);
                     let len = dot(&nu, &nu).sqrt();
                     let nu = nu.map(|v| v / len);
-                    let shapes = || {
-                        sf.nodes
-                            .iter()
-                            .copied()
-                            .zip(p.slave)
-                            .chain(mf.nodes.iter().copied().zip(p.master.map(|v| -v)))
-                    };
-                    for (a, &node) in sf.nodes.iter().enumerate() {
-                        let phi: f64 = (0..4).map(|b| dual[a][b] * p.slave[b]).sum();
-                        forms[self.slot_of[&node]].add(
-                            mi,
-                            phi * p.weight,
-                            p.slave[a] * p.weight,
-                            &nu,
-                            shapes(),
-                        );
-                    }
+                    let shapes = (&p.slave[..], &p.master[..], &p.slave[..]);
+                    let dual = |a: usize, b: usize| dual[a][b];
+                    self.add_reference_point(&mut forms, (k, mi), shapes, &dual, &nu, p.weight);
                 }
             }
         }
@@ -423,24 +409,37 @@ impl FaceMortar {
                     std::array::from_fn(|i| -ws * p.slave_normal[i] + wm * p.master_normal[i]);
                 let len = dot(&nu, &nu).sqrt();
                 let nu = nu.map(|v| v / len);
-                let shapes = || {
-                    sf.nodes
-                        .iter()
-                        .copied()
-                        .zip(p.slave)
-                        .chain(mf.nodes.iter().copied().zip(p.master.map(|v| -v)))
-                };
-                for (a, &node) in sf.nodes.iter().enumerate() {
-                    let phi: f64 = (0..kn).map(|b| dual[a][b] * p.modified[b]).sum();
-                    forms[self.slot_of[&node]].add(
-                        mi,
-                        phi * p.weight,
-                        p.modified[a] * p.weight,
-                        &nu,
-                        shapes(),
-                    );
-                }
+                let shapes = (&p.slave[..], &p.master[..], &p.modified[..]);
+                let dual = |a: usize, b: usize| dual[a][b];
+                self.add_reference_point(forms, (k, mi), shapes, &dual, &nu, p.weight);
             }
+        }
+    }
+
+    /// Add one point of the reference segmentation of slave face `k` against master face `mi` to
+    /// the slots of the slave face's nodes: the slave's and the master's shape values there and
+    /// the slave's weight functions (`shapes`: N, or a quadratic face's N̂), the coefficients
+    /// `dual(a, b)` of node a's dual function over the weight functions, ν and the point's weight.
+    fn add_reference_point(
+        &self,
+        forms: &mut [LinearSlot],
+        (k, mi): (usize, usize),
+        (slave, master, basis): (&[f64], &[f64], &[f64]),
+        dual: &dyn Fn(usize, usize) -> f64,
+        nu: &[f64; 3],
+        weight: f64,
+    ) {
+        let (sf, mf) = (&self.slave.faces[k], &self.master.faces[mi]);
+        let kn = sf.nodes.len();
+        for (a, &node) in sf.nodes.iter().enumerate() {
+            let phi: f64 = (0..kn).map(|b| dual(a, b) * basis[b]).sum();
+            let shapes = sf
+                .nodes
+                .iter()
+                .copied()
+                .zip(slave.iter().copied())
+                .chain(mf.nodes.iter().copied().zip(master.iter().map(|v| -v)));
+            forms[self.slot_of[&node]].add(mi, phi * weight, basis[a] * weight, nu, shapes);
         }
     }
 
