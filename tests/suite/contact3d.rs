@@ -885,6 +885,35 @@ fn a_body_held_by_contact_alone_is_solved_on_every_solver_path() {
     }
 }
 
+/// How uniformly a patch-test run of `text` transfers its pressure: the relative spread of σ_zz
+/// over every integration point, that of the active slave nodes' pressures, the first node's
+/// pressure against −σ_zz, and the active nodes' count.
+fn uniform_transfer(text: &str) -> (f64, f64, f64, usize) {
+    let spread = |v: &[f64]| {
+        let (lo, hi) = v
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                (a.min(x), b.max(x))
+            });
+        (hi - lo) / hi.abs().max(lo.abs())
+    };
+    let model = common::model_from_text(text).unwrap();
+    let (mut stress, mut pressure) = (Vec::new(), Vec::new());
+    run_analysis(&model, &common::quiet(), |r| {
+        stress = r.states.iter().flatten().map(|g| g.stress[2]).collect();
+        pressure = r
+            .contact
+            .iter()
+            .filter(|s| s.active)
+            .map(|s| s.pressure)
+            .collect();
+        Ok(())
+    })
+    .unwrap();
+    let mismatch = (pressure[0] / -stress[0] - 1.0).abs();
+    (spread(&stress), spread(&pressure), mismatch, pressure.len())
+}
+
 /// Node-to-face contact between quadratic tetrahedra (QTRSpace, 6-node faces) with matching
 /// meshes, mid-side nodes among the contact nodes, passes the contact patch test: a uniform
 /// pressure is transferred exactly — σ_zz the same at every integration point of both blocks,
@@ -896,18 +925,9 @@ fn a_body_held_by_contact_alone_is_solved_on_every_solver_path() {
 /// 1/3).
 #[test]
 fn node_to_face_on_quadratic_tetrahedra_passes_the_patch_test() {
-    use hertz::solve::run_analysis;
     use hertz_bench::mesh::Solid;
     use hertz_bench::suite::Law;
     use hertz_bench::verify::Patch;
-    let spread = |v: &[f64]| {
-        let (lo, hi) = v
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-                (a.min(x), b.max(x))
-            });
-        (hi - lo) / hi.abs().max(lo.abs())
-    };
     for nlgeo in [false, true] {
         for (law, bound) in [
             (Law::Multiplier, 1e-10),
@@ -928,22 +948,8 @@ fn node_to_face_on_quadratic_tetrahedra_passes_the_patch_test() {
                     mortar: false,
                 }
                 .input_quadratic();
-                let model = common::model_from_text(&text).unwrap();
-                let (mut stress, mut pressure) = (Vec::new(), Vec::new());
-                run_analysis(&model, &common::quiet(), |r| {
-                    stress = r.states.iter().flatten().map(|g| g.stress[2]).collect();
-                    pressure = r
-                        .contact
-                        .iter()
-                        .filter(|s| s.active)
-                        .map(|s| s.pressure)
-                        .collect();
-                    Ok(())
-                })
-                .unwrap();
-                assert_eq!(pressure.len(), 25, "every slave node, mid-sides too");
-                let (ds, dp) = (spread(&stress), spread(&pressure));
-                let mismatch = (pressure[0] / -stress[0] - 1.0).abs();
+                let (ds, dp, mismatch, active) = uniform_transfer(&text);
+                assert_eq!(active, 25, "every slave node, mid-sides too");
                 assert!(
                     ds < bound && dp < bound && (nlgeo || mismatch < bound),
                     "nlgeo {nlgeo} {law:?} sym {sym}: σ spread {ds:e}, p spread {dp:e}, p/σ {mismatch:e}"
@@ -963,15 +969,6 @@ fn node_to_face_on_quadratic_tetrahedra_passes_the_patch_test() {
 /// exact.
 #[test]
 fn mortar_on_quadratic_faces_passes_the_patch_test() {
-    use hertz::solve::run_analysis;
-    let spread = |v: &[f64]| {
-        let (lo, hi) = v
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-                (a.min(x), b.max(x))
-            });
-        (hi - lo) / hi.abs().max(lo.abs())
-    };
     for (kind, nlgeo, law, bound) in [
         (Solid::Tet, false, Law::Multiplier, 1e-10),
         (Solid::Hex, false, Law::Multiplier, 1e-10),
@@ -993,25 +990,10 @@ fn mortar_on_quadratic_faces_passes_the_patch_test() {
             mortar: true,
         }
         .input_quadratic();
-        let model = common::model_from_text(&text).unwrap();
-        let (mut stress, mut pressure) = (Vec::new(), Vec::new());
-        run_analysis(&model, &common::quiet(), |r| {
-            stress = r.states.iter().flatten().map(|g| g.stress[2]).collect();
-            pressure = r
-                .contact
-                .iter()
-                .filter(|s| s.active)
-                .map(|s| s.pressure)
-                .collect();
-            Ok(())
-        })
-        .unwrap();
-        let (ds, dp) = (spread(&stress), spread(&pressure));
-        let mismatch = (pressure[0] / -stress[0] - 1.0).abs();
+        let (ds, dp, mismatch, active) = uniform_transfer(&text);
         println!(
-            "{kind:?} nlgeo {nlgeo} {law:?}: {} slots, σ spread {ds:e}, p spread {dp:e}, \
-             p/σ {mismatch:e}",
-            pressure.len()
+            "{kind:?} nlgeo {nlgeo} {law:?}: {active} slots, σ spread {ds:e}, p spread {dp:e}, \
+             p/σ {mismatch:e}"
         );
         assert!(
             ds < bound && dp < bound && (nlgeo || mismatch < bound),

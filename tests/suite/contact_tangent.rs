@@ -771,39 +771,8 @@ fn mortar3d_case(
     nlgeo: bool,
     law: hertz_bench::suite::Law,
 ) -> (String, Disp) {
-    let text = hertz_bench::verify::Patch {
-        kind,
-        slave_kind: None,
-        sym: 0,
-        n: 1,
-        nlgeo,
-        delta: 0.01,
-        steps: 1,
-        law,
-        slave_n: Some(2),
-        mortar: true,
-    }
-    .input();
-    let model = common::model_from_text(&text).unwrap();
-    let disp = model
-        .nodes
-        .iter()
-        .filter_map(|n| {
-            let [x, y, z] = n.coords;
-            let k = n.label as f64;
-            // The master block's 2 × 2 × 3 nodes come first.
-            if n.label > 12 {
-                Some((
-                    n.label,
-                    [0.013 + 0.02 * z, -0.007 + 0.01 * z, -0.01 + 0.003 * k.sin()],
-                ))
-            } else if z.abs() < 1e-9 {
-                Some((n.label, [0.004 * k.cos(), 0.002 * x, 0.003 * (k + y).sin()]))
-            } else {
-                None
-            }
-        })
-        .collect();
+    let text = mortar3d_patch(kind, nlgeo, law).input();
+    let disp = sunk_and_sheared(&text);
     (text, disp)
 }
 
@@ -889,21 +858,30 @@ fn mortar_tangents_in_3d_are_jacobians_of_residuals() {
             for (law, lambda) in [(Law::Penalty(1e4), 0.0), (Law::Multiplier, 3.0)] {
                 let (text, disp) = mortar3d_case(kind, nlgeo, law);
                 let name = format!("mortar3d {kind:?} nlgeo {nlgeo} {law:?}");
-                check_mortar3d(&name, &text, disp, lambda);
+                check_mortar3d(&name, &text, disp, lambda, Differences::EveryUnknown);
             }
         }
     }
 }
 
-/// [`mortar3d_case`] in quadratic elements (slave 2 × 2 across on a master 1 × 1): the slave
-/// block's nodes (of the elements above z = 0) sunk and sheared, the master's top nodes moved out
-/// of plane.
+/// [`mortar3d_case`] in quadratic elements (QTRSpace, QSpace).
 fn mortar3d_quadratic_case(
     kind: hertz_bench::mesh::Solid,
     nlgeo: bool,
     law: hertz_bench::suite::Law,
 ) -> (String, Disp) {
-    let text = hertz_bench::verify::Patch {
+    let text = mortar3d_patch(kind, nlgeo, law).input_quadratic();
+    let disp = sunk_and_sheared(&text);
+    (text, disp)
+}
+
+/// The patch of the 3D mortar cases: slave 2 × 2 across on a master 1 × 1.
+fn mortar3d_patch(
+    kind: hertz_bench::mesh::Solid,
+    nlgeo: bool,
+    law: hertz_bench::suite::Law,
+) -> hertz_bench::verify::Patch {
+    hertz_bench::verify::Patch {
         kind,
         slave_kind: None,
         sym: 0,
@@ -915,8 +893,12 @@ fn mortar3d_quadratic_case(
         slave_n: Some(2),
         mortar: true,
     }
-    .input_quadratic();
-    let model = common::model_from_text(&text).unwrap();
+}
+
+/// The displacements of a 3D mortar case: the slave block's nodes (those of the elements above
+/// z = 0) sunk and sheared, the master's top nodes moved out of plane.
+fn sunk_and_sheared(text: &str) -> Disp {
+    let model = common::model_from_text(text).unwrap();
     let mut slave = std::collections::BTreeSet::new();
     for e in &model.elements {
         let z: f64 = e.nodes.iter().map(|&n| model.nodes[n].coords[2]).sum();
@@ -924,7 +906,7 @@ fn mortar3d_quadratic_case(
             slave.extend(e.nodes.iter().copied());
         }
     }
-    let disp = model
+    model
         .nodes
         .iter()
         .enumerate()
@@ -942,8 +924,7 @@ fn mortar3d_quadratic_case(
                 None
             }
         })
-        .collect();
-    (text, disp)
+        .collect()
 }
 
 /// The mortar tangent on quadratic faces is the Jacobian of its residual, in small deformation
@@ -963,36 +944,8 @@ fn mortar_tangents_on_quadratic_faces_are_jacobians_of_residuals() {
     {
         for (law, lambda) in [(Law::Penalty(1e4), 0.0), (Law::Multiplier, 3.0)] {
             let (text, disp) = mortar3d_quadratic_case(kind, nlgeo, law);
-            let model = common::model_from_text(&text).unwrap();
             let name = format!("quadratic mortar3d {kind:?} nlgeo {nlgeo} {law:?}");
-            let mut contact = ContactSystem::new(&model).unwrap();
-            let dofs = hertz::solve::number_dofs(&model).unwrap();
-            contact.set_pressure_limit(f64::INFINITY);
-            let case = Case {
-                name: name.clone(),
-                text: String::new(),
-                disp,
-                lambda,
-                active: 0,
-            };
-            let u = displaced(&model, &dofs, &case);
-            // Four pseudo-random directions over every unknown, multipliers too.
-            let directions: Vec<Vec<f64>> = (1..=4)
-                .map(|d| {
-                    (0..u.len())
-                        .map(|i| ((i * 7 + d * 13) as f64).sin())
-                        .collect()
-                })
-                .collect();
-            let (err, states, checked) =
-                directional_fd_error(&model, &contact, &dofs, &u, &directions);
-            let active = states.iter().filter(|s| s.active).count();
-            println!("{name}: {err:.1e} over {checked} points, {active} active");
-            assert!(
-                active >= 21 && checked >= 21,
-                "{name}: {active} active, {checked} checked"
-            );
-            assert!(err < 1e-6, "{name}: tangent off by {err:e} (relative)");
+            check_mortar3d(&name, &text, disp, lambda, Differences::Directions(4));
         }
     }
 }
@@ -1016,13 +969,15 @@ fn mortar_tangents_against_rigid_shapes_in_3d_are_jacobians_of_residuals() {
                     &sphere,
                     on_sphere,
                     lambda,
+                    Differences::EveryUnknown,
                 );
                 let plane = common::with_rigid_master(
                     &text,
                     "planecontactsegment 1 point 3 0.5 0.5 0.08 normal 3 0.1 -0.05 1",
                     [0.0; 3],
                 );
-                check_mortar3d(&format!("mortar3d plane {name}"), &plane, disp, lambda);
+                let name = format!("mortar3d plane {name}");
+                check_mortar3d(&name, &plane, disp, lambda, Differences::EveryUnknown);
             }
         }
     }
@@ -1039,9 +994,19 @@ fn on_rigid_sphere(text: &str, mut disp: Disp) -> (String, Disp) {
     )
 }
 
-/// The FD check of a 3D mortar case displaced by `disp`, multipliers at `lambda`: every one of
-/// its 9 slave nodes active and checked, the tangent within 1e-6 of the differences.
-fn check_mortar3d(name: &str, text: &str, disp: Disp, lambda: f64) {
+/// How [`check_mortar3d`] differences the residual.
+enum Differences {
+    /// Two evaluations per unknown of every point ([`fd_error`]).
+    EveryUnknown,
+    /// Two evaluations per pseudo-random direction over all unknowns, multipliers too
+    /// ([`directional_fd_error`]: large-deformation mortar on quadratic faces evaluates slowly).
+    Directions(usize),
+}
+
+/// The FD check of a 3D mortar case displaced by `disp`, multipliers at `lambda`: every slave
+/// node active and checked (at least the 9 of a linear case), the tangent within 1e-6 of the
+/// differences.
+fn check_mortar3d(name: &str, text: &str, disp: Disp, lambda: f64, differences: Differences) {
     let model = common::model_from_text(text).unwrap();
     let mut contact = ContactSystem::new(&model).unwrap();
     let dofs = hertz::solve::number_dofs(&model).unwrap();
@@ -1057,12 +1022,25 @@ fn check_mortar3d(name: &str, text: &str, disp: Disp, lambda: f64) {
             active: 0,
         },
     );
-    let (err, states, checked) = fd_error(&model, &contact, &dofs, &u);
+    let (err, states, checked) = match differences {
+        Differences::EveryUnknown => fd_error(&model, &contact, &dofs, &u),
+        Differences::Directions(n) => {
+            let directions: Vec<Vec<f64>> = (1..=n)
+                .map(|d| {
+                    (0..u.len())
+                        .map(|i| ((i * 7 + d * 13) as f64).sin())
+                        .collect()
+                })
+                .collect();
+            directional_fd_error(&model, &contact, &dofs, &u, &directions)
+        }
+    };
     let active = states.iter().filter(|s| s.active).count();
     println!("{name}: {err:.1e} over {checked} points, {active} active");
     assert!(
-        active >= 9 && checked >= 9,
-        "{name}: {active} active, {checked} checked"
+        active >= 9 && active == states.len() && checked == states.len(),
+        "{name}: {active} active, {checked} checked of {}",
+        states.len()
     );
     assert!(err < 1e-6, "{name}: tangent off by {err:e} (relative)");
 }

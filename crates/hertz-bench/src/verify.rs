@@ -1214,6 +1214,21 @@ impl TwoCylinders {
     }
 }
 
+/// The rings' inner surface (`nodes`, at r = `RING_A`) pushed out radially by `RING_PUSH`: one
+/// condition per node (its own direction).
+fn push_out_radially(inp: &mut Input, nodes: &[usize]) {
+    for &n in nodes {
+        let p = inp.nodes[n - 1];
+        let set = inp.node_set(&[n]);
+        let k = inp.bcs.len() + 1;
+        inp.bcs.push(format!(
+            "BoundaryCondition {k} loadTimeFunction 1 dofs 2 1 2 values 2 {} {} set {set}",
+            RING_PUSH * p[0] / RING_A,
+            RING_PUSH * p[1] / RING_A
+        ));
+    }
+}
+
 /// [`ConcentricRings`] in 3D: each ring `RING_DEPTH` deep in `layers` cells, every node held
 /// in z (plane strain), in 10-node tetrahedra (QTRSpace, the Kuhn split) or 20-node bricks
 /// (QSpace) whose faces on the arcs are curved (mid-side nodes on the circles); `inner` and
@@ -1278,18 +1293,8 @@ impl ConcentricCylinders {
                 k + 1
             ));
         }
-        // The inner surface pushed out radially: one condition per node (its own direction).
         let inside = inp.nodes_where(&|p| (p[0].hypot(p[1]) - RING_A).abs() < 1e-9);
-        for n in inside {
-            let p = inp.nodes[n - 1];
-            let set = inp.node_set(&[n]);
-            let k = inp.bcs.len() + 1;
-            inp.bcs.push(format!(
-                "BoundaryCondition {k} loadTimeFunction 1 dofs 2 1 2 values 2 {} {} set {set}",
-                RING_PUSH * p[0] / RING_A,
-                RING_PUSH * p[1] / RING_A
-            ));
-        }
+        push_out_radially(&mut inp, &inside);
         let k = inp.bcs.len() + 1;
         inp.bcs.push(s2s(k, self.law));
         inp.functions.push(history(&[1.0]));
@@ -1405,17 +1410,7 @@ impl ConcentricRings {
         inp.bcs.push(format!(
             "BoundaryCondition 2 loadTimeFunction 2 dofs 1 2 values 1 0 set {y0}"
         ));
-        // The inner surface pushed out radially: one condition per node (its own direction).
-        for &n in &inner_ids[0] {
-            let p = inp.nodes[n - 1];
-            let set = inp.node_set(&[n]);
-            let k = inp.bcs.len() + 1;
-            inp.bcs.push(format!(
-                "BoundaryCondition {k} loadTimeFunction 1 dofs 2 1 2 values 2 {} {} set {set}",
-                RING_PUSH * p[0] / RING_A,
-                RING_PUSH * p[1] / RING_A
-            ));
-        }
+        push_out_radially(&mut inp, &inner_ids[0]);
         let k = inp.bcs.len() + 1;
         if self.mortar {
             inp.bcs.push(s2s(k, self.law));
