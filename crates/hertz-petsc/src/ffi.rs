@@ -79,6 +79,17 @@ extern "C" {
     ) -> PetscErrorCode;
     pub fn PetscFinalize() -> PetscErrorCode;
     pub fn PetscOptionsInsertString(o: PetscOptions, s: *const c_char) -> PetscErrorCode;
+    pub fn PetscOptionsHasName(
+        o: PetscOptions,
+        pre: *const c_char,
+        name: *const c_char,
+        set: *mut PetscBool,
+    ) -> PetscErrorCode;
+    pub fn PetscOptionsSetValue(
+        o: PetscOptions,
+        name: *const c_char,
+        value: *const c_char,
+    ) -> PetscErrorCode;
     pub fn PetscPushErrorHandler(handler: ErrorHandler, ctx: *mut c_void) -> PetscErrorCode;
     pub fn PetscReturnErrorHandler(
         comm: MPI_Comm,

@@ -1,10 +1,16 @@
 //! PETSc as a linear solver of hertz (the feature `petsc`): the tangent goes into a PETSc AIJ
-//! matrix split by rows across the MPI ranks, and PETSc's KSP solves it — by default CG with
-//! algebraic multigrid (GAMG, the model's rigid-body motions as its near-null space) for a
-//! positive definite tangent, MUMPS' LDLᵀ for a symmetric one and
-//! MUMPS' LU otherwise, to a relative residual of 1e-12; any PETSc option overrides that
-//! (`PETSC_OPTIONS`, or the options string given to [`Session::start`], e.g.
-//! `-ksp_type cg -pc_type hypre`).
+//! matrix split by rows across the MPI ranks, and PETSc's KSP solves it to a relative residual
+//! of 1e-12, by default with a method chosen from the matrix:
+//! - CG with algebraic multigrid (GAMG, the model's rigid-body motions as its near-null space)
+//!   for a positive definite tangent, and for the systems left when hertz eliminates contact
+//!   multipliers;
+//! - GMRES with hypre's BoomerAMG (tuned for 3D elasticity) for another tangent of 20 000
+//!   unknowns or more without multipliers (penalty contact);
+//! - MUMPS' LDLᵀ for another symmetric one, MUMPS' LU otherwise (multipliers kept as unknowns,
+//!   small systems).
+//!
+//! Any PETSc option overrides that (`PETSC_OPTIONS`, or the options string given to
+//! [`Session::start`], e.g. `-ksp_type cg -pc_type hypre`).
 //!
 //! Under `mpirun -n N` every rank reads the whole model and assembles its METIS share of the
 //! elements (`hertz::solve::partition`); PETSc sums the ranks' shares of the tangent, and the

@@ -53,6 +53,14 @@ pub(crate) fn start(options: Option<&str>) -> std::result::Result<Session, Strin
                 ));
             }
         }
+        for (name, value) in ITERATIVE_DEFAULTS {
+            let (n, v) = (cstr(name), cstr(value));
+            let mut set: PetscBool = PETSC_FALSE;
+            PetscOptionsHasName(null_mut(), std::ptr::null(), n.as_ptr(), &mut set);
+            if set == PETSC_FALSE {
+                PetscOptionsSetValue(null_mut(), n.as_ptr(), v.as_ptr());
+            }
+        }
         // The options are checked once, on a KSP of no matrix: an unknown method is an error now,
         // not at the first solve.
         let mut ksp: KSP = null_mut();
@@ -145,10 +153,48 @@ pub struct PetscSolver {
     stats: SolverStats,
     /// The rigid-body motions (GAMG's near-null space), if told.
     modes: Vec<Vec<f64>>,
+    /// The method the KSP has (None: none yet).
+    method: Option<Method>,
+    /// The number of multipliers among the unknowns (see [`LinearSolver::set_multipliers`]).
+    multipliers: usize,
+    /// Every rank gives the whole matrix, not its share (see
+    /// [`LinearSolver::take_whole_matrices`]).
+    whole: bool,
     /// This process's rank and the number of ranks.
     rank: usize,
     size: usize,
 }
+
+/// hertz's default methods, from the matrix: CG + GAMG for a positive definite tangent (linear
+/// elasticity, and the systems left when hertz eliminates multipliers); GMRES + BoomerAMG (hypre,
+/// tuned for 3D elasticity unless the options say otherwise) for another tangent of
+/// [`ITERATIVE_MIN`] unknowns or more without multipliers (penalty contact, where a direct
+/// factorization of a large 3D system does not fit); MUMPS' LDLᵀ or LU otherwise (saddle points
+/// of multipliers, small systems).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Method {
+    Multigrid,
+    Iterative,
+    Cholesky,
+    Lu,
+}
+
+/// The size from which a tangent that is neither positive definite nor a saddle point goes to
+/// GMRES + BoomerAMG (hertz's own solver's Krylov threshold).
+const ITERATIVE_MIN: usize = hertz::solve::linear::KRYLOV_MIN_UNKNOWNS;
+
+/// The settings of [`Method::Iterative`], each applied unless the options set it: BoomerAMG's
+/// usual ones for 3D elasticity (with hypre's own defaults the solves of the 3D Hertz sphere's
+/// penalty tangents, 31 000 unknowns, took twelve times as long: 131 s against 10.5 s), and
+/// GMRES restarted after 100 iterations instead of 30.
+const ITERATIVE_DEFAULTS: [(&str, &str); 6] = [
+    ("-pc_hypre_boomeramg_strong_threshold", "0.5"),
+    ("-pc_hypre_boomeramg_coarsen_type", "HMIS"),
+    ("-pc_hypre_boomeramg_interp_type", "ext+i"),
+    ("-pc_hypre_boomeramg_P_max", "4"),
+    ("-pc_hypre_boomeramg_agg_nl", "1"),
+    ("-ksp_gmres_restart", "100"),
+];
 
 impl Default for PetscSolver {
     fn default() -> Self {
@@ -167,6 +213,9 @@ impl PetscSolver {
             owned: None,
             stats: SolverStats::default(),
             modes: Vec::new(),
+            method: None,
+            multipliers: 0,
+            whole: false,
             rank: ranks().0,
             size: ranks().1,
         }
@@ -327,8 +376,9 @@ impl PetscSolver {
         Ok(())
     }
 
-    /// The matrix, its vectors and the KSP for `pattern`, with its default method.
-    fn create(&mut self, pattern: &Pattern, spd: bool) -> Result<()> {
+    /// The matrix, its vectors and the KSP for `pattern` (its method is chosen at the first
+    /// factorization, from the matrix: [`PetscSolver::choose_method`]).
+    fn create(&mut self, pattern: &Pattern) -> Result<()> {
         self.destroy();
         let n = pattern.n;
         let (lo, hi) = ownership(n);
@@ -372,37 +422,65 @@ impl PetscSolver {
                 "MatCreateVecs",
             )?;
             check(KSPCreate(PETSC_COMM_WORLD, &mut self.ksp), "KSPCreate")?;
+            check(
+                KSPSetTolerances(self.ksp, 1e-12, 1e-50, -2.0, 10_000),
+                "KSPSetTolerances",
+            )?;
+        }
+        self.method = None;
+        self.n = n;
+        self.owned = Some(owned);
+        self.attach_modes(lo, hi)
+    }
+
+    /// Give the KSP hertz's default method for the assembled matrix, if it is not the one it
+    /// has (see [`Method`]), the user's options applied over it.
+    fn choose_method(&mut self, spd: bool, symmetric: bool) -> Result<()> {
+        let method = if spd {
+            Method::Multigrid
+        } else if self.n >= ITERATIVE_MIN && self.multipliers == 0 {
+            Method::Iterative
+        } else if symmetric {
+            Method::Cholesky
+        } else {
+            Method::Lu
+        };
+        if self.method == Some(method) {
+            return Ok(());
+        }
+        // SAFETY: the KSP is this solver's; the strings outlive the calls.
+        unsafe {
             let mut pc: PC = null_mut();
             check(KSPGetPC(self.ksp, &mut pc), "KSPGetPC")?;
-            let (ksp_type, pc_type) = if spd {
-                ("cg", "gamg")
-            } else if pattern.symmetric {
-                ("preonly", "cholesky")
-            } else {
-                ("preonly", "lu")
+            let (ksp_type, pc_type) = match method {
+                Method::Multigrid => ("cg", "gamg"),
+                Method::Iterative => ("gmres", "hypre"),
+                Method::Cholesky => ("preonly", "cholesky"),
+                Method::Lu => ("preonly", "lu"),
             };
-            let (kt, pt, mumps) = (cstr(ksp_type), cstr(pc_type), cstr("mumps"));
+            let kt = cstr(ksp_type);
             check(KSPSetType(self.ksp, kt.as_ptr()), "KSPSetType")?;
-            check(PCSetType(pc, pt.as_ptr()), "PCSetType")?;
-            if !spd {
+            let pt = cstr(pc_type);
+            if PCSetType(pc, pt.as_ptr()) != 0 {
+                // A PETSc built without hypre: its own algebraic multigrid.
+                let gamg = cstr("gamg");
+                check(PCSetType(pc, gamg.as_ptr()), "PCSetType")?;
+            }
+            if matches!(method, Method::Cholesky | Method::Lu) {
+                let mumps = cstr("mumps");
                 check(
                     PCFactorSetMatSolverType(pc, mumps.as_ptr()),
                     "PCFactorSetMatSolverType",
                 )?;
             }
-            check(
-                KSPSetTolerances(self.ksp, 1e-12, 1e-50, -2.0, 10_000),
-                "KSPSetTolerances",
-            )?;
-            // The user's options override these defaults, once for the KSP's life.
+            // The user's options override these defaults.
             check(
                 KSPSetFromOptions(self.ksp),
                 "KSPSetFromOptions (the PETSc options)",
             )?;
         }
-        self.n = n;
-        self.owned = Some(owned);
-        self.attach_modes(lo, hi)
+        self.method = Some(method);
+        Ok(())
     }
 
     fn destroy(&mut self) {
@@ -424,6 +502,7 @@ impl PetscSolver {
         }
         self.owned = None;
         self.n = 0;
+        self.method = None;
     }
 
     /// The solution vector on every rank, into `out`.
@@ -490,9 +569,9 @@ impl LinearSolver for PetscSolver {
         let clock = Instant::now();
         let fresh = self.owned.is_none() || self.n != pattern.n;
         if fresh {
-            self.create(pattern, spd)?;
+            self.create(pattern)?;
         }
-        if self.size > 1 {
+        if self.size > 1 && !self.whole {
             // The first final assembly squeezes out the preallocated entries nobody set, and an
             // entry that a later share sets (a contact point that closes) would then be a new
             // nonzero, an error on the rank that owns it: the owned rows' whole pattern goes in
@@ -522,6 +601,10 @@ impl LinearSolver for PetscSolver {
                     check(MatSetOption(self.mat, MAT_SPD, PETSC_TRUE), "MatSetOption")?;
                 }
             }
+        }
+        self.choose_method(spd, pattern.symmetric)?;
+        // SAFETY: the matrix is assembled; the KSP is this solver's.
+        unsafe {
             check(
                 KSPSetOperators(self.ksp, self.mat, self.mat),
                 "KSPSetOperators",
@@ -607,6 +690,14 @@ impl LinearSolver for PetscSolver {
 
     fn set_near_null_space(&mut self, modes: &[Vec<f64>]) {
         self.modes = modes.to_vec();
+    }
+
+    fn set_multipliers(&mut self, count: usize) {
+        self.multipliers = count;
+    }
+
+    fn take_whole_matrices(&mut self) {
+        self.whole = true;
     }
 
     fn reset(&mut self) {

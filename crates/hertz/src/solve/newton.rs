@@ -61,9 +61,6 @@ pub(super) struct NewtonContext<'a> {
     groups: Option<Vec<usize>>,
     /// Unknowns from which non-symmetric tangents go to GMRES.
     krylov_min: usize,
-    /// The solver is hertz's own (not one from outside, PETSc's): large tangents may then have
-    /// their multipliers eliminated by hertz rather than go whole to the solver.
-    own_solver: bool,
     /// The current factorization is the (constant) tangent of a linear problem.
     factor_valid: bool,
     /// Small strain and no contact: the tangent is constant.
@@ -156,6 +153,7 @@ impl<'a> NewtonContext<'a> {
         }
         let slot_nodes: Vec<usize> = initial_states.iter().map(|s| s.node).collect();
         let groups = Some(dofs.free_eq_nodes());
+        let mut eliminate = MultiplierElimination::new(params.krylov_min_unknowns);
         let solver: Box<dyn LinearSolver> = match &params.solver {
             SolverChoice::Sparse => Box::new(FaerSolver::new(SolverSettings {
                 groups: groups.clone(),
@@ -164,8 +162,18 @@ impl<'a> NewtonContext<'a> {
             })),
             SolverChoice::Dense => Box::new(DenseLu::default()),
             SolverChoice::Custom(make) => {
+                let modes = super::linear::rigid_body_modes(model, dofs);
                 let mut solver = (make.0)();
-                solver.set_near_null_space(&super::linear::rigid_body_modes(model, dofs));
+                solver.set_near_null_space(&modes);
+                solver.set_multipliers(dofs.n_lambda);
+                // The reduced systems of eliminated multipliers go to a solver of the same
+                // kind, positive definite where the bodies are held (CG with a multigrid);
+                // across processes each reduces the whole tangent and gives it whole.
+                if !contact.is_empty() {
+                    let mut reduced = (make.0)();
+                    reduced.take_whole_matrices();
+                    eliminate = MultiplierElimination::with_solver(reduced, true, modes);
+                }
                 solver
             }
         };
@@ -190,7 +198,6 @@ impl<'a> NewtonContext<'a> {
             solver,
             groups,
             krylov_min: params.krylov_min_unknowns,
-            own_solver: !matches!(params.solver, SolverChoice::Custom(_)),
             factor_valid: false,
             linear,
             small_strain,
@@ -207,7 +214,7 @@ impl<'a> NewtonContext<'a> {
             times: PhaseTimes::default(),
             regrowths: 0,
             max_condensed: params.max_condensed,
-            eliminate: MultiplierElimination::new(params.krylov_min_unknowns),
+            eliminate,
             ranks,
         };
         if !ctx.contact.is_empty() && !condense {
@@ -710,22 +717,26 @@ impl<'a> NewtonContext<'a> {
         // counterpart's elimination, at any size; else, below the Krylov threshold, the general
         // elimination's LU, and above it the whole tangent's GMRES, preconditioned with the LDLᵀ
         // of its symmetric part (the general reduced system's symmetric part, gap rows in place
-        // of slave rows, is no preconditioner for it). A solver from outside (PETSc) gets the
-        // large systems whole.
-        // Across processes each holds a share of the tangent: the solver has it whole.
+        // of slave rows, is no preconditioner for it). With a solver from outside (PETSc) the
+        // reduced systems go to one of its kind; the tangents it cannot reduce, whole to it.
+        // Across processes each holds a share of the tangent: the shares are summed on every
+        // process for the elimination, and a tangent it leaves goes whole to the solver from
+        // the first.
         let general = nf < self.krylov_min && self.ranks.is_none();
-        let groups = if general || self.own_solver {
-            self.multiplier_groups(points)
-        } else {
-            Vec::new()
-        };
+        let groups = self.multiplier_groups(points);
         let transform = if groups.is_empty() {
             Vec::new()
         } else {
             self.slave_transform()
         };
+        let summed = self.ranks.is_some() && !groups.is_empty();
+        let mut k_structure = ks.k_values.expect("requested");
+        if summed {
+            let d = self.solver.distributed().expect("a distributed solver");
+            d.sum(&mut k_structure)?;
+        }
         loop {
-            let mut kv = ks.k_values.clone().expect("requested");
+            let mut kv = k_structure.clone();
             let mut step = rhs.clone();
             let contribs: Vec<Contribution> = points
                 .iter()
@@ -748,11 +759,11 @@ impl<'a> NewtonContext<'a> {
                     }
                 })
                 .collect();
-            if self.adds_contact_tangent() {
+            if summed || self.adds_contact_tangent() {
                 self.asm.add_tangents(&mut kv, &contribs);
             }
             // Across processes a row is whole only in the sum of the shares.
-            if self.ranks.is_none() {
+            if self.ranks.is_none() || summed {
                 pin_empty_multiplier_rows(&self.asm.pattern, &mut kv, nf - self.dofs.n_lambda..nf);
             }
             let eliminated = !groups.is_empty() && {
@@ -784,6 +795,10 @@ impl<'a> NewtonContext<'a> {
                 solved
             };
             if !eliminated {
+                if summed && self.ranks.is_some_and(|(rank, _)| rank > 0) {
+                    // The first process gives the summed tangent, the others nothing.
+                    kv.fill(0.0);
+                }
                 self.factorize(&kv)?;
                 let t = Instant::now();
                 self.solver.solve_in_place(&mut step)?;

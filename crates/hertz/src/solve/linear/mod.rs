@@ -162,7 +162,8 @@ pub trait LinearSolver {
 
     /// Optional: the rigid-body motions of the model over the free equations (3 in 2D, 6 in 3D,
     /// orthonormal; zero on the multipliers), for a solver that can use them (an algebraic
-    /// multigrid's near-null space). Told once, before the first factorization.
+    /// multigrid's near-null space). Told before the first factorization, and again before a
+    /// factorization on other unknowns (a reduced system's).
     fn set_near_null_space(&mut self, _modes: &[Vec<f64>]) {}
 
     /// Optional: the trailing block L₂₂ of a Cholesky factor whose last equations are
@@ -171,6 +172,16 @@ pub trait LinearSolver {
     fn trailing_factor_block(&self) -> Option<(Vec<usize>, faer::Mat<f64>)> {
         None
     }
+
+    /// Optional: `count` unknowns of the matrices to come are Lagrange multipliers (a saddle
+    /// point, which an algebraic multigrid cannot precondition). Told before the first
+    /// factorization, and again before a factorization on other unknowns.
+    fn set_multipliers(&mut self, _count: usize) {}
+
+    /// Optional: from now on every process gives [`LinearSolver::factorize`] the whole matrix
+    /// (the same values on every process), not its share; a solver that spans processes takes
+    /// each its own rows of it. Told once, before the first factorization.
+    fn take_whole_matrices(&mut self) {}
 
     /// Optional: the processes this solver spans (PETSc under `mpirun -n N`, N > 1). Then each
     /// process assembles its own share of the elements ([`super::partition`]), the residual is

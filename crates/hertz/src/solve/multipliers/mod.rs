@@ -78,9 +78,15 @@ impl Method {
 }
 
 /// The reduced system's solver, kept while its pattern stays the same.
-#[derive(Default)]
 pub struct MultiplierElimination {
-    solver: FaerSolver,
+    solver: Box<dyn LinearSolver>,
+    /// The symmetric reduced system is factorized as positive definite (a solver from outside,
+    /// which may then take an iterative method: PETSc's CG with an algebraic multigrid), with
+    /// `modes` (the model's rigid-body motions over the full system's unknowns) carried into
+    /// the reduced unknowns as the near-null space. hertz's own solver tries Cholesky and falls
+    /// back to an LDLᵀ by itself.
+    positive_definite: bool,
+    modes: Vec<Vec<f64>>,
     pattern: Option<Pattern>,
     /// Multipliers eliminated and kept in the last solve.
     pub eliminated: usize,
@@ -204,9 +210,25 @@ impl MultiplierElimination {
             krylov_min,
             ..Default::default()
         });
+        MultiplierElimination::with_solver(Box::new(solver), false, Vec::new())
+    }
+
+    /// The reduced systems solved by `solver`; `positive_definite` and `modes` as the fields
+    /// say.
+    pub fn with_solver(
+        solver: Box<dyn LinearSolver>,
+        positive_definite: bool,
+        modes: Vec<Vec<f64>>,
+    ) -> MultiplierElimination {
         MultiplierElimination {
             solver,
-            ..Default::default()
+            positive_definite,
+            modes,
+            pattern: None,
+            eliminated: 0,
+            kept: 0,
+            method: Method::default(),
+            krylov_iterations: 0,
         }
     }
 
@@ -283,8 +305,14 @@ impl MultiplierElimination {
                 let red = Reduction::new(rows.scaled(&scale), groups);
                 if general || red.kept_multipliers == 0 {
                     let (reduced, vals) = red.reduced_matrix();
-                    self.factorize_reduced(reduced, &vals, &|k| describe(red.unknown(k)))?;
-                    let x = red.apply(&mut self.solver, &scaled_rhs, groups, describe)?;
+                    self.factorize_reduced(
+                        reduced,
+                        &vals,
+                        &|k| red.unknown(k),
+                        Some(&red),
+                        describe,
+                    )?;
+                    let x = red.apply(self.solver.as_mut(), &scaled_rhs, groups, describe)?;
                     rhs.copy_from_slice(&x);
                     let (eliminated, decoupled) = red.counts();
                     self.count(eliminated, decoupled, groups);
@@ -307,11 +335,16 @@ impl MultiplierElimination {
     }
 
     /// Factorize the reduced matrix `reduced` (`values`), its symbolic analysis kept while the
-    /// pattern stays the same.
+    /// pattern stays the same; `unknown`: the full system's unknown at a reduced place.
+    /// `symmetric`: the symmetric elimination it comes from, positive definite if it keeps no
+    /// multiplier (for a solver told so, with the near-null space carried into its unknowns);
+    /// else the general one, whose kept multipliers `self.kept` counts.
     fn factorize_reduced(
         &mut self,
         reduced: Pattern,
         values: &[f64],
+        unknown: &dyn Fn(usize) -> usize,
+        symmetric: Option<&Reduction>,
         describe: &dyn Fn(usize) -> String,
     ) -> Result<()> {
         if self
@@ -321,9 +354,17 @@ impl MultiplierElimination {
         {
             self.solver.reset();
             self.pattern = Some(reduced);
+            self.solver
+                .set_multipliers(symmetric.map_or(self.kept, |r| r.kept_multipliers));
+            if let (Some(red), false) = (symmetric, self.modes.is_empty()) {
+                let modes: Vec<Vec<f64>> = self.modes.iter().map(|m| red.restrict(m)).collect();
+                self.solver.set_near_null_space(&modes);
+            }
         }
         let reduced = self.pattern.as_ref().expect("set above");
-        self.solver.factorize(reduced, values, false, describe)
+        let spd = self.positive_definite && symmetric.is_some_and(|r| r.kept_multipliers == 0);
+        self.solver
+            .factorize(reduced, values, spd, &|k| describe(unknown(k)))
     }
 
     /// A general matrix whose multipliers' rows are their columns scaled but for terms of the
@@ -356,12 +397,12 @@ impl MultiplierElimination {
         }
         let (reduced, vals) = red.reduced_matrix();
         if self
-            .factorize_reduced(reduced, &vals, &|k| describe(red.unknown(k)))
+            .factorize_reduced(reduced, &vals, &|k| red.unknown(k), Some(&red), describe)
             .is_err()
         {
             return Ok(None);
         }
-        let solver = &mut self.solver;
+        let solver = self.solver.as_mut();
         let mut failed = None;
         let solved = gmres(
             rhs,
@@ -501,7 +542,8 @@ impl MultiplierElimination {
             }
         }
         let (reduced, vals) = reduced_rows.into_pattern();
-        self.factorize_reduced(reduced, &vals, &|k| describe(kept[k]))?;
+        self.count(&eliminated, &decoupled, groups);
+        self.factorize_reduced(reduced, &vals, &|k| kept[k], None, describe)?;
         self.solver.solve_in_place(&mut b)?;
         // x, then each group's multipliers λ = E (b_S − K_S x).
         let mut x = vec![0.0; n];
@@ -516,7 +558,6 @@ impl MultiplierElimination {
         solved.eliminated_multipliers(&eliminated, &mut x);
         solved.decoupled_multipliers(&decoupled, groups, &mut x, describe)?;
         rhs.copy_from_slice(&x);
-        self.count(&eliminated, &decoupled, groups);
         Ok(())
     }
 }
@@ -799,7 +840,7 @@ mod tests {
         let mut want = rhs.to_vec();
         full.solve_in_place(&mut want).unwrap();
         let mut got = rhs.to_vec();
-        let mut el = MultiplierElimination::default();
+        let mut el = MultiplierElimination::new(crate::solve::linear::KRYLOV_MIN_UNKNOWNS);
         assert!(el
             .solve(
                 &pattern,

@@ -5,7 +5,7 @@ use super::rows::{RowBuilder, Rows};
 use super::{eliminable, Eliminated, Group, Solved};
 use crate::assembly::Pattern;
 use crate::error::Result;
-use crate::solve::linear::FaerSolver;
+use crate::solve::linear::LinearSolver;
 
 /// How an eliminated group's slave unknowns follow from the reduced unknowns:
 /// x_S(a) = x₀(a) + Σ_{i≥p} Q[a, i] y_i + Σ_m F[a, m] x(masters[m]), x₀ = Eᵀ b_L.
@@ -158,6 +158,28 @@ impl Reduction {
         self.kept[k]
     }
 
+    /// A vector `v` of the full system's unknowns that keeps the eliminated constraints (a
+    /// rigid-body motion) in the reduced unknowns z, v = T z: a kept unknown's entry as it is,
+    /// a group's y_i its slave entries along Q's column i (Q₂ᵀ F = 0, so the masters' share
+    /// drops out).
+    pub(super) fn restrict(&self, v: &[f64]) -> Vec<f64> {
+        self.kept
+            .iter()
+            .map(|&i| match self.slave_of[i] {
+                (usize::MAX, _) => v[i],
+                (g, col) => {
+                    let el = &self.eliminated[g];
+                    let r = el.slave.len();
+                    el.slave
+                        .iter()
+                        .enumerate()
+                        .map(|(a, &s)| el.q[a * r + col] * v[s])
+                        .sum()
+                }
+            })
+            .collect()
+    }
+
     /// T's column t: (row of the full system, weight).
     fn t_column(&self, t: usize, out: &mut Vec<(usize, f64)>) {
         out.clear();
@@ -229,7 +251,7 @@ impl Reduction {
     /// factorization.
     pub(super) fn apply(
         &self,
-        solver: &mut FaerSolver,
+        solver: &mut dyn LinearSolver,
         rhs: &[f64],
         groups: &[Group],
         describe: &dyn Fn(usize) -> String,
