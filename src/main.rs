@@ -48,19 +48,34 @@ struct Verbosity {
 
 #[derive(clap::Args, Default)]
 struct PetscArgs {
-    /// Solve the linear systems with PETSc (a build with `--features petsc`): CG + GAMG for a
-    /// positive definite tangent, MUMPS otherwise; under `mpirun -n N` across N ranks, rank 0
-    /// reporting and writing. Tangents with contact are then not condensed
-    #[arg(long)]
+    /// The linear solver: hertz's own (faer: sparse Cholesky/LU, condensed contact steps), or
+    /// PETSc (a build with `--features petsc`): CG + GAMG for a positive definite tangent and for
+    /// the systems left when multipliers are eliminated, MUMPS otherwise; under `mpirun -n N`
+    /// across N ranks, rank 0 reporting and writing
+    #[arg(long, value_enum, default_value_t = SolverName::Faer)]
+    solver: SolverName,
+    /// The same as --solver petsc
+    #[arg(long, conflicts_with = "solver")]
     petsc: bool,
-    /// PETSc options for --petsc, e.g. "-ksp_type cg -pc_type hypre" (PETSC_OPTIONS is read too)
-    #[arg(
-        long,
-        value_name = "OPTIONS",
-        requires = "petsc",
-        allow_hyphen_values = true
-    )]
+    /// PETSc options for --solver petsc, e.g. "-ksp_type cg -pc_type hypre" (PETSC_OPTIONS is
+    /// read too)
+    #[arg(long, value_name = "OPTIONS", allow_hyphen_values = true)]
     petsc_options: Option<String>,
+}
+
+/// The linear solvers `--solver` names.
+#[derive(Clone, Copy, Default, PartialEq, Eq, clap::ValueEnum)]
+enum SolverName {
+    #[default]
+    Faer,
+    Petsc,
+}
+
+impl PetscArgs {
+    /// PETSc was asked for (by --solver petsc or --petsc).
+    fn wanted(&self) -> bool {
+        self.petsc || self.solver == SolverName::Petsc
+    }
 }
 
 #[derive(Subcommand)]
@@ -162,7 +177,11 @@ fn run_or_check(
     v: &Verbosity,
 ) -> ExitCode {
     // PETSc for the whole run (finalized when `session` drops, after the analysis).
-    let session = if petsc.petsc {
+    if petsc.petsc_options.is_some() && !petsc.wanted() {
+        eprintln!("error: --petsc-options is for PETSc: add --solver petsc");
+        return ExitCode::from(2);
+    }
+    let session = if petsc.wanted() {
         match hertz_petsc::Session::start(petsc.petsc_options.as_deref()) {
             Ok(s) => Some(s),
             Err(e) => {

@@ -59,10 +59,26 @@ fn csv(path: &Path) -> Vec<std::collections::HashMap<String, f64>> {
         .collect()
 }
 
-fn tmp(name: &str) -> PathBuf {
+/// A fresh output directory under the system's temporary directory, removed when dropped.
+struct Scratch(PathBuf);
+
+impl std::ops::Deref for Scratch {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn tmp(name: &str) -> Scratch {
     let d = std::env::temp_dir().join(format!("hertz-petsc-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
-    d
+    Scratch(d)
 }
 
 /// The `columns` of two CSV files within `tol` relative to the largest of their values (a sum of
@@ -164,6 +180,38 @@ fn bad_petsc_options_and_a_mechanism_are_clear_errors() {
     );
 }
 
+/// The 3D Hertz sphere (node-to-face multipliers) with `--solver petsc`, on one process and on
+/// two ranks (which sum their shares of the tangent for it): hertz eliminates the multipliers
+/// and PETSc's CG + GAMG solves the reduced system; both take hertz's own Newton iterations and
+/// give its reactions to 1e-8.
+#[test]
+fn the_hertz_sphere_with_multipliers_matches_hertz_on_one_and_two_ranks() {
+    let file = "examples/hertz_sphere.in";
+    let reference = tmp("sphere-ref");
+    assert!(run(file, &reference, &[], 1).status.success());
+    for ranks in [1, 2] {
+        let dir = tmp(&format!("sphere-{ranks}"));
+        let out = run(file, &dir, &["--solver", "petsc", "-v"], ranks);
+        assert!(out.status.success(), "{ranks} ranks: {out:?}");
+        let log = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            log.contains("multipliers eliminated through the slave rows (symmetric): 62 of 62"),
+            "{log}"
+        );
+        let steps = |d: &Path| csv(&d.join("hertz_sphere.steps.csv"));
+        assert_eq!(
+            steps(&reference)[0]["iterations"],
+            steps(&dir)[0]["iterations"]
+        );
+        same_columns(
+            &reference.join("hertz_sphere.steps.csv"),
+            &dir.join("hertz_sphere.steps.csv"),
+            1e-8,
+            |k| k.starts_with("bc") && k.contains(".r"),
+        );
+    }
+}
+
 /// On two ranks each assembles its METIS share of the elements (said with `-v`) and PETSc sums
 /// the shares: mortar multipliers (the Hertz cylinder) and Coulomb friction (Cattaneo–Mindlin)
 /// take hertz's own Newton iterations and give its reactions to 1e-10, and the friction's contact
@@ -206,7 +254,7 @@ fn two_ranks_assemble_their_shares_and_match_hertz() {
 #[test]
 fn an_element_failing_on_one_rank_cuts_the_step_on_every_rank() {
     let dir = tmp("die");
-    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::create_dir_all(&*dir).unwrap();
     let file = dir.join("die.in");
     std::fs::write(
         &file,
