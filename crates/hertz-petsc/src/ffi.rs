@@ -22,6 +22,9 @@ pub type PetscBool = c_uint;
 pub const PETSC_FALSE: PetscBool = 0;
 pub const PETSC_TRUE: PetscBool = 1;
 pub const PETSC_DEFAULT: PetscInt = -2;
+/// PETSC_DEFAULT as a real argument (a tolerance left as it is, or at its default, which is the
+/// same for those hertz leaves).
+pub const PETSC_DEFAULT_REAL: PetscReal = -2.0;
 
 #[cfg(not(mpi_comm_is_int))]
 pub type MPI_Comm = *mut ompi_communicator_t;
@@ -194,6 +197,13 @@ extern "C" {
         abstol: PetscReal,
         dtol: PetscReal,
         maxits: PetscInt,
+    ) -> PetscErrorCode;
+    pub fn KSPGetTolerances(
+        ksp: KSP,
+        rtol: *mut PetscReal,
+        abstol: *mut PetscReal,
+        dtol: *mut PetscReal,
+        maxits: *mut PetscInt,
     ) -> PetscErrorCode;
     pub fn KSPSetFromOptions(ksp: KSP) -> PetscErrorCode;
     pub fn KSPSetUp(ksp: KSP) -> PetscErrorCode;

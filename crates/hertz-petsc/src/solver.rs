@@ -155,6 +155,9 @@ pub struct PetscSolver {
     modes: Vec<Vec<f64>>,
     /// The method the KSP has (None: none yet).
     method: Option<Method>,
+    /// The KSP's own relative residual (1e-12, or the options') while hertz has set another
+    /// (see [`LinearSolver::set_relative_tolerance`]).
+    own_rtol: Option<f64>,
     /// The number of multipliers among the unknowns (see [`LinearSolver::set_multipliers`]).
     multipliers: usize,
     /// Every rank gives the whole matrix, not its share (see
@@ -214,6 +217,7 @@ impl PetscSolver {
             stats: SolverStats::default(),
             modes: Vec::new(),
             method: None,
+            own_rtol: None,
             multipliers: 0,
             whole: false,
             rank: ranks().0,
@@ -428,6 +432,7 @@ impl PetscSolver {
             )?;
         }
         self.method = None;
+        self.own_rtol = None;
         self.n = n;
         self.owned = Some(owned);
         self.attach_modes(lo, hi)
@@ -690,6 +695,30 @@ impl LinearSolver for PetscSolver {
 
     fn set_near_null_space(&mut self, modes: &[Vec<f64>]) {
         self.modes = modes.to_vec();
+    }
+
+    fn set_relative_tolerance(&mut self, tol: Option<f64>) {
+        if self.ksp.is_null() {
+            return;
+        }
+        // SAFETY: the KSP is this solver's; the outputs are locals.
+        unsafe {
+            match (tol, self.own_rtol) {
+                (Some(t), saved) => {
+                    if saved.is_none() {
+                        let (mut rtol, mut atol, mut dtol, mut its) = (0.0, 0.0, 0.0, 0);
+                        KSPGetTolerances(self.ksp, &mut rtol, &mut atol, &mut dtol, &mut its);
+                        self.own_rtol = Some(rtol);
+                    }
+                    KSPSetTolerances(self.ksp, t, PETSC_DEFAULT_REAL, PETSC_DEFAULT_REAL, -2);
+                }
+                (None, Some(rtol)) => {
+                    KSPSetTolerances(self.ksp, rtol, PETSC_DEFAULT_REAL, PETSC_DEFAULT_REAL, -2);
+                    self.own_rtol = None;
+                }
+                (None, None) => {}
+            }
+        }
     }
 
     fn set_multipliers(&mut self, count: usize) {

@@ -80,8 +80,10 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 /// system lies above the requested tolerance, and Newton's next iteration removes the rest.
 const STAGNATION_TOL: f64 = 1e-8;
 
-/// Restarted GMRES for A x = b, right-preconditioned: `apply_a(x, y)` sets y = A x, `precond(v)`
-/// replaces v by M⁻¹ v. Stops when ‖b − A x‖ ≤ `tol`·‖b‖, or when a restart cycle stagnates
+/// Restarted flexible GMRES for A x = b, right-preconditioned: `apply_a(x, y)` sets y = A x,
+/// `precond(v)` replaces v by M⁻¹ v, and M may change from one application to the next (an
+/// inner iterative solve to a loose tolerance): the preconditioned vectors are kept and the
+/// update is taken from them. Stops when ‖b − A x‖ ≤ `tol`·‖b‖, or when a restart cycle stagnates
 /// below [`STAGNATION_TOL`]. Returns x and the iterations, or None when it did not get there
 /// within `max_iter` iterations.
 pub fn gmres(
@@ -115,6 +117,7 @@ pub fn gmres(
         last = beta;
         // Arnoldi on A M⁻¹ with Givens rotations on the Hessenberg matrix.
         let mut v: Vec<Vec<f64>> = vec![r.iter().map(|ri| ri / beta).collect()];
+        let mut zs: Vec<Vec<f64>> = Vec::with_capacity(restart);
         let mut h = vec![vec![0.0; restart]; restart + 1];
         let (mut cs, mut sn) = (vec![0.0; restart], vec![0.0; restart]);
         let mut g = vec![0.0; restart + 1];
@@ -124,6 +127,7 @@ pub fn gmres(
             let mut z = v[k].clone();
             precond(&mut z)?;
             apply_a(&z, &mut av);
+            zs.push(z);
             let mut w = av.clone();
             for (i, vi) in v.iter().enumerate() {
                 h[i][k] = dot(&w, vi);
@@ -161,21 +165,16 @@ pub fn gmres(
                 break;
             }
         }
-        // x += M⁻¹ V y with H y = g.
+        // x += Z y with H y = g (Z: the preconditioned vectors).
         let mut y = vec![0.0; k];
         for i in (0..k).rev() {
             let s: f64 = (i + 1..k).map(|j| h[i][j] * y[j]).sum();
             y[i] = (g[i] - s) / h[i][i];
         }
-        let mut update = vec![0.0; n];
-        for (yi, vi) in y.iter().zip(&v) {
-            for (u, vv) in update.iter_mut().zip(vi) {
-                *u += yi * vv;
+        for (yi, zi) in y.iter().zip(&zs) {
+            for (xj, zj) in x.iter_mut().zip(zi) {
+                *xj += yi * zj;
             }
-        }
-        precond(&mut update)?;
-        for (xi, ui) in x.iter_mut().zip(&update) {
-            *xi += ui;
         }
         // The true residual (restart).
         apply_a(&x, &mut av);

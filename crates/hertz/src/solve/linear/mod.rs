@@ -173,6 +173,11 @@ pub trait LinearSolver {
         None
     }
 
+    /// Optional: the relative residual an iterative solver stops at in the solves to come (a
+    /// preconditioner's inner solve may stop far earlier); None: its own again. A direct solver
+    /// ignores it.
+    fn set_relative_tolerance(&mut self, _tol: Option<f64>) {}
+
     /// Optional: `count` unknowns of the matrices to come are Lagrange multipliers (a saddle
     /// point, which an algebraic multigrid cannot precondition). Told before the first
     /// factorization, and again before a factorization on other unknowns.
