@@ -88,8 +88,9 @@ pub struct MultiplierElimination {
     /// The symmetric reduced system is factorized as positive definite (a solver from outside,
     /// which may then take an iterative method: PETSc's CG with an algebraic multigrid), with
     /// `modes` (the model's rigid-body motions over the full system's unknowns) carried into
-    /// the reduced unknowns as the near-null space. hertz's own solver tries Cholesky and falls
-    /// back to an LDLᵀ by itself.
+    /// the reduced unknowns as the near-null space (exactly but after a slave transform, whose
+    /// change of the quadratic faces' unknowns they do not follow: a near-null space need not be
+    /// exact). hertz's own solver tries Cholesky and falls back to an LDLᵀ by itself.
     positive_definite: bool,
     modes: Vec<Vec<f64>>,
     pattern: Option<Pattern>,
@@ -920,6 +921,56 @@ mod tests {
             (el.eliminated, el.kept, el.method),
             (2, 0, Method::Symmetric)
         );
+    }
+
+    /// Two floating 2D bodies of two nodes each (springs in x and y), slave node 1 (unknowns
+    /// 2, 3) tied to master node 2 (4, 5) along n = (0.6, 0.8) by multiplier 8: a translation
+    /// keeps the constraint, so its restriction to the reduced unknowns (the slave's free
+    /// direction as Q's column) is a null vector of the reduced matrix, as it is of K.
+    #[test]
+    fn a_rigid_motion_restricted_to_the_reduced_unknowns_is_a_null_vector() {
+        let mut a = vec![vec![0.0; 9]; 9];
+        for (p, q, k) in [(0, 1, 1.0), (2, 3, 2.5)] {
+            for d in 0..2 {
+                let (i, j) = (2 * p + d, 2 * q + d);
+                a[i][i] += k;
+                a[j][j] += k;
+                a[i][j] -= k;
+                a[j][i] -= k;
+            }
+        }
+        for (row, v) in [(2, 0.6), (3, 0.8), (4, -0.6), (5, -0.8)] {
+            a[row][8] = v;
+            a[8][row] = v;
+        }
+        let (pattern, values) = dense(&a);
+        let groups = [Group {
+            slave: vec![2, 3],
+            lambdas: vec![8],
+        }];
+        let red = Reduction::new(Rows::new(&pattern, &values), &groups);
+        assert_eq!(red.kept_multipliers, 0);
+        let (reduced, vals) = red.reduced_matrix();
+        // The slave's free direction is ±(−0.8, 0.6): y = ∓0.8 for x, ±0.6 for y.
+        for (t, y) in [([1.0, 0.0], 0.8), ([0.0, 1.0], 0.6)] {
+            let mut v: Vec<f64> = (0..8).map(|i| t[i % 2]).collect();
+            v.push(0.0);
+            let z = red.restrict(&v);
+            assert_eq!(z.len(), 7);
+            let mut kz = vec![0.0; z.len()];
+            for c in 0..reduced.n {
+                for k in reduced.col_ptr[c]..reduced.col_ptr[c + 1] {
+                    let r = reduced.row_idx[k];
+                    kz[r] += vals[k] * z[c];
+                    if r != c {
+                        kz[c] += vals[k] * z[r];
+                    }
+                }
+            }
+            let square: f64 = z.iter().map(|x| x * x).sum();
+            assert!((square - 3.0 - y * y).abs() < 1e-14, "{z:?}");
+            assert!(kz.iter().all(|x| x.abs() < 1e-14), "{kz:?}");
+        }
     }
 
     /// Two springs in series, the middle node held against a wall by a multiplier acting on it
