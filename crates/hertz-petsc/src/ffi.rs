@@ -206,6 +206,8 @@ extern "C" {
         maxits: *mut PetscInt,
     ) -> PetscErrorCode;
     pub fn KSPSetFromOptions(ksp: KSP) -> PetscErrorCode;
+    pub fn KSPSetInitialGuessNonzero(ksp: KSP, flg: PetscBool) -> PetscErrorCode;
+    pub fn KSPGetType(ksp: KSP, t: *mut *const c_char) -> PetscErrorCode;
     pub fn KSPSetUp(ksp: KSP) -> PetscErrorCode;
     pub fn KSPSolve(ksp: KSP, b: PetscVec, x: PetscVec) -> PetscErrorCode;
     pub fn KSPGetIterationNumber(ksp: KSP, its: *mut PetscInt) -> PetscErrorCode;

@@ -689,6 +689,32 @@ impl LinearSolver for PetscSolver {
         Ok(())
     }
 
+    fn resolve_in_place(&mut self, rhs: &mut [f64]) -> Result<()> {
+        // A direct solve (preonly) takes no initial guess.
+        let mut kind: *const std::os::raw::c_char = std::ptr::null();
+        // SAFETY: the KSP is this solver's; PETSc returns its own type name.
+        let iterative = !self.ksp.is_null()
+            && unsafe { KSPGetType(self.ksp, &mut kind) } == 0
+            && !kind.is_null()
+            && unsafe { std::ffi::CStr::from_ptr(kind) }.to_bytes() != b"preonly";
+        if !iterative {
+            return self.solve_in_place(rhs);
+        }
+        // SAFETY: the KSP is this solver's; `x` still holds the last solution.
+        unsafe {
+            check(
+                KSPSetInitialGuessNonzero(self.ksp, PETSC_TRUE),
+                "KSPSetInitialGuessNonzero",
+            )?;
+        }
+        let solved = self.solve_in_place(rhs);
+        // SAFETY: as above.
+        unsafe {
+            KSPSetInitialGuessNonzero(self.ksp, PETSC_FALSE);
+        }
+        solved
+    }
+
     fn stats(&self) -> &SolverStats {
         &self.stats
     }

@@ -46,6 +46,11 @@ const MAX_REGROWTHS: usize = 4;
 /// Largest number of branch updates of a step solved with full tangents (each a factorization).
 const MAX_FULL_UPDATES: usize = 8;
 
+/// The relative residual of an iterative solver's solves of branch guesses with full tangents
+/// (only the branches are predicted from them; the last guess is solved again to the solver's
+/// own tolerance).
+const GUESS_TOL: f64 = 1e-4;
+
 /// The state a cut-back restores (see [`NewtonContext::checkpoint`]).
 pub(super) struct Checkpoint {
     contact: Option<Vec<SlotState>>,
@@ -61,6 +66,8 @@ pub(super) struct NewtonContext<'a> {
     groups: Option<Vec<usize>>,
     /// Unknowns from which non-symmetric tangents go to GMRES.
     krylov_min: usize,
+    /// The solver may be iterative (one from outside): branch guesses are solved loosely.
+    loose_guesses: bool,
     /// The current factorization is the (constant) tangent of a linear problem.
     factor_valid: bool,
     /// Small strain and no contact: the tangent is constant.
@@ -198,6 +205,7 @@ impl<'a> NewtonContext<'a> {
             solver,
             groups,
             krylov_min: params.krylov_min_unknowns,
+            loose_guesses: matches!(params.solver, SolverChoice::Custom(_)),
             factor_valid: false,
             linear,
             small_strain,
@@ -731,6 +739,8 @@ impl<'a> NewtonContext<'a> {
         };
         let summed = self.ranks.is_some() && !groups.is_empty();
         let mut k_structure = ks.k_values.expect("requested");
+        // Guesses solved loosely, and the last of them being solved again.
+        let (mut loose_ok, mut resolving) = (self.loose_guesses, false);
         if summed {
             let d = self.solver.distributed().expect("a distributed solver");
             d.sum(&mut k_structure)?;
@@ -766,7 +776,7 @@ impl<'a> NewtonContext<'a> {
             if self.ranks.is_none() || summed {
                 pin_empty_multiplier_rows(&self.asm.pattern, &mut kv, nf - self.dofs.n_lambda..nf);
             }
-            let eliminated = !groups.is_empty() && {
+            let eliminated = !resolving && !groups.is_empty() && {
                 let (model, dofs) = (self.asm.model, self.dofs);
                 let describe = |eq: usize| describe_eq(model, dofs, eq);
                 self.observer.phase(&Phase::Factorization {
@@ -794,14 +804,31 @@ impl<'a> NewtonContext<'a> {
                 }
                 solved
             };
+            // An iterative solver solves the guesses only to GUESS_TOL, enough to predict the
+            // branches, and the last guess again to its own tolerance (from the loose solution);
+            // where that predicts otherwise, the search goes on with accurate solves.
+            let loose = !eliminated && loose_ok && !resolving;
             if !eliminated {
-                if summed && self.ranks.is_some_and(|(rank, _)| rank > 0) {
-                    // The first process gives the summed tangent, the others nothing.
-                    kv.fill(0.0);
+                if !resolving {
+                    if summed && self.ranks.is_some_and(|(rank, _)| rank > 0) {
+                        // The first process gives the summed tangent, the others nothing.
+                        kv.fill(0.0);
+                    }
+                    self.factorize(&kv)?;
                 }
-                self.factorize(&kv)?;
                 let t = Instant::now();
-                self.solver.solve_in_place(&mut step)?;
+                if loose {
+                    self.solver.set_relative_tolerance(Some(GUESS_TOL));
+                }
+                let solved = if resolving {
+                    self.solver.resolve_in_place(&mut step)
+                } else {
+                    self.solver.solve_in_place(&mut step)
+                };
+                if loose {
+                    self.solver.set_relative_tolerance(None);
+                }
+                solved?;
                 self.times.solve += since(t);
             }
             let predicted: Vec<Branch> = points
@@ -811,8 +838,15 @@ impl<'a> NewtonContext<'a> {
             // Unlike the condensed step, a cycle keeps the last guess's step here: the first
             // guess's made two coarse shallow-ironing runs (structural tangent indefinite, so
             // full tangents) fail where they converge with cut-backs.
+            if resolving && closed != predicted {
+                // The accurate solve predicts otherwise: the search starts again from here, with
+                // accurate solves.
+                (resolving, loose_ok) = (false, false);
+                search = BranchSearch::new(MAX_FULL_UPDATES);
+            }
             match search.next(&closed, &predicted) {
                 Some(next) => closed = next,
+                None if loose => resolving = true,
                 None => {
                     return Ok(ContactStep {
                         du: step,

@@ -154,6 +154,13 @@ pub trait LinearSolver {
     /// Solve with the last factorization, `rhs` overwritten by the solution.
     fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()>;
 
+    /// Solve again with the last factorization for `rhs`, near the last solve's own (the same
+    /// system solved before to a looser tolerance): an iterative solver starts from the last
+    /// solution.
+    fn resolve_in_place(&mut self, rhs: &mut [f64]) -> Result<()> {
+        self.solve_in_place(rhs)
+    }
+
     /// What the last factorization and solve did.
     fn stats(&self) -> &SolverStats;
 
