@@ -835,15 +835,15 @@ impl<'a> NewtonContext<'a> {
                 .iter()
                 .map(|p| p.predicts(&self.local_change(p, &step)))
                 .collect();
-            // Unlike the condensed step, a cycle keeps the last guess's step here: the first
-            // guess's made two coarse shallow-ironing runs (structural tangent indefinite, so
-            // full tangents) fail where they converge with cut-backs.
             if resolving && closed != predicted {
                 // The accurate solve predicts otherwise: the search starts again from here, with
                 // accurate solves.
                 (resolving, loose_ok) = (false, false);
                 search = BranchSearch::new(MAX_FULL_UPDATES);
             }
+            // Unlike the condensed step, a cycle keeps the last guess's step here: the first
+            // guess's made two coarse shallow-ironing runs (structural tangent indefinite, so
+            // full tangents) fail where they converge with cut-backs.
             match search.next(&closed, &predicted) {
                 Some(next) => closed = next,
                 None if loose => resolving = true,
