@@ -221,7 +221,12 @@ impl<'a> NewtonContext<'a> {
             floor_warned: false,
             times: PhaseTimes::default(),
             regrowths: 0,
-            max_condensed: params.max_condensed,
+            // The default grows with the model.
+            max_condensed: if params.max_condensed == super::condensed::MAX_CANDIDATES {
+                super::condensed::default_limit(dofs.n_free)
+            } else {
+                params.max_condensed
+            },
             eliminate,
             ranks,
         };

@@ -32,7 +32,8 @@ pub struct SolveParams {
     pub condensed_contact: bool,
     /// The most candidate equations the condensed step holds in its dense block (M is m × m,
     /// its inverse m³); beyond, the nearest points' equations, half as many (see
-    /// [`super::condensed`]).
+    /// [`super::condensed`]). The default, [`super::condensed::MAX_CANDIDATES`], grows with
+    /// models of more than 192 000 unknowns ([`super::condensed::default_limit`]).
     pub max_condensed: usize,
     /// The linear solver of the full tangents.
     pub solver: SolverChoice,
