@@ -19,7 +19,7 @@ pub enum OrderingArg {
 
 /// `hertz bench`: generated problems with sizes, phase times and errors against exact solutions.
 #[derive(Debug, clap::Args)]
-#[command(group(clap::ArgGroup::new("problem").args(["contact", "sphere", "patch", "suite", "examples", "ironing3d"])))]
+#[command(group(clap::ArgGroup::new("problem").args(["contact", "sphere", "patch", "suite", "examples", "ironing3d", "rigid_sphere"])))]
 pub struct BenchArgs {
     /// Dimension of the linear-elastic block
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(2..=3))]
@@ -33,7 +33,7 @@ pub struct BenchArgs {
     /// The 2D contact benchmark: a 2N x N block pushed against a rigid circle (node-to-segment)
     #[arg(long)]
     pub contact: bool,
-    /// Lagrange multipliers instead of a penalty (--contact, --sphere, --patch)
+    /// Lagrange multipliers instead of a penalty (--contact, --sphere, --patch, --rigid-sphere)
     #[arg(long)]
     pub multipliers: bool,
     /// 3D Hertz sphere on a block in bricks of spacing H under the contact (0.085: 10^5 unknowns)
@@ -64,11 +64,17 @@ pub struct BenchArgs {
     #[arg(long, value_name = "LAYERS", requires = "write",
           value_parser = clap::value_parser!(u64).range(1..=20))]
     pub ironing3d: Option<u64>,
+    /// With --write: a rigid sphere pressed into a quarter block of N x N x N bricks, all of its
+    /// (N+1)^2 top nodes slave nodes (30: 89 000 unknowns, 961 slave nodes; solve it with
+    /// `hertz run`)
+    #[arg(long, value_name = "N", requires = "write",
+          value_parser = clap::value_parser!(u64).range(2..=100))]
+    pub rigid_sphere: Option<u64>,
     /// Write the verification examples of examples/ to DIR
     #[arg(long, value_name = "DIR")]
     pub examples: Option<String>,
     /// Write the generated input(s) to DIR instead of solving (the block, --contact, --sphere,
-    /// --patch, --suite, --ironing3d)
+    /// --patch, --suite, --ironing3d, --rigid-sphere)
     #[arg(long, value_name = "DIR")]
     pub write: Option<String>,
 }
@@ -165,6 +171,17 @@ pub fn main(args: BenchArgs) -> ExitCode {
         }
         .input();
         return write_generated(dir, "shallow_ironing3d.in", |path| {
+            std::fs::write(path, text)
+                .map_err(|e| Error::Output(format!("cannot write {}: {e}", path.display())))
+        });
+    }
+    if let (Some(n), Some(dir)) = (args.rigid_sphere, &write) {
+        let text = hertz_bench::verify::RigidSphereBlock {
+            n: n as usize,
+            multipliers,
+        }
+        .input();
+        return write_generated(dir, "rigid_sphere_block.in", |path| {
             std::fs::write(path, text)
                 .map_err(|e| Error::Output(format!("cannot write {}: {e}", path.display())))
         });

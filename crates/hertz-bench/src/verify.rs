@@ -1422,3 +1422,59 @@ impl ConcentricRings {
         inp.render("rings", &analysis(1), "PlaneStrain")
     }
 }
+
+/// A rigid sphere (R = 10, `circlecontactsegment`) pressed 0.05 into a quarter block of n × n × n
+/// bricks of 0.1 (E = 1000, ν = 0.3; rollers on x = 0 and y = 0, the bottom held), every one of
+/// the (n + 1)² top nodes a node-to-segment slave node, as a user taking the whole face as the
+/// contact surface would (the scale issue's case: n = 30, 89 000 unknowns, 961 slave nodes).
+pub struct RigidSphereBlock {
+    pub n: usize,
+    /// Multipliers, else a penalty of 1e5.
+    pub multipliers: bool,
+}
+
+impl RigidSphereBlock {
+    pub fn input(&self) -> String {
+        const R: f64 = 10.0;
+        let mut inp = Input::default();
+        let xs: Vec<f64> = (0..=self.n).map(|i| i as f64 * 0.1).collect();
+        let zs: Vec<f64> = xs.iter().map(|x| x - self.n as f64 * 0.1).collect();
+        let block = inp.solid3d(Solid::Hex, &xs, &xs, &zs, "mat 1 crossSect 1", 0);
+        let reference = inp.node(0.0, 0.0, R);
+        inp.sections.push("SimpleCS 1".into());
+        inp.materials
+            .push(format!("IsoLE 1 d 0 E {E} n {NU} tAlpha 0"));
+        let top = inp.nodes_where(&|p| p[2].abs() < 1e-12);
+        let top = inp.node_set(&top);
+        inp.segments.push(format!(
+            "circlecontactsegment 1 centerpoint 3 0 0 {R} radius {R} node {reference}"
+        ));
+        let x0 = inp.nodes_where(&|p| p[0].abs() < 1e-12 && p[2] < R - 1.0);
+        let y0 = inp.nodes_where(&|p| p[1].abs() < 1e-12 && p[2] < R - 1.0);
+        let x0 = inp.node_set(&x0);
+        let y0 = inp.node_set(&y0);
+        let bottom = inp.node_set(&block.bottom);
+        let tool = inp.node_set(&[reference]);
+        for (k, (dof, set)) in [(1, x0), (2, y0), (3, bottom)].iter().enumerate() {
+            inp.bcs.push(format!(
+                "BoundaryCondition {} loadTimeFunction 1 dofs 1 {dof} values 1 0 set {set}",
+                k + 1
+            ));
+        }
+        let law = if self.multipliers {
+            "n2slagrangianmultipliercontact 4 loadTimeFunction 1"
+        } else {
+            "n2spenaltycontact 4 loadTimeFunction 1 penalty 1e5"
+        };
+        inp.bcs.push(format!("{law} slaveset {top} segmentset 1 1"));
+        inp.bcs.push(format!(
+            "BoundaryCondition 5 loadTimeFunction 1 dofs 3 1 2 3 values 3 0 0 -0.05 set {tool}"
+        ));
+        inp.functions.push("ConstantFunction 1 f(t) 1.0".into());
+        inp.render(
+            "rigid_sphere_block",
+            "StaticStructural nsteps 1 deltat 1 rtolf 1e-8 maxiter 25",
+            "3d",
+        )
+    }
+}
