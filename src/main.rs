@@ -50,8 +50,9 @@ struct Verbosity {
 struct PetscArgs {
     /// The linear solver: hertz's own (faer: sparse Cholesky/LU, condensed contact steps), or
     /// PETSc (a build with `--features petsc`): CG + GAMG for a positive definite tangent and for
-    /// the systems left when multipliers are eliminated, MUMPS otherwise; under `mpirun -n N`
-    /// across N ranks, rank 0 reporting and writing
+    /// the systems left when multipliers are eliminated, GMRES + BoomerAMG for a penalty tangent
+    /// of 20 000 unknowns or more, MUMPS otherwise; under `mpirun -n N` across N ranks, rank 0
+    /// reporting and writing
     #[arg(long, value_enum, default_value_t = SolverName::Faer)]
     solver: SolverName,
     /// The same as --solver petsc
