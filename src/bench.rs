@@ -176,11 +176,7 @@ pub fn main(args: BenchArgs) -> ExitCode {
         });
     }
     if let (Some(n), Some(dir)) = (args.rigid_sphere, &write) {
-        let text = hertz_bench::verify::RigidSphereBlock {
-            n: n as usize,
-            multipliers,
-        }
-        .input();
+        let text = hertz_bench::verify::RigidSphereBlock::uniform(n as usize, multipliers).input();
         return write_generated(dir, "rigid_sphere_block.in", |path| {
             std::fs::write(path, text)
                 .map_err(|e| Error::Output(format!("cannot write {}: {e}", path.display())))

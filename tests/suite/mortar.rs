@@ -403,52 +403,34 @@ fn sunk_sphere_warns(text: &str, r: f64) {
 #[test]
 fn rigid_sphere_with_mortar_meets_hertz() {
     use hertz::analytic::{compare_hertz_sphere, contact_modulus};
-    use hertz_bench::mesh::{graded, Input};
-    use hertz_bench::verify::NU;
+    use hertz_bench::mesh::graded;
+    use hertz_bench::verify::{RigidSphereBlock, NU};
     const R: f64 = 10.0;
     for (kind, h, p0_bound) in [(Solid::Hex, 0.2, 0.02), (Solid::Wedge, 0.15, 0.03)] {
         for law in [
             "s2slagrangianmultipliercontact 4 loadTimeFunction 1",
             "s2spenaltycontact 4 loadTimeFunction 1",
         ] {
-            let mut inp = Input::default();
             let xs = graded(6.0, h, 1.5, 1.2);
             let zs: Vec<f64> = graded(6.0, h, 0.75, 1.2).iter().rev().map(|d| -d).collect();
-            let block = inp.solid3d(kind, &xs, &xs, &zs, "mat 1 crossSect 1", 0);
-            let reference = inp.node(0.0, 0.0, R);
-            inp.sections.push("SimpleCS 1".into());
-            inp.materials
-                .push(format!("IsoLE 1 d 0 E {E} n {NU} tAlpha 0"));
-            let top = inp.faces_where(&block, &|p| p[2].abs() < 1e-12);
-            let top = inp.boundary_set(&top);
-            inp.segments.push(format!(
-                "circlecontactsegment 1 centerpoint 3 0 0 {R} radius {R} node {reference}"
-            ));
-            inp.segments.push(format!(
-                "linear3delementsurfacecontactsegment 2 boundaryset {top}"
-            ));
-            let x0 = inp.nodes_where(&|p| p[0].abs() < 1e-12 && p[2] < R - 1.0);
-            let y0 = inp.nodes_where(&|p| p[1].abs() < 1e-12 && p[2] < R - 1.0);
-            let x0 = inp.node_set(&x0);
-            let y0 = inp.node_set(&y0);
-            let bottom = inp.node_set(&block.bottom);
-            let tool = inp.node_set(&[reference]);
-            for (k, (dof, set)) in [(1, x0), (2, y0), (3, bottom)].iter().enumerate() {
-                inp.bcs.push(format!(
-                    "BoundaryCondition {} loadTimeFunction 1 dofs 1 {dof} values 1 0 set {set}",
-                    k + 1
-                ));
-            }
-            inp.bcs.push(format!("{law} slavesegment 2 segmentset 1 1"));
-            inp.bcs.push(format!(
-                "BoundaryCondition 5 loadTimeFunction 1 dofs 3 1 2 3 values 3 0 0 -0.1 set {tool}"
-            ));
-            inp.functions.push("ConstantFunction 1 f(t) 1.0".into());
-            let text = inp.render(
-                "rigid_sphere",
-                "StaticStructural nsteps 1 deltat 1 rtolf 1e-8 maxiter 25",
-                "3d",
-            );
+            let sphere = RigidSphereBlock {
+                kind,
+                xs,
+                zs,
+                radius: R,
+                depth: 0.1,
+                law,
+            };
+            let text = sphere.input_with("rigid_sphere", |inp, block| {
+                let top = inp.faces_where(block, &|p| p[2].abs() < 1e-12);
+                let top = inp.boundary_set(&top);
+                (
+                    Some(format!(
+                        "linear3delementsurfacecontactsegment 2 boundaryset {top}"
+                    )),
+                    "slavesegment 2".to_string(),
+                )
+            });
             let model = common::model_from_text(&text).unwrap();
             let (mut states, mut its, mut warnings) = (Vec::new(), 0, Vec::new());
             run_analysis(&model, &common::quiet(), |r| {

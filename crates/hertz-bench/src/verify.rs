@@ -1423,34 +1423,77 @@ impl ConcentricRings {
     }
 }
 
-/// A rigid sphere (R = 10, `circlecontactsegment`) pressed 0.05 into a quarter block of n × n × n
-/// bricks of 0.1 (E = 1000, ν = 0.3; rollers on x = 0 and y = 0, the bottom held), every one of
-/// the (n + 1)² top nodes a node-to-segment slave node, as a user taking the whole face as the
-/// contact surface would (the scale issue's case: n = 30, 89 000 unknowns, 961 slave nodes).
-pub struct RigidSphereBlock {
-    pub n: usize,
-    /// Multipliers, else a penalty of 1e5.
-    pub multipliers: bool,
+/// A rigid sphere of `radius` (`circlecontactsegment 1`, centred at (0, 0, radius), moved down
+/// by `depth` through its own node) pressed into a quarter block of `kind` elements on `xs` × `xs`
+/// × `zs` (E, NU; rollers on x = 0 and y = 0 below the sphere, the bottom held) by contact record
+/// `law` (numbered 4).
+pub struct RigidSphereBlock<'a> {
+    pub kind: Solid,
+    pub xs: Vec<f64>,
+    pub zs: Vec<f64>,
+    pub radius: f64,
+    pub depth: f64,
+    pub law: &'a str,
 }
 
-impl RigidSphereBlock {
+impl RigidSphereBlock<'_> {
+    /// The scale issue's case: n × n × n bricks of 0.1 pressed 0.05 by a sphere of R = 10, every
+    /// one of the (n + 1)² top nodes a node-to-segment slave node (`input`), as a user taking the
+    /// whole face as the contact surface would (n = 30: 89 000 unknowns, 961 slave nodes), with
+    /// multipliers or a penalty of 1e5.
+    pub fn uniform(n: usize, multipliers: bool) -> RigidSphereBlock<'static> {
+        let xs: Vec<f64> = (0..=n).map(|i| i as f64 * 0.1).collect();
+        let zs: Vec<f64> = xs.iter().map(|x| x - n as f64 * 0.1).collect();
+        RigidSphereBlock {
+            kind: Solid::Hex,
+            xs,
+            zs,
+            radius: 10.0,
+            depth: 0.05,
+            law: if multipliers {
+                "n2slagrangianmultipliercontact 4 loadTimeFunction 1"
+            } else {
+                "n2spenaltycontact 4 loadTimeFunction 1 penalty 1e5"
+            },
+        }
+    }
+
+    /// Every top node a slave node (`slaveset`).
     pub fn input(&self) -> String {
-        const R: f64 = 10.0;
+        self.input_with("rigid_sphere_block", |inp, _| {
+            let top = inp.nodes_where(&|p| p[2].abs() < 1e-12);
+            (None, format!("slaveset {}", inp.node_set(&top)))
+        })
+    }
+
+    /// The input titled `title`, whose slave side `slave` sets up on the block: it returns a
+    /// segment record to add after the sphere's (or None) and the contact record's slave part.
+    pub fn input_with(
+        &self,
+        title: &str,
+        slave: impl FnOnce(&mut Input, &Block) -> (Option<String>, String),
+    ) -> String {
+        let r = self.radius;
         let mut inp = Input::default();
-        let xs: Vec<f64> = (0..=self.n).map(|i| i as f64 * 0.1).collect();
-        let zs: Vec<f64> = xs.iter().map(|x| x - self.n as f64 * 0.1).collect();
-        let block = inp.solid3d(Solid::Hex, &xs, &xs, &zs, "mat 1 crossSect 1", 0);
-        let reference = inp.node(0.0, 0.0, R);
+        let block = inp.solid3d(
+            self.kind,
+            &self.xs,
+            &self.xs,
+            &self.zs,
+            "mat 1 crossSect 1",
+            0,
+        );
+        let reference = inp.node(0.0, 0.0, r);
         inp.sections.push("SimpleCS 1".into());
         inp.materials
             .push(format!("IsoLE 1 d 0 E {E} n {NU} tAlpha 0"));
-        let top = inp.nodes_where(&|p| p[2].abs() < 1e-12);
-        let top = inp.node_set(&top);
+        let (segment, slave) = slave(&mut inp, &block);
         inp.segments.push(format!(
-            "circlecontactsegment 1 centerpoint 3 0 0 {R} radius {R} node {reference}"
+            "circlecontactsegment 1 centerpoint 3 0 0 {r} radius {r} node {reference}"
         ));
-        let x0 = inp.nodes_where(&|p| p[0].abs() < 1e-12 && p[2] < R - 1.0);
-        let y0 = inp.nodes_where(&|p| p[1].abs() < 1e-12 && p[2] < R - 1.0);
+        inp.segments.extend(segment);
+        let x0 = inp.nodes_where(&|p| p[0].abs() < 1e-12 && p[2] < r - 1.0);
+        let y0 = inp.nodes_where(&|p| p[1].abs() < 1e-12 && p[2] < r - 1.0);
         let x0 = inp.node_set(&x0);
         let y0 = inp.node_set(&y0);
         let bottom = inp.node_set(&block.bottom);
@@ -1461,18 +1504,14 @@ impl RigidSphereBlock {
                 k + 1
             ));
         }
-        let law = if self.multipliers {
-            "n2slagrangianmultipliercontact 4 loadTimeFunction 1"
-        } else {
-            "n2spenaltycontact 4 loadTimeFunction 1 penalty 1e5"
-        };
-        inp.bcs.push(format!("{law} slaveset {top} segmentset 1 1"));
+        inp.bcs.push(format!("{} {slave} segmentset 1 1", self.law));
         inp.bcs.push(format!(
-            "BoundaryCondition 5 loadTimeFunction 1 dofs 3 1 2 3 values 3 0 0 -0.05 set {tool}"
+            "BoundaryCondition 5 loadTimeFunction 1 dofs 3 1 2 3 values 3 0 0 {} set {tool}",
+            -self.depth
         ));
         inp.functions.push("ConstantFunction 1 f(t) 1.0".into());
         inp.render(
-            "rigid_sphere_block",
+            title,
             "StaticStructural nsteps 1 deltat 1 rtolf 1e-8 maxiter 25",
             "3d",
         )
