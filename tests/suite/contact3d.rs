@@ -158,7 +158,7 @@ fn a_contact_surface_beyond_the_dense_block_is_condensed_on_its_nearest_points()
             let seen = Factorizations::default();
             let mut states = Vec::new();
             let params = SolveParams {
-                max_condensed,
+                max_condensed: Some(max_condensed),
                 ..common::quiet()
             };
             hertz::solve::run_analysis_observed(&model, &params, &seen, |r| {
@@ -832,7 +832,7 @@ fn a_body_held_by_contact_alone_is_solved_on_every_solver_path() {
         let model = common::model_from_text(&text.replace(&push, &load)).unwrap();
         let run = |max_condensed: usize, condensed_contact: bool| {
             let params = SolveParams {
-                max_condensed,
+                max_condensed: Some(max_condensed),
                 condensed_contact,
                 ..common::quiet()
             };

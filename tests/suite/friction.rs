@@ -1062,7 +1062,7 @@ fn mortar_friction_multipliers_on_full_tangents_converge() {
         .replace("slavesegment", "friction 0.3 slavesegment");
         let model = common::model_from_text(&text).unwrap();
         let params = SolveParams {
-            max_condensed: 0,
+            max_condensed: Some(0),
             max_cutbacks: 0,
             ..Default::default()
         };

@@ -221,12 +221,9 @@ impl<'a> NewtonContext<'a> {
             floor_warned: false,
             times: PhaseTimes::default(),
             regrowths: 0,
-            // The default grows with the model.
-            max_condensed: if params.max_condensed == super::condensed::MAX_CANDIDATES {
-                super::condensed::default_limit(dofs.n_free)
-            } else {
-                params.max_condensed
-            },
+            max_condensed: params
+                .max_condensed
+                .unwrap_or_else(|| super::condensed::default_limit(dofs.n_free)),
             eliminate,
             ranks,
         };

@@ -32,9 +32,9 @@ pub struct SolveParams {
     pub condensed_contact: bool,
     /// The most candidate equations the condensed step holds in its dense block (M is m × m,
     /// its inverse m³); beyond, the nearest points' equations, half as many (see
-    /// [`super::condensed`]). The default, [`super::condensed::MAX_CANDIDATES`], grows with
-    /// models of more than 192 000 unknowns ([`super::condensed::default_limit`]).
-    pub max_condensed: usize,
+    /// [`super::condensed`]). None (the default): [`super::condensed::default_limit`] of the
+    /// model's unknowns, [`super::condensed::MAX_CANDIDATES`] up to 192 000 of them.
+    pub max_condensed: Option<usize>,
     /// The linear solver of the full tangents.
     pub solver: SolverChoice,
 }
@@ -69,7 +69,7 @@ impl Default for SolveParams {
             max_cutbacks: 5,
             krylov_min_unknowns: super::linear::KRYLOV_MIN_UNKNOWNS,
             condensed_contact: true,
-            max_condensed: super::condensed::MAX_CANDIDATES,
+            max_condensed: None,
             solver: SolverChoice::Sparse,
         }
     }
