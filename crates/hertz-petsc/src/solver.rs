@@ -729,21 +729,27 @@ impl LinearSolver for PetscSolver {
         }
         // SAFETY: the KSP is this solver's; the outputs are locals.
         unsafe {
-            match (tol, self.own_rtol) {
-                (Some(t), saved) => {
-                    if saved.is_none() {
-                        let (mut rtol, mut atol, mut dtol, mut its) = (0.0, 0.0, 0.0, 0);
-                        KSPGetTolerances(self.ksp, &mut rtol, &mut atol, &mut dtol, &mut its);
-                        self.own_rtol = Some(rtol);
-                    }
-                    KSPSetTolerances(self.ksp, t, PETSC_DEFAULT_REAL, PETSC_DEFAULT_REAL, -2);
+            let rtol = match (tol, self.own_rtol) {
+                (Some(t), Some(_)) => t,
+                (Some(t), None) => {
+                    let (mut own, mut atol, mut dtol, mut its) = (0.0, 0.0, 0.0, 0);
+                    KSPGetTolerances(self.ksp, &mut own, &mut atol, &mut dtol, &mut its);
+                    self.own_rtol = Some(own);
+                    t
                 }
-                (None, Some(rtol)) => {
-                    KSPSetTolerances(self.ksp, rtol, PETSC_DEFAULT_REAL, PETSC_DEFAULT_REAL, -2);
+                (None, Some(own)) => {
                     self.own_rtol = None;
+                    own
                 }
-                (None, None) => {}
-            }
+                (None, None) => return,
+            };
+            KSPSetTolerances(
+                self.ksp,
+                rtol,
+                PETSC_DEFAULT_REAL,
+                PETSC_DEFAULT_REAL,
+                PETSC_DEFAULT,
+            );
         }
     }
 
