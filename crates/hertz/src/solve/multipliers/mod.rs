@@ -14,8 +14,10 @@
 //!   unknowns are substituted by the motion that keeps the constraints, and the equations taken
 //!   along it, a symmetric system for a sparse Cholesky;
 //! - a general tangent near its symmetric counterpart (the same with the displacements' block
-//!   symmetrized and each gap row its force column: large deformation): GMRES on the whole
-//!   tangent, preconditioned with the counterpart's symmetric elimination;
+//!   symmetrized, each gap row its force column and the compliant multipliers condensed:
+//!   large deformation, friction, a penalty in multiplier form; module `counterpart`): GMRES
+//!   on the whole tangent, preconditioned with the counterpart's symmetric elimination, a
+//!   friction force's components first rotated into the normal and tangent directions;
 //! - a general tangent otherwise:
 //!   (K_i − T_iλ E K_S) x = b_i − T_iλ E b_S   (the constraint rows among them),
 //!   Q₂ᵀ K_S x = Q₂ᵀ b_S                      (the slave node's rows with no multiplier),
@@ -32,6 +34,7 @@
 //! round-off, 1e-12 of its own coupling) and C has full column rank; the others stay unknowns
 //! of the reduced system.
 
+mod counterpart;
 mod rows;
 mod symmetric;
 
@@ -40,6 +43,7 @@ use crate::assembly::Pattern;
 use crate::error::Result;
 use crate::solve::krylov::gmres;
 use crate::solve::linear::faer_direct::KRYLOV_TOL;
+use counterpart::{friction_rotation, Counterpart};
 use rows::{RowBuilder, Rows};
 use symmetric::Reduction;
 
@@ -274,23 +278,28 @@ impl MultiplierElimination {
         transform: &[(usize, usize, f64)],
         describe: &dyn Fn(usize) -> String,
     ) -> Result<bool> {
-        let rows = Rows::new(pattern, values);
-        if transform.is_empty() {
-            return self.solve_rows(rows, rhs, groups, general, describe);
+        let n = rhs.len();
+        let mut rows = Rows::new(pattern, values);
+        let mut b = rhs.to_vec();
+        let slave = (!transform.is_empty()).then(|| Transform::new(n, transform));
+        if let Some(t) = &slave {
+            rows = rows.transformed(t);
+            b = t.apply(&b);
         }
-        let t = Transform::new(rhs.len(), transform);
-        let mut combined = t.apply(rhs);
-        let solved = self.solve_rows(
-            rows.transformed(&t),
-            &mut combined,
-            groups,
-            general,
-            describe,
-        )?;
-        if solved {
-            rhs.copy_from_slice(&t.back(&combined));
+        let rotation = friction_rotation(&rows, groups);
+        let rotated = (!rotation.is_empty()).then(|| Transform::new(n, &rotation));
+        if let Some(t) = &rotated {
+            rows = rows.transformed(t);
+            b = t.apply(&b);
         }
-        Ok(solved)
+        if !self.solve_rows(rows, &mut b, groups, general, describe)? {
+            return Ok(false);
+        }
+        for t in [&rotated, &slave].into_iter().flatten() {
+            b = t.back(&b);
+        }
+        rhs.copy_from_slice(&b);
+        Ok(true)
     }
 
     /// [`MultiplierElimination::solve`] on the tangent by rows.
@@ -325,12 +334,11 @@ impl MultiplierElimination {
                     self.method = Method::Symmetric;
                     return Ok(true);
                 }
-            } else if let Some(x) =
-                self.preconditioned(&rows, &scale, &out, rhs, groups, describe)?
-            {
-                rhs.copy_from_slice(&x);
-                return Ok(true);
             }
+        }
+        if let Some(x) = self.preconditioned(&rows, rhs, groups, !general, describe)? {
+            rhs.copy_from_slice(&x);
+            return Ok(true);
         }
         if !general {
             self.count(&[], &[], &[]);
@@ -373,31 +381,29 @@ impl MultiplierElimination {
             .factorize(reduced, values, spd, &|k| describe(unknown(k)))
     }
 
-    /// A general matrix whose multipliers' rows are their columns scaled but for terms of the
-    /// linearization (large deformation: the normals' and the dual basis' variations), solved
-    /// by GMRES preconditioned with the symmetric elimination of its symmetric counterpart (the
-    /// displacements' block symmetrized, each multiplier's row its column): a Cholesky of the
-    /// reduced system instead of a sparse LU of the general one. None where that counterpart
-    /// keeps multipliers or GMRES does not converge.
+    /// A general matrix solved by GMRES preconditioned with the symmetric elimination of its
+    /// symmetric counterpart ([`Counterpart`]): a Cholesky of the reduced system instead of a
+    /// sparse LU of the general one. Exact but for terms of the linearization where every
+    /// multiplier is hard (large deformation: the normals' and the dual basis' variations; a
+    /// few GMRES iterations); with compliant multipliers condensed (friction, a penalty in
+    /// multiplier form) only with `condense`, as GMRES then takes tens of iterations where
+    /// nodes slide (below the Krylov threshold the general elimination's LU is cheaper, and
+    /// exact). None where the counterpart keeps multipliers or GMRES does not converge.
     fn preconditioned(
         &mut self,
         rows: &Rows,
-        scale: &[f64],
-        out: &[bool],
         rhs: &[f64],
         groups: &[Group],
+        condense: bool,
         describe: &dyn Fn(usize) -> String,
     ) -> Result<Option<Vec<f64>>> {
-        let mut multiplier = vec![false; rhs.len()];
-        for g in groups {
-            for &l in &g.lambdas {
-                multiplier[l] = true;
-            }
-        }
-        let Some(counterpart) = rows.symmetric_counterpart(&multiplier, scale, out) else {
+        let Some((counterpart, cp)) = Counterpart::new(rows, groups) else {
             return Ok(None);
         };
-        let red = Reduction::new(counterpart, groups);
+        if !condense && cp.condenses() {
+            return Ok(None);
+        }
+        let red = Reduction::new(counterpart, &cp.groups);
         if red.kept_multipliers > 0 {
             return Ok(None);
         }
@@ -416,8 +422,7 @@ impl MultiplierElimination {
             rhs,
             &mut |x, y| rows.matvec(x, y),
             &mut |v| {
-                let scaled: Vec<f64> = v.iter().zip(scale).map(|(b, s)| b / s).collect();
-                match red.apply(solver, &scaled, groups, describe) {
+                match red.apply(solver, &cp.rhs(v), &cp.groups, describe) {
                     Ok(x) => v.copy_from_slice(&x),
                     Err(e) => failed = Some(e),
                 }
@@ -436,7 +441,7 @@ impl MultiplierElimination {
             self.krylov_iterations = iterations;
             self.method = Method::Preconditioned;
             let (eliminated, decoupled) = red.counts();
-            self.count(eliminated, decoupled, groups);
+            self.count(eliminated, decoupled, &cp.groups);
             x
         }))
     }
@@ -1083,6 +1088,84 @@ mod tests {
         a[4][1] = 1.6;
         a[4][2] = 1.2;
         against_full_solve(&a, &rhs, &groups);
+    }
+
+    /// Two 3D slave nodes with Coulomb friction (multipliers λ_T in Cartesian components, then
+    /// λ_N; c_T = 10), each against a master node, springs between and to the ground: node A
+    /// sticks (rows n nᵀ λ_T / c_T − P (x_s − x_m)), node B slides along ŝ at ρ = μλ/|v| = 0.4
+    /// (rows ((I − ρ p pᵀ) λ_T − μ ŝ λ_N) / c_T − ρ p pᵀ (x_s − x_m), p = n × ŝ). Without
+    /// `general`, GMRES on the counterpart (the forces rotated into (t₁, t₂, n), A's tangential
+    /// ones hard, B's condensed) gives the full solve's x in a few iterations, every multiplier
+    /// out of the reduced system; with it, the general elimination's LU does, keeping the
+    /// friction multipliers.
+    #[test]
+    fn friction_multipliers_are_solved_on_the_rotated_counterpart() {
+        let n = 20;
+        let mut a = vec![vec![0.0; n]; n];
+        // Pair A: master 0..3, slave 3..6, λ_T 12..15, λ_N 15; pair B: 6..9, 9..12, 16..19, 19.
+        for (m, s) in [(0, 3), (6, 9)] {
+            for d in 0..3 {
+                let (i, j) = (m + d, s + d);
+                a[i][i] += 3.0 + 0.5 * d as f64;
+                a[j][j] += 2.0 + 0.3 * d as f64;
+                a[i][j] -= 1.0;
+                a[j][i] -= 1.0;
+            }
+            a[s][s + 1] += 0.4;
+            a[s + 1][s] += 0.4;
+        }
+        let c = 10.0;
+        let normals = [[0.36, 0.48, 0.8], [0.0, 0.6, 0.8]];
+        let (slide, across, rho, mu) = ([1.0, 0.0, 0.0], [0.0, 0.8, -0.6], 0.4, 0.3);
+        for (k, ((m, s), lt)) in [(0, 3), (6, 9)].into_iter().zip([12, 16]).enumerate() {
+            let (nv, ln) = (normals[k], lt + 3);
+            for d in 0..3 {
+                // Forces: λ_T,d along axis d, λ_N along −n on the slave (+n on the master).
+                a[s + d][lt + d] = 1.0;
+                a[m + d][lt + d] = -1.0;
+                a[s + d][ln] = -nv[d];
+                a[m + d][ln] = nv[d];
+                a[ln][s + d] = -nv[d];
+                a[ln][m + d] = nv[d];
+            }
+            for i in 0..3 {
+                for j in 0..3 {
+                    let (block, tie) = if k == 0 {
+                        let p = f64::from(u8::from(i == j)) - nv[i] * nv[j];
+                        (nv[i] * nv[j] / c, p)
+                    } else {
+                        let pp = rho * across[i] * across[j];
+                        (f64::from(u8::from(i == j)) / c - pp / c, pp)
+                    };
+                    a[lt + i][lt + j] = block;
+                    a[lt + i][s + j] = -tie;
+                    a[lt + i][m + j] = tie;
+                }
+                if k == 1 {
+                    a[lt + i][ln] = -mu * slide[i] / c;
+                }
+            }
+        }
+        let rhs: Vec<f64> = (0..n).map(|i| ((i * 7 % 11) as f64 - 5.0) * 0.1).collect();
+        let groups = [
+            Group {
+                slave: vec![3, 4, 5],
+                lambdas: vec![12, 13, 14, 15],
+            },
+            Group {
+                slave: vec![9, 10, 11],
+                lambdas: vec![16, 17, 18, 19],
+            },
+        ];
+        let el = solved_against_full_solve(&a, &rhs, &groups, false, &[], 1e-12);
+        let iterations = el.stats().krylov_iterations;
+        assert!((1..=6).contains(&iterations), "{iterations}");
+        assert_eq!(
+            (el.eliminated, el.kept, el.method),
+            (8, 0, Method::Preconditioned)
+        );
+        let el = solved_against_full_solve(&a, &rhs, &groups, true, &[], 1e-12);
+        assert_eq!(el.method, Method::General);
     }
 
     /// A multiplier that also loads another group's slave row is kept, and the solve is still

@@ -109,44 +109,6 @@ impl Rows {
         })
     }
 
-    /// The symmetric counterpart of a structurally symmetric matrix with multipliers (the
-    /// unknowns `multiplier`): the block of the other unknowns symmetrized, each multiplier's
-    /// row (but for `out`) its column, its diagonal divided by its `scale`. None if the pattern
-    /// is not structurally symmetric.
-    pub(super) fn symmetric_counterpart(
-        &self,
-        multiplier: &[bool],
-        scale: &[f64],
-        out: &[bool],
-    ) -> Option<Rows> {
-        let n = self.ptr.len() - 1;
-        let multiplier = |i: usize| multiplier[i];
-        let mut val = self.val.clone();
-        for i in 0..n {
-            for k in self.ptr[i]..self.ptr[i + 1] {
-                let c = self.col[k];
-                let cols = &self.col[self.ptr[c]..self.ptr[c + 1]];
-                let t = self.val[self.ptr[c] + cols.binary_search(&i).ok()?];
-                val[k] = if c == i {
-                    self.val[k] / scale[i]
-                } else if out[i] || out[c] {
-                    self.val[k]
-                } else if multiplier(i) {
-                    t
-                } else if multiplier(c) {
-                    self.val[k]
-                } else {
-                    0.5 * (self.val[k] + t)
-                };
-            }
-        }
-        Some(Rows {
-            ptr: self.ptr.clone(),
-            col: self.col.clone(),
-            val,
-        })
-    }
-
     /// y = A x.
     pub(super) fn matvec(&self, x: &[f64], y: &mut [f64]) {
         for (i, yi) in y.iter_mut().enumerate() {
@@ -263,6 +225,21 @@ impl RowBuilder {
             });
         }
         self.rows[t] = row;
+    }
+
+    /// The rows built, as a matrix by rows.
+    pub(super) fn into_rows(self) -> Rows {
+        let mut ptr = Vec::with_capacity(self.rows.len() + 1);
+        ptr.push(0);
+        let (mut col, mut val) = (Vec::new(), Vec::new());
+        for row in self.rows {
+            for (c, v) in row {
+                col.push(c);
+                val.push(v);
+            }
+            ptr.push(col.len());
+        }
+        Rows { ptr, col, val }
     }
 
     /// The upper triangle of a symmetric matrix whose rows hold their entries on and right of
