@@ -490,54 +490,53 @@ fn mortar_friction_passes_the_shear_patch_test() {
     }
 }
 
-/// A brick block (2 × 2 × 1 hexahedra, E = 1000, ν = 0: no Poisson spread) on a rigid plane,
-/// pressed down by a prescribed displacement of its top, then pushed along (0.6, 0.8) by 0.05,
-/// far beyond the stick limit: every base node slides, its friction force μ times its normal
+/// A brick block (2 × 2 × 1 hexahedra, E = 1000, ν = 0: no Poisson spread;
+/// `verify::pushed_block`) on a rigid plane, pressed down by a prescribed displacement of its
+/// top, then pushed along (0.6, 0.8) by 0.05, far beyond the stick limit: every base node slides, its friction force μ times its normal
 /// force to round-off (the isotropic Coulomb cone), and the horizontal reaction is μ times the
 /// vertical one along the push, to 1e-5 (the couple of the push at the top and the friction at
 /// the base tilts the block: the normal forces, and the nodes' slip directions, differ a
-/// little). Node-to-face contact, with the penalty law and with multipliers.
+/// little). Node-to-face contact, with the penalty law and with multipliers; each also on full
+/// tangents by GMRES on the symmetric counterpart (the friction forces rotated into each node's
+/// normal and slip directions, the sliding components condensed; as a contact zone too large
+/// to condense is solved), to the same reactions within 1e-9.
 #[test]
 fn brick_pushed_obliquely_transmits_mu_n_along_the_push() {
-    use hertz_bench::mesh::{uniform, Input};
+    let direct = brick_pushed_obliquely(&SolveParams {
+        condensed_contact: false,
+        ..Default::default()
+    });
+    let krylov = brick_pushed_obliquely(&SolveParams {
+        condensed_contact: false,
+        krylov_min_unknowns: 0,
+        ..Default::default()
+    });
+    for ((a, its_a, _), (b, its_b, krylov)) in direct.iter().zip(&krylov) {
+        for k in 0..3 {
+            assert!((a[k] - b[k]).abs() <= 1e-9 * a[2].abs(), "{a:?} vs {b:?}");
+        }
+        assert!(its_a.iter().zip(its_b).all(|(x, y)| x.abs_diff(*y) <= 1));
+        assert!(*krylov > 0, "GMRES solved the full tangents");
+    }
+}
+
+/// [`brick_pushed_obliquely_transmits_mu_n_along_the_push`] with `params`, asserted, for the
+/// penalty and for multipliers: the reaction, the Newton iterations per step, and the last
+/// step's GMRES iterations with every multiplier eliminated (0: another way).
+fn brick_pushed_obliquely(params: &SolveParams) -> Vec<([f64; 3], Vec<usize>, usize)> {
+    let mut out = Vec::new();
     for law in [
         "n2spenaltycontact 3 loadTimeFunction 1 penalty 1e4 friction 0.3",
         "n2slagrangianmultipliercontact 3 loadTimeFunction 1 friction 0.3",
     ] {
-        let mut inp = Input::default();
-        let g = uniform(0.0, 2.0, 2);
-        let block = inp.block3d(&g, &g, &uniform(0.0, 1.0, 1), "mat 1 crossSect 1");
-        inp.sections.push("SimpleCS 1".into());
-        inp.materials.push("IsoLE 1 d 0 E 1000 n 0 tAlpha 0".into());
-        inp.segments
-            .push("planecontactsegment 1 point 3 0 0 0 normal 3 0 0 1".into());
-        let top = inp.node_set(&block.top);
-        let bottom: Vec<String> = block.bottom.iter().map(|n| n.to_string()).collect();
-        inp.bcs.push(format!(
-            "BoundaryCondition 1 loadTimeFunction 1 dofs 1 3 values 1 -0.01 set {top}"
-        ));
-        inp.bcs.push(format!(
-            "BoundaryCondition 2 loadTimeFunction 2 dofs 2 1 2 values 2 0.03 0.04 set {top}"
-        ));
-        inp.bcs.push(format!(
-            "{law} nodeset {} {} segmentset 1 1",
-            bottom.len(),
-            bottom.join(" ")
-        ));
-        inp.functions.push("ConstantFunction 1 f(t) 1.0".into());
-        inp.functions
-            .push("PiecewiseLinFunction 2 npoints 2 t 2 1 2 f(t) 2 0 1".into());
-        let text = inp.render(
-            "brick",
-            "StaticStructural nsteps 2 rtolf 1e-10 maxiter 30",
-            "3d",
-        );
+        let text = hertz_bench::verify::pushed_block(2, 1, law);
         let model = common::model_from_text(&text).unwrap();
         let mut reaction = [0.0; 3];
         let mut sliding = 0;
         let mut worst_node = 0.0f64;
         let mut iterations = Vec::new();
-        run_analysis(&model, &common::quiet(), |r| {
+        let mut krylov = 0;
+        run_analysis(&model, params, |r| {
             reaction = [0.0; 3];
             for ((_, d, _), &f) in r.dofs.prescribed.iter().zip(r.reactions) {
                 reaction[usize::from(*d) - 1] += f;
@@ -555,6 +554,11 @@ fn brick_pushed_obliquely_transmits_mu_n_along_the_push() {
                 .map(|(f, p)| (f - MU * p).abs() / (MU * p))
                 .fold(0.0, f64::max);
             iterations.push(r.info.iterations);
+            krylov = if r.info.multipliers_eliminated.1 == 0 {
+                r.info.solver.krylov_iterations
+            } else {
+                0
+            };
             Ok(())
         })
         .unwrap();
@@ -569,7 +573,7 @@ fn brick_pushed_obliquely_transmits_mu_n_along_the_push() {
             MU * n
         );
         assert!(n > 0.0);
-        assert_eq!(sliding, block.bottom.len(), "every base node slides");
+        assert_eq!(sliding, 9, "every base node slides");
         assert!(worst_node <= 1e-12, "{worst_node}");
         assert!(
             (along - MU * n).abs() <= 1e-5 * MU * n,
@@ -578,7 +582,9 @@ fn brick_pushed_obliquely_transmits_mu_n_along_the_push() {
         );
         assert!(across.abs() <= 1e-5 * MU * n, "{across}");
         assert!(iterations.iter().all(|&i| i <= 4), "{iterations:?}");
+        out.push((reaction, iterations, krylov));
     }
+    out
 }
 
 /// examples/ironing.in: a stiff half-ring die pressed 1.4 into a soft neo-Hookean slab, then

@@ -1423,6 +1423,42 @@ impl ConcentricRings {
     }
 }
 
+/// A block of 2 × 2 × 1 (E = 1000, ν = 0: no Poisson spread) in `n` × `n` × `layers` bricks on
+/// a rigid plane, its top pressed down by 0.01 and then (a second step) pushed by 0.05 along
+/// (0.6, 0.8), every one of its (n + 1)² bottom nodes a slave node of the contact record `law`
+/// (numbered 3, before its `nodeset`); with `friction 0.3`, far beyond the stick limit: every
+/// base node slides.
+pub fn pushed_block(n: usize, layers: usize, law: &str) -> String {
+    let mut inp = Input::default();
+    let g = uniform(0.0, 2.0, n);
+    let block = inp.block3d(&g, &g, &uniform(0.0, 1.0, layers), "mat 1 crossSect 1");
+    inp.sections.push("SimpleCS 1".into());
+    inp.materials.push("IsoLE 1 d 0 E 1000 n 0 tAlpha 0".into());
+    inp.segments
+        .push("planecontactsegment 1 point 3 0 0 0 normal 3 0 0 1".into());
+    let top = inp.node_set(&block.top);
+    let bottom: Vec<String> = block.bottom.iter().map(|n| n.to_string()).collect();
+    inp.bcs.push(format!(
+        "BoundaryCondition 1 loadTimeFunction 1 dofs 1 3 values 1 -0.01 set {top}"
+    ));
+    inp.bcs.push(format!(
+        "BoundaryCondition 2 loadTimeFunction 2 dofs 2 1 2 values 2 0.03 0.04 set {top}"
+    ));
+    inp.bcs.push(format!(
+        "{law} nodeset {} {} segmentset 1 1",
+        bottom.len(),
+        bottom.join(" ")
+    ));
+    inp.functions.push("ConstantFunction 1 f(t) 1.0".into());
+    inp.functions
+        .push("PiecewiseLinFunction 2 npoints 2 t 2 1 2 f(t) 2 0 1".into());
+    inp.render(
+        "pushed_block",
+        "StaticStructural nsteps 2 rtolf 1e-10 maxiter 30",
+        "3d",
+    )
+}
+
 /// A rigid sphere of `radius` (`circlecontactsegment 1`, centred at (0, 0, radius), moved down
 /// by `depth` through its own node) pressed into a quarter block of `kind` elements on `xs` × `xs`
 /// × `zs` (E, NU; rollers on x = 0 and y = 0 below the sphere, the bottom held) by contact record
