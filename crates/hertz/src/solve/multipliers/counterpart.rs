@@ -5,7 +5,8 @@
 //! Each multiplier l has a row (its x-part G_l over the displacements, its diagonal d_l, and
 //! terms on other multipliers) and a column c_l (its force on the displacements). The
 //! counterpart takes it as
-//! - **hard** (d_l = 0 up to round-off): its row is its column, G_l ≈ s_l c_lᵀ with s_l = G_l·c_l /
+//! - **hard** (d_l = 0 up to round-off, or a compliance far stiffer than the bodies along
+//!   c_l): its row is its column, G_l ≈ s_l c_lᵀ with s_l = G_l·c_l /
 //!   c_l·c_l the least-squares factor; eliminated through the slave rows;
 //! - **condensed** (d_l ≠ 0: a penalty's compliance, a sliding node's friction, the normal
 //!   component of a friction force): λ_l = (b_l − s_l c_lᵀ x)/d_l substituted into the
@@ -28,6 +29,14 @@ use super::{solve_small, Group};
 /// A multiplier's diagonal below this fraction of its row's largest entry on the displacements
 /// is round-off (a sticking friction component after the rotation), and the multiplier hard.
 const HARD_TOL: f64 = 1e-12;
+
+/// A compliant multiplier whose condensed stiffness along its column exceeds the bodies' by this
+/// factor is taken as hard: a stiff penalty (1e7 on a block of E = 1000), a node barely sliding
+/// (ρ → 1). Condensed, it would make the counterpart ill-conditioned, past what an algebraic
+/// multigrid preconditions (PETSc's CG stopped with an indefinite preconditioner on the
+/// Cattaneo–Mindlin example); tied, it differs from the tangent by 1/`STIFF_RATIO` of its
+/// stiffness at most, which GMRES removes in a few iterations.
+const STIFF_RATIO: f64 = 1e2;
 
 /// How the counterpart takes a multiplier (see the module doc).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -206,12 +215,32 @@ fn classify(rows: &Rows, l: usize, multiplier: &[bool]) -> Option<Role> {
         return Some(Role::Out);
     }
     let s = rc / cc;
-    if d.abs() <= HARD_TOL * size {
+    let hard = d.abs() <= HARD_TOL * size
+        || (s / d < 0.0 && -s / d * cc * cc > STIFF_RATIO * stiffness_along(rows, l, multiplier));
+    if hard {
         return (rc != 0.0).then_some(Role::Hard { scale: s });
     }
     // A stiffness −s/d < 0 would make the counterpart indefinite: the row is solved first.
     let s = if s / d <= 0.0 { s } else { 0.0 };
     Some(Role::Condensed { s, d })
+}
+
+/// cᵀ K c for multiplier l's column c over the displacements: the bodies' stiffness along it.
+fn stiffness_along(rows: &Rows, l: usize, multiplier: &[bool]) -> f64 {
+    let column: Vec<(usize, f64)> = rows
+        .row(l)
+        .filter(|&(c, _)| c != l && !multiplier[c])
+        .map(|(c, _)| (c, rows.at(c, l)))
+        .collect();
+    column
+        .iter()
+        .map(|&(i, ci)| {
+            ci * column
+                .iter()
+                .map(|&(j, cj)| rows.at(i, j) * cj)
+                .sum::<f64>()
+        })
+        .sum()
 }
 
 /// A change of basis of every friction force's multipliers (a group of dim + 1 multipliers

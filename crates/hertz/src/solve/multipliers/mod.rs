@@ -1168,6 +1168,39 @@ mod tests {
         assert_eq!(el.method, Method::General);
     }
 
+    /// A penalty in multiplier form (row = column, diagonal −1/ε) on springs of stiffness ~3:
+    /// ε = 10 is condensed into the counterpart as the penalty's stiffness, ε = 10⁶ (far stiffer
+    /// than the springs along its column) tied as a hard constraint; either way GMRES on the
+    /// counterpart gives the full solve's x.
+    #[test]
+    fn a_stiff_penalty_is_tied_and_a_soft_one_condensed_in_the_counterpart() {
+        for (penalty, condensed) in [(10.0, true), (1e6, false)] {
+            let mut a = vec![
+                vec![4.0, -1.0, 0.0, 0.0, 0.0],
+                vec![-1.0, 3.0, 0.5, -1.0, 0.0],
+                vec![0.0, 0.5, 2.0, 0.0, 0.0],
+                vec![0.0, -1.0, 0.0, 2.0, 0.0],
+                vec![0.0, 0.0, 0.0, 0.0, -1.0 / penalty],
+            ];
+            for (row, v) in [(1, 0.6), (2, 0.8), (3, -1.0)] {
+                a[row][4] = v;
+                a[4][row] = v;
+            }
+            // A term the counterpart leaves to GMRES: the displacements' block not symmetric.
+            a[0][1] = -1.2;
+            let rhs = [1.0, 0.0, -0.5, 0.25, 0.01];
+            let groups = [Group {
+                slave: vec![1, 2],
+                lambdas: vec![4],
+            }];
+            let (pattern, values) = dense(&a);
+            let (_, cp) = Counterpart::new(&Rows::new(&pattern, &values), &groups).unwrap();
+            assert_eq!(cp.condenses(), condensed, "penalty {penalty}");
+            let el = solved_against_full_solve(&a, &rhs, &groups, false, &[], 1e-12);
+            assert_eq!(el.method, Method::Preconditioned, "penalty {penalty}");
+        }
+    }
+
     /// A multiplier that also loads another group's slave row is kept, and the solve is still
     /// the full one.
     #[test]
