@@ -29,10 +29,8 @@ fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
-fn temp_dir(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("hertz-cli-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    d
+fn temp_dir(tag: &str) -> common::Scratch {
+    common::scratch(&format!("cli-{tag}"))
 }
 
 #[test]
@@ -193,7 +191,6 @@ fn check_reports_rules_and_exits_1_on_a_failed_rule() {
         !Path::new(&dir.join("patch100.out")).exists(),
         "check writes no .out"
     );
-    std::fs::remove_dir_all(dir).ok();
 }
 
 /// `--vtu binary` writes raw appended arrays (VTK's header of UInt64 byte counts); `-v` reports
@@ -228,7 +225,6 @@ fn run_vtu_binary_writes_appended_data_and_verbose_times_the_output() {
     assert!(arrays["displacement"].iter().all(|&u| u == 2.0));
     let bad = hertz(&["run", "--vtu", "base64", input.to_str().unwrap()]);
     assert_eq!(bad.status.code(), Some(2));
-    std::fs::remove_dir_all(dir).ok();
 }
 
 #[test]
@@ -255,7 +251,6 @@ fn run_writes_out_vtu_and_pvd_next_to_the_input() {
         .file_name()
         .to_string_lossy()
         .contains(".tmp")));
-    std::fs::remove_dir_all(dir).ok();
 }
 
 /// A UTF-8 byte-order mark is skipped (it used to end up in the output file names).
@@ -273,7 +268,6 @@ fn byte_order_mark_is_skipped() {
         .collect();
     assert!(names.iter().any(|n| n == "patch100.out"), "{names:?}");
     assert!(names.iter().all(|n| n.is_ascii()), "{names:?}");
-    std::fs::remove_dir_all(dir).ok();
 }
 
 /// Unread tokens are reported in a short line, and an error's record is cut, however long the
@@ -325,7 +319,6 @@ fn long_records_are_reported_shortly() {
     assert_eq!(out.status.code(), Some(2), "{stderr}");
     assert!(stderr.len() < 2000, "{} bytes of message", stderr.len());
     assert!(stderr.contains("more characters"), "{stderr}");
-    std::fs::remove_dir_all(dir).ok();
 }
 
 /// Absurd benchmark sizes are refused at once (exit 2), before anything is generated.
@@ -377,7 +370,6 @@ fn a_written_bench_block_runs_to_its_exact_reaction() {
     let at = header.iter().position(|h| *h == "bc1.r1").expect("bc1.r1");
     let r: f64 = row[at].parse().unwrap();
     assert!((r + 900.0).abs() < 1e-9, "reaction {r}");
-    std::fs::remove_dir_all(dir).ok();
 }
 
 /// `hertz bench --ironing3d LAYERS --write DIR` writes the shallow ironing benchmark's published
@@ -403,7 +395,6 @@ fn bench_writes_the_shallow_ironing_extruded_to_3d() {
         other => panic!("segment {k}: {other:?}"),
     };
     assert_eq!((faces(0), faces(1)), (120 * 2, 12 * 2));
-    std::fs::remove_dir_all(dir).ok();
 }
 
 #[test]
@@ -467,7 +458,6 @@ fn run_never_overwrites_its_input() {
             .collect();
         assert!(written.is_empty(), "nothing written: {written:?}");
     }
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// `hertz import` writes over no file it did not write: the default `mesh.in` beside a user's
@@ -510,7 +500,6 @@ fn import_never_overwrites_a_users_file() {
     assert!(std::fs::read_to_string(&mesh)
         .unwrap()
         .contains("$MeshFormat"));
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// A warning about an unread token comes before the solver's error, when the typo is the likely
@@ -537,7 +526,6 @@ fn warnings_come_before_a_failure() {
         let error = stderr.find("error:").expect(&stderr);
         assert!(warning < error, "the warning first: {stderr}");
     }
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// A body that only frictionless contact holds, pushed sideways, is a mechanism: exit 3 at once
@@ -579,7 +567,6 @@ fn a_contact_mechanism_is_named_at_once() {
             String::from_utf8_lossy(&out.stderr)
         );
     }
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// Every example command of `hertz --help` parses as written: run where its files do not exist,
@@ -611,7 +598,6 @@ fn help_examples_parse_as_written() {
         n += 1;
     }
     assert!(n >= 4, "{help}");
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// The per-step history's columns follow the boundary conditions' numbers, then the DOF ids, not
@@ -638,7 +624,6 @@ fn steps_csv_columns_follow_the_condition_numbers() {
         csv.lines().next().unwrap(),
         "step,time,iterations,substeps,residual,bc1.u1,bc1.r1,bc1.u2,bc1.r2,bc2.u2,bc2.r2,bc3.u1,bc3.r1"
     );
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// An unknown condition record lists every supported one, mortar and upstream records included

@@ -3,6 +3,7 @@
 //! and under `mpirun -n 2`; bad PETSc options and a singular model are clear errors. Each run is
 //! a process of its own (PETSc and MPI are initialized once per process).
 
+use crate::common;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -59,26 +60,8 @@ fn csv(path: &Path) -> Vec<std::collections::HashMap<String, f64>> {
         .collect()
 }
 
-/// A fresh output directory under the system's temporary directory, removed when dropped.
-struct Scratch(PathBuf);
-
-impl std::ops::Deref for Scratch {
-    type Target = Path;
-    fn deref(&self) -> &Path {
-        &self.0
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
-fn tmp(name: &str) -> Scratch {
-    let d = std::env::temp_dir().join(format!("hertz-petsc-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    Scratch(d)
+fn tmp(name: &str) -> common::Scratch {
+    common::scratch(&format!("petsc-{name}"))
 }
 
 /// The `columns` of two CSV files within `tol` relative to the largest of their values (a sum of

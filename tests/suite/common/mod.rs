@@ -2,6 +2,37 @@
 #![allow(dead_code)] // each test binary uses a part of them
 
 use hertz::model::Model;
+use std::path::{Path, PathBuf};
+
+/// A scratch directory under the system's temporary directory, `hertz-TAG-PID`: emptied when
+/// made, removed when dropped (also when the test fails).
+pub struct Scratch(PathBuf);
+
+impl std::ops::Deref for Scratch {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl AsRef<Path> for Scratch {
+    fn as_ref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+/// The scratch directory `hertz-{tag}-{pid}` (not created).
+pub fn scratch(tag: &str) -> Scratch {
+    let d = std::env::temp_dir().join(format!("hertz-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    Scratch(d)
+}
 
 /// Read a model from input text held in memory (named `test.in` in messages).
 pub fn model_from_text(text: &str) -> hertz::error::Result<Model> {
