@@ -62,7 +62,8 @@ impl NodeToSegment {
             .collect()
     }
 
-    fn open_ends(&self, k: usize) -> [bool; 2] {
+    /// Whether the surface is open beyond each end of edge `k`.
+    pub(super) fn open_ends(&self, k: usize) -> [bool; 2] {
         let edge = &self.edges.edges[k];
         [
             self.edges.is_open_end(edge.nodes[0]),

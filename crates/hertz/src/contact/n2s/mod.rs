@@ -461,12 +461,19 @@ impl NodeToSegment {
             out.push(c);
             c.inside.then_some(c.gap.abs())
         };
-        cur.edges.walk(xs, slot.reach, |k| {
-            keep(self.edge_candidate(model, slot, xs, cur, k), &mut out)
-        });
-        cur.faces.walk(xs, slot.reach, |k| {
-            keep(self.face_candidate(model, slot, xs, cur, k), &mut out)
-        });
+        cur.edges.walk(
+            xs,
+            slot.reach,
+            |k| self.open_ends(k).iter().any(|&o| o),
+            |k| keep(self.edge_candidate(model, slot, xs, cur, k), &mut out),
+        );
+        let faces = &self.faces.faces;
+        cur.faces.walk(
+            xs,
+            slot.reach,
+            |k| faces[k].open.iter().any(|&o| o),
+            |k| keep(self.face_candidate(model, slot, xs, cur, k), &mut out),
+        );
         match previous {
             Some(Partner::Edge(k)) if !seen => {
                 out.extend(self.edge_candidate(model, slot, xs, cur, k))
