@@ -10,10 +10,10 @@
 //! curved master projected on every face in that band: 300 faces of the other dome for the
 //! equator nodes of two Gmsh hemispheres, 2.9 of a 9.3 s run). A straight edge or flat face
 //! lies in the box of its nodes; a curved (quadratic) one may bulge out of it, so its box is
-//! widened by its size. And a partner is sought near the
-//! surface point closest to the node: the walk stops once the boxes are farther than the nearest
-//! box by twice the nearest item's size plus the reach, so a node hanging beyond the master,
-//! with no inside candidate at all, costs a few projections, not a scan of the surface.
+//! widened by its size. And a partner is sought near the surface point closest to the node:
+//! the walk stops once the boxes are farther than the nearest box by twice the nearest item's
+//! size plus the reach, so a node hanging beyond the master, with no inside candidate at all,
+//! costs a few projections, not a scan of the surface.
 //!
 //! The bounds are the items' own sizes, not the surface's largest: on a graded mesh (Gmsh's,
 //! fine at the contact and coarse far from it) the largest face is ten times the contact zone's,
@@ -157,8 +157,8 @@ mod tests {
     /// A row of 0.1 squares along x and a node 1 above the middle of the tenth: the square under
     /// it is an inside candidate at |gap| 1, and every other square's box is farther, so it is
     /// the only one projected (a far node of two Gmsh hemispheres projected on 300 faces of the
-    /// other dome before). Squares with an open side are walked on to the best
-    /// |gap| plus the reach (0.3): the eight within 0.8 of the foot on either side.
+    /// other dome before). Squares with an open side are walked on to the best |gap| plus the
+    /// reach (0.3): the eight within 0.8 of the foot on either side.
     #[test]
     fn a_far_node_projects_on_the_items_nearer_than_its_best_gap() {
         let squares: Vec<Vec<[f64; 3]>> = (0..20)
