@@ -282,3 +282,42 @@ fn an_element_failing_on_one_rank_cuts_the_step_on_every_rank() {
         |k| k.starts_with("bc") && k.contains(".r"),
     );
 }
+
+/// A 3D block of 16 × 16 × 4 bricks pushed obliquely over a rigid plane with friction
+/// multipliers (`verify::pushed_block`: 289 slave nodes, four multipliers each, every one sliding
+/// in the second step), with `--solver petsc` on one process and on two ranks: hertz rotates the
+/// friction forces and condenses their compliant components, PETSc's CG + GAMG solves the
+/// reduced system, and both take hertz's own Newton iterations and its reactions to 1e-10. On
+/// one process the general elimination went to MUMPS' LU before, which met a zero pivot.
+#[test]
+fn a_block_sliding_with_friction_matches_hertz_on_one_and_two_ranks() {
+    let dir = tmp("pushed");
+    std::fs::create_dir_all(&*dir).unwrap();
+    let file = dir.join("pushed_block.in");
+    std::fs::write(
+        &file,
+        hertz_bench::verify::pushed_block(
+            16,
+            4,
+            "n2slagrangianmultipliercontact 3 loadTimeFunction 1 friction 0.3",
+        ),
+    )
+    .unwrap();
+    let file = file.to_str().unwrap();
+    let reference = dir.join("ref");
+    assert!(run(file, &reference, &[], 1).status.success());
+    for ranks in [1, 2] {
+        let out_dir = dir.join(format!("ranks{ranks}"));
+        let out = run(file, &out_dir, &["--solver", "petsc"], ranks);
+        assert!(out.status.success(), "{ranks} ranks: {out:?}");
+        let steps = |d: &Path| csv(&d.join("pushed_block.steps.csv"));
+        let its = |d: &Path| -> Vec<f64> { steps(d).iter().map(|r| r["iterations"]).collect() };
+        assert_eq!(its(&reference), its(&out_dir), "{ranks} ranks");
+        same_columns(
+            &reference.join("pushed_block.steps.csv"),
+            &out_dir.join("pushed_block.steps.csv"),
+            1e-10,
+            |k| k.starts_with("bc") && k.contains(".r"),
+        );
+    }
+}

@@ -336,7 +336,10 @@ impl MultiplierElimination {
                 }
             }
         }
-        if let Some(x) = self.preconditioned(&rows, rhs, groups, !general, describe)? {
+        // A solver from outside (PETSc) condenses at any size: its LU (MUMPS) met a zero pivot on
+        // the general elimination of a 3D block with friction that faer's LU solves.
+        let condense = !general || self.positive_definite;
+        if let Some(x) = self.preconditioned(&rows, rhs, groups, condense, describe)? {
             rhs.copy_from_slice(&x);
             return Ok(true);
         }
