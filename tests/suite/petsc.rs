@@ -285,10 +285,11 @@ fn an_element_failing_on_one_rank_cuts_the_step_on_every_rank() {
 
 /// A 3D block of 16 × 16 × 4 bricks pushed obliquely over a rigid plane with friction
 /// multipliers (`verify::pushed_block`: 289 slave nodes, four multipliers each, every one sliding
-/// in the second step), with `--solver petsc` on one process and on two ranks: hertz rotates the
-/// friction forces and condenses their compliant components, PETSc's CG + GAMG solves the
-/// reduced system, and both take hertz's own Newton iterations and its reactions to 1e-10. On
-/// one process the general elimination went to MUMPS' LU before, which met a zero pivot.
+/// in the second step), with `--solver petsc` on one process and on two ranks: both take
+/// hertz's own Newton iterations and its reactions to 1e-10. Across ranks hertz rotates the
+/// friction forces and condenses their compliant components and PETSc's CG + GAMG solves the
+/// reduced system; on one process (below the Krylov threshold) the general elimination's LU,
+/// MUMPS', meets a zero pivot and the same counterpart takes over (the run failed before).
 #[test]
 fn a_block_sliding_with_friction_matches_hertz_on_one_and_two_ranks() {
     let dir = tmp("pushed");

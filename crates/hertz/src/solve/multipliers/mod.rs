@@ -40,7 +40,7 @@ mod symmetric;
 
 use super::linear::{FaerSolver, LinearSolver, SolverSettings};
 use crate::assembly::Pattern;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::solve::krylov::gmres;
 use crate::solve::linear::faer_direct::KRYLOV_TOL;
 use counterpart::{friction_rotation, Counterpart};
@@ -336,10 +336,7 @@ impl MultiplierElimination {
                 }
             }
         }
-        // A solver from outside (PETSc) condenses at any size: its LU (MUMPS) met a zero pivot on
-        // the general elimination of a 3D block with friction that faer's LU solves.
-        let condense = !general || self.positive_definite;
-        if let Some(x) = self.preconditioned(&rows, rhs, groups, condense, describe)? {
+        if let Some(x) = self.preconditioned(&rows, rhs, groups, !general, describe)? {
             rhs.copy_from_slice(&x);
             return Ok(true);
         }
@@ -347,8 +344,23 @@ impl MultiplierElimination {
             self.count(&[], &[], &[]);
             return Ok(false);
         }
-        self.solve_general(&rows, rhs, groups, describe)?;
-        Ok(true)
+        match self.solve_general(&rows, rhs, groups, describe) {
+            // A solver from outside (PETSc) may fail where faer's LU pivots through: MUMPS' LU
+            // met a zero pivot on the general elimination of a 3D block sliding with friction.
+            // The condensed counterpart takes over (not first: on the 2D ironing example, whose
+            // hardest step MUMPS solves in 10 iterations, it chattered).
+            Err(Error::Singular(why)) if self.positive_definite => {
+                self.pattern = None;
+                match self.preconditioned(&rows, rhs, groups, true, describe)? {
+                    Some(x) => {
+                        rhs.copy_from_slice(&x);
+                        Ok(true)
+                    }
+                    None => Err(Error::Singular(why)),
+                }
+            }
+            solved => solved.map(|()| true),
+        }
     }
 
     /// Factorize the reduced matrix `reduced` (`values`), its symbolic analysis kept while the
