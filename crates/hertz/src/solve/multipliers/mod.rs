@@ -449,8 +449,17 @@ impl MultiplierElimination {
         );
         solver.set_relative_tolerance(None);
         let solved = solved?;
-        if let Some(e) = failed {
-            return Err(e);
+        match failed {
+            // A solver from outside takes the reduced system as positive definite (CG and a
+            // multigrid); in large deformation it need not be (CG stopped on an indefinite
+            // matrix at the 2D ironing example's hardest step): the caller's general
+            // elimination or whole tangent (MUMPS' LU) takes over.
+            Some(Error::Solve(_) | Error::Singular(_)) if self.positive_definite => {
+                self.pattern = None;
+                return Ok(None);
+            }
+            Some(e) => return Err(e),
+            None => {}
         }
         Ok(solved.map(|(x, iterations)| {
             self.krylov_iterations = iterations;
@@ -1108,13 +1117,9 @@ mod tests {
     /// Two 3D slave nodes with Coulomb friction (multipliers λ_T in Cartesian components, then
     /// λ_N; c_T = 10), each against a master node, springs between and to the ground: node A
     /// sticks (rows n nᵀ λ_T / c_T − P (x_s − x_m)), node B slides along ŝ at ρ = μλ/|v| = 0.4
-    /// (rows ((I − ρ p pᵀ) λ_T − μ ŝ λ_N) / c_T − ρ p pᵀ (x_s − x_m), p = n × ŝ). Without
-    /// `general`, GMRES on the counterpart (the forces rotated into (t₁, t₂, n), A's tangential
-    /// ones hard, B's condensed) gives the full solve's x in a few iterations, every multiplier
-    /// out of the reduced system; with it, the general elimination's LU does, keeping the
-    /// friction multipliers.
-    #[test]
-    fn friction_multipliers_are_solved_on_the_rotated_counterpart() {
+    /// (rows ((I − ρ p pᵀ) λ_T − μ ŝ λ_N) / c_T − ρ p pᵀ (x_s − x_m), p = n × ŝ): the tangent,
+    /// a right-hand side and the groups.
+    fn friction_pair() -> (Vec<Vec<f64>>, Vec<f64>, [Group; 2]) {
         let n = 20;
         let mut a = vec![vec![0.0; n]; n];
         // Pair A: master 0..3, slave 3..6, λ_T 12..15, λ_N 15; pair B: 6..9, 9..12, 16..19, 19.
@@ -1172,6 +1177,16 @@ mod tests {
                 lambdas: vec![16, 17, 18, 19],
             },
         ];
+        (a, rhs, groups)
+    }
+
+    /// [`friction_pair`] without `general`: GMRES on the counterpart (the forces rotated into
+    /// (t₁, t₂, n), A's tangential ones hard, B's condensed) gives the full solve's x in a few
+    /// iterations, every multiplier out of the reduced system; with it, the general
+    /// elimination's LU does, keeping the friction multipliers.
+    #[test]
+    fn friction_multipliers_are_solved_on_the_rotated_counterpart() {
+        let (a, rhs, groups) = friction_pair();
         let el = solved_against_full_solve(&a, &rhs, &groups, false, &[], 1e-12);
         let iterations = el.stats().krylov_iterations;
         assert!((1..=6).contains(&iterations), "{iterations}");
@@ -1181,6 +1196,60 @@ mod tests {
         );
         let el = solved_against_full_solve(&a, &rhs, &groups, true, &[], 1e-12);
         assert_eq!(el.method, Method::General);
+    }
+
+    /// A solver from outside whose positive definite solves fail (as PETSc's CG stops on an
+    /// indefinite matrix), faer's LU otherwise.
+    struct NotDefinite {
+        inner: FaerSolver,
+        spd: bool,
+    }
+
+    impl LinearSolver for NotDefinite {
+        fn factorize(
+            &mut self,
+            pattern: &Pattern,
+            values: &[f64],
+            spd: bool,
+            describe_eq: &dyn Fn(usize) -> String,
+        ) -> Result<()> {
+            self.spd = spd;
+            self.inner.factorize(pattern, values, false, describe_eq)
+        }
+        fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()> {
+            if self.spd {
+                return Err(Error::Solve("indefinite".into()));
+            }
+            self.inner.solve_in_place(rhs)
+        }
+        fn stats(&self) -> &super::super::linear::SolverStats {
+            self.inner.stats()
+        }
+        fn reset(&mut self) {
+            self.inner.reset();
+        }
+    }
+
+    /// [`friction_pair`] without `general`, with a solver from outside whose positive definite
+    /// (CG) solves fail: the counterpart gives way to the caller (false, the right-hand side
+    /// untouched: the whole tangent goes to the solver), not an error that cuts the step.
+    #[test]
+    fn a_failing_definite_solve_from_outside_gives_way_to_the_whole_tangent() {
+        let (a, rhs, groups) = friction_pair();
+        let (pattern, values) = dense(&a);
+        let solver = NotDefinite {
+            inner: FaerSolver::default(),
+            spd: false,
+        };
+        let mut el = MultiplierElimination::with_solver(Box::new(solver), true, Vec::new());
+        let mut got = rhs.clone();
+        let solved = el
+            .solve(&pattern, &values, &mut got, &groups, false, &[], &|i| {
+                format!("{i}")
+            })
+            .unwrap();
+        assert!(!solved);
+        assert_eq!(got, rhs);
     }
 
     /// A penalty in multiplier form (row = column, diagonal −1/ε) on springs of stiffness ~3:
