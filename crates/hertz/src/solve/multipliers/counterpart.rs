@@ -38,11 +38,12 @@ const HARD_TOL: f64 = 1e-12;
 /// stiffness at most, which GMRES removes in a few iterations.
 const STIFF_RATIO: f64 = 1e2;
 
-/// How the counterpart takes a multiplier (see the module doc).
+/// How the counterpart takes a multiplier (see the module doc); a condensed one's `k` is its
+/// place in [`Counterpart::condensed`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Role {
     Hard { scale: f64 },
-    Condensed { s: f64, d: f64 },
+    Condensed { s: f64, d: f64, k: usize },
     Out,
 }
 
@@ -64,12 +65,44 @@ struct Condensed {
     column: Vec<(usize, f64)>,
 }
 
+/// Multiplier l's row and column over the displacements, read once: its diagonal d_l and, for
+/// every displacement c in its row's pattern, (c, G_l[c], c_l[c]).
+struct Lines {
+    d: f64,
+    entries: Vec<(usize, f64, f64)>,
+}
+
+impl Lines {
+    fn new(rows: &Rows, l: usize, multiplier: &[bool]) -> Lines {
+        let mut d = 0.0;
+        let mut entries = Vec::new();
+        for (c, v) in rows.row(l) {
+            if c == l {
+                d = v;
+            } else if !multiplier[c] {
+                entries.push((c, v, rows.at(c, l)));
+            }
+        }
+        Lines { d, entries }
+    }
+
+    /// c_l over the displacements.
+    fn column(&self) -> Vec<(usize, f64)> {
+        self.entries.iter().map(|&(c, _, t)| (c, t)).collect()
+    }
+}
+
 impl Counterpart {
     /// The counterpart of `rows` (structurally symmetric) with the multipliers of `groups`: the
     /// displacements' block symmetrized and stiffened by the condensed multipliers, the hard
     /// multipliers' rows their columns, the condensed ones' columns empty. None where a
-    /// multiplier's row is neither its column nor compliant (G_l ⟂ c_l, d_l = 0).
-    pub(super) fn new(rows: &Rows, groups: &[Group]) -> Option<(Rows, Counterpart)> {
+    /// multiplier's row is neither its column nor compliant (G_l ⟂ c_l, d_l = 0), or where one
+    /// would be condensed without `condense`.
+    pub(super) fn new(
+        rows: &Rows,
+        groups: &[Group],
+        condense: bool,
+    ) -> Option<(Rows, Counterpart)> {
         let n = rows.ptr.len() - 1;
         let mut multiplier = vec![false; n];
         for g in groups {
@@ -78,28 +111,22 @@ impl Counterpart {
             }
         }
         let mut role: Vec<Option<Role>> = vec![None; n];
-        for g in groups {
-            for &l in &g.lambdas {
-                role[l] = Some(classify(rows, l, &multiplier)?);
-            }
-        }
         let mut scale = vec![1.0; n];
         let mut condensed = Vec::new();
-        for (l, r) in role.iter().enumerate() {
+        for &l in groups.iter().flat_map(|g| &g.lambdas) {
+            let lines = Lines::new(rows, l, &multiplier);
+            let r = classify(rows, &lines, condensed.len())?;
             match r {
-                Some(Role::Hard { scale: s }) => scale[l] = *s,
-                Some(Role::Condensed { d, .. }) => condensed.push(Condensed {
+                Role::Hard { scale: s } => scale[l] = s,
+                Role::Condensed { d, .. } if condense => condensed.push(Condensed {
                     l,
-                    d: *d,
-                    column: rows
-                        .row(l)
-                        .filter(|&(c, _)| !multiplier[c])
-                        .map(|(c, _)| (c, rows.at(c, l)))
-                        .filter(|e| e.1 != 0.0)
-                        .collect(),
+                    d,
+                    column: lines.column(),
                 }),
-                _ => {}
+                Role::Condensed { .. } => return None,
+                Role::Out => {}
             }
+            role[l] = Some(r);
         }
         let mut out = RowBuilder::new(n);
         for i in 0..n {
@@ -110,7 +137,7 @@ impl Counterpart {
                         out.add(c, if multiplier[c] { 0.0 } else { rows.at(c, i) });
                     }
                 }
-                Some(Role::Condensed { s, d }) => {
+                Some(Role::Condensed { s, d, .. }) => {
                     for (c, _) in rows.row(i) {
                         let v = if c == i {
                             d
@@ -131,12 +158,12 @@ impl Counterpart {
                             None => 0.5 * (v + rows.at(c, i)),
                         };
                         out.add(c, w);
-                        if let Some(Role::Condensed { s, d }) = role[c] {
+                        if let Some(Role::Condensed { s, d, k }) = role[c] {
                             // −(s/d) c_l c_lᵀ on row i (c_l's entry v at i).
                             let f = -(s / d) * v;
                             if f != 0.0 {
-                                for (k, _) in rows.row(c).filter(|&(k, _)| !multiplier[k]) {
-                                    out.add(k, f * rows.at(k, c));
+                                for &(j, t) in &condensed[k].column {
+                                    out.add(j, f * t);
                                 }
                             }
                         }
@@ -178,11 +205,6 @@ impl Counterpart {
         ))
     }
 
-    /// Whether any multiplier is condensed.
-    pub(super) fn condenses(&self) -> bool {
-        !self.condensed.is_empty()
-    }
-
     /// The counterpart's right-hand side for the tangent's `b`: hard multipliers' rows divided
     /// by their s_l, the condensed ones' forces d_l⁻¹ b_l c_l moved to the right.
     pub(super) fn rhs(&self, b: &[f64]) -> Vec<f64> {
@@ -197,49 +219,34 @@ impl Counterpart {
     }
 }
 
-/// Multiplier l's role: its row's x-part against its column.
-fn classify(rows: &Rows, l: usize, multiplier: &[bool]) -> Option<Role> {
+/// A multiplier's role from its `lines`: its row's x-part against its column; `k` the place a
+/// condensed one takes.
+fn classify(rows: &Rows, lines: &Lines, k: usize) -> Option<Role> {
     let (mut rc, mut cc, mut size) = (0.0, 0.0, 0.0f64);
-    let mut d = 0.0;
-    for (c, v) in rows.row(l) {
-        if c == l {
-            d = v;
-        } else if !multiplier[c] {
-            let t = rows.at(c, l);
-            rc += v * t;
-            cc += t * t;
-            size = size.max(v.abs());
-        }
+    for &(_, v, t) in &lines.entries {
+        rc += v * t;
+        cc += t * t;
+        size = size.max(v.abs());
     }
     if cc == 0.0 {
         return Some(Role::Out);
     }
-    let s = rc / cc;
+    let (s, d) = (rc / cc, lines.d);
     let hard = d.abs() <= HARD_TOL * size
-        || (s / d < 0.0 && -s / d * cc * cc > STIFF_RATIO * stiffness_along(rows, l, multiplier));
+        || (s / d < 0.0 && -s / d * cc * cc > STIFF_RATIO * stiffness_along(rows, lines));
     if hard {
         return (rc != 0.0).then_some(Role::Hard { scale: s });
     }
     // A stiffness −s/d < 0 would make the counterpart indefinite: the row is solved first.
     let s = if s / d <= 0.0 { s } else { 0.0 };
-    Some(Role::Condensed { s, d })
+    Some(Role::Condensed { s, d, k })
 }
 
-/// cᵀ K c for multiplier l's column c over the displacements: the bodies' stiffness along it.
-fn stiffness_along(rows: &Rows, l: usize, multiplier: &[bool]) -> f64 {
-    let column: Vec<(usize, f64)> = rows
-        .row(l)
-        .filter(|&(c, _)| c != l && !multiplier[c])
-        .map(|(c, _)| (c, rows.at(c, l)))
-        .collect();
-    column
-        .iter()
-        .map(|&(i, ci)| {
-            ci * column
-                .iter()
-                .map(|&(j, cj)| rows.at(i, j) * cj)
-                .sum::<f64>()
-        })
+/// cᵀ K c for a multiplier's column c over the displacements: the bodies' stiffness along it.
+fn stiffness_along(rows: &Rows, lines: &Lines) -> f64 {
+    let e = &lines.entries;
+    e.iter()
+        .map(|&(i, _, ci)| ci * e.iter().map(|&(j, _, cj)| rows.at(i, j) * cj).sum::<f64>())
         .sum()
 }
 

@@ -350,6 +350,7 @@ impl MultiplierElimination {
             // The condensed counterpart takes over (not first: on the 2D ironing example, whose
             // hardest step MUMPS solves in 10 iterations, it chattered).
             Err(Error::Singular(why)) if self.positive_definite => {
+                // The failed solver is set up afresh.
                 self.pattern = None;
                 match self.preconditioned(&rows, rhs, groups, true, describe)? {
                     Some(x) => {
@@ -412,12 +413,9 @@ impl MultiplierElimination {
         condense: bool,
         describe: &dyn Fn(usize) -> String,
     ) -> Result<Option<Vec<f64>>> {
-        let Some((counterpart, cp)) = Counterpart::new(rows, groups) else {
+        let Some((counterpart, cp)) = Counterpart::new(rows, groups, condense) else {
             return Ok(None);
         };
-        if !condense && cp.condenses() {
-            return Ok(None);
-        }
         let red = Reduction::new(counterpart, &cp.groups);
         if red.kept_multipliers > 0 {
             return Ok(None);
@@ -455,6 +453,7 @@ impl MultiplierElimination {
             // matrix at the 2D ironing example's hardest step): the caller's general
             // elimination or whole tangent (MUMPS' LU) takes over.
             Some(Error::Solve(_) | Error::Singular(_)) if self.positive_definite => {
+                // The failed solver is set up afresh.
                 self.pattern = None;
                 return Ok(None);
             }
@@ -1278,8 +1277,11 @@ mod tests {
                 lambdas: vec![4],
             }];
             let (pattern, values) = dense(&a);
-            let (_, cp) = Counterpart::new(&Rows::new(&pattern, &values), &groups).unwrap();
-            assert_eq!(cp.condenses(), condensed, "penalty {penalty}");
+            let rows = Rows::new(&pattern, &values);
+            assert!(Counterpart::new(&rows, &groups, true).is_some());
+            // Taken without condensing where it is tied, refused where it would be condensed.
+            let tied = Counterpart::new(&rows, &groups, false).is_some();
+            assert_eq!(tied, !condensed, "penalty {penalty}");
             let el = solved_against_full_solve(&a, &rhs, &groups, false, &[], 1e-12);
             assert_eq!(el.method, Method::Preconditioned, "penalty {penalty}");
         }
