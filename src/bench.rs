@@ -112,6 +112,14 @@ fn write_generated(
     }
 }
 
+/// [`write_generated`] of an input held as `text`.
+fn write_text(dir: &str, name: &str, text: &str) -> ExitCode {
+    write_generated(dir, name, |path| {
+        std::fs::write(path, text)
+            .map_err(|e| Error::Output(format!("cannot write {}: {e}", path.display())))
+    })
+}
+
 /// CLI entry of `hertz bench` (see `hertz bench --help`).
 pub fn main(args: BenchArgs) -> ExitCode {
     let (dim, n) = (args.dim as usize, args.n as usize);
@@ -177,17 +185,11 @@ pub fn main(args: BenchArgs) -> ExitCode {
             plane_strain: true,
         }
         .input();
-        return write_generated(dir, "shallow_ironing3d.in", |path| {
-            std::fs::write(path, text)
-                .map_err(|e| Error::Output(format!("cannot write {}: {e}", path.display())))
-        });
+        return write_text(dir, "shallow_ironing3d.in", &text);
     }
     if let (Some(n), Some(dir)) = (args.rigid_sphere, &write) {
         let text = hertz_bench::verify::RigidSphereBlock::uniform(n as usize, multipliers).input();
-        return write_generated(dir, "rigid_sphere_block.in", |path| {
-            std::fs::write(path, text)
-                .map_err(|e| Error::Output(format!("cannot write {}: {e}", path.display())))
-        });
+        return write_text(dir, "rigid_sphere_block.in", &text);
     }
     if let (Some(n), Some(dir)) = (args.pushed_block, &write) {
         let law = if multipliers {
@@ -197,10 +199,7 @@ pub fn main(args: BenchArgs) -> ExitCode {
         };
         let n = n as usize;
         let text = hertz_bench::verify::pushed_block(n, (n / 4).max(1), law);
-        return write_generated(dir, "pushed_block.in", |path| {
-            std::fs::write(path, text)
-                .map_err(|e| Error::Output(format!("cannot write {}: {e}", path.display())))
-        });
+        return write_text(dir, "pushed_block.in", &text);
     }
     if let Some(m) = model3d {
         let law = if multipliers {

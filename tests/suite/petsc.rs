@@ -64,6 +64,14 @@ fn tmp(name: &str) -> common::Scratch {
     common::scratch(&format!("petsc-{name}"))
 }
 
+/// A generated input `text` written as `name` in `dir` (made if need be), as a path for [`run`].
+fn written(dir: &Path, name: &str, text: &str) -> String {
+    std::fs::create_dir_all(dir).unwrap();
+    let file = dir.join(name);
+    std::fs::write(&file, text).unwrap();
+    file.to_str().unwrap().to_string()
+}
+
 /// The `columns` of two CSV files within `tol` relative to the largest of their values (a sum of
 /// reactions that cancels is round-off in both).
 fn same_columns(a: &Path, b: &Path, tol: f64, columns: fn(&str) -> bool) {
@@ -250,18 +258,15 @@ fn two_ranks_assemble_their_shares_and_match_hertz() {
 #[test]
 fn an_element_failing_on_one_rank_cuts_the_step_on_every_rank() {
     let dir = tmp("die");
-    std::fs::create_dir_all(&*dir).unwrap();
-    let file = dir.join("die.in");
-    std::fs::write(
-        &file,
-        hertz_bench::suite::die_as_wide_as_the_block(
+    let file = &written(
+        &dir,
+        "die.in",
+        &hertz_bench::suite::die_as_wide_as_the_block(
             3,
             false,
             hertz_bench::suite::Law::Penalty(hertz_bench::suite::DIE_PENALTY),
         ),
-    )
-    .unwrap();
-    let file = file.to_str().unwrap();
+    );
     let reference = dir.join("ref");
     assert!(run(file, &reference, &[], 1).status.success());
     let two = dir.join("two");
@@ -293,18 +298,15 @@ fn an_element_failing_on_one_rank_cuts_the_step_on_every_rank() {
 #[test]
 fn a_block_sliding_with_friction_matches_hertz_on_one_and_two_ranks() {
     let dir = tmp("pushed");
-    std::fs::create_dir_all(&*dir).unwrap();
-    let file = dir.join("pushed_block.in");
-    std::fs::write(
-        &file,
-        hertz_bench::verify::pushed_block(
+    let file = &written(
+        &dir,
+        "pushed_block.in",
+        &hertz_bench::verify::pushed_block(
             16,
             4,
             "n2slagrangianmultipliercontact 3 loadTimeFunction 1 friction 0.3",
         ),
-    )
-    .unwrap();
-    let file = file.to_str().unwrap();
+    );
     let reference = dir.join("ref");
     assert!(run(file, &reference, &[], 1).status.success());
     for ranks in [1, 2] {
