@@ -286,6 +286,15 @@ struct StepGoal<'g> {
     prescribed: &'g [f64],
 }
 
+/// Why an attempt at a step failed.
+#[derive(PartialEq)]
+enum Failure {
+    /// Newton ran out of iterations, with what it showed if something specific did.
+    NoConvergence(Option<String>),
+    /// The solver gave up on the way (an element inverted, a node crossed its master).
+    Stopped(String),
+}
+
 /// Solve one load step from `u`, halving it up to `params.max_cutbacks` times when Newton does
 /// not converge; the contact and material states restart from the step's start at each retry.
 fn step_with_cutbacks(
@@ -300,14 +309,15 @@ fn step_with_cutbacks(
     let (step, t) = (goal.step, goal.t);
     let start_u = u.to_vec();
     let start = ctx.checkpoint();
-    let mut diagnosis = None;
+    // Why the attempts failed, each reason once, the last attempt's last.
+    let mut failures: Vec<Failure> = Vec::new();
     // The furthest state any substep converged to (for a failure's diagnosis).
     let mut furthest = (0.0, start_u.clone());
     for level in 0..=params.max_cutbacks {
         let nsub = 1usize << level;
         u.copy_from_slice(&start_u);
         ctx.rollback(&start);
-        let mut ok = true;
+        let mut failed = None;
         for s in 1..=nsub {
             let alpha = s as f64 / nsub as f64;
             let f_sub: Vec<f64> = goal
@@ -327,23 +337,12 @@ fn step_with_cutbacks(
                     }
                 }
                 Ok(false) => {
-                    diagnosis = ctx.diagnosis();
-                    ok = false;
-                    break;
-                }
-                Err(Error::Solve(msg)) if level < params.max_cutbacks => {
-                    ctx.observer()
-                        .retry(&format!("step {step}: {msg}; cutting the step"));
-                    ok = false;
+                    failed = Some(Failure::NoConvergence(ctx.diagnosis()));
                     break;
                 }
                 Err(Error::Solve(msg)) => {
-                    let softening = ctx.softening_hint(&furthest.1);
-                    return Err(Error::Solve(format!(
-                        "step {step} (t = {t}): {msg}, even after {} step halvings{}",
-                        params.max_cutbacks,
-                        softening.map(|d| format!("; {d}")).unwrap_or_default()
-                    )));
+                    failed = Some(Failure::Stopped(msg));
+                    break;
                 }
                 // No smaller step helps a mechanism: say at which step it showed.
                 Err(Error::Singular(msg)) => {
@@ -352,34 +351,62 @@ fn step_with_cutbacks(
                 Err(e) => return Err(e),
             }
         }
-        if ok {
+        let Some(failure) = failed else {
             info.substeps = nsub;
             return Ok(());
-        }
+        };
         ctx.attempt_failed();
         if level < params.max_cutbacks {
+            let why = match &failure {
+                Failure::NoConvergence(d) => format!(
+                    "no convergence in {} iterations{}",
+                    a.maxiter,
+                    d.as_ref().map(|d| format!(" ({d})")).unwrap_or_default()
+                ),
+                Failure::Stopped(msg) => msg.clone(),
+            };
             ctx.observer().retry(&format!(
-                "step {step}: no convergence in {} iterations{}; retrying in {} substeps",
-                a.maxiter,
-                diagnosis
-                    .as_ref()
-                    .map(|d| format!(" ({d})"))
-                    .unwrap_or_default(),
+                "step {step}: {why}; retrying in {} substeps",
                 2 * nsub
             ));
         }
+        failures.retain(|f| *f != failure);
+        failures.push(failure);
     }
-    let softening = ctx.softening_hint(&furthest.1);
-    Err(Error::Solve(format!(
-        "step {step} (t = {t}) did not converge within {} iterations even after {} step halvings; \
-         last residual {:.3e} (rtolf {:.1e}){}{}",
-        a.maxiter,
-        params.max_cutbacks,
-        info.residual_history.last().copied().unwrap_or(f64::NAN),
-        a.rtolf,
-        diagnosis.map(|d| format!("; {d}")).unwrap_or_default(),
-        softening.map(|d| format!("; {d}")).unwrap_or_default()
-    )))
+    let last = failures.pop().expect("an attempt failed");
+    // The last two other reasons (a crossing at each of several step sizes says the same).
+    let earlier: Vec<&str> = failures
+        .iter()
+        .rev()
+        .filter_map(|f| match f {
+            Failure::Stopped(msg) => Some(msg.as_str()),
+            Failure::NoConvergence(_) => None,
+        })
+        .take(2)
+        .collect();
+    let earlier = if earlier.is_empty() {
+        String::new()
+    } else {
+        format!("; in earlier attempts: {}", earlier.join("; "))
+    };
+    let softening = ctx
+        .softening_hint(&furthest.1)
+        .map(|d| format!("; {d}"))
+        .unwrap_or_default();
+    let halvings = params.max_cutbacks;
+    Err(Error::Solve(match last {
+        Failure::NoConvergence(diagnosis) => format!(
+            "step {step} (t = {t}) did not converge within {} iterations even after {halvings} \
+             step halvings; last residual {:.3e} (rtolf {:.1e}){}{earlier}{softening}",
+            a.maxiter,
+            info.residual_history.last().copied().unwrap_or(f64::NAN),
+            a.rtolf,
+            diagnosis.map(|d| format!("; {d}")).unwrap_or_default(),
+        ),
+        Failure::Stopped(msg) => format!(
+            "step {step} (t = {t}): {msg}, even after {halvings} step halvings{earlier}{softening}"
+        ),
+    }))
 }
 
 /// Reference load vector of every load (components at f = 1) in primary numbering, with the
