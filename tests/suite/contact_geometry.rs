@@ -367,3 +367,243 @@ fn force_is_continuous_as_a_node_slides_over_face_edges_and_corners() {
         }
     }
 }
+
+/// A 2D plane-strain model from element corner lists (quadrilaterals in counter-clockwise order,
+/// triangles too), the master segment the edges `edges` ((element, edge) pairs), the contact
+/// node the first node of the last element; `condition` is a node-to-segment record with
+/// `NODE` for that node.
+fn polygons(
+    elements: &[&[[f64; 2]]],
+    edges: &[(usize, usize)],
+    condition: &str,
+) -> (String, usize) {
+    let mut nodes = Vec::new();
+    let mut records = Vec::new();
+    for (e, corners) in elements.iter().enumerate() {
+        let first = nodes.len() + 1;
+        for c in corners.iter() {
+            nodes.push(format!(
+                "node {} coords 2 {} {}",
+                nodes.len() + 1,
+                c[0],
+                c[1]
+            ));
+        }
+        let list: Vec<String> = (first..first + corners.len())
+            .map(|n| n.to_string())
+            .collect();
+        let kind = if corners.len() == 3 {
+            "TrPlaneStrain"
+        } else {
+            "Quad1PlaneStrain"
+        };
+        records.push(format!(
+            "{kind} {} nodes {} {}",
+            e + 1,
+            corners.len(),
+            list.join(" ")
+        ));
+    }
+    let slave = nodes.len() - elements.last().unwrap().len() + 1;
+    let list: Vec<String> = edges.iter().map(|(e, b)| format!("{e} {b}")).collect();
+    let text = format!(
+        "x.out\nx\nNonLinearStatic nsteps 1 controlmode 1\ndomain PlaneStrain\nOutputManager\n\
+         ndofman {} nelem {} ncrosssect 1 nmat 1 nbc 1 nic 0 nltf 1 nset 2 ncontactseg 1\n{}\n{}\n\
+         linear2delementedgecontactsegment 1 edgeset 2\nSimpleCS 1 thick 1 material 1 set 1\n\
+         IsoLE 1 d 0 E 100 n 0.3 tAlpha 0\n{}\nConstantFunction 1 f(t) 1\nSet 1 allelements\n\
+         Set 2 elementboundaries {} {}\n",
+        nodes.len(),
+        records.len(),
+        nodes.join("\n"),
+        records.join("\n"),
+        condition.replace("NODE", &slave.to_string()),
+        2 * edges.len(),
+        list.join(" ")
+    );
+    (text, slave)
+}
+
+/// A master block whose right side leans out (a trapezoid, 2 wide at its base, its top edge the
+/// master from x = 0 to 1) and a small slave triangle above. A node moved into the block past the
+/// top edge's open end, beyond its ramp, has no partner: it has crossed the master where nothing
+/// measures it, and its state says so (element 1); in the open beside the block it has not.
+/// Penalty and multipliers alike.
+#[test]
+fn a_node_inside_the_master_body_past_its_open_end_is_found_crossed() {
+    let block: &[[f64; 2]] = &[[0.0, 0.0], [2.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+    let slave: &[[f64; 2]] = &[[0.8, 1.2], [0.9, 1.6], [0.7, 1.6]];
+    for condition in [PEN, common::LM] {
+        let (text, node) = polygons(&[block, slave], &[(1, 3)], condition);
+        let p = Probe::new(&text);
+        let crossed = |at: [f64; 2]| {
+            let (_, states) = p.force(&p.at(&[(node, at)]), Search::Fresh);
+            states[0].clone()
+        };
+        let inside = crossed([1.4, 0.3]);
+        let c = inside
+            .crossed
+            .unwrap_or_else(|| panic!("{condition}: {inside:?}"));
+        assert_eq!(p.model.elements[c.element].label, 1, "{condition}");
+        // Its depth: the distance to the top edge's line segment, from (1.4, 0.3) to (1, 1).
+        let depth = (0.4f64 * 0.4 + 0.7 * 0.7).sqrt();
+        assert!(
+            (c.depth - depth).abs() < 1e-12,
+            "{condition}: {} vs {depth}",
+            c.depth
+        );
+        assert!(
+            !inside.active && inside.force == 0.0,
+            "{condition}: {inside:?}"
+        );
+        let message = hertz::contact::crossing_message(&p.model, &[inside]).unwrap();
+        assert!(
+            message.contains(&format!(
+                "node {node} of contact condition 1 lies 8.062e-1 inside element 1"
+            )),
+            "{message}"
+        );
+        // Beside the block, past its leaning side: open, not crossed.
+        let beside = crossed([1.6, 0.5]);
+        assert!(beside.crossed.is_none(), "{condition}: {beside:?}");
+        // Pressed into the top edge: held by it, not crossed.
+        let held = crossed([0.5, 0.9]);
+        assert!(
+            held.active && held.crossed.is_none(),
+            "{condition}: {held:?}"
+        );
+    }
+}
+
+/// Two master bodies side by side: a plate A (its top edge y = 0, x ∈ [0, 2]) and a wall B to
+/// its right whose left face (x = 2, y ∈ [−1, −0.1]) faces A. A node inside A 0.3 below its top
+/// and 0.2 from B's face is nearer to B's face, on its open side (gap +0.2), than to the top it
+/// crossed (−0.3): the nearest partner would leave it open inside A. It is held by A's top.
+#[test]
+fn a_node_inside_a_master_body_is_held_by_the_surface_it_crossed_not_the_nearest() {
+    let plate: &[[f64; 2]] = &[[0.0, -1.0], [2.0, -1.0], [2.0, 0.0], [0.0, 0.0]];
+    let wall: &[[f64; 2]] = &[[2.0, -1.0], [3.0, -1.0], [3.0, -0.1], [2.0, -0.1]];
+    let slave: &[[f64; 2]] = &[[1.8, 0.2], [2.2, 0.6], [1.4, 0.6]];
+    for condition in [PEN, common::LM] {
+        // Plate edge 3 (its top, (2, 0) to (0, 0)), wall edge 4 (its left face).
+        let (text, node) = polygons(&[plate, wall, slave], &[(1, 3), (2, 4)], condition);
+        let p = Probe::new(&text);
+        let (f, states) = p.force(&p.at(&[(node, [1.8, -0.3])]), Search::Fresh);
+        let s = &states[0];
+        assert_eq!(s.partner, Partner::Edge(0), "{condition}: {s:?}");
+        assert!((s.gap + 0.3).abs() < 1e-12, "{condition}: gap {}", s.gap);
+        assert!(s.crossed.is_none(), "{condition}: {s:?}");
+        if condition == PEN {
+            // The penalty pushes it up, out through the top: 1000 × 0.3 (an internal force of
+            // the node, so −300 along y).
+            assert!(
+                s.active && (f[1] + 300.0).abs() < 1e-9 && f[0].abs() < 1e-9,
+                "{f:?}"
+            );
+        }
+        // Just above the plate, near the wall: the nearest partner, the top, open.
+        let (_, states) = p.force(&p.at(&[(node, [1.9, 0.05])]), Search::Fresh);
+        assert_eq!(states[0].partner, Partner::Edge(0));
+        assert!(
+            !states[0].active && states[0].crossed.is_none(),
+            "{:?}",
+            states[0]
+        );
+    }
+}
+
+/// The 3D twin of the leaning block: a brick whose +x side leans out (its top face, the master,
+/// [0, 1]², its base [0, 2] × [0, 1]) and a slave tetrahedron above. A node moved into the brick
+/// past the top face's open edge is crossed (element 1); beside the brick it is not; pressed
+/// into the top face it is held.
+#[test]
+fn a_node_inside_a_master_brick_past_its_open_edge_is_found_crossed() {
+    let brick = [
+        [0.0, 0.0, 1.0],
+        [0.0, 1.0, 1.0],
+        [1.0, 1.0, 1.0],
+        [1.0, 0.0, 1.0],
+        [0.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [2.0, 1.0, 0.0],
+        [2.0, 0.0, 0.0],
+    ];
+    let tet = [
+        [0.5, 0.5, 1.2],
+        [0.5, 0.9, 1.6],
+        [0.9, 0.5, 1.6],
+        [0.5, 0.5, 1.7],
+    ];
+    let nodes: Vec<String> = brick
+        .iter()
+        .chain(&tet)
+        .enumerate()
+        .map(|(k, c)| format!("node {} coords 3 {} {} {}", k + 1, c[0], c[1], c[2]))
+        .collect();
+    for condition in [PEN, common::LM] {
+        let text = format!(
+            "x.out\nx\nNonLinearStatic nsteps 1 controlmode 1\ndomain 3d\nOutputManager\n\
+             ndofman 12 nelem 2 ncrosssect 1 nmat 1 nbc 1 nic 0 nltf 1 nset 2 ncontactseg 1\n{}\n\
+             LSpace 1 nodes 8 1 2 3 4 5 6 7 8\nLTRSpace 2 nodes 4 9 10 11 12\n\
+             linear3delementsurfacecontactsegment 1 boundaryset 2\n\
+             SimpleCS 1 thick 1 material 1 set 1\nIsoLE 1 d 0 E 100 n 0.3 tAlpha 0\n{}\n\
+             ConstantFunction 1 f(t) 1\nSet 1 allelements\nSet 2 elementboundaries 2 1 1\n",
+            nodes.join("\n"),
+            condition.replace("NODE", "9")
+        );
+        let p = Probe::new(&text);
+        let state = |at: [f64; 3]| p.force3(&p.at3(&[(9, at)]), 0).1;
+        let inside = state([1.4, 0.5, 0.3]);
+        let c = inside
+            .crossed
+            .unwrap_or_else(|| panic!("{condition}: {inside:?}"));
+        assert_eq!(p.model.elements[c.element].label, 1, "{condition}");
+        assert!(
+            (c.depth - 0.7).abs() < 1e-12,
+            "{condition}: depth {}",
+            c.depth
+        );
+        assert!(!inside.active, "{condition}: {inside:?}");
+        let beside = state([1.6, 0.5, 0.5]);
+        assert!(beside.crossed.is_none(), "{condition}: {beside:?}");
+        let held = state([0.5, 0.5, 0.9]);
+        assert!(
+            held.active && held.crossed.is_none(),
+            "{condition}: {held:?}"
+        );
+    }
+}
+
+/// A slave block pressed down past the end of the master's top edge into its leaning side (the
+/// leaning block above, held at its base): no contact force can hold the node there, so the
+/// analysis stops with the reason (it used to converge with the node inside, reported open)
+/// after the substeps up to the crossing converged.
+#[test]
+fn an_analysis_stops_where_a_node_crosses_its_master_unheld() {
+    let block: &[[f64; 2]] = &[[0.0, 0.0], [2.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+    let slave: &[[f64; 2]] = &[[1.3, 1.1], [1.7, 1.1], [1.7, 1.5], [1.3, 1.5]];
+    for condition in [PEN, common::LM] {
+        let (text, _) = polygons(&[block, slave], &[(1, 3)], condition);
+        // Base held, the slave block's top moved down by 0.6 (its node 5 from y = 1.1 to 0.5,
+        // inside the block from y = 0.7 on).
+        let text = text
+            .replace("nbc 1 ", "nbc 3 ")
+            .replace("nset 2 ", "nset 4 ")
+            .replace(
+                "ConstantFunction 1",
+                "BoundaryCondition 2 loadTimeFunction 1 dofs 2 1 2 values 2 0 0 set 3\n\
+                 BoundaryCondition 3 loadTimeFunction 1 dofs 2 1 2 values 2 0 -0.6 set 4\n\
+                 ConstantFunction 1",
+            )
+            + "Set 3 nodes 2 1 2\nSet 4 nodes 2 7 8\n";
+        let model = common::model_from_text(&text).unwrap();
+        let err = hertz::solve::run_analysis(&model, &common::quiet(), |_| Ok(())).unwrap_err();
+        let msg = err.to_string();
+        assert_eq!(err.exit_code(), 3, "{msg}");
+        assert!(
+            msg.contains("node 5 of contact condition 1 lies")
+                && msg.contains("inside element 1 with no contact force")
+                && msg.contains("crossed the master surface"),
+            "{condition}: {msg}"
+        );
+    }
+}

@@ -5,6 +5,7 @@
 //! point ([`apply_law`]).
 
 use super::dual::{self, DVec, Dual};
+use super::geometry::bodies::Inside;
 use super::law::{self, Laws};
 use super::point::ContactPoint;
 use crate::assembly::NodalState;
@@ -55,6 +56,10 @@ pub struct SlotState {
     /// Friction history this state leaves if it is the converged one: the anchor for the next
     /// step (None: no partner, or no friction).
     pub anchor: Option<Anchor>,
+    /// The node lies inside an element of its master's body with no force holding it: it has
+    /// crossed the master surface where no partner measures it (past an end or a crease). A
+    /// converged state must have none (see [`crate::solve`]).
+    pub crossed: Option<Inside>,
 }
 
 impl SlotState {
@@ -75,6 +80,7 @@ impl SlotState {
             repeated: false,
             friction: None,
             anchor: None,
+            crossed: None,
         }
     }
 }

@@ -37,4 +37,4 @@ pub use crate::model::queries::{master_young, model_size, stiffest_young};
 pub use formulation::*;
 pub use initial::initial_warnings;
 pub use point::{ContactPoint, PointLaw};
-pub use system::ContactSystem;
+pub use system::{crossing_message, ContactSystem};

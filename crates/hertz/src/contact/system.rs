@@ -191,6 +191,42 @@ impl ContactSystem {
     }
 }
 
+/// Why a state with contact nodes that crossed their master (see [`SlotState::crossed`]) cannot
+/// be a solution, in words: the worst few nodes, their conditions and the elements they are in.
+pub fn crossing_message(model: &Model, states: &[SlotState]) -> Option<String> {
+    let mut crossed: Vec<(&SlotState, super::geometry::bodies::Inside)> = states
+        .iter()
+        .filter_map(|s| s.crossed.map(|c| (s, c)))
+        .collect();
+    if crossed.is_empty() {
+        return None;
+    }
+    crossed.sort_by(|a, b| b.1.depth.total_cmp(&a.1.depth));
+    let list: Vec<String> = crossed
+        .iter()
+        .take(4)
+        .map(|(s, c)| {
+            format!(
+                "node {} of contact condition {} lies {:.3e} inside element {}",
+                model.nodes[s.node].label, s.condition, c.depth, model.elements[c.element].label
+            )
+        })
+        .collect();
+    Some(format!(
+        "{}{} with no contact force: {} crossed the master surface where no partner holds \
+         {} (past an end of the master or a crease of a folded surface); smaller steps keep \
+         nodes from crossing, and a master that covers the whole surface they can meet holds them",
+        list.join(", "),
+        if crossed.len() > 4 {
+            format!(" (and {} more)", crossed.len() - 4)
+        } else {
+            String::new()
+        },
+        if crossed.len() > 1 { "they" } else { "it" },
+        if crossed.len() > 1 { "them" } else { "it" },
+    ))
+}
+
 impl ContactSystem {
     /// Two-pass contact: where a node a of one condition meets the other surface at (nearly) the
     /// place of a node b of it, and b meets a's surface near a, both constraints hold the same
@@ -292,6 +328,8 @@ impl ContactSystem {
             s.pressure = 0.0;
             s.repeated = true;
             s.friction = None;
+            // Held by the other's constraint (to a second-order overlap).
+            s.crossed = None;
         }
     }
 }

@@ -78,3 +78,49 @@ pub fn det_j_at_centre(shape: super::Shape, x: &[[f64; 3]]) -> f64 {
     };
     jacobian_dets(shape, x, &[centre])[0]
 }
+
+/// The reference coordinates ξ of the point `p` in an element of shape `shape` with node
+/// coordinates `x` (its isoparametric map inverted by Newton's method from the centre), or None
+/// where the map is singular or Newton does not settle (a point far outside a curved element).
+pub fn locate(shape: super::Shape, x: &[[f64; 3]], p: [f64; 3]) -> Option<[f64; 3]> {
+    let (nn, dim) = (shape.n_nodes(), shape.dim());
+    let mut n = [0.0; super::MAX_NODES];
+    let mut dn = [[0.0; 3]; super::MAX_NODES];
+    let mut xi = shape.centre();
+    for _ in 0..30 {
+        shape.eval(xi, &mut n, &mut dn);
+        let mut r = [0.0; 3];
+        let mut j = [[0.0; 3]; 3];
+        r[..dim].copy_from_slice(&p[..dim]);
+        for i in dim..3 {
+            j[i][i] = 1.0;
+        }
+        for a in 0..nn {
+            for i in 0..dim {
+                r[i] -= n[a] * x[a][i];
+                for k in 0..dim {
+                    j[i][k] += x[a][i] * dn[a][k];
+                }
+            }
+        }
+        let det = det3(&j);
+        if det.abs() < 1e-300 || !det.is_finite() {
+            return None;
+        }
+        let inv = inverse3(&j, det);
+        let mut step = [0.0; 3];
+        for (k, s) in step.iter_mut().enumerate().take(dim) {
+            *s = (0..dim).map(|i| inv[k][i] * r[i]).sum();
+        }
+        // A step longer than the reference element says only "far outside": shortened to it.
+        let len = step.iter().map(|s| s * s).sum::<f64>().sqrt();
+        let scale = (2.0 / len).min(1.0);
+        for k in 0..dim {
+            xi[k] += scale * step[k];
+        }
+        if len < 1e-12 {
+            return Some(xi);
+        }
+    }
+    None
+}

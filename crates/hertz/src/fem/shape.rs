@@ -256,6 +256,20 @@ impl Shape {
         }
     }
 
+    /// How far the reference point `xi` lies inside the reference element, in reference
+    /// coordinates: the smallest distance to a side of its parameter domain (negative outside).
+    pub fn inside_margin(self, xi: [f64; 3]) -> f64 {
+        let [x, y, z] = xi;
+        match self {
+            Shape::Line2 | Shape::Line3 => 1.0 - x.abs(),
+            Shape::Tri3 | Shape::Tri6 => x.min(y).min(1.0 - x - y),
+            Shape::Quad4 | Shape::Quad8 => (1.0 - x.abs()).min(1.0 - y.abs()),
+            Shape::Tet4 | Shape::Tet10 => x.min(y).min(z).min(1.0 - x - y - z),
+            Shape::Hexa8 | Shape::Hexa20 => (1.0 - x.abs()).min(1.0 - y.abs()).min(1.0 - z.abs()),
+            Shape::Wedge6 => x.min(y).min(1.0 - x - y).min(1.0 - z.abs()),
+        }
+    }
+
     /// Centre of the reference element.
     pub fn centre(self) -> [f64; 3] {
         match self {

@@ -957,6 +957,10 @@ impl<'a> NewtonContext<'a> {
                 prev.as_deref(),
             ));
             if check.converged && (it > 0 || check.worst == 0.0) {
+                // Equilibrium with a node across its master is no solution (a smaller step is).
+                if let Some(why) = crate::contact::crossing_message(self.asm.model, &states) {
+                    return Err(Error::Solve(why));
+                }
                 let floor = check.floor_ratio.map(|r| (r, check.penalty_floor));
                 self.accept(it, &ev, floor, states, a, info)?;
                 return Ok(true);

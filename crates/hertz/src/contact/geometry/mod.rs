@@ -2,6 +2,7 @@
 //! analytical shapes.
 //! Knows positions and normals only, no laws and no DOFs.
 
+pub mod bodies;
 pub mod edges;
 pub mod faces;
 pub mod rigid;

@@ -28,6 +28,7 @@ mod faces;
 mod rigid;
 
 use super::dual::{DVec, Dual, Jet};
+use super::geometry::bodies::{self, BodiesAt, Inside, MasterBodies};
 use super::geometry::edges::EdgeSurface;
 use super::geometry::faces::{FaceSurface, NodalNormal};
 use super::geometry::scalar::Scalar;
@@ -119,6 +120,10 @@ pub struct NodeToSegment {
     covered: std::collections::HashSet<usize>,
     /// The areas the nodes' pressures refer to.
     areas: PressureAreas,
+    /// The elements behind the master's edges and faces.
+    bodies: MasterBodies,
+    /// The master's edges and faces of each of those elements.
+    items_of: HashMap<usize, Vec<Partner>>,
 }
 
 /// The master surface at the current state: positions of its nodes, the broad phases of its
@@ -129,6 +134,7 @@ struct Current {
     normals: HashMap<usize, NodalNormal>,
     edges: BroadPhase,
     faces: BroadPhase,
+    bodies: BodiesAt,
 }
 
 impl NodeToSegment {
@@ -377,7 +383,25 @@ impl NodeToSegment {
                 _ => None,
             })
             .collect();
+        let mut items_of: HashMap<usize, Vec<Partner>> = HashMap::new();
+        for (k, e) in edges.edges.iter().enumerate() {
+            items_of
+                .entry(e.element)
+                .or_default()
+                .push(Partner::Edge(k));
+        }
+        for (k, f) in faces.faces.iter().enumerate() {
+            items_of
+                .entry(f.element)
+                .or_default()
+                .push(Partner::Face(k));
+        }
         Ok(NodeToSegment {
+            items_of,
+            bodies: MasterBodies::new(
+                (edges.edges.iter().map(|e| e.element))
+                    .chain(faces.faces.iter().map(|f| f.element)),
+            ),
             areas: PressureAreas::new(model, nodes),
             number: c.number,
             law: c.law,
@@ -437,6 +461,7 @@ impl NodeToSegment {
         Ok(Current {
             edges: BroadPhase::new(edge_boxes.iter().map(|v| (&v[..], v.len() > 2))),
             faces: BroadPhase::new(face_boxes.iter().map(|v| (&v[..], v.len() > 4))),
+            bodies: self.bodies.at(ctx.model, |n| Ok(ctx.position(n)?.0))?,
             x,
             normals,
         })
@@ -485,6 +510,74 @@ impl NodeToSegment {
         }
         self.rigid_candidates(ctx, xs, &mut out)?;
         Ok(out)
+    }
+
+    /// Where a node at `xs` lies inside the master's body (see [`bodies`]), if it does.
+    fn inside_body(&self, ctx: &Ctx, slot: &Slot, xs: [f64; 3], cur: &Current) -> Option<Inside> {
+        // How deep: the distance to the element's master edges (a quadratic one by its two
+        // chords through the mid-side node) or to the planes of its master faces.
+        let depth = |e: usize, p: [f64; 3]| {
+            let at = |n: &usize| cur.x[n];
+            self.items_of[&e]
+                .iter()
+                .map(|&item| match item {
+                    Partner::Edge(k) => {
+                        let x: Vec<[f64; 3]> = self.edges.edges[k].nodes.iter().map(at).collect();
+                        match x.len() {
+                            3 => bodies::segment_distance(p, x[0], x[2])
+                                .min(bodies::segment_distance(p, x[2], x[1])),
+                            _ => bodies::segment_distance(p, x[0], x[1]),
+                        }
+                    }
+                    Partner::Face(k) => {
+                        let f = &self.faces.faces[k];
+                        let corners: Vec<[f64; 3]> =
+                            f.nodes[..f.kind.corners()].iter().map(at).collect();
+                        bodies::plane_distance(p, &corners)
+                    }
+                    _ => f64::INFINITY,
+                })
+                .fold(f64::INFINITY, f64::min)
+        };
+        cur.bodies
+            .containing(ctx.model, &self.bodies, xs, slot.node, depth)
+    }
+
+    /// The partner of a node at `xs` whose best candidate (`best`, from `cands`) leaves it open
+    /// (a positive gap, or none): where the node lies inside the master's body it has crossed
+    /// the surface, and the nearest candidate that measures it inside (a negative gap), among
+    /// those and the edges or faces of the element it is in, holds it instead. Beside a crease
+    /// or where two master bodies meet, the nearest part of the surface can face the node from
+    /// the open side while the part it crossed is farther.
+    fn held_inside(
+        &self,
+        ctx: &Ctx,
+        slot: &Slot,
+        xs: [f64; 3],
+        cur: &Current,
+        cands: &[Candidate],
+        best: Option<Candidate>,
+    ) -> Option<Candidate> {
+        if best.is_some_and(|c| c.gap < 0.0) {
+            return best;
+        }
+        let Some(inside) = self.inside_body(ctx, slot, xs, cur) else {
+            return best;
+        };
+        let own = self.items_of[&inside.element]
+            .iter()
+            .filter_map(|&item| match item {
+                Partner::Edge(k) => self.edge_candidate(ctx.model, slot, xs, cur, k),
+                Partner::Face(k) => self.face_candidate(ctx.model, slot, xs, cur, k),
+                _ => None,
+            });
+        cands
+            .iter()
+            .copied()
+            .chain(own)
+            .filter(|c| c.inside && c.gap < 0.0)
+            .min_by(|a, b| a.gap.abs().total_cmp(&b.gap.abs()))
+            .or(best)
     }
 
     /// The contact point of a kept partner, recomputed at the current state.
@@ -595,7 +688,8 @@ impl Formulation for NodeToSegment {
                 _ => {
                     let prev = previous.map(|p| p.0);
                     let cands = self.candidates(ctx, slot, xs, &cur, prev)?;
-                    search::choose(&cands, prev, self.tie)
+                    let best = search::choose(&cands, prev, self.tie);
+                    self.held_inside(ctx, slot, xs, &cur, &cands, best)
                 }
             });
         }
@@ -655,7 +749,7 @@ impl Formulation for NodeToSegment {
                 state.gap = kin.gap.v;
                 state.weight = kin.weight.v;
             }
-            points.push(apply_law(
+            let point = apply_law(
                 ctx,
                 slot.law(self.law),
                 lambda_eqs,
@@ -663,7 +757,11 @@ impl Formulation for NodeToSegment {
                 &kin,
                 areas[k],
                 &mut state,
-            ));
+            );
+            if !state.active {
+                state.crossed = self.inside_body(ctx, slot, state.x, &cur);
+            }
+            points.push(point);
             states.push(state);
         }
         if self.areas.has_curved() {
