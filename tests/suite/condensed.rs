@@ -169,3 +169,157 @@ fn condensed_frictional_penalty_step_equals_direct_factorization() {
 fn condensed_frictional_multiplier_step_equals_direct_factorization() {
     compare(true, true);
 }
+
+/// Two blocks, the lower held at its base, the upper held by contact alone: its top nodes are
+/// `SlaveNode`s of one master node that carries the load, held sideways (`sideways` false) or
+/// free and pushed sideways as well (true). Plane strain, non-matching meshes (`n` lower
+/// elements along the interface), Young's moduli `young` (lower) and `ratio` times it (upper).
+fn tied_blocks(young: f64, ratio: f64, n: usize, condition: &str, sideways: bool) -> String {
+    let mut nodes: Vec<[f64; 2]> = Vec::new();
+    let mut grid = |nx: usize, y0: f64| -> Vec<Vec<usize>> {
+        (0..=2)
+            .map(|j| {
+                (0..=nx)
+                    .map(|i| {
+                        nodes.push([-1.0 + 2.0 * i as f64 / nx as f64, y0 + 0.25 * j as f64]);
+                        nodes.len()
+                    })
+                    .collect()
+            })
+            .collect()
+    };
+    let low = grid(n, -0.5);
+    let up = grid(2 * n / 3 + 1, 0.0);
+    let master = nodes.len() + 1;
+    let mut elements = Vec::new();
+    for (g, mat) in [(&low, 1), (&up, 2)] {
+        for j in 0..2 {
+            for i in 0..g[0].len() - 1 {
+                elements.push(format!(
+                    "Quad1PlaneStrain {} nodes 4 {} {} {} {} crossSect {mat} mat {mat}",
+                    elements.len() + 1,
+                    g[j][i],
+                    g[j][i + 1],
+                    g[j + 1][i + 1],
+                    g[j + 1][i]
+                ));
+            }
+        }
+    }
+    let top: std::collections::HashSet<usize> = up[2].iter().copied().collect();
+    let records: Vec<String> = nodes
+        .iter()
+        .enumerate()
+        .map(|(k, x)| {
+            if top.contains(&(k + 1)) {
+                format!(
+                    "SlaveNode {} coords 2 {} {} masterDofMan 1 {master} doftype 2 2 2",
+                    k + 1,
+                    x[0],
+                    x[1]
+                )
+            } else {
+                format!("node {} coords 2 {} {}", k + 1, x[0], x[1])
+            }
+        })
+        .collect();
+    let list = |v: &[usize]| {
+        let s: Vec<String> = v.iter().map(|x| x.to_string()).collect();
+        format!("{} {}", v.len(), s.join(" "))
+    };
+    let faces = |first: usize, count: usize, edge: usize| {
+        let s: Vec<String> = (first..first + count)
+            .map(|e| format!("{e} {edge}"))
+            .collect();
+        format!("{} {}", 2 * count, s.join(" "))
+    };
+    let nu = up[0].len() - 1;
+    let (load, hold) = if sideways {
+        ("0.5 -1", "set 1")
+    } else {
+        ("0 -1", "set 2")
+    };
+    format!(
+        "m.out\ntied blocks\nNonLinearStatic nsteps 2 controlmode 1 rtolf 1e-8\n\
+         domain PlaneStrain\nOutputManager\n\
+         ndofman {} nelem {} ncrosssect 2 nmat 2 nbc 4 nic 0 nltf 1 nset 5 ncontactseg 2\n\
+         {}\nnode {master} coords 2 0 0.5\n{}\n\
+         linear2delementedgecontactsegment 1 edgeset 3\n\
+         linear2delementedgecontactsegment 2 edgeset 4\n\
+         SimpleCS 1 thick 1\nSimpleCS 2 thick 1\n\
+         IsoLE 1 d 0 E {young} n 0.3 tAlpha 0\nIsoLE 2 d 0 E {} n 0.3 tAlpha 0\n\
+         BoundaryCondition 1 loadTimeFunction 1 dofs 2 1 2 values 2 0 0 set 1\n\
+         NodalLoad 2 loadTimeFunction 1 dofs 2 1 2 Components 2 {load} set 2\n\
+         {}\n\
+         BoundaryCondition 4 loadTimeFunction 1 dofs 1 1 values 1 0 {hold}\n\
+         PiecewiseLinFunction 1 npoints 3 t 3 0 1 2 f(t) 3 0 1 2\n\
+         Set 1 nodes {}\nSet 2 nodes 1 {master}\nSet 3 elementboundaries {}\n\
+         Set 4 elementboundaries {}\nSet 5 nodes {}\n",
+        nodes.len() + 1,
+        elements.len(),
+        records.join("\n"),
+        elements.join("\n"),
+        young * ratio,
+        condition,
+        list(&low[0]),
+        faces(n + 1, n, 3),
+        faces(2 * n + 1, nu, 1),
+        list(&up[0]),
+    )
+}
+
+/// A body that contact alone holds is no mechanism where its load is along the contact's
+/// normal: its step solves whatever the bodies' moduli and their ratio (the dense system's
+/// multiplier rows are scaled by areas, its displacement rows by stiffnesses: with E = 10⁶ a
+/// vanishing pivot read as a mechanism before, the scale-free test does not), and the contact
+/// carries the load exactly. Its twin pushed sideways on frictionless contact is a mechanism,
+/// and is reported as one, at a DOF 1 (sideways).
+#[test]
+fn a_body_held_by_contact_alone_is_a_mechanism_only_where_its_load_drives_one() {
+    let conditions = [
+        "s2slagrangianmultipliercontact 3 loadTimeFunction 1 slavesegment 2 segmentset 1 1",
+        "n2slagrangianmultipliercontact 3 loadTimeFunction 1 slaveset 5 segmentset 1 1",
+        "s2spenaltycontact 3 loadTimeFunction 1 slavesegment 2 segmentset 1 1",
+    ];
+    for young in [1.0, 1e6, 1e12] {
+        for ratio in [1.0, 1e4] {
+            for n in [4, 16] {
+                for condition in conditions {
+                    let case = format!("E {young} ratio {ratio} n {n}: {condition}");
+                    let text = tied_blocks(young, ratio, n, condition, false);
+                    let model = crate::common::model_from_text(&text).unwrap();
+                    let mut last = (0.0, 0);
+                    hertz::solve::run_analysis(&model, &crate::common::quiet(), |r| {
+                        let force: f64 = r.contact.iter().map(|s| s.force).sum();
+                        assert!(
+                            r.info.iterations <= 6,
+                            "{case}: {} iterations",
+                            r.info.iterations
+                        );
+                        last = (force, r.step);
+                        Ok(())
+                    })
+                    .unwrap_or_else(|e| panic!("{case}: {e}"));
+                    assert_eq!(last.1, 2, "{case}");
+                    assert!(
+                        (last.0 - 1.0).abs() < 1e-7,
+                        "{case}: contact force {}",
+                        last.0
+                    );
+                    let text = tied_blocks(young, ratio, n, condition, true);
+                    let model = crate::common::model_from_text(&text).unwrap();
+                    let err =
+                        hertz::solve::run_analysis(&model, &crate::common::quiet(), |_| Ok(()))
+                            .unwrap_err()
+                            .to_string();
+                    assert!(
+                        err.contains(
+                            "the tangent with the contact's stiffness is singular at node"
+                        ) && err.contains("DOF 1: a mechanism"),
+                        "{case}: {err}"
+                    );
+                }
+            }
+        }
+    }
+}

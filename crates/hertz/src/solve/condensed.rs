@@ -471,12 +471,18 @@ impl CondensedContact {
             let w_a = Mat::<f64>::from_fn(na, 1, |i, _| w_c[a[i]]);
             let mut x = &s_a * &w_a;
             let sys = &s_a + c;
-            let lu = sys.as_ref().partial_piv_lu();
             if check {
+                // Tested equilibrated: displacement and multiplier rows differ in scale by the
+                // stiffness over a node's area (a stiff body's mortar multipliers: 10¹⁹), which
+                // must not read as a vanishing pivot, a mechanism.
+                let (rows, cols) = equilibrate(sys.as_ref());
+                let scaled = Mat::<f64>::from_fn(na, na, |i, j| rows[i] * sys[(i, j)] * cols[j]);
+                let b = Mat::<f64>::from_fn(na, 1, |i, _| rows[i] * x[(i, 0)]);
+                let lu = scaled.as_ref().partial_piv_lu();
                 mechanism =
-                    driven_mechanism(sys.as_ref(), lu.U(), x.col(0)).map(|i| self.cand[a[i]]);
+                    driven_mechanism(scaled.as_ref(), lu.U(), b.col(0)).map(|i| self.cand[a[i]]);
             }
-            lu.solve_in_place(x.as_mut());
+            sys.as_ref().partial_piv_lu().solve_in_place(x.as_mut());
             let diff = Mat::<f64>::from_fn(na, 1, |i, _| w_a[(i, 0)] - x[(i, 0)]);
             let f = &s_a * &diff;
             for i in 0..na {
@@ -561,6 +567,37 @@ fn mechanism_error(at: &str) -> Error {
          equilibrium exists; restrain that motion (a support, a symmetry condition, \
          friction) or lower the tangential load"
     ))
+}
+
+/// Row and column scales (r, c) that make every row and column of diag(r) `m` diag(c) have
+/// its largest entry near 1 (Ruiz's equilibration, a few sweeps; powers of two, so the scaling
+/// itself is exact). An empty row or column keeps the scale 1.
+fn equilibrate(m: faer::MatRef<'_, f64>) -> (Vec<f64>, Vec<f64>) {
+    let n = m.nrows();
+    let (mut r, mut c) = (vec![1.0; n], vec![1.0; n]);
+    let pow2 = |x: f64| {
+        if x > 0.0 && x.is_finite() {
+            x.log2().round().exp2()
+        } else {
+            1.0
+        }
+    };
+    for _ in 0..8 {
+        let mut row_max = vec![0.0f64; n];
+        let mut col_max = vec![0.0f64; n];
+        for j in 0..n {
+            for i in 0..n {
+                let v = (r[i] * m[(i, j)] * c[j]).abs();
+                row_max[i] = row_max[i].max(v);
+                col_max[j] = col_max[j].max(v);
+            }
+        }
+        for i in 0..n {
+            r[i] *= pow2(1.0 / row_max[i].sqrt());
+            c[i] *= pow2(1.0 / col_max[i].sqrt());
+        }
+    }
+    (r, c)
 }
 
 /// Relative size of a pivot below which a dense contact system counts as singular.

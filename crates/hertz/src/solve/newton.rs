@@ -116,14 +116,20 @@ fn since(t: Instant) -> f64 {
     t.elapsed().as_secs_f64()
 }
 
-/// A free equation by its node and DOF (for messages).
+/// A free equation by its node and DOF (for messages): a node's own, before a `SlaveNode`
+/// that shares it.
 fn describe_eq(model: &crate::model::Model, dofs: &DofMap, eq: usize) -> String {
-    for (n, list) in dofs.node_dofs.iter().enumerate() {
-        if let Some((d, _)) = list.iter().find(|(_, c)| *c == eq) {
-            return format!("node {} DOF {d}", model.nodes[n].label);
-        }
-    }
-    format!("multiplier equation {eq}")
+    let owner = |slaves: bool| {
+        dofs.node_dofs.iter().enumerate().find_map(|(n, list)| {
+            (model.nodes[n].slave.is_some() == slaves)
+                .then(|| list.iter().find(|(_, c)| *c == eq))
+                .flatten()
+                .map(|(d, _)| format!("node {} DOF {d}", model.nodes[n].label))
+        })
+    };
+    owner(false)
+        .or_else(|| owner(true))
+        .unwrap_or_else(|| format!("multiplier equation {eq}"))
 }
 
 impl<'a> NewtonContext<'a> {
