@@ -607,3 +607,54 @@ fn an_analysis_stops_where_a_node_crosses_its_master_unheld() {
         );
     }
 }
+
+/// A node may be in two conditions against different masters: a block pushed into the corner
+/// of a rigid floor and wall, its corner node a contact node of both (the floor's condition
+/// with the bottom nodes, the wall's with the left ones). Each condition carries its whole
+/// share: the floor the load's y component, the wall its x component (to the Newton
+/// tolerance), penalty and multipliers.
+#[test]
+fn a_corner_node_against_a_floor_and_a_wall_is_held_by_both() {
+    for law in ["n2spenaltycontact", "n2slagrangianmultipliercontact"] {
+        let penalty = if law == "n2spenaltycontact" {
+            " penalty 1e5"
+        } else {
+            ""
+        };
+        let text = format!(
+            "c.out\ncorner\nNonLinearStatic nsteps 1 controlmode 1 rtolf 1e-10\n\
+             domain PlaneStrain\nOutputManager\n\
+             ndofman 9 nelem 4 ncrosssect 1 nmat 1 nbc 3 nic 0 nltf 1 nset 2 ncontactseg 2\n\
+             node 1 coords 2 0 0\nnode 2 coords 2 0.5 0\nnode 3 coords 2 1 0\n\
+             node 4 coords 2 0 0.5\nnode 5 coords 2 0.5 0.5\nnode 6 coords 2 1 0.5\n\
+             node 7 coords 2 0 1\nnode 8 coords 2 0.5 1\nnode 9 coords 2 1 1\n\
+             Quad1PlaneStrain 1 nodes 4 1 2 5 4\nQuad1PlaneStrain 2 nodes 4 2 3 6 5\n\
+             Quad1PlaneStrain 3 nodes 4 4 5 8 7\nQuad1PlaneStrain 4 nodes 4 5 6 9 8\n\
+             planecontactsegment 1 point 2 0 0 normal 2 0 1\n\
+             planecontactsegment 2 point 2 0 0 normal 2 1 0\n\
+             SimpleCS 1 thick 1 material 1 set 1\nIsoLE 1 d 0 E 100 n 0.3 tAlpha 0\n\
+             NodalLoad 1 loadTimeFunction 1 dofs 2 1 2 Components 2 -1 -2 set 2\n\
+             {law} 2 loadTimeFunction 1{penalty} nodeset 3 1 2 3 segmentset 1 1\n\
+             {law} 3 loadTimeFunction 1{penalty} nodeset 3 1 4 7 segmentset 1 2\n\
+             ConstantFunction 1 f(t) 1\nSet 1 allelements\nSet 2 nodes 1 9\n",
+        );
+        let model = common::model_from_text(&text).unwrap_or_else(|e| panic!("{law}: {e}"));
+        let (states, _) = common::solve_model(&model);
+        let by = |c: usize| -> f64 {
+            states
+                .iter()
+                .filter(|s| s.condition == c)
+                .map(|s| s.force)
+                .sum()
+        };
+        assert!((by(2) - 2.0).abs() < 1e-8, "{law}: floor {}", by(2));
+        assert!((by(3) - 1.0).abs() < 1e-8, "{law}: wall {}", by(3));
+        let corner: Vec<f64> = states
+            .iter()
+            .filter(|s| s.node == 0)
+            .map(|s| s.force)
+            .collect();
+        assert_eq!(corner.len(), 2, "{law}");
+        assert!(corner.iter().all(|&f| f > 0.0), "{law}: {corner:?}");
+    }
+}

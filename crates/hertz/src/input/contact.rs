@@ -4,9 +4,10 @@
 use super::record::Record;
 use crate::error::{Error, Result, Span};
 use crate::model::{
-    ContactCondition, ContactLaw, ContactSegment, Element, Friction, Pairing, SegmentKind, Set,
+    ContactCondition, ContactLaw, ContactSegment, Element, Friction, Node, Pairing, SegmentKind,
+    Set,
 };
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// Contact condition record keywords.
 pub const CONDITION_KEYWORDS: [&str; 6] = [
@@ -369,6 +370,7 @@ pub fn resolve(
     segs: Vec<PendingSegment>,
     conds: Vec<PendingCondition>,
     sets: &[Set],
+    nodes: &[Node],
     elements: &[Element],
 ) -> Result<(Vec<ContactSegment>, Vec<ContactCondition>)> {
     let mut segments = Vec::with_capacity(segs.len());
@@ -454,6 +456,16 @@ pub fn resolve(
                     Some(k) if sets[k - 1].nodes.is_empty() => {
                         return Err(err(&c.span, format!("set {k} (`slaveset`) has no nodes")))
                     }
+                    // A node the set gives twice, as one listed twice in `nodeset`.
+                    Some(k) if !sets[k - 1].repeated.is_empty() => {
+                        return Err(err(
+                            &c.span,
+                            format!(
+                                "node {} is listed twice in set {k} (`slaveset`)",
+                                nodes[sets[k - 1].repeated[0]].label
+                            ),
+                        ))
+                    }
                     Some(k) => sets[k - 1].nodes.clone(),
                     None => c.nodes,
                 };
@@ -476,4 +488,128 @@ pub fn resolve(
         });
     }
     Ok((segments, contacts))
+}
+
+/// What a contact node is held against: a rigid segment, an element side (by its sorted nodes,
+/// whichever element or segment names it), or a node-to-node partner.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+enum Master {
+    Rigid(usize),
+    Side(Vec<usize>),
+    Node(usize),
+}
+
+/// The element sides (sorted node lists) of an edge or face segment, none for a rigid one.
+fn sides(segment: &ContactSegment, elements: &[Element]) -> Vec<Vec<usize>> {
+    let (list, edges) = match &segment.kind {
+        SegmentKind::Edges { edges } => (edges, true),
+        SegmentKind::Faces { faces } => (faces, false),
+        _ => return Vec::new(),
+    };
+    list.iter()
+        .map(|&(e, b)| {
+            let el = &elements[e];
+            let shape = el.etype.shape();
+            let local = if edges && shape.dim() == 3 {
+                shape.edges()[b - 1]
+            } else {
+                shape.boundaries()[b - 1]
+            };
+            let mut n: Vec<usize> = local.iter().map(|&a| el.nodes[a]).collect();
+            n.sort_unstable();
+            n
+        })
+        .collect()
+}
+
+/// A node may be a contact node of two conditions only against different masters (a corner
+/// against a floor and a wall): two that hold it against the same element side, rigid segment
+/// or partner node repeat one constraint and split its force between them, each reporting a
+/// part. That is an input error naming the node and both records.
+pub fn check_one_condition_per_node(
+    nodes: &[Node],
+    elements: &[Element],
+    segments: &[ContactSegment],
+    contacts: &[ContactCondition],
+) -> Result<()> {
+    let masters_of = |list: &[usize]| -> HashSet<Master> {
+        list.iter()
+            .flat_map(|&g| {
+                let s = sides(&segments[g], elements);
+                if s.is_empty() {
+                    vec![Master::Rigid(g)]
+                } else {
+                    s.into_iter().map(Master::Side).collect()
+                }
+            })
+            .collect()
+    };
+    // Per condition: each contact node with the masters it can meet.
+    let held: Vec<HashMap<usize, HashSet<Master>>> = contacts
+        .iter()
+        .map(|c| match &c.pairing {
+            Pairing::NodeToNode { pairs } => pairs
+                .iter()
+                .map(|&(m, s)| (s, HashSet::from([Master::Node(m)])))
+                .collect(),
+            Pairing::NodeToSegment { nodes, segments } => {
+                let masters = masters_of(segments);
+                nodes.iter().map(|&n| (n, masters.clone())).collect()
+            }
+            Pairing::Mortar {
+                slave,
+                segments: list,
+            } => {
+                let masters = masters_of(list);
+                sides(&segments[*slave], elements)
+                    .into_iter()
+                    .flatten()
+                    .map(|n| (n, masters.clone()))
+                    .collect()
+            }
+        })
+        .collect();
+    for (j, later) in contacts.iter().enumerate() {
+        for (i, earlier) in contacts[..j].iter().enumerate() {
+            let mut shared: Vec<(usize, &Master)> = held[j]
+                .iter()
+                .filter_map(|(n, mj)| {
+                    let mi = held[i].get(n)?;
+                    mj.iter().find(|m| mi.contains(m)).map(|m| (*n, m))
+                })
+                .collect();
+            shared.sort_by_key(|&(n, _)| nodes[n].label);
+            let Some(&(n, master)) = shared.first() else {
+                continue;
+            };
+            let what = match master {
+                Master::Rigid(g) => format!("rigid segment {}", segments[*g].number),
+                Master::Side(side) => format!(
+                    "the element side of nodes {}",
+                    side.iter()
+                        .map(|&a| nodes[a].label.to_string())
+                        .collect::<Vec<_>>()
+                        .join(" ")
+                ),
+                Master::Node(m) => format!("node {}", nodes[*m].label),
+            };
+            return Err(err(
+                &later.span,
+                format!(
+                    "node {} is a contact node of conditions {} and {}{}, which both hold it \
+                     against {what}: its contact force would be split between them, each \
+                     reporting a part; keep it in one of them",
+                    nodes[n].label,
+                    earlier.number,
+                    later.number,
+                    if shared.len() > 1 {
+                        format!(" (and {} more nodes)", shared.len() - 1)
+                    } else {
+                        String::new()
+                    }
+                ),
+            ));
+        }
+    }
+    Ok(())
 }

@@ -376,8 +376,13 @@ fn model_from_lines(
     check_loads_act(&loads, &dirichlet, &sets, &model_elements)?;
 
     check_geometry(&elements_ref_nodes(&nodes), &model_elements)?;
-    let (mut segments, mut contacts) =
-        super::contact::resolve(pending_segments, pending_contacts, &sets, &model_elements)?;
+    let (mut segments, mut contacts) = super::contact::resolve(
+        pending_segments,
+        pending_contacts,
+        &sets,
+        &nodes,
+        &model_elements,
+    )?;
     let (upstream_segments, upstream_contacts) = super::upstream::resolve(
         pending_penalty_bcs,
         &surfaces,
@@ -388,6 +393,7 @@ fn model_from_lines(
     )?;
     segments.extend(upstream_segments);
     contacts.extend(upstream_contacts);
+    super::contact::check_one_condition_per_node(&nodes, &model_elements, &segments, &contacts)?;
     c.warnings.extend(interior_boundary_warnings(
         &model_elements,
         &loads,
@@ -1534,6 +1540,17 @@ fn read_sets(c: &mut Cursor, nset: usize, refs: &Refs) -> Result<Vec<Set>> {
             .into_iter()
             .map(node)
             .collect::<Result<_>>()?;
+        let repeated: Vec<usize> = {
+            let mut given: Vec<usize> = explicit.iter().chain(&ranges).copied().collect();
+            given.sort_unstable();
+            let mut twice: Vec<usize> = given
+                .windows(2)
+                .filter(|w| w[0] == w[1])
+                .map(|w| w[0])
+                .collect();
+            twice.dedup();
+            twice
+        };
         // Contact elements (upstream OOFEM) are listed apart from the bulk elements.
         let listed = r.opt_int_array("elements")?.unwrap_or_default();
         let contact_elements: Vec<usize> = listed
@@ -1596,6 +1613,7 @@ fn read_sets(c: &mut Cursor, nset: usize, refs: &Refs) -> Result<Vec<Set>> {
                 edges,
                 surfaces,
                 contact_elements,
+                repeated,
             },
         )?;
         // `nodes 1 2 3 4` (the count forgotten) reads one node, 2: numbers that no count covers

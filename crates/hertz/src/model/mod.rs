@@ -542,6 +542,9 @@ pub struct Set {
     pub surfaces: Vec<(usize, usize)>,
     /// Upstream OOFEM contact elements listed in `elements` (indices into the model's).
     pub contact_elements: Vec<usize>,
+    /// Nodes its `nodes` and `noderanges` give more than once (a contact condition refuses them
+    /// as it refuses a node listed twice in its own `nodeset`).
+    pub repeated: Vec<usize>,
 }
 
 /// The whole problem.
