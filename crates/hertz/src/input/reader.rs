@@ -419,6 +419,8 @@ fn model_from_lines(
         contacts,
     };
     warn_early_function_times(&model, c.warnings);
+    c.warnings
+        .extend(crate::model::advice::locking_warnings(&model));
     Ok(ReadResult {
         model,
         warnings: Vec::new(),

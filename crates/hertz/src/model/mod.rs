@@ -1,6 +1,7 @@
 //! The problem as read from the input: nodes, elements, sets, materials, loads, functions and the
 //! analysis settings. Indices are 0-based positions; labels are the numbers written in the file.
 
+pub mod advice;
 pub mod contact;
 pub mod functions;
 pub mod queries;
