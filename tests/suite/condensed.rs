@@ -90,7 +90,8 @@ fn compare(multipliers: bool, friction: bool) {
     let lambdas = dofs.n_free - dofs.n_lambda..dofs.n_free;
     cands.extend(lambdas.clone());
     let max = hertz::solve::condensed::MAX_CANDIDATES;
-    let mut cc = CondensedContact::new(&asm.pattern, &k_s, &cands, lambdas, max, None, &|e| {
+    let base = Box::new(FaerSolver::default());
+    let mut cc = CondensedContact::new(base, &asm.pattern, &k_s, &cands, lambdas, max, &|e| {
         e.to_string()
     })
     .unwrap()

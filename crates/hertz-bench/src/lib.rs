@@ -440,7 +440,7 @@ pub struct Contact3dFigures {
     pub contact_nodes: usize,
     pub active: usize,
     pub iterations: usize,
-    pub times: hertz::solve::stepping::PhaseTimes,
+    pub times: hertz::solve::PhaseTimes,
     /// GMRES iterations of the last linear solve (0: direct).
     pub krylov_iterations: usize,
     pub solve_s: f64,

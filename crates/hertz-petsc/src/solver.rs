@@ -4,7 +4,7 @@ use crate::ffi::*;
 use crate::Session;
 use hertz::assembly::Pattern;
 use hertz::error::{Error, Result};
-use hertz::solve::linear::{Distributed, LinearSolver, SolverStats};
+use hertz::solve::linear::{Capabilities, Distributed, LinearSolver, SolverStats};
 use std::ffi::CString;
 use std::os::raw::c_int;
 use std::ptr::null_mut;
@@ -564,6 +564,16 @@ impl Drop for PetscSolver {
 }
 
 impl LinearSolver for PetscSolver {
+    /// KSP's methods stop at a tolerance, and its fast ones for large systems (CG with GAMG)
+    /// need a positive definite matrix; it offers no Schur block of a factor.
+    fn capabilities(&self) -> Capabilities {
+        Capabilities {
+            schur_block: false,
+            iterative: true,
+            needs_definite: true,
+        }
+    }
+
     fn factorize(
         &mut self,
         pattern: &Pattern,

@@ -50,38 +50,19 @@ struct ElementInfo {
     thick: f64,
 }
 
-/// Where assembled tangent entries go: a matrix over the free equations that takes additions
-/// entry by entry. [`PatternValues`] is the values of the assembler's own sparse pattern; a
-/// distributed matrix (PETSc's `MatSetValues` with `ADD_VALUES`) is another.
-pub trait TangentSink {
-    /// Whether only entries with row ≤ col are wanted (a symmetric matrix stored as its upper
-    /// triangle).
-    fn upper_only(&self) -> bool {
-        false
-    }
-    /// Add `v` to entry (row, col) of the free equations.
-    fn add(&mut self, row: usize, col: usize, v: f64);
-}
-
 /// The tangent values on a sparse pattern (CSC, one triangle if it is symmetric).
 pub struct PatternValues<'a> {
     pub pattern: &'a Pattern,
     pub values: &'a mut [f64],
 }
 
-impl<T: TangentSink + ?Sized> TangentSink for &mut T {
-    fn upper_only(&self) -> bool {
-        (**self).upper_only()
-    }
-    fn add(&mut self, row: usize, col: usize, v: f64) {
-        (**self).add(row, col, v)
-    }
-}
-
-impl TangentSink for PatternValues<'_> {
+impl PatternValues<'_> {
+    /// Whether only entries with row ≤ col are kept (a symmetric pattern's upper triangle).
     fn upper_only(&self) -> bool {
         self.pattern.symmetric
     }
+
+    /// Add `v` to entry (row, col) of the free equations.
     #[inline]
     fn add(&mut self, row: usize, col: usize, v: f64) {
         self.values[self.pattern.position(row, col)] += v;
@@ -453,20 +434,25 @@ impl<'m> Assembler<'m> {
             }
         }
         let Some(ke) = ke else { return };
-        let values = sink.k_values.as_deref_mut().map(|values| PatternValues {
+        let mut values = sink.k_values.as_deref_mut().map(|values| PatternValues {
             pattern: &self.pattern,
             values,
         });
-        self.scatter_tangent(loc, ke, values, sink.k_fp_dup.as_deref_mut().zip(sink.dup));
+        self.scatter_tangent(
+            loc,
+            ke,
+            values.as_mut(),
+            sink.k_fp_dup.as_deref_mut().zip(sink.dup),
+        );
     }
 
     /// Add a local tangent (row-major over `loc`) to the tangent `kv` and, with prescribed
     /// increments, K_fp·Δu_p to `fp_dup`.
-    fn scatter_tangent<S: TangentSink>(
+    fn scatter_tangent(
         &self,
         loc: &[usize],
         ke: &[f64],
-        mut kv: Option<S>,
+        mut kv: Option<&mut PatternValues>,
         mut fp_dup: Option<(&mut [f64], &[f64])>,
     ) {
         let nf = self.dofs.n_free;
@@ -508,28 +494,6 @@ impl<'m> Assembler<'m> {
         for c in extra.iter().filter(|c| !c.ke.is_empty()) {
             self.scatter_tangent(&c.codes, &c.ke, Some(&mut kv), None);
         }
-    }
-
-    /// The tangent at the primary state `u` (elements, and the `extra` contributions) added
-    /// into any [`TangentSink`]: the same entries [`Assembler::evaluate`] puts on the pattern,
-    /// for a matrix that is not the assembler's own (a distributed one).
-    pub fn assemble_tangent_into(
-        &self,
-        u: &[f64],
-        extra: &[Contribution],
-        sink: &mut dyn TangentSink,
-    ) -> Result<()> {
-        let mut fe = vec![0.0; MAX_DOFS];
-        let mut ke = vec![0.0; MAX_DOFS * MAX_DOFS];
-        for (e, info) in self.elems.iter().enumerate() {
-            self.element(e, u, &mut fe, Some(&mut ke), None, None)?;
-            let loc = &self.locs[info.loc_start..info.loc_start + info.ndof];
-            self.scatter_tangent(loc, &ke[..info.ndof * info.ndof], Some(&mut *sink), None);
-        }
-        for c in extra.iter().filter(|c| !c.ke.is_empty()) {
-            self.scatter_tangent(&c.codes, &c.ke, Some(&mut *sink), None);
-        }
-        Ok(())
     }
 
     /// Add the residuals of `extra` contributions (their tangents left out) to `f_int`.

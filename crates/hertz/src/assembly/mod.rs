@@ -6,7 +6,7 @@ pub mod assembler;
 pub mod dofs;
 pub mod nodal;
 
-pub use assembler::{Assembler, Evaluation, Pattern, PatternValues, TangentSink};
+pub use assembler::{Assembler, Evaluation, Pattern, PatternValues};
 pub use dofs::{DofMap, ExtraDofs};
 pub use nodal::NodalState;
 

@@ -36,5 +36,5 @@ pub mod system;
 pub use crate::model::queries::{master_young, model_size, stiffest_young};
 pub use formulation::*;
 pub use initial::initial_warnings;
-pub use point::{ContactPoint, PointLaw};
+pub use point::{BranchRule, ContactPoint};
 pub use system::{crossing_message, ContactSystem};

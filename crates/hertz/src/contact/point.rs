@@ -25,7 +25,7 @@ use crate::assembly::Contribution;
 
 /// How a point's branch is decided.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum PointLaw {
+pub enum BranchRule {
     /// Closed while g ≤ 0.
     Penalty,
     /// Active while λ − c·(g + compliance·λ) > −c·tol; the normal multiplier is the last code,
@@ -46,7 +46,7 @@ pub struct ContactPoint {
     /// Location codes of the local displacement unknowns, then (multipliers) the equations of
     /// the friction multipliers, if any, and of the normal multiplier.
     pub codes: Vec<usize>,
-    pub law: PointLaw,
+    pub rule: BranchRule,
     /// Residual and row-major tangent of the closed/active branch, over `codes`. Empty when the
     /// point cannot close (no partner, zero weight).
     pub closed_fe: Vec<f64>,
@@ -114,9 +114,9 @@ impl ContactPoint {
         if b.closed && self.can_close() {
             return (self.closed_fe.clone(), self.closed_ke.clone());
         }
-        match self.law {
-            PointLaw::Penalty => (Vec::new(), Vec::new()),
-            PointLaw::Multiplier {
+        match self.rule {
+            BranchRule::Penalty => (Vec::new(), Vec::new()),
+            BranchRule::Multiplier {
                 lambda,
                 lambda_t,
                 tangential,
@@ -213,9 +213,9 @@ impl ContactPoint {
             return false;
         }
         let g = self.linear_gap(dq);
-        match self.law {
-            PointLaw::Penalty => g <= 0.0,
-            PointLaw::Multiplier {
+        match self.rule {
+            BranchRule::Penalty => g <= 0.0,
+            BranchRule::Multiplier {
                 lambda,
                 c,
                 compliance,

@@ -31,7 +31,7 @@
 //! closed makes the caller set the solve up again with it (`solve::newton`).
 
 use super::branches::{BranchSearch, ContactStep, OnCycle};
-use super::linear::{FaerSolver, SolverSettings};
+use super::linear::LinearSolver;
 use crate::assembly::{DofMap, Pattern};
 use crate::contact::point::Branch;
 use crate::contact::ContactPoint;
@@ -65,7 +65,8 @@ const MAX_BRANCH_UPDATES: usize = 60;
 type Guess = (usize, Vec<f64>, Vec<Branch>, Option<usize>);
 
 pub struct CondensedContact {
-    base: FaerSolver,
+    /// The structural tangent's solver, with the candidates last (a Schur-block one).
+    base: Box<dyn LinearSolver>,
     /// Position of every free equation among the candidates (usize::MAX if none).
     pos: Vec<usize>,
     /// Candidate equations, in the order of M.
@@ -86,16 +87,17 @@ type PointLocs = Vec<Vec<(usize, f64)>>;
 
 impl CondensedContact {
     /// Factorize K_s (the upper triangle `values` on the symmetric `pattern`) with the candidate
-    /// equations `candidates` (displacements and multipliers among `lambdas`) last. Ok(None)
-    /// when they are more than `max` or the factor does not have them as a trailing supernodal
-    /// block (the caller then factorizes full tangents).
+    /// equations `candidates` (displacements and multipliers among `lambdas`) last, by `base`
+    /// (a solver with [`crate::solve::linear::Capabilities::schur_block`]). Ok(None) when they
+    /// are more than `max` or the factor does not have them as a trailing block (the caller
+    /// then factorizes full tangents).
     pub fn new(
+        mut base: Box<dyn LinearSolver>,
         pattern: &Pattern,
         values: &[f64],
         candidates: &[usize],
         lambdas: std::ops::Range<usize>,
         max: usize,
-        groups: Option<Vec<usize>>,
         describe: &dyn Fn(usize) -> String,
     ) -> Result<Option<Self>> {
         let cand: Vec<usize> = candidates.to_vec();
@@ -104,11 +106,7 @@ impl CondensedContact {
         if cand.is_empty() || cand.len() > max || !pattern.symmetric {
             return Ok(None);
         }
-        let base = FaerSolver::new(SolverSettings {
-            groups,
-            last_block: Some(cand.clone()),
-            ..Default::default()
-        });
+        base.set_last_block(cand.clone());
         let shift: Vec<f64> = cand
             .iter()
             .map(|e| if lambdas.contains(e) { 1.0 } else { 0.0 })
@@ -181,6 +179,7 @@ impl CondensedContact {
         }
         // M = L₂₂⁻ᵀ L₂₂⁻¹ (the inverse from a Cholesky factor: its lower triangle, mirrored).
         let mdim = self.cand.len();
+        let l22 = Mat::<f64>::from_fn(mdim, mdim, |i, j| l22.get(i, j));
         let par = faer::get_global_parallelism();
         let mut m = Mat::<f64>::zeros(mdim, mdim);
         let mut mem = faer::dyn_stack::MemBuffer::new(

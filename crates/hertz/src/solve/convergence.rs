@@ -5,7 +5,7 @@
 //! accepted.
 
 use crate::assembly::DofMap;
-use crate::contact::{ContactPoint, PointLaw};
+use crate::contact::{BranchRule, ContactPoint};
 use crate::model::{Analysis, Model};
 
 /// A residual that no longer falls and is within this many times the round-off estimate of the
@@ -70,7 +70,7 @@ pub fn check(
     let scale = crate::contact::model_size(model);
     for p in points
         .iter()
-        .filter(|p| p.closed && p.law == PointLaw::Penalty)
+        .filter(|p| p.closed && p.rule == BranchRule::Penalty)
     {
         if p.gap == 0.0 || p.closed_fe.is_empty() {
             continue;
@@ -91,7 +91,7 @@ pub fn check(
     // x and y residuals of ε times its z forces, not of its x and y forces (which vanish).
     let multiplier_forces: f64 = points
         .iter()
-        .filter(|p| p.closed && matches!(p.law, PointLaw::Multiplier { .. }))
+        .filter(|p| p.closed && matches!(p.rule, BranchRule::Multiplier { .. }))
         .flat_map(|p| p.closed_fe.iter().map(|f| f * f))
         .sum();
     let base = (ebe.iter().sum::<f64>() + multiplier_forces) * f64::EPSILON * f64::EPSILON;

@@ -2,22 +2,26 @@
 
 pub mod branches;
 pub mod condensed;
+mod contact_step;
 pub mod convergence;
+mod equations;
 pub mod krylov;
 pub mod linear;
 pub mod multipliers;
 pub mod newton;
 pub mod ordering;
+pub mod params;
 pub mod partition;
 pub mod report;
 pub mod softening;
 pub mod stepping;
+pub mod terms;
+mod watch;
 
-pub use report::{IterationReport, Observer, Phase, Silent, StepReport};
-pub use stepping::{
-    run_analysis, run_analysis_observed, SolveParams, SolverChoice, SolverFactory, StepInfo,
-    StepResult,
-};
+pub use params::{SolveParams, SolverChoice, SolverFactory};
+pub use report::{IterationReport, Observer, Phase, PhaseTimes, Silent, StepInfo, StepReport};
+pub use stepping::{run_analysis, run_analysis_observed, StepResult};
+pub use terms::{Statics, StepTerms};
 
 use crate::assembly::DofMap;
 use crate::contact::ContactSystem;

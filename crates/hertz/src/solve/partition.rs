@@ -1,10 +1,71 @@
 //! The elements split among the processes of a distributed solve: METIS' partition of the
 //! mesh's dual graph (elements joined where they share a node), so that each process assembles a
 //! compact block of elements and the tangent's entries it sends to other processes are few.
-//! Every process computes the same partition (METIS is deterministic for the same input).
+//! Every process computes the same partition (METIS is deterministic for the same input), and
+//! the shares each assembles are summed here ([`Ranks::assemble`]).
 
+use super::linear::Distributed;
+use crate::assembly::{Assembler, Contribution, Evaluation};
 use crate::error::{Error, Result};
 use crate::model::Model;
+
+/// This process among the ones a distributed solver spans (more than one).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Ranks {
+    pub rank: usize,
+    pub size: usize,
+}
+
+impl Ranks {
+    /// The elements' internal forces (and tangent, and K_fp·Δu_p) at `u`: each process
+    /// assembles its share of the elements (the first adds `extra`), the forces are summed on
+    /// every process through `d` and the tangent stays this process's share, for the solver to
+    /// sum.
+    pub fn assemble(
+        self,
+        asm: &Assembler,
+        d: &dyn Distributed,
+        u: &[f64],
+        want_k: bool,
+        dup: Option<&[f64]>,
+        extra: &[Contribution],
+    ) -> Result<Evaluation> {
+        let share = asm.evaluate_share(u, want_k, dup, if self.rank == 0 { extra } else { &[] });
+        // An element that fails (inverts) fails on its own rank: every rank must take the same
+        // way on (a cut-back), or the others wait in the sum forever. The sum carries a flag
+        // per rank.
+        let nf = asm.dofs.n_primary();
+        let ndup = dup.map_or(0, |_| asm.dofs.n_free);
+        let mut all = vec![0.0; nf + ndup + 4 + self.size];
+        match &share {
+            Ok(ev) => {
+                all[..nf].copy_from_slice(&ev.f_int);
+                if let Some(v) = &ev.k_fp_dup {
+                    all[nf..nf + ndup].copy_from_slice(v);
+                }
+                all[nf + ndup..nf + ndup + 4].copy_from_slice(&ev.ebe);
+            }
+            Err(_) => all[nf + ndup + 4 + self.rank] = 1.0,
+        }
+        d.sum(&mut all)?;
+        let failed = all[nf + ndup + 4..].iter().position(|&f| f != 0.0);
+        let mut ev = match (share, failed) {
+            (Err(e), _) => return Err(e),
+            (Ok(_), Some(r)) => {
+                return Err(Error::Solve(format!(
+                    "an element failed on rank {r} (its message is in that rank's output)"
+                )))
+            }
+            (Ok(ev), None) => ev,
+        };
+        ev.f_int.copy_from_slice(&all[..nf]);
+        if let Some(v) = ev.k_fp_dup.as_mut() {
+            v.copy_from_slice(&all[nf..nf + ndup]);
+        }
+        ev.ebe.copy_from_slice(&all[nf + ndup..nf + ndup + 4]);
+        Ok(ev)
+    }
+}
 
 /// The part (0..parts) of each element of `model`. Contiguous blocks of the element list when
 /// there are fewer elements than parts or METIS declines (a mesh without shared nodes).

@@ -3,7 +3,7 @@
 //! implements an observer (log lines, a progress bar, `-q`/`-v`), a test records the reports, a
 //! script can forward them.
 
-use super::stepping::PhaseTimes;
+use super::linear::SolverStats;
 
 /// A phase of the work, reported as it begins (a long one is what a user waits on).
 #[derive(Debug, Clone, PartialEq)]
@@ -98,3 +98,36 @@ pub trait Observer {
 pub struct Silent;
 
 impl Observer for Silent {}
+
+/// Wall time of a step's phases, in seconds.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct PhaseTimes {
+    /// Contact search: broad phase, projections, choice of partners.
+    pub search: f64,
+    /// Contact kinematics and laws (the local residuals and tangents).
+    pub contact: f64,
+    /// Element loop: internal forces and tangents.
+    pub assembly: f64,
+    /// Sparse factorizations (with the condensed contact system's setup).
+    pub factor: f64,
+    /// Triangular solves and the condensed contact system.
+    pub solve: f64,
+}
+
+/// Diagnostics of one step.
+#[derive(Debug, Clone, Default)]
+pub struct StepInfo {
+    pub iterations: usize,
+    /// Largest relative (or absolute) force error over the DOF groups, per iteration.
+    pub residual_history: Vec<f64>,
+    pub substeps: usize,
+    pub wall_seconds: f64,
+    /// Where the step's time went.
+    pub times: PhaseTimes,
+    pub solver: SolverStats,
+    /// Things the user should know (e.g. a penalty beyond double precision).
+    pub warnings: Vec<String>,
+    /// Multipliers eliminated through their slave rows and kept, in the step's last solve with
+    /// full tangents (see [`super::multipliers`]; none when the condensed solve served).
+    pub multipliers_eliminated: (usize, usize),
+}

@@ -7,9 +7,10 @@
 //! A step that does not converge is restarted in 2, 4, … substeps (loads and prescribed values
 //! interpolated linearly); after `max_cutbacks` halvings the run stops with an error.
 
-use super::linear::{LinearSolver, SolverStats};
 use super::newton::NewtonContext;
-use super::report::{Observer, Phase, Silent, StepReport};
+use super::params::SolveParams;
+use super::report::{Observer, Phase, Silent, StepInfo, StepReport};
+use super::terms::Statics;
 use crate::assembly::DofMap;
 use crate::contact::{ContactSystem, SlotState};
 use crate::error::{Error, Result};
@@ -17,96 +18,6 @@ use crate::model::{AnalysisKind, Model};
 use crate::solid::loads::reference_contributions;
 use crate::solid::GpState;
 use std::time::Instant;
-
-/// Driver settings beyond what the input file says.
-#[derive(Debug, Clone)]
-pub struct SolveParams {
-    /// How many times a failing step may be halved.
-    pub max_cutbacks: usize,
-    /// Unknowns from which a non-symmetric tangent is solved by GMRES preconditioned with its
-    /// symmetric part instead of a sparse LU (see [`super::krylov`]).
-    pub krylov_min_unknowns: usize,
-    /// Decide contact branches on the dense condensed system when the candidates allow it (see
-    /// [`super::condensed`]); false: full tangents, the multipliers eliminated through their
-    /// slave nodes' rows (see [`super::multipliers`]), as beyond the candidates' limit.
-    pub condensed_contact: bool,
-    /// The most candidate equations the condensed step holds in its dense block (M is m × m,
-    /// its inverse m³); beyond, the nearest points' equations, half as many (see
-    /// [`super::condensed`]). None (the default): [`super::condensed::default_limit`] of the
-    /// model's unknowns, [`super::condensed::MAX_CANDIDATES`] up to 192 000 of them.
-    pub max_condensed: Option<usize>,
-    /// The linear solver of the full tangents.
-    pub solver: SolverChoice,
-}
-
-/// Which [`LinearSolver`] factorizes the full tangents.
-#[derive(Debug, Clone, Default)]
-pub enum SolverChoice {
-    /// [`FaerSolver`]: sparse direct factorizations, GMRES for large non-symmetric tangents.
-    #[default]
-    Sparse,
-    /// [`DenseLu`]: a dense LU, the reference for small models.
-    Dense,
-    /// A solver from outside the library (PETSc's KSP in the `hertz` command's `petsc`
-    /// feature), made once per analysis. It offers no trailing factor block, so the condensed
-    /// contact step falls back to full tangents with it.
-    Custom(SolverFactory),
-}
-
-/// Makes the [`LinearSolver`] of one analysis.
-#[derive(Clone)]
-pub struct SolverFactory(pub std::sync::Arc<dyn Fn() -> Box<dyn LinearSolver> + Send + Sync>);
-
-impl std::fmt::Debug for SolverFactory {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str("SolverFactory(..)")
-    }
-}
-
-impl Default for SolveParams {
-    fn default() -> Self {
-        SolveParams {
-            max_cutbacks: 5,
-            krylov_min_unknowns: super::linear::KRYLOV_MIN_UNKNOWNS,
-            condensed_contact: true,
-            max_condensed: None,
-            solver: SolverChoice::Sparse,
-        }
-    }
-}
-
-/// Wall time of a step's phases, in seconds.
-#[derive(Debug, Clone, Copy, Default)]
-pub struct PhaseTimes {
-    /// Contact search: broad phase, projections, choice of partners.
-    pub search: f64,
-    /// Contact kinematics and laws (the local residuals and tangents).
-    pub contact: f64,
-    /// Element loop: internal forces and tangents.
-    pub assembly: f64,
-    /// Sparse factorizations (with the condensed contact system's setup).
-    pub factor: f64,
-    /// Triangular solves and the condensed contact system.
-    pub solve: f64,
-}
-
-/// Diagnostics of one step.
-#[derive(Debug, Clone, Default)]
-pub struct StepInfo {
-    pub iterations: usize,
-    /// Largest relative (or absolute) force error over the DOF groups, per iteration.
-    pub residual_history: Vec<f64>,
-    pub substeps: usize,
-    pub wall_seconds: f64,
-    /// Where the step's time went.
-    pub times: PhaseTimes,
-    pub solver: SolverStats,
-    /// Things the user should know (e.g. a penalty beyond double precision).
-    pub warnings: Vec<String>,
-    /// Multipliers eliminated through their slave rows and kept, in the step's last solve with
-    /// full tangents (see [`super::multipliers`]; none when the condensed solve served).
-    pub multipliers_eliminated: (usize, usize),
-}
 
 /// The converged state after a step.
 pub struct StepResult<'a> {
@@ -329,7 +240,7 @@ fn step_with_cutbacks(
             let up_sub: Vec<f64> = (0..np)
                 .map(|i| start_u[nf + i] + alpha * (goal.prescribed[i] - start_u[nf + i]))
                 .collect();
-            match ctx.newton(u, &f_sub, &up_sub, a, info) {
+            match ctx.newton(u, (&f_sub, &up_sub), a, info, &Statics) {
                 Ok(true) => {
                     ctx.commit_substep(u)?;
                     if alpha > furthest.0 && alpha < 1.0 {

@@ -17,7 +17,7 @@ pub mod multiplier;
 pub mod penalty;
 
 use super::dual::{Dual, Jet};
-use super::point::{ContactPoint, PointLaw};
+use super::point::{BranchRule, ContactPoint};
 
 /// Kinematics of one contact point.
 pub struct PointKinematics {
@@ -97,7 +97,7 @@ impl Laws {
 /// (fe, ke) into a [`ContactPoint`].
 fn point(
     codes: Vec<usize>,
-    law: PointLaw,
+    rule: BranchRule,
     gap: &Jet,
     closed: Option<(Vec<f64>, Vec<f64>)>,
     closed_now: bool,
@@ -105,7 +105,7 @@ fn point(
     let (closed_fe, closed_ke) = closed.unwrap_or_default();
     ContactPoint {
         codes,
-        law,
+        rule,
         closed_fe,
         closed_ke,
         gap: gap.v,
@@ -120,8 +120,8 @@ pub fn normal_force(p: &ContactPoint, k: &PointKinematics, penalty: f64) -> f64 
     if !p.closed {
         return 0.0;
     }
-    match p.law {
-        PointLaw::Penalty => -penalty * k.weight.v * k.gap.v,
-        PointLaw::Multiplier { lambda, .. } => lambda,
+    match p.rule {
+        BranchRule::Penalty => -penalty * k.weight.v * k.gap.v,
+        BranchRule::Multiplier { lambda, .. } => lambda,
     }
 }

@@ -45,7 +45,7 @@
 
 use super::{point, Laws, PointKinematics, SlipKinematics};
 use crate::contact::dual::{Dual, Jet};
-use crate::contact::point::{ContactPoint, PointLaw};
+use crate::contact::point::{BranchRule, ContactPoint};
 
 /// c of a complementarity rule capped at the penalty 1/`compliance` (none: c).
 fn capped(c: f64, compliance: f64) -> f64 {
@@ -92,7 +92,7 @@ pub fn evaluate(
         Some(e) if e.v > k.gap.v => e.clone(),
         _ => k.gap.clone(),
     };
-    let law = PointLaw::Multiplier {
+    let rule = BranchRule::Multiplier {
         lambda,
         lambda_t,
         tangential: nt,
@@ -102,7 +102,7 @@ pub fn evaluate(
     };
     let counts = k.weight.v > 0.0 || (cn == 0.0 && k.past_end.is_some());
     if !counts || k.gap.v.is_nan() {
-        return (point(codes, law, &k.gap, None, false), None);
+        return (point(codes, rule, &k.gap, None, false), None);
     }
     let mut fe = vec![0.0; mm];
     let mut ke = vec![0.0; mm * mm];
@@ -157,7 +157,7 @@ pub fn evaluate(
     }
     let active = lambda - c * (h.v + cn * lambda) > -c * laws.gap_tol;
     let friction = friction.filter(|_| active);
-    (point(codes, law, &h, Some((fe, ke)), active), friction)
+    (point(codes, rule, &h, Some((fe, ke)), active), friction)
 }
 
 /// The rows C_T of the friction multipliers over (q, λ_T, λ) (m + nt + 1 unknowns), whether the

@@ -10,13 +10,13 @@
 //! multipliers' form instead (see [`super::multiplier`]).
 
 use super::{point, Laws, PointKinematics};
-use crate::contact::point::{ContactPoint, Geometric, PointLaw};
+use crate::contact::point::{BranchRule, ContactPoint, Geometric};
 
 pub fn evaluate(laws: &Laws, penalty: f64, codes: Vec<usize>, k: &PointKinematics) -> ContactPoint {
     let m = k.b.len();
     let g = &k.gap;
     if !(k.weight.v > 0.0) || g.v.is_nan() {
-        return point(codes, PointLaw::Penalty, &k.gap, None, false);
+        return point(codes, BranchRule::Penalty, &k.gap, None, false);
     }
     let v: Vec<_> = k.b.iter().map(|b| k.weight.product(b)).collect();
     let geometric = g.v < 0.0 && laws.geometric_allowed(penalty * k.weight.v * g.v, k.area);
@@ -37,7 +37,7 @@ pub fn evaluate(laws: &Laws, penalty: f64, codes: Vec<usize>, k: &PointKinematic
         penalty,
         weight: k.weight.v,
     };
-    let mut p = point(codes, PointLaw::Penalty, g, Some((fe, ke)), g.v <= 0.0);
+    let mut p = point(codes, BranchRule::Penalty, g, Some((fe, ke)), g.v <= 0.0);
     p.geometric = Some(geo);
     p
 }

@@ -210,7 +210,17 @@ impl LinearSolver for FaerSolver {
     fn reset(&mut self) {
         FaerSolver::reset(self)
     }
-    fn trailing_factor_block(&self) -> Option<(Vec<usize>, faer::Mat<f64>)> {
+    fn capabilities(&self) -> super::Capabilities {
+        super::Capabilities {
+            schur_block: true,
+            ..Default::default()
+        }
+    }
+    fn set_last_block(&mut self, eqs: Vec<usize>) {
+        self.settings.last_block = Some(eqs);
+        self.reset();
+    }
+    fn trailing_factor_block(&self) -> Option<(Vec<usize>, super::DenseMatrix)> {
         FaerSolver::trailing_factor_block(self)
     }
 }
@@ -610,7 +620,7 @@ impl FaerSolver {
     /// The trailing m × m block L₂₂ of the Cholesky factor (lower triangle, dense) and the equation
     /// at each of its positions, if the factor is supernodal and the `last_block` equations really
     /// are its last m positions. L₂₂L₂₂ᵀ is the Schur complement of the matrix on those equations.
-    pub fn trailing_factor_block(&self) -> Option<(Vec<usize>, faer::Mat<f64>)> {
+    pub fn trailing_factor_block(&self) -> Option<(Vec<usize>, super::DenseMatrix)> {
         use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
         use faer::sparse::linalg::cholesky::SymbolicCholeskyRaw;
         let last = self.settings.last_block.as_ref()?;
@@ -637,7 +647,7 @@ impl FaerSolver {
         }
         let llt = SupernodalLltRef::<usize, f64>::new(sn, values);
         let b = n - m;
-        let mut l22 = faer::Mat::<f64>::zeros(m, m);
+        let mut l22 = super::DenseMatrix::zeros(m);
         for s in 0..sn.n_supernodes() {
             let node = llt.supernode(s);
             let start = node.start();
@@ -653,10 +663,10 @@ impl FaerSolver {
                     continue;
                 }
                 for il in jl..ncols {
-                    l22[(start + il - b, j - b)] = val[(il, jl)];
+                    l22.set(start + il - b, j - b, val[(il, jl)]);
                 }
                 for (k, &r) in pattern.iter().enumerate() {
-                    l22[(r - b, j - b)] = val[(ncols + k, jl)];
+                    l22.set(r - b, j - b, val[(ncols + k, jl)]);
                 }
             }
         }

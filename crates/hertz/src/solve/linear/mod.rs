@@ -1,7 +1,8 @@
 //! Linear solvers behind one interface: analyse a pattern and factorize (or set up) values,
-//! solve in place, report what was done. The Newton driver sees only [`LinearSolver`]; the
-//! condensed contact step asks for the optional trailing Schur block and falls back to full
-//! tangents where a solver has none.
+//! solve in place, report what was done. The Newton driver sees only [`LinearSolver`] and asks
+//! each solver what it can do ([`Capabilities`]): the condensed contact step needs a Schur block,
+//! a loose solve of a branch guess pays only with an iterative solver, and a solver whose fast
+//! methods need a positive definite matrix gets the systems that are.
 //!
 //! * [`FaerSolver`] (`faer_direct`): sparse LLᵀ with a fill-reducing ordering, a regularized LDLᵀ
 //!   preconditioner, sparse LU, and GMRES preconditioned by the symmetric part from
@@ -137,8 +138,64 @@ impl Default for SolverSettings {
     }
 }
 
+/// What a solver can do beyond factorizing and solving, asked of it: nothing decides on where a
+/// solver comes from.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Capabilities {
+    /// It factorizes with the equations of [`LinearSolver::set_last_block`] last and gives the
+    /// factor's trailing block ([`LinearSolver::trailing_factor_block`]): the Schur complement
+    /// the condensed contact step is made of.
+    pub schur_block: bool,
+    /// Its solves stop at a tolerance ([`LinearSolver::set_relative_tolerance`]): the contact
+    /// branch search solves its guesses loosely and the last one again.
+    pub iterative: bool,
+    /// Its methods for large systems need a positive definite matrix (CG with a multigrid), and
+    /// its general one is a direct factorization that can meet a zero pivot where an LU with
+    /// pivoting does not: a reduced system of eliminated multipliers is given it as positive
+    /// definite where it is, and a general elimination it fails on falls back to the condensed
+    /// counterpart.
+    pub needs_definite: bool,
+}
+
+/// A dense square matrix stored column by column (a factor's trailing block: its lower
+/// triangle, zeros above).
+#[derive(Debug, Clone, PartialEq)]
+pub struct DenseMatrix {
+    n: usize,
+    values: Vec<f64>,
+}
+
+impl DenseMatrix {
+    /// The n × n zero matrix.
+    pub fn zeros(n: usize) -> DenseMatrix {
+        DenseMatrix {
+            n,
+            values: vec![0.0; n * n],
+        }
+    }
+
+    pub fn n(&self) -> usize {
+        self.n
+    }
+
+    /// Entry (i, j).
+    pub fn get(&self, i: usize, j: usize) -> f64 {
+        self.values[j * self.n + i]
+    }
+
+    /// Set entry (i, j) to `v`.
+    pub fn set(&mut self, i: usize, j: usize, v: f64) {
+        self.values[j * self.n + i] = v;
+    }
+}
+
 /// A solver for matrices that share one sparsity pattern.
 pub trait LinearSolver {
+    /// What it can do beyond factorizing and solving (none of it by default).
+    fn capabilities(&self) -> Capabilities {
+        Capabilities::default()
+    }
+
     /// Factorize (or set up) the matrix given by its values on `pattern`: the upper triangle of
     /// a symmetric pattern, or every entry of a general one. `spd`: the matrix must be positive
     /// definite (linear elasticity), so a failed Cholesky factorization is a mechanism. A
@@ -173,10 +230,15 @@ pub trait LinearSolver {
     /// factorization on other unknowns (a reduced system's).
     fn set_near_null_space(&mut self, _modes: &[Vec<f64>]) {}
 
-    /// Optional: the trailing block L₂₂ of a Cholesky factor whose last equations are
-    /// [`SolverSettings::last_block`], with the equation at each of its positions (L₂₂L₂₂ᵀ is the
-    /// Schur complement on them). The condensed contact step needs it; None: it is not offered.
-    fn trailing_factor_block(&self) -> Option<(Vec<usize>, faer::Mat<f64>)> {
+    /// With [`Capabilities::schur_block`]: eliminate the equations `eqs` last in the
+    /// factorizations to come (their symbolic analysis afresh).
+    fn set_last_block(&mut self, _eqs: Vec<usize>) {}
+
+    /// With [`Capabilities::schur_block`]: the trailing block L₂₂ of the last Cholesky factor,
+    /// whose last equations are those of [`LinearSolver::set_last_block`], with the equation at
+    /// each of its positions (L₂₂L₂₂ᵀ is the Schur complement on them); None where this
+    /// factorization has no such block (an LDLᵀ of an indefinite matrix).
+    fn trailing_factor_block(&self) -> Option<(Vec<usize>, DenseMatrix)> {
         None
     }
 

@@ -88,14 +88,15 @@ impl Method {
 
 /// The reduced system's solver, kept while its pattern stays the same.
 pub struct MultiplierElimination {
+    /// The reduced systems' solver. Where it needs positive definite matrices
+    /// ([`super::linear::Capabilities::needs_definite`]: CG with an algebraic multigrid), a
+    /// symmetric reduced system that keeps no multiplier is given it as positive definite,
+    /// with `modes` carried into the reduced unknowns as its near-null space; a solver that
+    /// does not tries Cholesky and falls back to an LDLᵀ by itself.
     solver: Box<dyn LinearSolver>,
-    /// The symmetric reduced system is factorized as positive definite (a solver from outside,
-    /// which may then take an iterative method: PETSc's CG with an algebraic multigrid), with
-    /// `modes` (the model's rigid-body motions over the full system's unknowns) carried into
-    /// the reduced unknowns as the near-null space (exactly but after a slave transform, whose
-    /// change of the quadratic faces' unknowns they do not follow: a near-null space need not be
-    /// exact). hertz's own solver tries Cholesky and falls back to an LDLᵀ by itself.
-    positive_definite: bool,
+    /// The model's rigid-body motions over the full system's unknowns (exact in the reduced
+    /// unknowns but after a slave transform, whose change of the quadratic faces' unknowns they
+    /// do not follow: a near-null space need not be exact).
     modes: Vec<Vec<f64>>,
     pattern: Option<Pattern>,
     /// Multipliers eliminated and kept in the last solve.
@@ -220,19 +221,17 @@ impl MultiplierElimination {
             krylov_min,
             ..Default::default()
         });
-        MultiplierElimination::with_solver(Box::new(solver), false, Vec::new())
+        MultiplierElimination::with_solver(Box::new(solver), Vec::new())
     }
 
-    /// The reduced systems solved by `solver`; `positive_definite` and `modes` as the fields
-    /// say.
+    /// The reduced systems solved by `solver`, with the model's rigid-body `modes` (see the
+    /// fields).
     pub fn with_solver(
         solver: Box<dyn LinearSolver>,
-        positive_definite: bool,
         modes: Vec<Vec<f64>>,
     ) -> MultiplierElimination {
         MultiplierElimination {
             solver,
-            positive_definite,
             modes,
             pattern: None,
             eliminated: 0,
@@ -240,6 +239,11 @@ impl MultiplierElimination {
             method: Method::default(),
             krylov_iterations: 0,
         }
+    }
+
+    /// Whether the reduced systems' solver needs positive definite matrices.
+    fn needs_definite(&self) -> bool {
+        self.solver.capabilities().needs_definite
     }
 
     /// The reduced system's last factorization and solve.
@@ -345,11 +349,12 @@ impl MultiplierElimination {
             return Ok(false);
         }
         match self.solve_general(&rows, rhs, groups, describe) {
-            // A solver from outside (PETSc) may fail where faer's LU pivots through: MUMPS' LU
-            // met a zero pivot on the general elimination of a 3D block sliding with friction.
+            // A solver that needs definite matrices may fail where faer's LU pivots through:
+            // MUMPS' LU met a zero pivot on the general elimination of a 3D block sliding with
+            // friction.
             // The condensed counterpart takes over (not first: on the 2D ironing example, whose
             // hardest step MUMPS solves in 10 iterations, it chattered).
-            Err(Error::Singular(why)) if self.positive_definite => {
+            Err(Error::Singular(why)) if self.needs_definite() => {
                 // The failed solver is set up afresh.
                 self.pattern = None;
                 match self.preconditioned(&rows, rhs, groups, true, describe)? {
@@ -392,7 +397,7 @@ impl MultiplierElimination {
             }
         }
         let reduced = self.pattern.as_ref().expect("set above");
-        let spd = self.positive_definite && symmetric.is_some_and(|r| r.kept_multipliers == 0);
+        let spd = self.needs_definite() && symmetric.is_some_and(|r| r.kept_multipliers == 0);
         self.solver
             .factorize(reduced, values, spd, &|k| describe(unknown(k)))
     }
@@ -448,11 +453,11 @@ impl MultiplierElimination {
         solver.set_relative_tolerance(None);
         let solved = solved?;
         match failed {
-            // A solver from outside takes the reduced system as positive definite (CG and a
-            // multigrid); in large deformation it need not be (CG stopped on an indefinite
-            // matrix at the 2D ironing example's hardest step): the caller's general
+            // A solver that needs positive definite matrices takes the reduced system as one
+            // (CG and a multigrid); in large deformation it need not be (CG stopped on an
+            // indefinite matrix at the 2D ironing example's hardest step): the caller's general
             // elimination or whole tangent (MUMPS' LU) takes over.
-            Some(Error::Solve(_) | Error::Singular(_)) if self.positive_definite => {
+            Some(Error::Solve(_) | Error::Singular(_)) if self.needs_definite() => {
                 // The failed solver is set up afresh.
                 self.pattern = None;
                 return Ok(None);
@@ -1227,6 +1232,12 @@ mod tests {
         fn reset(&mut self) {
             self.inner.reset();
         }
+        fn capabilities(&self) -> super::super::linear::Capabilities {
+            super::super::linear::Capabilities {
+                needs_definite: true,
+                ..Default::default()
+            }
+        }
     }
 
     /// [`friction_pair`] without `general`, with a solver from outside whose positive definite
@@ -1240,7 +1251,7 @@ mod tests {
             inner: FaerSolver::default(),
             spd: false,
         };
-        let mut el = MultiplierElimination::with_solver(Box::new(solver), true, Vec::new());
+        let mut el = MultiplierElimination::with_solver(Box::new(solver), Vec::new());
         let mut got = rhs.clone();
         let solved = el
             .solve(&pattern, &values, &mut got, &groups, false, &[], &|i| {
