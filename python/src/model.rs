@@ -4,7 +4,7 @@
 use crate::observer::PyObserver;
 use crate::result::{Result as PyResultObj, StepData};
 use crate::to_py_err;
-use hertz::model::{ContactLaw, MaterialLaw, Model as HModel};
+use hertz::model::{Enforcement, MaterialLaw, Model as HModel, PenaltySource};
 use hertz::solve::{run_analysis_observed, SolveParams};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
@@ -198,9 +198,10 @@ impl Model {
         let out = PyDict::new(py);
         for c in &self.model.contacts {
             let d = PyDict::new(py);
-            let (law, penalty) = match c.law {
-                ContactLaw::Penalty(p) => ("penalty", (!c.penalty_from_mesh).then_some(p)),
-                ContactLaw::Multiplier => ("multipliers", None),
+            let (law, penalty) = match c.enforcement {
+                Enforcement::Penalty(PenaltySource::Given(p)) => ("penalty", Some(p)),
+                Enforcement::Penalty(PenaltySource::FromMesh) => ("penalty", None),
+                Enforcement::Multipliers => ("multipliers", None),
             };
             d.set_item("law", law)?;
             d.set_item("penalty", penalty)?;
@@ -302,13 +303,12 @@ impl Model {
                     "penalty must be > 0, not {p}"
                 )));
             }
-            if c.law == ContactLaw::Multiplier {
+            if c.enforcement == Enforcement::Multipliers {
                 return Err(PyValueError::new_err(format!(
                     "contact condition {number} uses Lagrange multipliers: it has no penalty"
                 )));
             }
-            c.law = ContactLaw::Penalty(p);
-            c.penalty_from_mesh = false;
+            c.enforcement = Enforcement::Penalty(PenaltySource::Given(p));
         }
         if let Some(mu) = friction {
             if !(mu >= 0.0 && mu.is_finite()) {

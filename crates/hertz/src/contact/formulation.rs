@@ -11,7 +11,7 @@ use super::point::ContactPoint;
 use crate::assembly::NodalState;
 use crate::error::Result;
 use crate::model::queries::model_size;
-use crate::model::{ContactLaw, Model};
+use crate::model::Model;
 
 /// What a contact node is paired with at the current state (the contact point itself is
 /// recomputed at every evaluation).
@@ -245,6 +245,9 @@ pub trait Formulation {
     fn candidate_nodes(&self, ctx: &Ctx) -> Result<Vec<usize>>;
     /// Whether its tangent is symmetric (B = ∇g at every contact point).
     fn symmetric(&self) -> bool;
+    /// Its condition's number and the smallest and largest penalty in effect at its slots, if
+    /// it is a penalty condition (for messages: a penalty from the mesh differs per slot).
+    fn penalties(&self) -> Option<(usize, f64, f64)>;
     /// The master nodes of a partner (an edge's or a face's nodes; none for others).
     fn partner_nodes(&self, _partner: Partner) -> &[usize] {
         &[]
@@ -269,18 +272,6 @@ pub trait Formulation {
         points: &mut Vec<ContactPoint>,
         states: &mut Vec<SlotState>,
     ) -> Result<f64>;
-}
-
-/// The modulus of a penalty from the mesh: the softer of the slave's and the master's (`master`
-/// infinite for a rigid one, 0 when unknown). A stiff slave (a steel plate) on a soft master
-/// (rubber) took its own modulus before, a penalty 10⁴–10⁵ times the rubber's stiffness, and
-/// large-deformation steps inverted elements; the softer body is what the overlap strains.
-pub fn softer(slave: f64, master: f64) -> f64 {
-    if master > 0.0 {
-        slave.min(master)
-    } else {
-        slave
-    }
 }
 
 /// The weights (w_s, w_m) of the slave's and the master's reference normals in the contact
@@ -335,7 +326,7 @@ pub fn law_area(tributary: f64, model: &Model) -> f64 {
 /// any, then the normal force).
 pub fn apply_law(
     ctx: &Ctx,
-    law: ContactLaw,
+    law: law::SlotLaw,
     lambda_eqs: Option<std::ops::Range<usize>>,
     local: &Local,
     kin: &law::PointKinematics,
@@ -343,15 +334,12 @@ pub fn apply_law(
     state: &mut SlotState,
 ) -> ContactPoint {
     let codes = local.codes.clone();
-    let multipliers = law == ContactLaw::Multiplier;
+    let multipliers = law.is_multipliers();
     let (point, penalty) = match (law, lambda_eqs) {
-        (ContactLaw::Penalty(p), None) => (law::penalty::evaluate(ctx.laws, p, codes, kin), p),
+        (law::SlotLaw::Penalty(p), None) => (law::penalty::evaluate(ctx.laws, p, codes, kin), p),
         (law, Some(eqs)) => {
             // A penalty with its forces as unknowns: its compliance 1/ε.
-            let compliance = match law {
-                ContactLaw::Penalty(p) => 1.0 / p,
-                ContactLaw::Multiplier => 0.0,
-            };
+            let compliance = law.compliance();
             let lambdas = ctx.nodes.multipliers(eqs.clone());
             let free = |c| ctx.nodes.is_free(c);
             let (point, friction) =
@@ -369,7 +357,7 @@ pub fn apply_law(
             }
             (point, 0.0)
         }
-        (ContactLaw::Multiplier, None) => unreachable!("multiplier points have equations"),
+        (law::SlotLaw::Multipliers, None) => unreachable!("multiplier points have equations"),
     };
     state.force = law::normal_force(&point, kin, penalty);
     state.active = point.closed && (multipliers || kin.gap.v < 0.0);
@@ -379,4 +367,20 @@ pub fn apply_law(
         f64::NAN
     };
     point
+}
+
+/// The condition `number`'s smallest and largest penalty over `laws`, if they are penalties.
+pub fn penalty_range(
+    number: usize,
+    laws: impl Iterator<Item = law::SlotLaw>,
+) -> Option<(usize, f64, f64)> {
+    let p: Vec<f64> = laws
+        .filter(|l| !l.is_multipliers())
+        .map(|l| l.penalty())
+        .collect();
+    (!p.is_empty()).then(|| {
+        let lo = p.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = p.iter().copied().fold(0.0, f64::max);
+        (number, lo, hi)
+    })
 }

@@ -3,11 +3,11 @@
 //! The tangent is symmetric (B = ∇g) and, for the penalty, constant while closed.
 
 use super::dual::{self, Dual};
-use super::law::PointKinematics;
+use super::law::{PointKinematics, SlotLaw};
 use super::tributary::PressureAreas;
 use super::{apply_law, ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState};
 use crate::error::{Error, Result};
-use crate::model::{ContactLaw, Model, Pairing};
+use crate::model::{Model, Pairing};
 
 struct Pair {
     master: usize,
@@ -18,7 +18,8 @@ struct Pair {
 
 pub struct NodeToNode {
     number: usize,
-    law: ContactLaw,
+    /// Every pair's law (node-to-node conditions give their penalty: none from the mesh).
+    law: SlotLaw,
     pairs: Vec<Pair>,
     /// The areas the slave nodes' pressures refer to.
     areas: PressureAreas,
@@ -70,7 +71,7 @@ impl NodeToNode {
         }
         Ok(NodeToNode {
             number: c.number,
-            law: c.law,
+            law: SlotLaw::resolve(c.enforcement, f64::NAN, 1.0),
             pairs: out,
             areas: PressureAreas::new(model, &slaves),
         })
@@ -83,7 +84,7 @@ impl Formulation for NodeToNode {
     }
 
     fn n_multipliers(&self) -> usize {
-        if self.law == ContactLaw::Multiplier {
+        if self.law.is_multipliers() {
             self.pairs.len()
         } else {
             0
@@ -99,6 +100,10 @@ impl Formulation for NodeToNode {
 
     fn candidate_nodes(&self, _ctx: &Ctx) -> Result<Vec<usize>> {
         Ok(self.nodes_needing_dofs())
+    }
+
+    fn penalties(&self) -> Option<(usize, f64, f64)> {
+        super::penalty_range(self.number, std::iter::once(self.law))
     }
 
     fn symmetric(&self) -> bool {
@@ -133,7 +138,9 @@ impl Formulation for NodeToNode {
                 ),
                 super::law_area(p.area, ctx.model),
             );
-            let lambda_eqs = (self.law == ContactLaw::Multiplier)
+            let lambda_eqs = self
+                .law
+                .is_multipliers()
                 .then_some(first_lambda + k..first_lambda + k + 1);
             let mut state = SlotState {
                 partner: Partner::Node(p.master),

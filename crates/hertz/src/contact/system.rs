@@ -135,6 +135,15 @@ impl ContactSystem {
         self.laws.pressure_limit = limit;
     }
 
+    /// Every penalty condition's number and the smallest and largest penalty in effect at its
+    /// slots.
+    pub fn penalties(&self) -> Vec<(usize, f64, f64)> {
+        self.formulations
+            .iter()
+            .filter_map(|f| f.penalties())
+            .collect()
+    }
+
     /// Whether any condition has friction (whose history the solver must keep).
     pub fn has_friction(&self) -> bool {
         self.frictional

@@ -4,8 +4,8 @@
 use super::record::Record;
 use crate::error::{Error, Result, Span};
 use crate::model::{
-    ContactCondition, ContactLaw, ContactSegment, Element, Friction, Node, Pairing, SegmentKind,
-    Set,
+    ContactCondition, ContactSegment, Element, Enforcement, Friction, Node, Pairing, PenaltySource,
+    SegmentKind, Set,
 };
 use std::collections::{HashMap, HashSet};
 
@@ -41,8 +41,7 @@ pub struct PendingSegment {
 /// A condition whose sets are not resolved yet.
 pub struct PendingCondition {
     number: usize,
-    law: ContactLaw,
-    penalty_from_mesh: bool,
+    enforcement: Enforcement,
     friction: Option<Friction>,
     sets: Option<(usize, usize)>,
     nodes: Vec<usize>,
@@ -189,7 +188,7 @@ pub fn read_segment(
 /// `friction μ [pt ε_T]` of a node-to-segment or mortar penalty condition (hertz extension; `pt` as in
 /// upstream OOFEM's `structuralpenaltycontactbc`, by default the normal `penalty`), or `friction μ`
 /// of a condition with Lagrange multipliers (no penalty: the friction force is a multiplier too).
-fn read_friction(r: &Record, kw: &str, law: ContactLaw) -> Result<Option<Friction>> {
+fn read_friction(r: &Record, kw: &str, enforcement: Enforcement) -> Result<Option<Friction>> {
     let Some(mu) = r.opt_float("friction")? else {
         if r.opt_float("pt")?.is_some() {
             return Err(r.error("`pt` (the tangential penalty) needs `friction`"));
@@ -205,20 +204,20 @@ fn read_friction(r: &Record, kw: &str, law: ContactLaw) -> Result<Option<Frictio
              (n2s... and s2s... conditions), not node-to-node",
         ));
     }
-    let ContactLaw::Penalty(pn) = law else {
-        if r.opt_float("pt")?.is_some() {
-            return Err(r.error(
-                "`pt` is a tangential penalty: friction with Lagrange multipliers has none \
-                 (the friction force is a multiplier); drop `pt`, or use a penalty condition",
-            ));
+    let pt = r.opt_float("pt")?;
+    match (enforcement, pt) {
+        (Enforcement::Multipliers, Some(_)) => Err(r.error(
+            "`pt` is a tangential penalty: friction with Lagrange multipliers has none \
+             (the friction force is a multiplier); drop `pt`, or use a penalty condition",
+        )),
+        (Enforcement::Penalty(PenaltySource::FromMesh), Some(_)) => Err(r.error(
+            "`pt` without `penalty`: give both, or neither (both are then chosen from the mesh)",
+        )),
+        (_, Some(pt)) if !(pt > 0.0 && pt.is_finite()) => {
+            Err(r.error(format!("`pt` must be positive, found {pt}")))
         }
-        return Ok(Some(Friction { mu, penalty: 0.0 }));
-    };
-    let pt = r.opt_float("pt")?.unwrap_or(pn);
-    if !(pt > 0.0 && pt.is_finite()) {
-        return Err(r.error(format!("`pt` must be positive, found {pt}")));
+        (_, pt) => Ok(Some(Friction { mu, penalty: pt })),
     }
-    Ok(Some(Friction { mu, penalty: pt }))
 }
 
 /// Read a contact condition record of the BC block.
@@ -233,27 +232,22 @@ pub fn read_condition(
     let number = r.number()?;
     // Without `penalty` (hertz extension; node-to-segment and mortar) a penalty is chosen from
     // the stiffness of the elements under each contact node (`DEFAULT_PENALTY_FACTOR`).
-    let penalty_from_mesh =
+    let from_mesh =
         kw.contains("penalty") && !kw.starts_with("n2n") && r.opt_float("penalty")?.is_none();
-    let law = if penalty_from_mesh {
-        ContactLaw::Penalty(1.0)
+    let enforcement = if from_mesh {
+        Enforcement::Penalty(PenaltySource::FromMesh)
     } else if kw.contains("penalty") {
         let p = r.float("penalty")?;
         if !(p > 0.0) {
             return Err(r.error(format!("`penalty` must be positive, found {p}")));
         }
-        ContactLaw::Penalty(p)
+        Enforcement::Penalty(PenaltySource::Given(p))
     } else {
-        ContactLaw::Multiplier
+        Enforcement::Multipliers
     };
     // The tangent is always the exact one; `usetangent` is accepted for compatibility.
     r.flag("usetangent");
-    let friction = read_friction(r, &kw, law)?;
-    if penalty_from_mesh && r.opt_float("pt")?.is_some() {
-        return Err(r.error(
-            "`pt` without `penalty`: give both, or neither (both are then chosen from the mesh)",
-        ));
-    }
+    let friction = read_friction(r, &kw, enforcement)?;
     let normal = match r.opt_float_array("normal")? {
         None => None,
         Some(v) if v.len() == nsd => {
@@ -270,8 +264,7 @@ pub fn read_condition(
     };
     let mut c = PendingCondition {
         number,
-        law,
-        penalty_from_mesh,
+        enforcement,
         friction,
         sets: None,
         nodes: vec![],
@@ -477,13 +470,12 @@ pub fn resolve(
         };
         contacts.push(ContactCondition {
             number: c.number,
-            law: c.law,
+            enforcement: c.enforcement,
             friction: c.friction,
             pairing,
             normal: c.normal,
             node_weights: None,
             tributary_ramp: true,
-            penalty_from_mesh: c.penalty_from_mesh,
             span: c.span,
         });
     }

@@ -19,7 +19,8 @@
 use super::record::Record;
 use crate::error::{Error, Result, Span};
 use crate::model::{
-    ContactCondition, ContactLaw, ContactSegment, Element, Friction, Pairing, SegmentKind, Set,
+    ContactCondition, ContactSegment, Element, Enforcement, Friction, Pairing, PenaltySource,
+    SegmentKind, Set,
 };
 use std::collections::HashMap;
 
@@ -256,10 +257,10 @@ pub fn resolve(
         }
         conditions.push(ContactCondition {
             number: bc.number,
-            law: ContactLaw::Penalty(bc.pn),
+            enforcement: Enforcement::Penalty(PenaltySource::Given(bc.pn)),
             friction: (bc.mu > 0.0).then_some(Friction {
                 mu: bc.mu,
-                penalty: bc.pt,
+                penalty: Some(bc.pt),
             }),
             pairing: Pairing::NodeToSegment {
                 nodes,
@@ -268,7 +269,6 @@ pub fn resolve(
             normal: None,
             node_weights: Some(count),
             tributary_ramp: false,
-            penalty_from_mesh: false,
             span: bc.span,
         });
     }

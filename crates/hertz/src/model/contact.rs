@@ -39,22 +39,34 @@ pub struct ContactSegment {
     pub span: Span,
 }
 
-/// How the non-penetration condition is enforced.
+/// How a condition enforces non-penetration.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum ContactLaw {
-    Penalty(f64),
-    /// Lagrange multipliers: one extra unknown per contact node.
-    Multiplier,
+pub enum Enforcement {
+    /// A penalty ε: the force per length of penetration (per contact node; for mortar per unit
+    /// area, a pressure).
+    Penalty(PenaltySource),
+    /// Lagrange multipliers: one unknown per contact node (and friction's components).
+    Multipliers,
 }
 
-impl ContactLaw {
-    /// Whether a condition with this law and `friction` has its contact forces as unknowns of
-    /// the Newton system: with Lagrange multipliers, and with a penalty and friction, whose
-    /// forces are solved as multipliers with the penalty's compliance (see
+/// Where a condition's penalty comes from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PenaltySource {
+    /// `penalty p` in its record.
+    Given(f64),
+    /// None given (hertz extension): each contact node's from the stiffness of the elements
+    /// under it (`contact::law::penalty::from_mesh`, one rule for every formulation).
+    FromMesh,
+}
+
+impl Enforcement {
+    /// Whether a condition with this enforcement and `friction` has its contact forces as
+    /// unknowns of the Newton system: with Lagrange multipliers, and with a penalty and
+    /// friction, whose forces are solved as multipliers with the penalty's compliance (see
     /// `contact::law::multiplier`): the same solution, and a Newton iteration that does not
     /// carry the penalty times the gap error of each iterate into the friction force.
     pub fn forces_are_unknowns(self, friction: Option<Friction>) -> bool {
-        self == ContactLaw::Multiplier || friction.is_some()
+        self == Enforcement::Multipliers || friction.is_some()
     }
 }
 
@@ -78,16 +90,16 @@ pub enum Pairing {
 pub struct Friction {
     /// Coefficient of friction μ ≥ 0.
     pub mu: f64,
-    /// Tangential penalty ε_T (force per length of elastic slip, like `penalty`); 0 with
-    /// multipliers.
-    pub penalty: f64,
+    /// Tangential penalty ε_T (force per length of elastic slip, like `penalty`): `pt`, or
+    /// None for the normal penalty in effect (and with multipliers, which have none).
+    pub penalty: Option<f64>,
 }
 
 #[derive(Debug, Clone)]
 pub struct ContactCondition {
     /// BC record number.
     pub number: usize,
-    pub law: ContactLaw,
+    pub enforcement: Enforcement,
     /// Coulomb friction (node-to-segment and mortar penalty conditions, node-to-segment
     /// multiplier conditions).
     pub friction: Option<Friction>,
@@ -102,8 +114,5 @@ pub struct ContactCondition {
     /// default), or within 1 % of the boundary edge (upstream OOFEM input, whose slave points must
     /// project onto the master).
     pub tributary_ramp: bool,
-    /// No `penalty` given: each node's comes from the stiffness of the elements under it (the
-    /// law's penalty is then 1, times the node's weight).
-    pub penalty_from_mesh: bool,
     pub span: Span,
 }

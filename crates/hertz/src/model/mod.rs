@@ -5,7 +5,9 @@ pub mod advice;
 pub mod contact;
 pub mod functions;
 pub mod queries;
-pub use contact::{ContactCondition, ContactLaw, ContactSegment, Friction, Pairing, SegmentKind};
+pub use contact::{
+    ContactCondition, ContactSegment, Enforcement, Friction, Pairing, PenaltySource, SegmentKind,
+};
 pub use functions::TimeFunction;
 
 use crate::error::Span;

@@ -162,18 +162,21 @@ pub fn precision_warning(ratio: f64, rtolf: f64) -> String {
 }
 
 /// The warning for penalty forces whose round-off exceeds the tolerance, with the penalty each
-/// penalty condition could have to stay within it.
-pub fn penalty_warning(model: &crate::model::Model, ratio: f64, rtolf: f64) -> String {
-    let suggestions: Vec<String> = model
-        .contacts
+/// penalty condition has in effect (`penalties`: its number, its smallest and largest over its
+/// slots) and the most it could have to stay within it.
+pub fn penalty_warning(penalties: &[(usize, f64, f64)], ratio: f64, rtolf: f64) -> String {
+    let suggestions: Vec<String> = penalties
         .iter()
-        .filter_map(|c| match c.law {
-            crate::model::ContactLaw::Penalty(p) => Some(format!(
-                "condition {}: penalty {p:.0e}, suggested at most {:.0e}",
-                c.number,
-                p / ratio
-            )),
-            _ => None,
+        .map(|&(number, lo, hi)| {
+            let effect = if lo == hi {
+                format!("penalty {hi:.0e}")
+            } else {
+                format!("penalties {lo:.0e} to {hi:.0e}")
+            };
+            format!(
+                "condition {number}: {effect}, suggested at most {:.0e}",
+                hi / ratio
+            )
         })
         .collect();
     format!(

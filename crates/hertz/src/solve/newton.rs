@@ -497,7 +497,7 @@ impl<'a> NewtonContext<'a> {
         }
         if let Some((r, penalty)) = floor.filter(|_| !self.watch.floor_warned) {
             let w = if penalty {
-                penalty_warning(self.eq.model(), r, a.rtolf)
+                penalty_warning(&self.eq.contact.penalties(), r, a.rtolf)
             } else {
                 precision_warning(r, a.rtolf)
             };

@@ -16,8 +16,73 @@
 pub mod multiplier;
 pub mod penalty;
 
+use crate::model::{Enforcement, Friction, PenaltySource};
+
 use super::dual::{Dual, Jet};
 use super::point::{BranchRule, ContactPoint};
+
+/// A condition's enforcement at one contact slot, its penalty resolved there: what the
+/// formulations ask of a law, through these methods (a new law is a variant here and its file).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SlotLaw {
+    /// The penalty ε in effect at the slot (force per penetration; per unit area for mortar).
+    Penalty(f64),
+    Multipliers,
+}
+
+impl SlotLaw {
+    /// `enforcement` at a slot whose penalty from the mesh is `mesh` (see
+    /// [`penalty::from_mesh`]), the penalties weighted by `weight` (upstream OOFEM's count of a
+    /// node's slave elements, else 1).
+    pub fn resolve(enforcement: Enforcement, mesh: f64, weight: f64) -> SlotLaw {
+        match enforcement {
+            Enforcement::Penalty(PenaltySource::Given(p)) => SlotLaw::Penalty(p * weight),
+            Enforcement::Penalty(PenaltySource::FromMesh) => SlotLaw::Penalty(mesh * weight),
+            Enforcement::Multipliers => SlotLaw::Multipliers,
+        }
+    }
+
+    /// The penalty in effect, 0 for multipliers.
+    pub fn penalty(self) -> f64 {
+        match self {
+            SlotLaw::Penalty(p) => p,
+            SlotLaw::Multipliers => 0.0,
+        }
+    }
+
+    /// The compliance 1/ε of the force in the multipliers' rows (a penalty with its forces as
+    /// unknowns), 0 for a hard constraint.
+    pub fn compliance(self) -> f64 {
+        match self {
+            SlotLaw::Penalty(p) => 1.0 / p,
+            SlotLaw::Multipliers => 0.0,
+        }
+    }
+
+    pub fn is_multipliers(self) -> bool {
+        self == SlotLaw::Multipliers
+    }
+
+    /// The slot's friction: μ and its tangential penalty ε_T (`pt` weighted as the normal one,
+    /// or the normal penalty in effect; 0 with multipliers).
+    pub fn friction(self, friction: Friction, weight: f64) -> SlotFriction {
+        SlotFriction {
+            mu: friction.mu,
+            penalty: match self {
+                SlotLaw::Penalty(p) => friction.penalty.map_or(p, |pt| pt * weight),
+                SlotLaw::Multipliers => 0.0,
+            },
+        }
+    }
+}
+
+/// Coulomb friction at one slot: μ and the tangential penalty ε_T in effect (0 with
+/// multipliers).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SlotFriction {
+    pub mu: f64,
+    pub penalty: f64,
+}
 
 /// Kinematics of one contact point.
 pub struct PointKinematics {

@@ -12,6 +12,31 @@
 use super::{point, Laws, PointKinematics};
 use crate::contact::point::{BranchRule, ContactPoint, Geometric};
 
+/// The factor of [`from_mesh`]: the penalty is this many times the stiffness of the softer body
+/// under a contact slot, overlaps of 10⁻³ of its strain.
+pub const FROM_MESH_FACTOR: f64 = 1e3;
+
+/// The penalty a slot takes from the mesh where its condition gives none, one rule for every
+/// formulation: [`FROM_MESH_FACTOR`] times E·A/h, E the softer of the slave's modulus at the
+/// slot (`slave`, the stiffest element there) and the master's (`master`, infinite for a rigid
+/// one), h the distance to the slot's neighbours on its surface (the size of its facets) and A
+/// its tributary area for a force per penetration (node-to-segment), 1 for a pressure
+/// (mortar): `area_per_h` = A/h.
+pub fn from_mesh(slave: f64, master: f64, area_per_h: f64) -> f64 {
+    FROM_MESH_FACTOR * softer(slave, master) * area_per_h
+}
+
+/// The softer of the slave's and the master's modulus (`master` infinite for a rigid one, 0 when
+/// unknown): what an overlap strains. A stiff slave (a steel plate) on a soft master (rubber)
+/// with its own modulus would get a penalty 10⁴–10⁵ times the rubber's stiffness.
+fn softer(slave: f64, master: f64) -> f64 {
+    if master > 0.0 {
+        slave.min(master)
+    } else {
+        slave
+    }
+}
+
 pub fn evaluate(laws: &Laws, penalty: f64, codes: Vec<usize>, k: &PointKinematics) -> ContactPoint {
     let m = k.b.len();
     let g = &k.gap;

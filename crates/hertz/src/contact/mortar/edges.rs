@@ -18,7 +18,7 @@
 //! ([`interface_weights`]) rather than along ν alone; in large
 //! deformation all of it is evaluated at the current state and differentiated.
 
-use super::{nearest_sheet, rigid_node, search_limit, Facing, SlipForm, SlotLaw, Weighted};
+use super::{nearest_sheet, rigid_node, search_limit, Facing, MortarLaw, SlipForm, Weighted};
 use crate::contact::dual::{self, Dual, Jet};
 use crate::contact::geometry::edges::{shape, EdgeSurface};
 use crate::contact::geometry::rigid;
@@ -38,7 +38,7 @@ const GAUSS: [(f64, f64); 3] = [
 ];
 
 pub struct Mortar {
-    law: SlotLaw,
+    law: MortarLaw,
     slave: EdgeSurface,
     master: EdgeSurface,
     /// Rigid segments of the master side (model segment indices).
@@ -127,7 +127,7 @@ impl Mortar {
                     .sum()
             })
             .collect();
-        let law = SlotLaw::new(
+        let law = MortarLaw::new(
             model,
             ci,
             &nodes,
@@ -656,6 +656,10 @@ impl Formulation for Mortar {
         out.sort_unstable();
         out.dedup();
         Ok(out)
+    }
+
+    fn penalties(&self) -> Option<(usize, f64, f64)> {
+        self.law.penalties()
     }
 
     fn symmetric(&self) -> bool {

@@ -25,7 +25,7 @@
 
 use super::curved::{self, CurvedPoint};
 use super::segment::{dual_basis, face_rule, overlap, Point};
-use super::{nearest_sheet, rigid_node, search_limit, Facing, SlipForm, SlotLaw, Weighted};
+use super::{nearest_sheet, rigid_node, search_limit, Facing, MortarLaw, SlipForm, Weighted};
 use crate::contact::dual::{DualN, Jet};
 use crate::contact::geometry::faces::{
     self, cross, dot, face_normal, shape, sub, Face, FaceKind, FaceSurface,
@@ -90,7 +90,7 @@ impl LinearSlot {
 }
 
 pub struct FaceMortar {
-    law: SlotLaw,
+    law: MortarLaw,
     slave: FaceSurface,
     master: FaceSurface,
     /// Slave nodes (the slots), and for each the slave faces it belongs to.
@@ -219,7 +219,7 @@ impl FaceMortar {
                     .sum()
             })
             .collect();
-        let law = SlotLaw::new(
+        let law = MortarLaw::new(
             model,
             ci,
             &nodes,
@@ -1170,6 +1170,10 @@ impl Formulation for FaceMortar {
         out.sort_unstable();
         out.dedup();
         Ok(out)
+    }
+
+    fn penalties(&self) -> Option<(usize, f64, f64)> {
+        self.law.penalties()
     }
 
     fn symmetric(&self) -> bool {

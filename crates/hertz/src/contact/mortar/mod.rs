@@ -34,10 +34,10 @@ pub mod faces;
 pub mod segment;
 
 use super::dual::Jet;
-use super::law::{self, Laws, PointKinematics, SlipKinematics};
+use super::law::{self, Laws, PointKinematics, SlipKinematics, SlotFriction, SlotLaw};
 use super::{Anchor, ContactPoint, Ctx, Formulation, Local, Partner, SlotState};
 use crate::error::Result;
-use crate::model::{ContactLaw, Friction, Model, SegmentKind};
+use crate::model::{Enforcement, Friction, Model, SegmentKind};
 
 /// The formulation of mortar condition `ci`: edges in 2D, faces in 3D.
 pub fn new(model: &Model, ci: usize) -> Result<Box<dyn Formulation + Send + Sync>> {
@@ -140,14 +140,16 @@ struct SlipForm {
     normal: [Jet; 3],
 }
 
-/// The law of a mortar condition, shared by its slots.
-struct SlotLaw {
+/// The law of a mortar condition at each of its slots.
+struct MortarLaw {
     number: usize,
-    law: ContactLaw,
+    enforcement: Enforcement,
     /// Coulomb friction.
     friction: Option<Friction>,
-    /// Per slot, the factor of the penalty (from the mesh when the condition gives none).
-    scale: Vec<f64>,
+    /// Per slot, the condition's law there (a penalty per unit area, given or from the mesh)
+    /// and its friction.
+    laws: Vec<SlotLaw>,
+    frictions: Vec<Option<SlotFriction>>,
     /// Per slot, E/h (E of the stiffest element at the node and the master's in series, see
     /// [`super::friction_modulus`]; h the size of its slave facets): the friction multipliers'
     /// c_T, per unit area.
@@ -155,29 +157,27 @@ struct SlotLaw {
     /// Per slot, the support the node would have if the master covered all its slave facets
     /// (reference facets, straight edges and flat faces), and the penalty per unit area from the
     /// mesh: the multipliers fade to it on the last slivers of a master's end (see
-    /// [`SlotLaw::sliver_compliance`]).
+    /// [`MortarLaw::sliver_compliance`]).
     full_support: Vec<f64>,
     mesh_penalty: Vec<f64>,
     dim: usize,
 }
 
 /// The share of its full support below which a slave node's multiplier fades into a penalty
-/// (see [`SlotLaw::sliver_compliance`]).
+/// (see [`MortarLaw::sliver_compliance`]).
 const SLIVER: f64 = 0.2;
 
-impl SlotLaw {
-    /// The per-slot penalty factors: 1, or without a penalty ε_j = factor·E/h, E of the stiffest
-    /// element at the node and h (`size`) the size of its slave facets (the slave's modulus,
-    /// not node-to-segment's softer body's: with the softer, the shallow ironing's die, ten times
-    /// the block's E, took 7 iterations in a step where it takes 5); `full_support` per slot
-    /// as in [`SlotLaw::full_support`].
+impl MortarLaw {
+    /// The law at every slot (slave nodes `slots`): a penalty per unit area given, or from the
+    /// mesh ([`law::penalty::from_mesh`], h = `size` the size of its slave facets); `full_support`
+    /// per slot as in [`MortarLaw::full_support`].
     fn new(
         model: &Model,
         ci: usize,
         slots: &[usize],
         size: impl Fn(usize) -> f64,
         full_support: Vec<f64>,
-    ) -> SlotLaw {
+    ) -> MortarLaw {
         let c = &model.contacts[ci];
         let young = super::stiffest_young(model);
         let stiffest = young.values().copied().fold(0.0, f64::max);
@@ -191,25 +191,25 @@ impl SlotLaw {
             _ => f64::INFINITY,
         };
         let mesh_penalty: Vec<f64> = (0..slots.len())
-            .map(|j| super::n2s::DEFAULT_PENALTY_FACTOR * slave[j] / size(j))
+            .map(|j| law::penalty::from_mesh(slave[j], master, 1.0 / size(j)))
             .collect();
-        let scale = (0..slots.len())
-            .map(|j| {
-                if c.penalty_from_mesh {
-                    mesh_penalty[j]
-                } else {
-                    1.0
-                }
-            })
+        let laws: Vec<SlotLaw> = mesh_penalty
+            .iter()
+            .map(|&mesh| SlotLaw::resolve(c.enforcement, mesh, 1.0))
+            .collect();
+        let frictions = laws
+            .iter()
+            .map(|l| c.friction.map(|f| l.friction(f, 1.0)))
             .collect();
         let stiffness = (0..slots.len())
             .map(|j| super::friction_modulus(slave[j], master) / size(j))
             .collect();
-        SlotLaw {
+        MortarLaw {
             number: c.number,
-            law: c.law,
+            enforcement: c.enforcement,
             friction: c.friction,
-            scale,
+            laws,
+            frictions,
             stiffness,
             full_support,
             mesh_penalty,
@@ -250,11 +250,17 @@ impl SlotLaw {
     /// K_λu = K_uλᵀ / D_j (the full tangent stored as one triangle lost the other: mortar
     /// multipliers solved with full tangents diverged).
     fn symmetric(&self) -> bool {
-        !self.law.forces_are_unknowns(self.friction)
+        !self.enforcement.forces_are_unknowns(self.friction)
+    }
+
+    /// The condition's smallest and largest penalty in effect (see
+    /// [`super::Formulation::penalties`]).
+    fn penalties(&self) -> Option<(usize, f64, f64)> {
+        super::penalty_range(self.number, self.laws.iter().copied())
     }
 
     fn n_multipliers(&self, slots: usize) -> usize {
-        if self.law.forces_are_unknowns(self.friction) {
+        if self.enforcement.forces_are_unknowns(self.friction) {
             slots * self.multipliers_per_slot()
         } else {
             0
@@ -299,8 +305,8 @@ impl SlotLaw {
                 .collect();
             // With multipliers the force acts along the node's normal (see
             // `SlipForm::along_normal`), so that it condenses out exactly.
-            let b = match (&w.slip, self.law) {
-                (Some(slip), ContactLaw::Multiplier) => slip.along_normal(local),
+            let b = match (&w.slip, self.laws[j]) {
+                (Some(slip), SlotLaw::Multipliers) => slip.along_normal(local),
                 _ => w.b,
             };
             (Jet { v: q, d }, b)
@@ -321,15 +327,12 @@ impl SlotLaw {
             ..*ctx.laws
         };
         let codes = local.codes.clone();
-        let penalty = match self.law {
-            ContactLaw::Penalty(p) => p * self.scale[j],
-            ContactLaw::Multiplier => 0.0,
-        };
-        let multipliers = self.law.forces_are_unknowns(self.friction);
+        let penalty = self.laws[j].penalty();
+        let multipliers = self.enforcement.forces_are_unknowns(self.friction);
         // A penalty with its forces as unknowns: its compliance 1/ε (see `law::multiplier`);
         // multipliers on a sliver of a master's end fade into a penalty.
-        let sliver = match self.law {
-            ContactLaw::Multiplier if has => self.sliver_compliance(j, &w.area),
+        let sliver = match self.laws[j] {
+            SlotLaw::Multipliers if has => self.sliver_compliance(j, &w.area),
             _ => None,
         };
         let penalty_form = multipliers && penalty > 0.0;
@@ -344,7 +347,7 @@ impl SlotLaw {
             xi: [0.0; 2],
             offset: elastic,
         };
-        if let (Some(f), Some(slip), true) = (self.friction, &w.slip, has) {
+        if let (Some(f), Some(slip), true) = (self.frictions[j], &w.slip, has) {
             // With a penalty the slip is measured from the anchor's elastic slip.
             let elastic = match anchor {
                 Some(a) if penalty_form => a.offset,
@@ -354,7 +357,7 @@ impl SlotLaw {
             let kept = anchored(elastic);
             let mut sk = slip.kinematics(local, u, kept, f.mu, self.stiffness[j]);
             if penalty_form {
-                sk.compliance = 1.0 / (f.penalty * self.scale[j]);
+                sk.compliance = 1.0 / f.penalty;
             }
             kin.slip = Some(sk);
             // Open (or without a penalty): no elastic slip left.
@@ -399,14 +402,14 @@ impl SlotLaw {
             // The slot's force on the slave body: λ ∫ Φ_j ν along B for a penalty, whose size
             // |∫ Φ_j ν| is below D_j where the slave's facets turn (a curved die: 1.4 % on the
             // shallow ironing's arc), and λ D_j along the node's normal for multipliers.
-            let support = match (&w.slip, self.law) {
-                (Some(s), ContactLaw::Penalty(_)) => {
+            let support = match (&w.slip, self.laws[j]) {
+                (Some(s), SlotLaw::Penalty(_)) => {
                     s.normal.iter().map(|n| n.v * n.v).sum::<f64>().sqrt()
                 }
                 _ => w.area.v,
             };
             state.force = lambda * support;
-            state.active = point.closed && (self.law == ContactLaw::Multiplier || kin.gap.v < 0.0);
+            state.active = point.closed && (self.laws[j].is_multipliers() || kin.gap.v < 0.0);
         } else {
             state.partner = Partner::None;
         }

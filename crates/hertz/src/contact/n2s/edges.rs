@@ -225,7 +225,7 @@ impl NodeToSegment {
         let mut kin = PointKinematics::from_duals(gap, end.w, &b, area);
         kin.past_end = end.past.map(|(e, _)| e.into());
         let mut next = None;
-        if let Some(law) = slot.friction(self.friction) {
+        if let Some(law) = slot.friction {
             let xs3 = [xs[0], xs[1], Dual::constant(0.0, m)];
             // Anchor: its material point on its edge; none yet: the contact point (no force).
             let xa3 = match anchor_edge {

@@ -153,7 +153,7 @@ impl NodeToSegment {
             local.add(ctx, n)?;
         }
         // The anchor's face moves the anchor: its corners are unknowns of the pair too.
-        let friction_law = slot.friction(self.friction);
+        let friction_law = slot.friction;
         let anchor_face = anchor
             .filter(|_| friction_law.is_some())
             .and_then(|a| match a.partner {

@@ -33,13 +33,14 @@ use super::geometry::edges::EdgeSurface;
 use super::geometry::faces::{FaceSurface, NodalNormal};
 use super::geometry::scalar::Scalar;
 use super::law::{PointKinematics, SlipKinematics};
+use super::law::{SlotFriction, SlotLaw};
 use super::search::broad::BroadPhase;
 use super::search::{self, Candidate};
 use super::tributary::PressureAreas;
 use super::Anchor;
 use super::{apply_law, ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState};
 use crate::error::{Error, Result};
-use crate::model::{ContactLaw, Friction, Model, Pairing, SegmentKind};
+use crate::model::{Enforcement, Friction, Model, Pairing, SegmentKind};
 use std::collections::HashMap;
 
 /// A projection within this distance (in parameter units) of an edge's ends or a face's edges
@@ -53,12 +54,6 @@ const HYSTERESIS_BAND: f64 = 1e-6;
 /// Ramp length at an open boundary for a node without neighbours, as a fraction of the
 /// boundary's edge length.
 const ISOLATED_RAMP: f64 = 0.01;
-/// The penalty of a node when the condition gives none: this factor times the stiffness E·A/h
-/// of the elements under it (E the softer of their Young's modulus and the master's, A its
-/// tributary area, h the distance to its neighbours): 10⁻³ of the softer body's compliance,
-/// overlaps of 0.1 % of its strain.
-pub const DEFAULT_PENALTY_FACTOR: f64 = 1e3;
-
 struct Slot {
     node: usize,
     area: f64,
@@ -67,35 +62,21 @@ struct Slot {
     /// Half the distance to the farthest neighbour: how far past an open boundary the node can
     /// still meet the master.
     reach: f64,
-    /// Factor of the penalties at this node (upstream OOFEM input: its number of slave elements).
-    scale: f64,
+    /// The condition's law at this node, its penalty resolved (given, times the node's weight in
+    /// upstream OOFEM input, its number of slave elements; or from the mesh, times its tributary
+    /// area).
+    law: SlotLaw,
+    /// The condition's friction at this node.
+    friction: Option<SlotFriction>,
     /// E·A/h of the elements under the node with the master's E in series (E their Young's
     /// modulus, see [`super::friction_modulus`]; A its tributary area, h the distance to its
     /// neighbours): c_T of the friction multipliers.
     stiffness: f64,
 }
 
-impl Slot {
-    /// The condition's law at this node.
-    fn law(&self, law: ContactLaw) -> ContactLaw {
-        match law {
-            ContactLaw::Penalty(p) => ContactLaw::Penalty(p * self.scale),
-            l => l,
-        }
-    }
-
-    /// The condition's friction at this node.
-    fn friction(&self, friction: Option<Friction>) -> Option<Friction> {
-        friction.map(|f| Friction {
-            penalty: f.penalty * self.scale,
-            ..f
-        })
-    }
-}
-
 pub struct NodeToSegment {
     number: usize,
-    law: ContactLaw,
+    enforcement: Enforcement,
     /// Coulomb friction (edges and rigid segments).
     friction: Option<Friction>,
     /// Prescribed force direction (`normal`), instead of the segment normal.
@@ -156,7 +137,7 @@ impl NodeToSegment {
     fn point_friction(
         &self,
         slot: &Slot,
-        law: Friction,
+        law: SlotFriction,
         [xs, xa, n]: [DVec; 3],
         (anchor, at_point): (&Anchor, Anchor),
         held: [f64; 3],
@@ -167,7 +148,7 @@ impl NodeToSegment {
     ) -> Anchor {
         let dim = self.dim;
         let nv = xs[0].n;
-        let penalty = matches!(self.law, ContactLaw::Penalty(_));
+        let penalty = !slot.law.is_multipliers();
         let compliance = if penalty { 1.0 / law.penalty } else { 0.0 };
         kin.slip = Some(SlipKinematics {
             slip: (0..dim).map(|i| jet(&(xs[i] - xa[i]))).collect(),
@@ -255,7 +236,7 @@ impl<T: Scalar> EndWeight<T> {
 impl NodeToSegment {
     /// Whether `slot` is held by Lagrange multipliers (not a penalty in any form).
     fn multipliers(&self, slot: &Slot) -> bool {
-        matches!(slot.law(self.law), ContactLaw::Multiplier)
+        slot.law.is_multipliers()
     }
 
     pub fn new(model: &Model, ci: usize) -> Result<NodeToSegment> {
@@ -351,17 +332,17 @@ impl NodeToSegment {
                 // A node on no element (a rigid body's) gets the model's stiffest modulus.
                 let e = young.get(&node).copied().unwrap_or(stiffest);
                 let per_modulus = super::law_area(t.measure, model) / h;
-                let mut scale = c.node_weights.as_ref().map_or(1.0, |w| w[k]);
-                if c.penalty_from_mesh {
-                    scale *= DEFAULT_PENALTY_FACTOR * super::softer(e, master) * per_modulus;
-                }
+                let weight = c.node_weights.as_ref().map_or(1.0, |w| w[k]);
+                let mesh = super::law::penalty::from_mesh(e, master, per_modulus);
+                let law = SlotLaw::resolve(c.enforcement, mesh, weight);
                 let stiffness = super::friction_modulus(e, master) * per_modulus;
                 Slot {
                     node,
                     area: t.measure,
                     neighbors,
                     reach,
-                    scale,
+                    law,
+                    friction: c.friction.map(|f| law.friction(f, weight)),
                     stiffness,
                 }
             })
@@ -404,7 +385,7 @@ impl NodeToSegment {
             ),
             areas: PressureAreas::new(model, nodes),
             number: c.number,
-            law: c.law,
+            enforcement: c.enforcement,
             friction: c.friction,
             normal: c.normal,
             slots,
@@ -605,7 +586,7 @@ impl Formulation for NodeToSegment {
     }
 
     fn n_multipliers(&self) -> usize {
-        if self.law.forces_are_unknowns(self.friction) {
+        if self.enforcement.forces_are_unknowns(self.friction) {
             self.slots.len() * self.multipliers_per_node()
         } else {
             0
@@ -655,6 +636,10 @@ impl Formulation for NodeToSegment {
         }
     }
 
+    fn penalties(&self) -> Option<(usize, f64, f64)> {
+        super::penalty_range(self.number, self.slots.iter().map(|s| s.law))
+    }
+
     fn symmetric(&self) -> bool {
         // B = ∇g only for the exact closest point on a rigid shape along its own normal.
         self.edges.edges.is_empty() && self.faces.faces.is_empty() && self.normal.is_none()
@@ -699,7 +684,7 @@ impl Formulation for NodeToSegment {
         for (k, (slot, chosen)) in self.slots.iter().zip(chosen).enumerate() {
             let per = self.multipliers_per_node();
             let lambda_eqs = self
-                .law
+                .enforcement
                 .forces_are_unknowns(self.friction)
                 .then_some(first_lambda + per * k..first_lambda + per * (k + 1));
             // The friction force the iteration holds (its multipliers; see `point_friction`).
@@ -750,13 +735,7 @@ impl Formulation for NodeToSegment {
                 state.weight = kin.weight.v;
             }
             let point = apply_law(
-                ctx,
-                slot.law(self.law),
-                lambda_eqs,
-                &local,
-                &kin,
-                areas[k],
-                &mut state,
+                ctx, slot.law, lambda_eqs, &local, &kin, areas[k], &mut state,
             );
             if !state.active {
                 state.crossed = self.inside_body(ctx, slot, state.x, &cur);

@@ -177,7 +177,7 @@ impl NodeToSegment {
         let area = crate::contact::law_area(slot.area, model);
         let mut kin = PointKinematics::from_duals(gap, Dual::constant(1.0, m), &b, area);
         let mut next = None;
-        if let Some(law) = slot.friction(self.friction) {
+        if let Some(law) = slot.friction {
             // Anchors are points in the frame of their segment: its origin moved with its node.
             let origin = |g: usize, q: &[crate::contact::dual::DVec]| -> DVec {
                 let (n, p) = Self::rigid_frame(model, g);
