@@ -305,8 +305,8 @@ impl MortarLaw {
                 .collect();
             // With multipliers the force acts along the node's normal (see
             // `SlipForm::along_normal`), so that it condenses out exactly.
-            let b = match (&w.slip, self.laws[j]) {
-                (Some(slip), SlotLaw::Multipliers) => slip.along_normal(local),
+            let b = match &w.slip {
+                Some(slip) if self.laws[j].is_multipliers() => slip.along_normal(local),
                 _ => w.b,
             };
             (Jet { v: q, d }, b)
@@ -331,10 +331,9 @@ impl MortarLaw {
         let multipliers = self.enforcement.forces_are_unknowns(self.friction);
         // A penalty with its forces as unknowns: its compliance 1/ε (see `law::multiplier`);
         // multipliers on a sliver of a master's end fade into a penalty.
-        let sliver = match self.laws[j] {
-            SlotLaw::Multipliers if has => self.sliver_compliance(j, &w.area),
-            _ => None,
-        };
+        let sliver = (has && self.laws[j].is_multipliers())
+            .then(|| self.sliver_compliance(j, &w.area))
+            .flatten();
         let penalty_form = multipliers && penalty > 0.0;
         let compliance = if penalty_form {
             1.0 / penalty
@@ -402,8 +401,8 @@ impl MortarLaw {
             // The slot's force on the slave body: λ ∫ Φ_j ν along B for a penalty, whose size
             // |∫ Φ_j ν| is below D_j where the slave's facets turn (a curved die: 1.4 % on the
             // shallow ironing's arc), and λ D_j along the node's normal for multipliers.
-            let support = match (&w.slip, self.laws[j]) {
-                (Some(s), SlotLaw::Penalty(_)) => {
+            let support = match &w.slip {
+                Some(s) if !self.laws[j].is_multipliers() => {
                     s.normal.iter().map(|n| n.v * n.v).sum::<f64>().sqrt()
                 }
                 _ => w.area.v,
