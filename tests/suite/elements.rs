@@ -7,7 +7,8 @@ use crate::common;
 
 use hertz::fem::shape::HEXA8_CORNERS;
 use hertz::fem::{rule, Shape};
-use hertz::material::{Constitutive, Elasticity, Hyperelastic};
+use hertz::material::hyperelastic::{HyperelasticLaw, MooneyRivlin, Ogden, SimoPister};
+use hertz::material::{Elasticity, Law};
 use hertz::model::StressMode;
 use hertz::solid::{ContinuumKernel, ElementKernel, GpState};
 use hertz::solve::run_analysis;
@@ -19,29 +20,23 @@ const POISSON: f64 = 0.3;
 
 /// The laws an element is checked with: linear elasticity, and in large deformation the
 /// hyperelastic laws (in plane stress with the out-of-plane stretch solved at each point).
-fn laws(mode: StressMode, nlgeo: bool) -> Vec<Constitutive> {
-    let mut v = vec![Constitutive::Small(std::sync::Arc::new(Elasticity::new(
-        YOUNG, POISSON, mode,
-    )))];
+fn laws(mode: StressMode, nlgeo: bool) -> Vec<Law> {
+    let mut v: Vec<Law> = vec![std::sync::Arc::new(Elasticity::new(YOUNG, POISSON, mode))];
     if nlgeo {
-        let wrap = |h| {
-            if mode == StressMode::PlaneStress {
-                Constitutive::HyperPlaneStress(h)
-            } else {
-                Constitutive::Hyper(h)
-            }
+        let wrap = |h: Box<dyn hertz::material::hyperelastic::Energy>| -> Law {
+            std::sync::Arc::new(HyperelasticLaw::new(h, mode))
         };
-        v.push(wrap(Hyperelastic::MooneyRivlin {
+        v.push(wrap(Box::new(MooneyRivlin {
             c1: 20.0,
             c2: 5.0,
             k: 80.0,
-        }));
-        v.push(wrap(Hyperelastic::Ogden {
+        })));
+        v.push(wrap(Box::new(Ogden {
             alpha: vec![1.3, -2.0],
             mu: vec![30.0, -10.0],
             k: 80.0,
-        }));
-        v.push(wrap(Hyperelastic::SimoPister { g: 40.0, k: 80.0 }));
+        })));
+        v.push(wrap(Box::new(SimoPister { g: 40.0, k: 80.0 })));
     }
     v
 }
@@ -142,14 +137,14 @@ fn kernel<'a>(
     shape: Shape,
     _mode: StressMode,
     q: &'a [hertz::fem::QuadPoint],
-    law: &'a Constitutive,
+    law: &'a Law,
     nlgeo: bool,
 ) -> ContinuumKernel<'a> {
     ContinuumKernel {
         shape,
         nsd: shape.dim(),
         rule: q,
-        material: law,
+        material: law.as_ref(),
         thick: 0.7,
         nlgeo,
     }
@@ -215,7 +210,7 @@ fn continuum_tangent_is_jacobian_of_internal_force() {
 fn rigid_body_motion_gives_zero_strain_under_nlgeo() {
     for (name, shape, mode, nip) in CONTINUUM {
         let q = rule(shape, nip).unwrap();
-        let el = Constitutive::Small(std::sync::Arc::new(Elasticity::new(YOUNG, POISSON, mode)));
+        let el: Law = std::sync::Arc::new(Elasticity::new(YOUNG, POISSON, mode));
         let x = distorted_nodes(shape);
         let (c, s) = (1.1f64.cos(), 1.1f64.sin());
         // 3D: rotation about an inclined axis; 2D: about z.
@@ -1117,7 +1112,7 @@ fn a_load_on_interior_boundaries_is_warned_about() {
 #[test]
 fn plane_stress_hyperelastic_sheet_is_in_uniaxial_stress() {
     use hertz_bench::verify::uniaxial_stress;
-    let law = Hyperelastic::MooneyRivlin {
+    let law = MooneyRivlin {
         c1: 20.0,
         c2: 5.0,
         k: 80.0,

@@ -192,9 +192,9 @@ fn quadratic_block(inp: &mut Input, block: &mut Block, top: f64, bottom: f64) ->
 }
 
 /// The law of [`neo_hookean`].
-pub fn neo_hookean_law() -> hertz::material::hyperelastic::Hyperelastic {
+pub fn neo_hookean_law() -> hertz::material::hyperelastic::MooneyRivlin {
     let mu = E / (2.0 * (1.0 + NU));
-    hertz::material::hyperelastic::Hyperelastic::MooneyRivlin {
+    hertz::material::hyperelastic::MooneyRivlin {
         c1: 0.5 * mu,
         c2: 0.0,
         k: E / (3.0 * (1.0 - 2.0 * NU)),
@@ -204,12 +204,14 @@ pub fn neo_hookean_law() -> hertz::material::hyperelastic::Hyperelastic {
 /// Homogeneous uniaxial stress along z at axial stretch `stretch`: the lateral stretch (where
 /// the lateral nominal stress vanishes, by Newton on a secant) and the axial nominal stress P_zz.
 pub fn uniaxial_stress(
-    law: &hertz::material::hyperelastic::Hyperelastic,
+    law: &dyn hertz::material::hyperelastic::Energy,
     stretch: f64,
 ) -> (f64, f64) {
     let p = |lt: f64| {
         let f = [[lt, 0.0, 0.0], [0.0, lt, 0.0], [0.0, 0.0, stretch]];
-        law.pk1(&f).expect("a valid stretch").0
+        hertz::material::hyperelastic::pk1(law, &f)
+            .expect("a valid stretch")
+            .0
     };
     let (mut a, mut b) = (1.0, 1.0 + 0.5 * (1.0 - stretch));
     let (mut fa, mut fb) = (p(a)[0][0], p(b)[0][0]);

@@ -8,10 +8,11 @@ use super::nodal::NodalState;
 use super::Contribution;
 use crate::error::{Error, Result};
 use crate::fem::{rule, QuadPoint};
-use crate::material::Constitutive;
+use crate::material::{law_of, Law};
 use crate::model::Model;
 use crate::solid::continuum::{ContinuumKernel, MAX_DOFS, MAX_NODES};
-use crate::solid::loads::{element_thickness, truss_axes};
+use crate::solid::loads::element_thickness;
+use crate::solid::truss::truss_axes;
 use crate::solid::{ElementKernel, GpState, TrussKernel};
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -99,12 +100,12 @@ pub struct Assembler<'m> {
     elems: Vec<ElementInfo>,
     locs: Vec<usize>,
     rules: Vec<Vec<QuadPoint>>,
-    /// Constitutive laws per (material, stress mode, nlgeo).
-    laws: Vec<Constitutive>,
+    /// Material laws per (material, stress mode, nlgeo).
+    laws: Vec<Law>,
     /// Free-equation lists of the contact pairs, included in the pattern.
     couplings: Vec<Vec<usize>>,
-    /// No element has `nlgeo`: element stiffnesses are constant.
-    small_strain: bool,
+    /// Small strain and no law with a state: the elements' stiffness is constant.
+    constant_stiffness: bool,
     /// Element stiffness values on the current pattern when no element has `nlgeo` (constant).
     linear_k: std::sync::Mutex<Option<Vec<f64>>>,
     /// Where each element's material state starts in `material_state` (one more entry at the
@@ -148,11 +149,7 @@ impl<'m> Assembler<'m> {
             let k = *law_ids
                 .entry((el.material, mode as u8, el.nlgeo))
                 .or_insert_with(|| {
-                    laws.push(Constitutive::new(
-                        &model.materials[el.material],
-                        mode,
-                        el.nlgeo,
-                    ));
+                    laws.push(law_of(&model.materials[el.material], mode, el.nlgeo));
                     laws.len() - 1
                 });
             let loc_start = locs.len();
@@ -190,6 +187,9 @@ impl<'m> Assembler<'m> {
             }
             state_at.push(material_state.len());
         }
+        // Small strain and no law with a state: the elements' stiffness is constant.
+        let constant_stiffness =
+            model.elements.iter().all(|e| !e.nlgeo) && !laws.iter().any(|l| l.is_inelastic());
         let mut a = Assembler {
             model,
             dofs,
@@ -206,7 +206,7 @@ impl<'m> Assembler<'m> {
             couplings: Vec::new(),
             linear_k: std::sync::Mutex::new(None),
             share: None,
-            small_strain: model.constant_element_stiffness(),
+            constant_stiffness,
             state_at,
             material_state,
         };
@@ -223,6 +223,12 @@ impl<'m> Assembler<'m> {
     }
 
     /// Whether any element's material keeps a state (plasticity).
+    /// Whether the elements' stiffness is constant (small strain, no law with a state): the
+    /// bodies' tangent is then the same at every state.
+    pub fn constant_stiffness(&self) -> bool {
+        self.constant_stiffness
+    }
+
     pub fn has_material_state(&self) -> bool {
         !self.material_state.is_empty()
     }
@@ -390,9 +396,6 @@ impl<'m> Assembler<'m> {
         let law = &self.laws[info.law];
         let ue = &ue[..info.ndof];
         let result = if el.etype.is_truss() {
-            let Constitutive::Small(law) = law else {
-                unreachable!("bars have small-strain laws")
-            };
             let kernel = TrussKernel {
                 dim: el.dof_ids().len(),
                 axes: truss_axes(el),
@@ -406,7 +409,7 @@ impl<'m> Assembler<'m> {
                 shape,
                 nsd: shape.dim(),
                 rule: &self.rules[info.rule],
-                material: law,
+                material: law.as_ref(),
                 thick: info.thick,
                 nlgeo: el.nlgeo,
             };
@@ -555,7 +558,7 @@ impl<'m> Assembler<'m> {
         let need_k = want_k || dup.is_some();
         // Small strain: the element stiffness is constant, reuse it on this pattern (the whole
         // model's; a share's is not kept).
-        let cacheable = want_k && dup.is_none() && self.small_strain && share.is_none();
+        let cacheable = want_k && dup.is_none() && self.constant_stiffness && share.is_none();
         let assembles = |e: usize| share.is_none_or(|s| s[e]);
         if cacheable {
             if let Some(k) = self.linear_k.lock().expect("not poisoned").as_ref() {

@@ -1778,7 +1778,6 @@ fn check_geometry(coords: &[[f64; 3]], elements: &[Element]) -> Result<()> {
 
 /// A material record: `IsoLE`, or one of upstream OOFEM's compressible hyperelastic laws.
 fn read_material(r: &Record) -> Result<Material> {
-    use crate::material::Hyperelastic;
     let density = r.float("d")?;
     let talpha = r.opt_float("talpha")?.unwrap_or(0.0);
     r.opt_float("referencetemperature")?;
@@ -1844,7 +1843,7 @@ fn read_material(r: &Record) -> Result<Material> {
                     2.0 * (c1 + c2)
                 )));
             }
-            MaterialLaw::Hyperelastic(Hyperelastic::MooneyRivlin { c1, c2, k })
+            MaterialLaw::MooneyRivlin { c1, c2, k }
         }
         "ogdencompressiblemat" => {
             let alpha = r.float_array("alpha")?;
@@ -1866,12 +1865,12 @@ fn read_material(r: &Record) -> Result<Material> {
                     "the shear modulus ½ Σ alpha·mu must be positive, found {g}"
                 )));
             }
-            MaterialLaw::Hyperelastic(Hyperelastic::Ogden { alpha, mu, k })
+            MaterialLaw::Ogden { alpha, mu, k }
         }
-        "simopistermat" => MaterialLaw::Hyperelastic(Hyperelastic::SimoPister {
+        "simopistermat" => MaterialLaw::SimoPister {
             g: positive("g", r.float("g")?)?,
             k: positive("k", r.float("k")?)?,
-        }),
+        },
         other => {
             return Err(r.error(format!(
                 "unsupported material `{other}`; supported: IsoLE, MisesMat (bars), \

@@ -91,16 +91,15 @@ impl super::law::PointLaw for Elasticity {
         &self,
         strain: &[f64],
         _old: &[f64],
-        stress: &mut [f64],
-        tangent: &mut [f64],
-        _new: &mut [f64],
-    ) {
-        self.stress(strain, stress);
+        out: &mut super::law::Response,
+    ) -> Result<(), String> {
+        self.stress(strain, out.stress);
         for i in 0..self.n {
             for j in 0..self.n {
-                tangent[i * self.n + j] = self.d[i][j];
+                out.tangent[i * self.n + j] = self.d[i][j];
             }
         }
+        Ok(())
     }
 }
 

@@ -32,10 +32,9 @@ impl PointLaw for UniaxialMises {
         &self,
         strain: &[f64],
         old: &[f64],
-        stress: &mut [f64],
-        tangent: &mut [f64],
-        new: &mut [f64],
-    ) {
+        out: &mut super::law::Response,
+    ) -> Result<(), String> {
+        let (stress, tangent, new) = (&mut *out.stress, &mut *out.tangent, &mut *out.state);
         let (e, h) = (self.young, self.hardening);
         let (plastic, kappa) = (old[0], old[1]);
         let trial = e * (strain[0] - plastic);
@@ -56,12 +55,14 @@ impl PointLaw for UniaxialMises {
             new[0] = plastic + dk * sign;
             new[1] = kappa + dk;
         }
+        Ok(())
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::material::law::respond_into;
 
     /// The tangent is the derivative of the stress at fixed old state, elastic and plastic.
     #[test]
@@ -73,12 +74,12 @@ mod tests {
         };
         let old = [0.002, 0.003];
         for eps in [0.004, 0.01, -0.02] {
-            let (mut s, mut t, mut n) = ([0.0], [0.0], [0.0; 2]);
-            m.respond(&[eps], &old, &mut s, &mut t, &mut n);
+            let (mut s, mut t, mut n) = ([0.0f64], [0.0f64], [0.0; 2]);
+            respond_into(&m, &[eps], &old, (&mut s, &mut t, &mut n)).unwrap();
             let h = 1e-7;
             let (mut sp, mut sm, mut tt, mut nn) = ([0.0], [0.0], [0.0], [0.0; 2]);
-            m.respond(&[eps + h], &old, &mut sp, &mut tt, &mut nn);
-            m.respond(&[eps - h], &old, &mut sm, &mut tt, &mut nn);
+            respond_into(&m, &[eps + h], &old, (&mut sp, &mut tt, &mut nn)).unwrap();
+            respond_into(&m, &[eps - h], &old, (&mut sm, &mut tt, &mut nn)).unwrap();
             let fd = (sp[0] - sm[0]) / (2.0 * h);
             assert!(
                 (fd - t[0]).abs() < 1e-6 * t[0].abs(),

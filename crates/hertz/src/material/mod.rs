@@ -1,9 +1,9 @@
-//! Materials: stress and tangent from the deformation at a point. The small-strain laws —
-//! linear elasticity (`IsoLE`; St. Venant–Kirchhoff in large deformation, S = D:E) and von Mises
-//! plasticity of bars (`MisesMat`, with a state per integration point) — work in reduced Voigt
-//! form behind [`PointLaw`]; the compressible hyperelastic laws of upstream OOFEM give the first
-//! Piola–Kirchhoff stress and its tangent from F. A law is prepared once per (material, stress
-//! mode) as a [`Constitutive`].
+//! Materials: stress and tangent from the deformation at a point, every law behind one trait
+//! ([`PointLaw`], `law.rs`), one file per law: linear elasticity (`IsoLE`; St. Venant–Kirchhoff
+//! in large deformation, S = D:E), von Mises plasticity of bars (`MisesMat`, with a state per
+//! integration point) and the compressible hyperelastic energies of upstream OOFEM
+//! ([`hyperelastic`]). The model holds a material's parameters; [`law_of`] makes its law for an
+//! element's stress mode, once per (material, mode, nlgeo).
 
 pub mod elasticity;
 pub mod hyperelastic;
@@ -12,64 +12,51 @@ pub mod mises;
 pub mod spectral;
 
 pub use elasticity::{voigt_components, voigt_components_of, Elasticity, VOIGT_PAIRS};
-pub use hyperelastic::Hyperelastic;
-pub use law::PointLaw;
+pub use law::{PointLaw, Response};
 pub use mises::UniaxialMises;
 
 use crate::model::{Material, MaterialLaw, StressMode};
+use hyperelastic::{HyperelasticLaw, MooneyRivlin, Ogden, SimoPister};
+use std::sync::Arc;
 
-/// What an element kernel evaluates at its integration points.
-#[derive(Debug, Clone)]
-pub enum Constitutive {
-    /// A point law of the strain (small strain: σ(ε); large deformation: S(E)), with state.
-    Small(std::sync::Arc<dyn PointLaw>),
-    /// P(F) and ∂P/∂F (large deformation only).
-    Hyper(Hyperelastic),
-    /// The same in plane stress: the out-of-plane stretch is solved at each point from
-    /// P₃₃ = 0 and condensed out of the tangent.
-    HyperPlaneStress(Hyperelastic),
-}
+/// A material's law as elements share it.
+pub type Law = Arc<dyn PointLaw>;
 
-impl Constitutive {
-    /// State variables per integration point.
-    pub fn state_len(&self) -> usize {
-        match self {
-            Constitutive::Small(law) => law.state_len(),
-            _ => 0,
-        }
-    }
-
-    /// Write the initial state of one integration point.
-    pub fn initial_state(&self, state: &mut [f64]) {
-        if let Constitutive::Small(law) = self {
-            law.initial_state(state);
-        }
-    }
-
-    /// The law of material `m` for elements in `mode`; `nlgeo` selects the large-deformation
-    /// form. A hyperelastic material in a small-strain element is its linearization: linear
-    /// elasticity with its small-strain moduli (upstream OOFEM aborts there).
-    pub fn new(m: &Material, mode: StressMode, nlgeo: bool) -> Constitutive {
-        match &m.law {
-            MaterialLaw::Hyperelastic(h) if nlgeo && mode == StressMode::PlaneStress => {
-                Constitutive::HyperPlaneStress(h.clone())
-            }
-            MaterialLaw::Hyperelastic(h) if nlgeo => Constitutive::Hyper(h.clone()),
-            MaterialLaw::Mises {
-                young,
-                yield_stress,
-                hardening,
-                ..
-            } => Constitutive::Small(std::sync::Arc::new(UniaxialMises {
-                young: *young,
-                yield_stress: *yield_stress,
-                hardening: *hardening,
-            })),
-            _ => Constitutive::Small(std::sync::Arc::new(Elasticity::new(
-                m.young(),
-                m.poisson(),
-                mode,
-            ))),
-        }
+/// The law of material `m` for elements in `mode`; `nlgeo` selects the large-deformation form.
+/// A hyperelastic material in a small-strain element is its linearization: linear elasticity
+/// with its small-strain moduli (upstream OOFEM aborts there).
+pub fn law_of(m: &Material, mode: StressMode, nlgeo: bool) -> Law {
+    match &m.law {
+        MaterialLaw::Mises {
+            young,
+            yield_stress,
+            hardening,
+            ..
+        } => Arc::new(UniaxialMises {
+            young: *young,
+            yield_stress: *yield_stress,
+            hardening: *hardening,
+        }),
+        MaterialLaw::MooneyRivlin { c1, c2, k } if nlgeo => Arc::new(HyperelasticLaw::new(
+            Box::new(MooneyRivlin {
+                c1: *c1,
+                c2: *c2,
+                k: *k,
+            }),
+            mode,
+        )),
+        MaterialLaw::Ogden { alpha, mu, k } if nlgeo => Arc::new(HyperelasticLaw::new(
+            Box::new(Ogden {
+                alpha: alpha.clone(),
+                mu: mu.clone(),
+                k: *k,
+            }),
+            mode,
+        )),
+        MaterialLaw::SimoPister { g, k } if nlgeo => Arc::new(HyperelasticLaw::new(
+            Box::new(SimoPister { g: *g, k: *k }),
+            mode,
+        )),
+        _ => Arc::new(Elasticity::new(m.young(), m.poisson(), mode)),
     }
 }

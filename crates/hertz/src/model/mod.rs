@@ -328,8 +328,16 @@ pub struct Material {
 pub enum MaterialLaw {
     /// `IsoLE`: isotropic linear elasticity (St. Venant–Kirchhoff with `nlgeo 1`).
     LinearElastic { young: f64, poisson: f64 },
-    /// `mooneyrivlincompressiblemat`, `ogdencompressiblemat`, `simopistermat`.
-    Hyperelastic(crate::material::Hyperelastic),
+    /// `MooneyRivlinCompressibleMat`: W = C₁(J^{−2/3} I₁ − 3) + C₂(J^{−4/3} I₂ − 3) + ½K(ln J)².
+    MooneyRivlin { c1: f64, c2: f64, k: f64 },
+    /// `OgdenCompressibleMat`: W = Σ_p μ_p/α_p (J^{−α_p/3} Σ_a λ_a^{α_p} − 3) + ½K(ln J)².
+    Ogden {
+        alpha: Vec<f64>,
+        mu: Vec<f64>,
+        k: f64,
+    },
+    /// `SimoPisterMat`: W = ½G(I₁ − 3) − G ln J + ½k(ln J)².
+    SimoPister { g: f64, k: f64 },
     /// `MisesMat` (bars only): von Mises plasticity, yield stress `sig0`, linear isotropic
     /// hardening modulus `H`.
     Mises {
@@ -343,16 +351,32 @@ pub enum MaterialLaw {
     Dummy,
 }
 
+impl MaterialLaw {
+    /// The small-strain shear and bulk moduli (G, K) of a hyperelastic law (its tangent at
+    /// F = I; Simo–Pister's `k` is Lamé's λ there, so its K is k + 2G/3); None for the others.
+    pub fn hyperelastic_moduli(&self) -> Option<(f64, f64)> {
+        match self {
+            MaterialLaw::MooneyRivlin { c1, c2, k } => Some((2.0 * (c1 + c2), *k)),
+            MaterialLaw::Ogden { alpha, mu, k } => Some((
+                0.5 * alpha.iter().zip(mu).map(|(a, m)| a * m).sum::<f64>(),
+                *k,
+            )),
+            MaterialLaw::SimoPister { g, k } => Some((*g, k + 2.0 * g / 3.0)),
+            _ => None,
+        }
+    }
+}
+
 impl Material {
     /// Young's modulus (of the small-strain limit for a hyperelastic law).
     pub fn young(&self) -> f64 {
         match &self.law {
             MaterialLaw::LinearElastic { young, .. } | MaterialLaw::Mises { young, .. } => *young,
-            MaterialLaw::Hyperelastic(h) => {
-                let (g, k) = h.moduli();
+            MaterialLaw::Dummy => 0.0,
+            law => {
+                let (g, k) = law.hyperelastic_moduli().expect("a hyperelastic law");
                 9.0 * k * g / (3.0 * k + g)
             }
-            MaterialLaw::Dummy => 0.0,
         }
     }
 
@@ -362,11 +386,11 @@ impl Material {
             MaterialLaw::LinearElastic { poisson, .. } | MaterialLaw::Mises { poisson, .. } => {
                 *poisson
             }
-            MaterialLaw::Hyperelastic(h) => {
-                let (g, k) = h.moduli();
+            MaterialLaw::Dummy => 0.0,
+            law => {
+                let (g, k) = law.hyperelastic_moduli().expect("a hyperelastic law");
                 (3.0 * k - 2.0 * g) / (2.0 * (3.0 * k + g))
             }
-            MaterialLaw::Dummy => 0.0,
         }
     }
 }

@@ -1,18 +1,6 @@
 //! Questions about a model that several parts ask: its size, the stiffness of its elements.
 
-use super::{MaterialLaw, Model, SegmentKind};
-
-impl Model {
-    /// Whether every element's stiffness is constant: small strain and no material with a
-    /// state (a solver may then factorize once and reuse element stiffnesses).
-    pub fn constant_element_stiffness(&self) -> bool {
-        !self.elements.iter().any(|e| e.nlgeo)
-            && !self
-                .materials
-                .iter()
-                .any(|m| matches!(m.law, MaterialLaw::Mises { .. }))
-    }
-}
+use super::{Model, SegmentKind};
 
 /// Diagonal of the model's bounding box (a length scale for tolerances).
 pub fn model_size(model: &Model) -> f64 {

@@ -2,10 +2,25 @@
 //! element kind implements [`ElementKernel`]; the assembler gathers its nodal data, calls it and
 //! scatters the result.
 
-use super::continuum::{GpState, KernelError};
-use super::loads::in_bar_plane;
-use super::truss;
-use crate::material::PointLaw;
+/// Results at one integration point, in full 6-component Voigt form (spec §1.17).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct GpState {
+    /// Small strain, or Green–Lagrange strain E for nlgeo.
+    pub strain: [f64; 6],
+    /// Cauchy stress (small strain), or second Piola–Kirchhoff S.
+    pub stress: [f64; 6],
+    /// Deformation gradient, row-major 3×3.
+    pub f: [[f64; 3]; 3],
+    /// First Piola–Kirchhoff stress P = F·S, row-major 3×3.
+    pub p: [[f64; 3]; 3],
+}
+
+/// A failed evaluation: degenerate reference geometry or an inverted element.
+#[derive(Debug, Clone)]
+pub struct KernelError {
+    pub gp: usize,
+    pub msg: String,
+}
 
 /// An element's physics at given nodal positions and displacements.
 pub trait ElementKernel {
@@ -22,31 +37,4 @@ pub trait ElementKernel {
         ke: Option<&mut [f64]>,
         states: Option<&mut Vec<GpState>>,
     ) -> Result<(), KernelError>;
-}
-
-/// A two-node bar: its axes in the element's plane (`axes[0]` alone for a 1D bar), its
-/// cross-section area and its material's point law.
-pub struct TrussKernel<'a> {
-    /// Displacement components per node (1 or 2).
-    pub dim: usize,
-    /// The global axes of the element's plane.
-    pub axes: [usize; 2],
-    pub area: f64,
-    pub law: &'a dyn PointLaw,
-}
-
-impl ElementKernel for TrussKernel<'_> {
-    fn evaluate_into(
-        &self,
-        x_ref: &[[f64; 3]],
-        u: &[f64],
-        state: (&[f64], &mut [f64]),
-        fe: &mut [f64],
-        ke: Option<&mut [f64]>,
-        states: Option<&mut Vec<GpState>>,
-    ) -> Result<(), KernelError> {
-        let x = [0, 1].map(|a| in_bar_plane(x_ref[a], self.axes, self.dim));
-        truss::evaluate_into(self.dim, x, u, self.law, state, self.area, fe, ke, states)
-            .map_err(|msg| KernelError { gp: 1, msg })
-    }
 }

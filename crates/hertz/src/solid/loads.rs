@@ -1,6 +1,7 @@
 //! Reference load vectors (load value 1·components) as (node, DOF id, value) contributions:
 //! nodal forces, edge and surface tractions, dead weight.
 
+use super::truss::{in_bar_plane, truss_axes};
 use crate::error::{Error, Result};
 use crate::fem::{gauss_line, rule};
 use crate::model::{DofId, Load, LoadKind, Model};
@@ -149,24 +150,4 @@ pub fn truss_coords(model: &Model, e: usize) -> [[f64; 2]; 2] {
     let el = &model.elements[e];
     let (axes, dim) = (truss_axes(el), el.dof_ids().len());
     [0, 1].map(|k| in_bar_plane(model.nodes[el.nodes[k]].coords, axes, dim))
-}
-
-/// A point's coordinates in a bar's plane: its components along `axes`, the first `dim` of them
-/// (1 for Truss1d, the second then 0).
-pub fn in_bar_plane(c: [f64; 3], axes: [usize; 2], dim: usize) -> [f64; 2] {
-    let mut x = [0.0; 2];
-    for k in 0..dim {
-        x[k] = c[axes[k]];
-    }
-    x
-}
-
-/// The global axes of a bar's plane: x for Truss1d; x–z (default), x–y or y–z for Truss2d.
-pub fn truss_axes(el: &crate::model::Element) -> [usize; 2] {
-    match (el.etype, el.truss_plane) {
-        (crate::model::ElementType::Truss1d, _) => [0, 0],
-        (_, 1) => [0, 1],
-        (_, 2) => [1, 2],
-        _ => [0, 2],
-    }
 }

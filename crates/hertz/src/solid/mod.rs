@@ -5,5 +5,6 @@ pub mod kernel;
 pub mod loads;
 pub mod truss;
 
-pub use continuum::{ContinuumKernel, GpState};
-pub use kernel::{ElementKernel, TrussKernel};
+pub use continuum::ContinuumKernel;
+pub use kernel::{ElementKernel, GpState, KernelError};
+pub use truss::TrussKernel;

@@ -6,7 +6,8 @@
 //! displacements (u₁, u₂ per component), `area` A, `old`/`new` the point's committed state and
 //! the state this strain leaves.
 
-use super::GpState;
+use super::kernel::{ElementKernel, GpState, KernelError};
+use crate::material::law::respond_into;
 use crate::material::PointLaw;
 
 /// Internal force `fe`, tangent `ke` (row-major) and the single GP state of a bar.
@@ -37,7 +38,7 @@ pub fn evaluate_into(
     }
     let strain: f64 = (0..dim).map(|i| e[i] * (u[dim + i] - u[i])).sum::<f64>() / len;
     let (mut stress, mut tangent) = ([0.0], [0.0]);
-    law.respond(&[strain], old, &mut stress, &mut tangent, new);
+    respond_into(law, &[strain], old, (&mut stress, &mut tangent, new))?;
     let (stress, tangent) = (stress[0], tangent[0]);
     let force = area * stress;
     for i in 0..dim {
@@ -65,4 +66,51 @@ pub fn evaluate_into(
         st.push(g);
     }
     Ok(())
+}
+
+/// A point's coordinates in a bar's plane: its components along `axes`, the first `dim` of them
+/// (1 for Truss1d, the second then 0).
+pub fn in_bar_plane(c: [f64; 3], axes: [usize; 2], dim: usize) -> [f64; 2] {
+    let mut x = [0.0; 2];
+    for k in 0..dim {
+        x[k] = c[axes[k]];
+    }
+    x
+}
+
+/// The global axes of a bar's plane: x for Truss1d; x–z (default), x–y or y–z for Truss2d.
+pub fn truss_axes(el: &crate::model::Element) -> [usize; 2] {
+    match (el.etype, el.truss_plane) {
+        (crate::model::ElementType::Truss1d, _) => [0, 0],
+        (_, 1) => [0, 1],
+        (_, 2) => [1, 2],
+        _ => [0, 2],
+    }
+}
+
+/// A two-node bar: its axes in the element's plane (`axes[0]` alone for a 1D bar), its
+/// cross-section area and its material's point law.
+pub struct TrussKernel<'a> {
+    /// Displacement components per node (1 or 2).
+    pub dim: usize,
+    /// The global axes of the element's plane.
+    pub axes: [usize; 2],
+    pub area: f64,
+    pub law: &'a dyn PointLaw,
+}
+
+impl ElementKernel for TrussKernel<'_> {
+    fn evaluate_into(
+        &self,
+        x_ref: &[[f64; 3]],
+        u: &[f64],
+        state: (&[f64], &mut [f64]),
+        fe: &mut [f64],
+        ke: Option<&mut [f64]>,
+        states: Option<&mut Vec<GpState>>,
+    ) -> Result<(), KernelError> {
+        let x = [0, 1].map(|a| in_bar_plane(x_ref[a], self.axes, self.dim));
+        evaluate_into(self.dim, x, u, self.law, state, self.area, fe, ke, states)
+            .map_err(|msg| KernelError { gp: 1, msg })
+    }
 }

@@ -143,6 +143,7 @@ impl<'a> NewtonContext<'a> {
                 slot_nodes.clone(),
             ))
         };
+        let constant_structure = asm.constant_stiffness();
         let mut ctx = NewtonContext {
             eq: Equations {
                 asm,
@@ -152,7 +153,7 @@ impl<'a> NewtonContext<'a> {
                 observer,
                 times: PhaseTimes::default(),
                 ranks,
-                constant_structure: model.constant_element_stiffness(),
+                constant_structure,
                 factor_kept: false,
             },
             stepper,
