@@ -177,7 +177,9 @@ impl Model {
             let (law, e) = match &m.law {
                 MaterialLaw::LinearElastic { young, poisson } => ("IsoLE", Some((young, poisson))),
                 MaterialLaw::Mises { young, poisson, .. } => ("MisesMat", Some((young, poisson))),
-                MaterialLaw::Hyperelastic(_) => ("hyperelastic", None),
+                MaterialLaw::MooneyRivlin { .. }
+                | MaterialLaw::Ogden { .. }
+                | MaterialLaw::SimoPister { .. } => ("hyperelastic", None),
                 MaterialLaw::Dummy => ("DummyMat", None),
             };
             d.set_item("law", law)?;
