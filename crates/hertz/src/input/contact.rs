@@ -410,76 +410,89 @@ pub fn resolve(
             span: s.span,
         });
     }
-    let mut contacts = Vec::with_capacity(conds.len());
-    for c in conds {
-        let pairing = match (c.sets, c.slave_segment) {
-            (_, Some(slave)) => {
-                if !matches!(
-                    segments[slave].kind,
-                    SegmentKind::Edges { .. } | SegmentKind::Faces { .. }
-                ) {
+    let contacts = conds
+        .into_iter()
+        .map(|c| {
+            let pairing = pairing(&c, &segments, sets, nodes)?;
+            Ok(ContactCondition {
+                number: c.number,
+                enforcement: c.enforcement,
+                friction: c.friction,
+                pairing,
+                normal: c.normal,
+                node_weights: None,
+                tributary_ramp: true,
+                span: c.span,
+            })
+        })
+        .collect::<Result<_>>()?;
+    Ok((segments, contacts))
+}
+
+/// Which nodes a condition `c` pairs with what: mortar's slave segment, node-to-node's sets, or
+/// node-to-segment's nodes (`nodeset`, or `slaveset`'s set).
+fn pairing(
+    c: &PendingCondition,
+    segments: &[ContactSegment],
+    sets: &[Set],
+    nodes: &[Node],
+) -> Result<Pairing> {
+    Ok(match (c.sets, c.slave_segment) {
+        (_, Some(slave)) => {
+            if !matches!(
+                segments[slave].kind,
+                SegmentKind::Edges { .. } | SegmentKind::Faces { .. }
+            ) {
+                return Err(err(
+                    &c.span,
+                    format!(
+                        "the slave segment {} of a mortar condition must be element edges \
+                         (2D) or faces (3D)",
+                        segments[slave].number
+                    ),
+                ));
+            }
+            Pairing::Mortar {
+                slave,
+                segments: c.segments.clone(),
+            }
+        }
+        (Some((m, s)), None) => {
+            let (mn, sn) = (&sets[m - 1].nodes, &sets[s - 1].nodes);
+            if mn.len() != sn.len() || mn.is_empty() {
+                return Err(err(
+                    &c.span,
+                    format!("master set {m} has {} nodes and slave set {s} has {}: they pair one to one", mn.len(), sn.len()),
+                ));
+            }
+            Pairing::NodeToNode {
+                pairs: mn.iter().copied().zip(sn.iter().copied()).collect(),
+            }
+        }
+        (None, None) => {
+            let nodes = match c.node_set {
+                Some(k) if sets[k - 1].nodes.is_empty() => {
+                    return Err(err(&c.span, format!("set {k} (`slaveset`) has no nodes")))
+                }
+                // A node the set gives twice, as one listed twice in `nodeset`.
+                Some(k) if !sets[k - 1].repeated.is_empty() => {
                     return Err(err(
                         &c.span,
                         format!(
-                            "the slave segment {} of a mortar condition must be element edges \
-                             (2D) or faces (3D)",
-                            segments[slave].number
+                            "node {} is listed twice in set {k} (`slaveset`)",
+                            nodes[sets[k - 1].repeated[0]].label
                         ),
-                    ));
+                    ))
                 }
-                Pairing::Mortar {
-                    slave,
-                    segments: c.segments,
-                }
+                Some(k) => sets[k - 1].nodes.clone(),
+                None => c.nodes.clone(),
+            };
+            Pairing::NodeToSegment {
+                nodes,
+                segments: c.segments.clone(),
             }
-            (Some((m, s)), None) => {
-                let (mn, sn) = (&sets[m - 1].nodes, &sets[s - 1].nodes);
-                if mn.len() != sn.len() || mn.is_empty() {
-                    return Err(err(
-                        &c.span,
-                        format!("master set {m} has {} nodes and slave set {s} has {}: they pair one to one", mn.len(), sn.len()),
-                    ));
-                }
-                Pairing::NodeToNode {
-                    pairs: mn.iter().copied().zip(sn.iter().copied()).collect(),
-                }
-            }
-            (None, None) => {
-                let nodes = match c.node_set {
-                    Some(k) if sets[k - 1].nodes.is_empty() => {
-                        return Err(err(&c.span, format!("set {k} (`slaveset`) has no nodes")))
-                    }
-                    // A node the set gives twice, as one listed twice in `nodeset`.
-                    Some(k) if !sets[k - 1].repeated.is_empty() => {
-                        return Err(err(
-                            &c.span,
-                            format!(
-                                "node {} is listed twice in set {k} (`slaveset`)",
-                                nodes[sets[k - 1].repeated[0]].label
-                            ),
-                        ))
-                    }
-                    Some(k) => sets[k - 1].nodes.clone(),
-                    None => c.nodes,
-                };
-                Pairing::NodeToSegment {
-                    nodes,
-                    segments: c.segments,
-                }
-            }
-        };
-        contacts.push(ContactCondition {
-            number: c.number,
-            enforcement: c.enforcement,
-            friction: c.friction,
-            pairing,
-            normal: c.normal,
-            node_weights: None,
-            tributary_ramp: true,
-            span: c.span,
-        });
-    }
-    Ok((segments, contacts))
+        }
+    })
 }
 
 /// What a contact node is held against: a rigid segment, an element side (by its sorted nodes,

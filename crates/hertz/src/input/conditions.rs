@@ -1,0 +1,250 @@
+//! The boundary-condition block: prescribed values, loads and contact conditions.
+
+use super::cursor::{check_ref, Block, Cursor, Numbered};
+use super::header::Counts;
+use super::record::Record;
+use crate::error::Result;
+use crate::model::*;
+use std::collections::HashMap;
+
+/// Boundary condition and load records (keywords compare case-insensitively).
+pub(super) const LOAD_KEYWORDS: [&str; 6] = [
+    "BoundaryCondition",
+    "NodalLoad",
+    "ConstantEdgeLoad",
+    "ConstantSurfaceLoad",
+    "ConstantPressureLoad",
+    "DeadWeight",
+];
+
+/// The upstream OOFEM contact condition record.
+pub(super) const UPSTREAM_CONDITION: &str = "StructuralPenaltyContactBC";
+
+/// Records of the boundary-condition block that hertz reads but refuses with a message of their
+/// own (not offered as supported).
+pub(super) const REFUSED_CONDITIONS: [&str; 1] = ["ConstantPressureLoad"];
+
+/// The boundary-condition block's supported records, from the keyword tables.
+pub(super) fn supported_conditions() -> String {
+    LOAD_KEYWORDS
+        .iter()
+        .filter(|k| !REFUSED_CONDITIONS.contains(k))
+        .copied()
+        .chain(super::contact::CONDITION_KEYWORDS)
+        .chain([UPSTREAM_CONDITION])
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Whether `kw` (lower case) is a record of the boundary-condition block.
+pub(super) fn is_condition(kw: &str) -> bool {
+    LOAD_KEYWORDS.iter().any(|k| k.eq_ignore_ascii_case(kw))
+        || super::contact::CONDITION_KEYWORDS.contains(&kw)
+        || UPSTREAM_CONDITION.eq_ignore_ascii_case(kw)
+}
+
+/// The boundary-condition block: Dirichlet conditions, loads, and contact conditions still to be
+/// resolved against sets and segments.
+pub(super) struct Conditions {
+    pub(super) dirichlet: Vec<Dirichlet>,
+    pub(super) loads: Vec<Load>,
+    pub(super) pending_penalty_bcs: Vec<super::upstream::PendingPenaltyBc>,
+    pub(super) pending_contacts: Vec<super::contact::PendingCondition>,
+}
+
+/// The boundary-condition, load and contact-condition records.
+pub(super) fn read_conditions(
+    c: &mut Cursor,
+    n: &Counts,
+    analysis: &Analysis,
+    domain: &DomainKind,
+    node_index: &HashMap<usize, usize>,
+) -> Result<Conditions> {
+    let (nbc, nltf, nset, ncontactsurf, ncontactseg) =
+        (n.nbc, n.nltf, n.nset, n.ncontactsurf, n.ncontactseg);
+    let mut pending_penalty_bcs = Vec::new();
+    let mut pending_contacts = Vec::new();
+    let mut bcs: Numbered<Option<Dirichlet>> = Numbered::new("boundary condition", nbc);
+    let mut loads = Vec::new();
+    for i in 0..nbc {
+        let r = c.next_of(Block::Condition, i, nbc)?;
+        let kw = r.keyword().to_string();
+        let number = r.number()?;
+        let function = r.usize("loadtimefunction")?;
+        if function == 0 || function > nltf {
+            return Err(r.error(format!(
+                "loadTimeFunction {function} does not exist (nltf {nltf})"
+            )));
+        }
+        let set = r.opt_usize("set")?.unwrap_or(0);
+        check_ref(&r, "set", Some(set).filter(|&s| s > 0), nset)?;
+        if r.flag("istimefunction") || r.flag("isimposedtimefunction") {
+            return Err(r.error("`isImposedTimeFunction` is not supported"));
+        }
+        r.opt_usize("valtype")?;
+        match kw.as_str() {
+            "boundarycondition" => {
+                let d = read_dirichlet(&r, number, function, set, domain)?;
+                bcs.put(&r, Some(d))?;
+            }
+            "nodalload"
+            | "constantedgeload"
+            | "constantsurfaceload"
+            | "constantpressureload"
+            | "deadweight" => {
+                loads.push(read_load(&r, &kw, number, function, set, domain)?);
+                bcs.put(&r, None)?;
+            }
+            "structuralpenaltycontactbc" => {
+                if analysis.kind == AnalysisKind::LinearStatic {
+                    return Err(r.error(
+                        "contact needs NonLinearStatic or StaticStructural, not LinearStatic",
+                    ));
+                }
+                pending_penalty_bcs.push(super::upstream::read_penalty_bc(
+                    &r,
+                    domain.nsd(),
+                    ncontactsurf,
+                )?);
+                bcs.put(&r, None)?;
+            }
+            k if super::contact::CONDITION_KEYWORDS.contains(&k) => {
+                if analysis.kind == AnalysisKind::LinearStatic {
+                    return Err(r.error(
+                        "contact needs NonLinearStatic or StaticStructural, not LinearStatic",
+                    ));
+                }
+                pending_contacts.push(super::contact::read_condition(
+                    &r,
+                    node_index,
+                    domain.nsd(),
+                    nset,
+                    ncontactseg,
+                )?);
+                bcs.put(&r, None)?;
+            }
+            _ => {
+                return Err(r.error(format!(
+                    "unsupported boundary condition or load `{kw}`; supported: {}",
+                    supported_conditions()
+                )))
+            }
+        }
+        c.finish(&r);
+    }
+    let dirichlet: Vec<Dirichlet> = bcs.finish().into_iter().flatten().collect();
+
+    Ok(Conditions {
+        dirichlet,
+        loads,
+        pending_penalty_bcs,
+        pending_contacts,
+    })
+}
+
+/// The DOF ids a `dofs` array names (displacements only), if it is there.
+pub(super) fn read_dofs(r: &Record) -> Result<Option<Vec<DofId>>> {
+    match r.opt_int_array("dofs")? {
+        None => Ok(None),
+        Some(v) => v
+            .iter()
+            .map(|&d| {
+                if (1..=3).contains(&d) {
+                    Ok(d as DofId)
+                } else {
+                    Err(r.error(format!("DOF id {d} is not a displacement DOF (1, 2 or 3)")))
+                }
+            })
+            .collect::<Result<Vec<_>>>()
+            .map(Some),
+    }
+}
+
+/// A `BoundaryCondition` record: prescribed values of DOFs on a set's nodes.
+pub(super) fn read_dirichlet(
+    r: &Record,
+    number: usize,
+    function: usize,
+    set: usize,
+    domain: &DomainKind,
+) -> Result<Dirichlet> {
+    let dofs = read_dofs(r)?.unwrap_or_else(|| domain.default_dofs().to_vec());
+    let values = match r.opt_float_array("values")? {
+        Some(v) => v,
+        None => {
+            let v = match r.opt_float("prescribedvalue")? {
+                Some(v) => v,
+                None => r
+                    .opt_float("d")?
+                    .ok_or_else(|| r.error("BoundaryCondition needs `values`"))?,
+            };
+            vec![v; dofs.len()]
+        }
+    };
+    if values.len() != dofs.len() {
+        return Err(r.error(format!(
+            "`values` has {} entries for {} dofs",
+            values.len(),
+            dofs.len()
+        )));
+    }
+    Ok(Dirichlet {
+        number,
+        function,
+        dofs,
+        values,
+        set: Some(set).filter(|&s| s > 0),
+        span: r.span(),
+    })
+}
+
+/// A load record (`NodalLoad`, `ConstantEdgeLoad`, `ConstantSurfaceLoad`, `DeadWeight`).
+pub(super) fn read_load(
+    r: &Record,
+    kw: &str,
+    number: usize,
+    function: usize,
+    set: usize,
+    domain: &DomainKind,
+) -> Result<Load> {
+    let kind = match kw {
+        "nodalload" => LoadKind::Nodal,
+        "constantedgeload" => LoadKind::Edge,
+        "deadweight" => LoadKind::DeadWeight,
+        _ => LoadKind::Surface,
+    };
+    if kw == "constantpressureload" {
+        return Err(r.error("ConstantPressureLoad is not supported; use ConstantSurfaceLoad"));
+    }
+    let components = r.float_array("components")?;
+    let dofs = match (&kind, read_dofs(r)?) {
+        (_, Some(d)) => d,
+        (LoadKind::DeadWeight, None) => (1..=components.len() as DofId).collect(),
+        (_, None) => domain.default_dofs().to_vec(),
+    };
+    if components.len() != dofs.len() {
+        return Err(r.error(format!(
+            "`components` has {} entries for {} dofs",
+            components.len(),
+            dofs.len()
+        )));
+    }
+    if r.opt_int("cstype")?.unwrap_or(0) != 0 {
+        return Err(r.error("`cstype 1` (local load coordinates) is not supported"));
+    }
+    r.opt_int("loadtype")?;
+    if set == 0 {
+        return Err(r.error(format!(
+            "{kw} needs `set` (legacy element boundaryloads are not supported)"
+        )));
+    }
+    Ok(Load {
+        number,
+        kind,
+        function,
+        dofs,
+        components,
+        set,
+        span: r.span(),
+    })
+}

@@ -1,0 +1,205 @@
+//! The element block and the cross sections.
+
+use super::cursor::{check_ref, Block, Cursor, Numbered};
+use super::header::Counts;
+use crate::error::Result;
+use crate::model::*;
+use std::collections::HashMap;
+
+/// The element records: bulk elements (their cross section and material numbers as given,
+/// resolved later) and upstream OOFEM's contact elements.
+pub(super) struct ElementBlock {
+    pub(super) elements: Vec<Element>,
+    pub(super) elem_index: HashMap<usize, usize>,
+    pub(super) elem_cs: Vec<Option<usize>>,
+    pub(super) elem_mat: Vec<Option<usize>>,
+    pub(super) contact_elements: Vec<super::upstream::ContactElement>,
+    pub(super) contact_index: HashMap<usize, usize>,
+}
+
+/// The element records.
+pub(super) fn read_elements(
+    c: &mut Cursor,
+    nelem: usize,
+    node_index: &HashMap<usize, usize>,
+    domain: &DomainKind,
+) -> Result<ElementBlock> {
+    let mut elements = Vec::with_capacity(nelem);
+    let mut elem_index: HashMap<usize, usize> = HashMap::new();
+    let mut elem_cs: Vec<Option<usize>> = Vec::with_capacity(nelem);
+    let mut elem_mat: Vec<Option<usize>> = Vec::with_capacity(nelem);
+    let mut contact_elements: Vec<super::upstream::ContactElement> = Vec::new();
+    let mut contact_index: HashMap<usize, usize> = HashMap::new();
+    for i in 0..nelem {
+        let r = c.next_of(Block::Element, i, nelem)?;
+        let kw = r.keyword().to_string();
+        if kw.starts_with("structuralcontactelement_") {
+            let ce = super::upstream::read_contact_element(&r, node_index, domain.nsd())?;
+            if elem_index.contains_key(&ce.label)
+                || contact_index
+                    .insert(ce.label, contact_elements.len())
+                    .is_some()
+            {
+                return Err(r.error(format!("element label {} is used twice", ce.label)));
+            }
+            contact_elements.push(ce);
+            c.finish(&r);
+            continue;
+        }
+        let Some(etype) = ElementType::from_keyword(&kw) else {
+            let names: Vec<&str> = ElementType::ALL.iter().map(|(_, t)| t.name()).collect();
+            return Err(r.error(format!(
+                "unknown element type `{kw}`; supported: {}",
+                names.join(", ")
+            )));
+        };
+        let label = r.number()?;
+        let labels = r.int_array("nodes")?;
+        if labels.len() != etype.n_nodes() {
+            return Err(r.error(format!(
+                "{} needs {} nodes, `nodes` lists {}",
+                etype.name(),
+                etype.n_nodes(),
+                labels.len()
+            )));
+        }
+        let mut enodes = Vec::with_capacity(labels.len());
+        for &l in &labels {
+            let idx = (l > 0).then(|| node_index.get(&(l as usize))).flatten();
+            enodes.push(*idx.ok_or_else(|| {
+                r.error(format!(
+                    "element {label} refers to node {l}, which does not exist"
+                ))
+            })?);
+        }
+        let mut sorted = enodes.clone();
+        sorted.sort_unstable();
+        sorted.dedup();
+        if sorted.len() != enodes.len() {
+            return Err(r.error(format!("element {label} lists the same node twice")));
+        }
+        let nip = r.opt_usize("nip")?;
+        if let Some(n) = nip {
+            if crate::fem::rule(etype.shape(), n).is_none() {
+                return Err(r.error(format!("{} does not support nip {n}", etype.name())));
+            }
+        }
+        let nlgeo = match r.opt_int("nlgeo")? {
+            None | Some(0) => false,
+            Some(1) => true,
+            Some(v) => return Err(r.error(format!("`nlgeo` must be 0 or 1, found {v}"))),
+        };
+        let truss_plane = match (etype, r.opt_int("cs")?) {
+            (_, None) => 0,
+            (ElementType::Truss2d, Some(v @ 0..=2)) => v as u8,
+            (ElementType::Truss2d, Some(v)) => {
+                return Err(r.error(format!("Truss2d `cs` must be 0, 1 or 2, found {v}")))
+            }
+            (_, Some(_)) => return Err(r.error("keyword `cs` only applies to Truss2d")),
+        };
+        if nlgeo && etype.is_truss() {
+            return Err(r.error("nlgeo 1 is not supported on truss elements"));
+        }
+        for k in ["bodyloads", "boundaryloads", "activityltf", "lcs"] {
+            if r.flag(k) {
+                return Err(r.error(format!("element keyword `{k}` is not supported; use sets")));
+            }
+        }
+        r.flag("reducedshearint");
+        elem_cs.push(r.opt_usize("crosssect")?);
+        elem_mat.push(r.opt_usize("mat")?);
+        if contact_index.contains_key(&label) || elem_index.insert(label, elements.len()).is_some()
+        {
+            return Err(r.error(format!("element label {label} is used twice")));
+        }
+        elements.push(Element {
+            label,
+            etype,
+            nodes: enodes,
+            cross_section: usize::MAX,
+            material: usize::MAX,
+            nip,
+            nlgeo,
+            truss_plane,
+            span: r.span(),
+        });
+        c.finish(&r);
+    }
+
+    Ok(ElementBlock {
+        elements,
+        elem_index,
+        elem_cs,
+        elem_mat,
+        contact_elements,
+        contact_index,
+    })
+}
+
+/// The cross-section records (`SimpleCS`, upstream's `DummyCS`).
+pub(super) fn read_cross_sections(c: &mut Cursor, n: &Counts) -> Result<Vec<CrossSection>> {
+    let (ncs, nmat, nset) = (n.ncs, n.nmat, n.nset);
+    let mut cs = Numbered::new("cross section", ncs);
+    for i in 0..ncs {
+        let r = c.next_of(Block::CrossSection, i, ncs)?;
+        if r.keyword() == "dummycs" {
+            // Upstream OOFEM's cross section of contact elements: only its material is read.
+            let material = Some(r.usize("mat")?);
+            check_ref(&r, "mat", material, nmat)?;
+            let set = r.opt_usize("set")?.filter(|&s| s > 0);
+            check_ref(&r, "set", set, nset)?;
+            cs.put(
+                &r,
+                CrossSection {
+                    thick: None,
+                    area: 0.0,
+                    material,
+                    set,
+                },
+            )?;
+            c.finish(&r);
+            continue;
+        }
+        if r.keyword() != "simplecs" {
+            return Err(r.error(format!(
+                "expected cross-section record {} of {ncs} (SimpleCS), found `{}`",
+                i + 1,
+                r.keyword()
+            )));
+        }
+        let thick = r.opt_float("thick")?;
+        let width = r.opt_float("width")?;
+        let given_area = r.opt_float("area")?;
+        for (key, v) in [("thick", thick), ("width", width), ("area", given_area)] {
+            if let Some(v) = v.filter(|v| !(*v > 0.0)) {
+                return Err(r.error(format!("`{key}` must be positive, found {v}")));
+            }
+        }
+        // Without `area` (or `thick` and `width`) a bar has no section: OOFEM's own contact
+        // tests use such zero-stiffness bars; they are accepted with a warning (see below).
+        let area = given_area.unwrap_or(match (thick, width) {
+            (Some(t), Some(w)) => t * w,
+            _ => 0.0,
+        });
+        for k in ["iy", "iz", "ik", "beamshearcoeff"] {
+            r.opt_float(k)?;
+        }
+        let material = r.opt_usize("material")?;
+        let set = r.opt_usize("set")?;
+        check_ref(&r, "material", material, nmat)?;
+        check_ref(&r, "set", set.filter(|&s| s > 0), nset)?;
+        cs.put(
+            &r,
+            CrossSection {
+                thick,
+                area,
+                material,
+                set: set.filter(|&s| s > 0),
+            },
+        )?;
+        c.finish(&r);
+    }
+    let cross_sections = cs.finish();
+
+    Ok(cross_sections)
+}

@@ -1,0 +1,285 @@
+//! The first records: output file, description, analysis, domain, output manager and the counts.
+
+use super::cursor::Cursor;
+use super::record::Record;
+use crate::error::Result;
+use crate::model::*;
+
+/// Upper bound on the number of steps (guards allocations against absurd inputs).
+pub(super) const MAX_STEPS: usize = 10_000_000;
+
+pub(super) const SUPPORTED_ANALYSES: &str = "LinearStatic, NonLinearStatic, StaticStructural";
+
+/// The records before the counts: the engineering model (with its modules), the domain and the
+/// output manager.
+pub(super) fn read_header(c: &mut Cursor) -> Result<(Analysis, DomainKind, OutputSelection)> {
+    let file = c.file.clone();
+    let r = c.next("the engineering-model record (e.g. StaticStructural nsteps 1)")?;
+    let (mut analysis, nmodules, ninit, nmonitors) = read_analysis(&r)?;
+    c.finish(&r);
+    for i in 0..ninit {
+        let r = c.next(&format!("init module record {} of {ninit}", i + 1))?;
+        c.warnings.push(format!(
+            "{}:{}: init module `{}` ignored",
+            file,
+            r.line.line,
+            r.keyword()
+        ));
+    }
+    for i in 0..nmodules {
+        let r = c.next(&format!("export module record {} of {nmodules}", i + 1))?;
+        if r.keyword() == "errorcheck" {
+            analysis.errorcheck = true;
+        } else {
+            c.warnings.push(format!(
+                "{}:{}: export module `{}` ignored",
+                file,
+                r.line.line,
+                r.keyword()
+            ));
+        }
+    }
+    for i in 0..nmonitors {
+        let r = c.next(&format!("monitor record {} of {nmonitors}", i + 1))?;
+        c.warnings.push(format!(
+            "{}:{}: monitor `{}` ignored",
+            file,
+            r.line.line,
+            r.keyword()
+        ));
+    }
+
+    // Domain record.
+    let r = c.next("the domain record (e.g. domain 2dPlaneStress)")?;
+    let domain = read_domain(&r)?;
+    c.finish(&r);
+
+    // Output manager.
+    let r = c.next("the OutputManager record")?;
+    if r.keyword() != "outputmanager" {
+        return Err(r.error(format!(
+            "expected the OutputManager record, found `{}`",
+            r.keyword()
+        )));
+    }
+    let left_records = c.lines.len() - c.pos;
+    let output = OutputSelection {
+        tstep_all: r.flag("tstep_all"),
+        tstep_step: r.opt_usize("tstep_step")?,
+        tsteps_out: r
+            .opt_range_list("tsteps_out", MAX_STEPS)?
+            .unwrap_or_default(),
+        dofman_all: r.flag("dofman_all"),
+        dofman_output: r
+            .opt_range_list("dofman_output", left_records)?
+            .unwrap_or_default(),
+        dofman_except: r
+            .opt_range_list("dofman_except", left_records)?
+            .unwrap_or_default(),
+        element_all: r.flag("element_all"),
+        element_output: r
+            .opt_range_list("element_output", left_records)?
+            .unwrap_or_default(),
+        element_except: r
+            .opt_range_list("element_except", left_records)?
+            .unwrap_or_default(),
+    };
+    c.finish(&r);
+
+    Ok((analysis, domain, output))
+}
+
+/// The counts record: how many records of each block follow.
+pub(super) struct Counts {
+    pub(super) ndofman: usize,
+    pub(super) nelem: usize,
+    pub(super) ncs: usize,
+    pub(super) nmat: usize,
+    pub(super) nbc: usize,
+    pub(super) nic: usize,
+    pub(super) nltf: usize,
+    pub(super) nset: usize,
+    pub(super) ncontactseg: usize,
+    pub(super) ncontactsurf: usize,
+}
+
+/// The counts record, each count checked against the records left.
+pub(super) fn read_counts(c: &mut Cursor) -> Result<Counts> {
+    let r = c.next("the counts record (ndofman nelem ncrosssect nmat nbc nic nltf ...)")?;
+    r.keyword();
+    let n = Counts {
+        ndofman: r.usize("ndofman")?,
+        nelem: r.usize("nelem")?,
+        ncs: r.usize("ncrosssect")?,
+        nmat: r.usize("nmat")?,
+        nbc: r.usize("nbc")?,
+        nic: r.usize("nic")?,
+        nltf: r.usize("nltf")?,
+        nset: r.opt_usize("nset")?.unwrap_or(0),
+        ncontactseg: r.opt_usize("ncontactseg")?.unwrap_or(0),
+        ncontactsurf: r.opt_usize("ncontactsurf")?.unwrap_or(0),
+    };
+    let left = c.lines.len() - c.pos;
+    for (k, v) in [
+        ("ndofman", n.ndofman),
+        ("nelem", n.nelem),
+        ("ncrosssect", n.ncs),
+        ("nmat", n.nmat),
+        ("nbc", n.nbc),
+        ("nic", n.nic),
+        ("nltf", n.nltf),
+        ("nset", n.nset),
+        ("ncontactseg", n.ncontactseg),
+        ("ncontactsurf", n.ncontactsurf),
+    ] {
+        if v > left {
+            return Err(r.error(format!(
+                "`{k} {v}` is more than the {left} records left in the file"
+            )));
+        }
+    }
+    for k in ["nsd", "nbarrier", "nxfemman", "ncontactman", "nfracman"] {
+        if r.opt_usize(k)?.unwrap_or(0) > 0 && k != "nsd" {
+            return Err(r.error(format!("`{k}` > 0 is not supported by hertz")));
+        }
+    }
+    r.flag("axisymm");
+    c.finish(&r);
+
+    Ok(n)
+}
+
+pub(super) fn read_analysis(r: &Record) -> Result<(Analysis, usize, usize, usize)> {
+    let kind = match r.keyword() {
+        "linearstatic" => AnalysisKind::LinearStatic,
+        "nonlinearstatic" => AnalysisKind::NonLinearStatic,
+        "staticstructural" => AnalysisKind::StaticStructural,
+        k => {
+            return Err(r.error(format!(
+                "unsupported analysis type `{k}`; supported: {SUPPORTED_ANALYSES}"
+            )));
+        }
+    };
+    let prescribed_times = if kind == AnalysisKind::StaticStructural {
+        r.opt_float_array("prescribedtimes")?
+    } else {
+        None
+    };
+    let nsteps = match (&prescribed_times, r.opt_usize("nsteps")?) {
+        (Some(t), _) => t.len(),
+        (None, Some(n)) => n,
+        (None, None) => return Err(r.error("missing required keyword `nsteps`")),
+    };
+    if nsteps == 0 {
+        return Err(r.error("`nsteps` must be positive"));
+    }
+    if nsteps > MAX_STEPS {
+        return Err(r.error(format!(
+            "`nsteps {nsteps}` is more than hertz runs ({MAX_STEPS})"
+        )));
+    }
+    if r.opt_usize("nmsteps")?.unwrap_or(0) > 0 {
+        return Err(r.error("metasteps (`nmsteps` > 0) are not supported"));
+    }
+    if kind == AnalysisKind::NonLinearStatic {
+        let mode = match r.opt_int("controlmode")? {
+            Some(m) => Some(m),
+            None => r.opt_int("controllmode")?,
+        };
+        if mode.unwrap_or(0) != 1 {
+            return Err(r.error(
+                "NonLinearStatic needs `controlmode 1` (direct load control); indirect (arc-length) control is not supported",
+            ));
+        }
+        if r.flag("deltatfunction") {
+            return Err(r.error("`deltatfunction` is not supported"));
+        }
+    }
+    let deltat = r.opt_float("deltat")?.unwrap_or(1.0);
+    if !(deltat > 0.0) {
+        return Err(r.error("`deltat` must be positive"));
+    }
+    let rtolv = r.opt_float("rtolv")?;
+    let rtolf = r.opt_float("rtolf")?.or(rtolv).unwrap_or(1e-3);
+    let rtold = r.opt_float("rtold")?.or(rtolv).unwrap_or(0.0);
+    let maxiter = r.opt_usize("maxiter")?.unwrap_or(50).max(1);
+    let manrmsteps = r.opt_usize("manrmsteps")?.filter(|&k| k > 0);
+    let refloadmode = match r.opt_int("refloadmode")?.unwrap_or(0) {
+        v @ (0 | 1) => v as u8,
+        v => return Err(r.error(format!("`refloadmode` must be 0 or 1, found {v}"))),
+    };
+    let default_guess = if kind == AnalysisKind::StaticStructural {
+        1
+    } else {
+        0
+    };
+    let initialguess = r.opt_int("initialguess")?.unwrap_or(default_guess) != 0;
+    for k in [
+        "renumber",
+        "lstype",
+        "smtype",
+        "stiffmode",
+        "miniter",
+        "nonlinform",
+        "contextoutputstep",
+        "profileopt",
+    ] {
+        r.opt_int(k)?;
+    }
+    r.opt_string("solvertype")?;
+    for k in [
+        "soldepextforces",
+        "suppress_output",
+        "keepll",
+        "donotfixload",
+    ] {
+        r.flag(k);
+    }
+    let nmodules = r.opt_usize("nmodules")?.unwrap_or(0);
+    let ninit = r.opt_usize("ninitmodules")?.unwrap_or(0);
+    let nmonitors = r.opt_usize("nmonitors")?.unwrap_or(0);
+    let analysis = Analysis {
+        kind,
+        nsteps,
+        deltat,
+        prescribed_times,
+        rtolf,
+        rtold,
+        maxiter,
+        manrmsteps,
+        refloadmode,
+        initialguess,
+        errorcheck: false,
+    };
+    Ok((analysis, nmodules, ninit, nmonitors))
+}
+
+pub(super) fn read_domain(r: &Record) -> Result<DomainKind> {
+    let i = r.tokens.iter().position(|t| t == "domain").ok_or_else(|| {
+        r.error(format!(
+            "expected the domain record (e.g. `domain 2dPlaneStress`), found `{}`",
+            r.keyword()
+        ))
+    })?;
+    r.flag("domain");
+    r.opt_string("domain")?;
+    let t = r.tokens.get(i + 1).map(String::as_str).unwrap_or("");
+    let kind = if t.starts_with("2dplanestressrot") {
+        None
+    } else if t.starts_with("2dplanestress") {
+        Some(DomainKind::PlaneStress)
+    } else if t.starts_with("planestrain") {
+        Some(DomainKind::PlaneStrain)
+    } else if t.starts_with("2dtruss") {
+        Some(DomainKind::Truss2d)
+    } else if t.starts_with("1dtruss") {
+        Some(DomainKind::Truss1d)
+    } else if t.starts_with("3d") && !t.starts_with("3daxisymm") && !t.starts_with("3dshell") {
+        Some(DomainKind::ThreeD)
+    } else {
+        None
+    };
+    kind.ok_or_else(|| {
+        r.error(format!("unsupported domain type `{t}`; supported: 2dPlaneStress, PlaneStrain, 3d, 2dTruss, 1dTruss"))
+    })
+}
