@@ -93,7 +93,15 @@ impl Shape {
 
     /// Evaluate N_a(ξ) into `n` and ∂N_a/∂ξ_k into `dn[a][k]`.
     pub fn eval(self, xi: [f64; 3], n: &mut [f64], dn: &mut [[f64; 3]]) {
-        let [x, y, z] = xi;
+        match self.dim() {
+            3 => self.eval_solid(xi, n, dn),
+            _ => self.eval_plane(xi, n, dn),
+        }
+    }
+
+    /// [`Shape::eval`] of lines and plane shapes.
+    fn eval_plane(self, xi: [f64; 3], n: &mut [f64], dn: &mut [[f64; 3]]) {
+        let [x, y, _] = xi;
         match self {
             Shape::Line2 => {
                 n[0] = 0.5 * (1.0 - x);
@@ -163,6 +171,14 @@ impl Shape {
                     }
                 }
             }
+            _ => unreachable!("a line or plane shape"),
+        }
+    }
+
+    /// [`Shape::eval`] of solid shapes.
+    fn eval_solid(self, xi: [f64; 3], n: &mut [f64], dn: &mut [[f64; 3]]) {
+        let [x, y, z] = xi;
+        match self {
             Shape::Tet4 => {
                 n[0] = x;
                 n[1] = y;
@@ -253,6 +269,7 @@ impl Shape {
                     }
                 }
             }
+            _ => unreachable!("a solid shape"),
         }
     }
 

@@ -158,143 +158,194 @@ impl ContinuumKernel<'_> {
         pt: &Point,
         fe: &mut [f64],
         ke: Option<&mut [f64]>,
-        (b, db): (&mut [[f64; MAX_DOFS]; 6], &mut [[f64; MAX_DOFS]; 6]),
+        buffers: (&mut [[f64; MAX_DOFS]; 6], &mut [[f64; MAX_DOFS]; 6]),
         states: Option<&mut Vec<GpState>>,
     ) -> Result<(), String> {
         let law = self.material;
-        let (nsd, nn, jxw, dndx, mut f, e) = (self.nsd, pt.nn, pt.jxw, pt.dndx, pt.f, pt.e);
-        let ndof = nn * nsd;
         let nc = law.components();
         let comps = voigt_components_of(nc);
         let mut strain = [0.0; 6];
         for (k, &c) in comps.iter().enumerate() {
             let (i, j) = VOIGT_PAIRS[c];
-            strain[k] = if i == j { e[i][j] } else { 2.0 * e[i][j] };
+            strain[k] = if i == j { pt.e[i][j] } else { 2.0 * pt.e[i][j] };
         }
-        let (mut sv, mut d) = ([0.0; 6], [0.0; 36]);
+        let mut answer = Answer {
+            comps,
+            strain,
+            stress: [0.0; 6],
+            tangent: [0.0; 36],
+            normal_strain: 0.0,
+            s: [[0.0; 3]; 3],
+            fm: if self.nlgeo {
+                pt.f
+            } else {
+                [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+            },
+        };
         let mut out = Response {
-            stress: &mut sv[..nc],
-            tangent: &mut d[..nc * nc],
+            stress: &mut answer.stress[..nc],
+            tangent: &mut answer.tangent[..nc * nc],
             state: new,
             normal_strain: 0.0,
         };
         law.respond(&strain[..nc], old, &mut out)?;
-        let normal_strain = out.normal_strain;
-        let mut s = [[0.0; 3]; 3];
+        answer.normal_strain = out.normal_strain;
         for (k, &c) in comps.iter().enumerate() {
             let (i, j) = VOIGT_PAIRS[c];
-            s[i][j] = sv[k];
-            s[j][i] = sv[k];
+            answer.s[i][j] = answer.stress[k];
+            answer.s[j][i] = answer.stress[k];
         }
-        let fm = if self.nlgeo {
-            f
-        } else {
-            [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
-        };
-        // Internal force f_ai = ∫ F_iI S_IJ ∂N_a/∂X_J.
+        self.add_force(pt, &answer, fe);
+        if let Some(k) = ke {
+            self.add_material_tangent(pt, &answer, k, buffers);
+            if self.nlgeo {
+                self.add_geometric_tangent(pt, &answer.s, k);
+            }
+        }
+        if let Some(st) = states {
+            st.push(self.point_state(pt, &answer));
+        }
+        Ok(())
+    }
+
+    /// f_ai += ∫ F_iI S_IJ ∂N_a/∂X_J.
+    fn add_force(&self, pt: &Point, answer: &Answer, fe: &mut [f64]) {
+        let (nsd, fm, s) = (self.nsd, &answer.fm, &answer.s);
         let mut fs = [[0.0; 3]; 3];
         for i in 0..nsd {
             for jj in 0..nsd {
                 fs[i][jj] = (0..nsd).map(|ii| fm[i][ii] * s[ii][jj]).sum();
             }
         }
-        for a in 0..nn {
+        for a in 0..pt.nn {
             for i in 0..nsd {
-                fe[a * nsd + i] += jxw * (0..nsd).map(|jj| fs[i][jj] * dndx[a][jj]).sum::<f64>();
+                fe[a * nsd + i] +=
+                    pt.jxw * (0..nsd).map(|jj| fs[i][jj] * pt.dndx[a][jj]).sum::<f64>();
             }
         }
-        if let Some(k) = ke {
-            // B rows: δE_k = B_k · δu.
-            for (row, &c) in comps.iter().enumerate() {
-                let (ii, jj) = VOIGT_PAIRS[c];
-                for a in 0..nn {
-                    for i in 0..nsd {
-                        b[row][a * nsd + i] = if ii == jj {
-                            fm[i][ii] * dndx[a][ii]
-                        } else {
-                            fm[i][ii] * dndx[a][jj] + fm[i][jj] * dndx[a][ii]
-                        };
-                    }
-                }
-            }
-            // The rows of B that can be non-zero: in 2D not those of a component with z (the
-            // plane-strain ε_zz, whose row vanishes).
-            let mut rows = [0usize; 6];
-            let mut nr = 0;
-            for (row, &c) in comps.iter().enumerate() {
-                let (ii, jj) = VOIGT_PAIRS[c];
-                if ii < nsd && jj < nsd {
-                    rows[nr] = row;
-                    nr += 1;
-                }
-            }
-            let rows = &rows[..nr];
-            for &r in rows {
-                for q in 0..ndof {
-                    db[r][q] = rows.iter().map(|&t| d[r * nc + t] * b[t][q]).sum::<f64>() * jxw;
-                }
-            }
-            // Bᵀ D B, one triangle mirrored where D is symmetric.
-            let symmetric = law.symmetric_tangent();
-            for p in 0..ndof {
-                for q in if symmetric { p } else { 0 }..ndof {
-                    let mut v = 0.0;
-                    for &r in rows {
-                        v += b[r][p] * db[r][q];
-                    }
-                    k[p * ndof + q] += v;
-                    if symmetric && q > p {
-                        k[q * ndof + p] += v;
-                    }
-                }
-            }
-            if self.nlgeo {
-                for a in 0..nn {
-                    for bb in 0..nn {
-                        let mut gab = 0.0;
-                        for ii in 0..nsd {
-                            for jj in 0..nsd {
-                                gab += dndx[a][ii] * s[ii][jj] * dndx[bb][jj];
-                            }
-                        }
-                        for i in 0..nsd {
-                            k[(a * nsd + i) * ndof + bb * nsd + i] += jxw * gab;
-                        }
-                    }
-                }
-            }
-        }
-        if let Some(st) = states {
-            let mut full_e = [0.0; 6];
-            let mut full_s = [0.0; 6];
-            for (k, &c) in comps.iter().enumerate() {
-                full_e[c] = strain[k];
-                full_s[c] = sv[k];
-            }
-            if nc == 4 {
-                // Plane strain: ε_zz = 0 whatever the reduced vector carries.
-                full_e[2] = 0.0;
-            }
-            if nc == 3 && normal_strain != 0.0 {
-                // Plane stress: the normal strain the law found, and its stretch in F.
-                full_e[2] = normal_strain;
-                if self.nlgeo {
-                    f[2][2] = (1.0 + 2.0 * normal_strain).sqrt();
-                }
-            }
-            let mut p = [[0.0; 3]; 3];
-            for i in 0..3 {
-                for j in 0..3 {
-                    p[i][j] = (0..3).map(|t| fm[i][t] * s[t][j]).sum();
-                }
-            }
-            st.push(GpState {
-                strain: full_e,
-                stress: full_s,
-                f,
-                p,
-            });
-        }
-        Ok(())
     }
+
+    /// k += ∫ Bᵀ D B, B the strain's variation (δE_k = B_k · δu) with F in large deformation,
+    /// into `b` and D·B into `db`.
+    fn add_material_tangent(
+        &self,
+        pt: &Point,
+        answer: &Answer,
+        k: &mut [f64],
+        (b, db): (&mut [[f64; MAX_DOFS]; 6], &mut [[f64; MAX_DOFS]; 6]),
+    ) {
+        let (nsd, nn, dndx, fm) = (self.nsd, pt.nn, pt.dndx, &answer.fm);
+        let (ndof, nc) = (nn * nsd, answer.comps.len());
+        for (row, &c) in answer.comps.iter().enumerate() {
+            let (ii, jj) = VOIGT_PAIRS[c];
+            for a in 0..nn {
+                for i in 0..nsd {
+                    b[row][a * nsd + i] = if ii == jj {
+                        fm[i][ii] * dndx[a][ii]
+                    } else {
+                        fm[i][ii] * dndx[a][jj] + fm[i][jj] * dndx[a][ii]
+                    };
+                }
+            }
+        }
+        // The rows of B that can be non-zero: in 2D not those of a component with z (the
+        // plane-strain ε_zz, whose row vanishes).
+        let mut rows = [0usize; 6];
+        let mut nr = 0;
+        for (row, &c) in answer.comps.iter().enumerate() {
+            let (ii, jj) = VOIGT_PAIRS[c];
+            if ii < nsd && jj < nsd {
+                rows[nr] = row;
+                nr += 1;
+            }
+        }
+        let rows = &rows[..nr];
+        let d = &answer.tangent;
+        for &r in rows {
+            for q in 0..ndof {
+                db[r][q] = rows.iter().map(|&t| d[r * nc + t] * b[t][q]).sum::<f64>() * pt.jxw;
+            }
+        }
+        // Bᵀ D B, one triangle mirrored where D is symmetric.
+        let symmetric = self.material.symmetric_tangent();
+        for p in 0..ndof {
+            for q in if symmetric { p } else { 0 }..ndof {
+                let mut v = 0.0;
+                for &r in rows {
+                    v += b[r][p] * db[r][q];
+                }
+                k[p * ndof + q] += v;
+                if symmetric && q > p {
+                    k[q * ndof + p] += v;
+                }
+            }
+        }
+    }
+
+    /// k += ∫ ∂N_a/∂X_I S_IJ ∂N_b/∂X_J δ_ik, the geometric stiffness of large deformation.
+    fn add_geometric_tangent(&self, pt: &Point, s: &[[f64; 3]; 3], k: &mut [f64]) {
+        let (nsd, nn, dndx) = (self.nsd, pt.nn, pt.dndx);
+        let ndof = nn * nsd;
+        for a in 0..nn {
+            for bb in 0..nn {
+                let mut gab = 0.0;
+                for ii in 0..nsd {
+                    for jj in 0..nsd {
+                        gab += dndx[a][ii] * s[ii][jj] * dndx[bb][jj];
+                    }
+                }
+                for i in 0..nsd {
+                    k[(a * nsd + i) * ndof + bb * nsd + i] += pt.jxw * gab;
+                }
+            }
+        }
+    }
+
+    /// The point's results in full Voigt form, with F and P = F S.
+    fn point_state(&self, pt: &Point, answer: &Answer) -> GpState {
+        let nc = answer.comps.len();
+        let mut f = pt.f;
+        let mut full_e = [0.0; 6];
+        let mut full_s = [0.0; 6];
+        for (k, &c) in answer.comps.iter().enumerate() {
+            full_e[c] = answer.strain[k];
+            full_s[c] = answer.stress[k];
+        }
+        if nc == 4 {
+            // Plane strain: ε_zz = 0 whatever the reduced vector carries.
+            full_e[2] = 0.0;
+        }
+        if nc == 3 && answer.normal_strain != 0.0 {
+            // Plane stress: the normal strain the law found, and its stretch in F.
+            full_e[2] = answer.normal_strain;
+            if self.nlgeo {
+                f[2][2] = (1.0 + 2.0 * answer.normal_strain).sqrt();
+            }
+        }
+        let mut p = [[0.0; 3]; 3];
+        for i in 0..3 {
+            for j in 0..3 {
+                p[i][j] = (0..3).map(|t| answer.fm[i][t] * answer.s[t][j]).sum();
+            }
+        }
+        GpState {
+            strain: full_e,
+            stress: full_s,
+            f,
+            p,
+        }
+    }
+}
+
+/// A law's answer at a point: its strain and stress (reduced Voigt form, `comps` the full
+/// components they are) and tangent, the stress as a tensor `s`, and the F of the element's
+/// forces `fm` (the identity in small strain).
+struct Answer {
+    comps: &'static [usize],
+    strain: [f64; 6],
+    stress: [f64; 6],
+    tangent: [f64; 36],
+    normal_strain: f64,
+    s: [[f64; 3]; 3],
+    fm: [[f64; 3]; 3],
 }

@@ -85,6 +85,17 @@ pub struct CondensedContact {
 /// A point's local codes, each as the (candidate position, weight) pairs it stands for.
 type PointLocs = Vec<Vec<(usize, f64)>>;
 
+/// One guess of the branch search on the linearized problem: the points, their guessed
+/// branches, their candidate positions and branch tangents (open, closed), and (K_s⁻¹ r) on
+/// the candidates.
+struct Linearized<'g> {
+    points: &'g [ContactPoint],
+    closed: &'g [Branch],
+    locs: &'g [PointLocs],
+    tangents: &'g [[Vec<f64>; 2]],
+    wc: &'g [f64],
+}
+
 impl CondensedContact {
     /// Factorize K_s (the upper triangle `values` on the symmetric `pattern`) with the candidate
     /// equations `candidates` (displacements and multipliers among `lambdas`) last, by `base`
@@ -239,47 +250,16 @@ impl CondensedContact {
             .map(|p| [p.branch(p.guess(false)).1, p.branch(p.guess(true)).1])
             .collect();
         loop {
-            // Equations of the dense system: those of closed points and the shifted ones.
-            let (a, in_a) = self.dense_equations(points, &closed, &locs, dofs);
-            let na = a.len();
-            let mut c = Mat::<f64>::zeros(na, na);
             let none_closed = !(0..points.len()).any(|i| closed[i].closed && points[i].can_close());
-            for &k in &a {
-                if !(hold && none_closed) {
-                    c[(in_a[k], in_a[k])] -= self.shift[k];
-                }
-            }
-            // δ: the residual change of points whose branch differs from their current one, and
-            // their tangents on A into C.
-            let delta = branch_changes(points, &closed, &locs, &tangents, &in_a, &mut c, mdim);
-            // Active multipliers may constrain the same motion twice (a node in two conditions
-            // on the same surface): their rows of the dense system are then dependent. A
-            // compliance 1e-10 times the structure's on their diagonal keeps it regular (the
-            // dependent multipliers share the force); only the step is regularized, not the
-            // residual, so Newton still converges to the exact constraints.
-            self.regularize_redundant(&a, &in_a, &mut c, dofs);
-            // w_c = (K_s⁻¹(r + Pᵀδ))_c; on A the stiffness form of Woodbury's identity,
-            //   (S_A + C) Δu_A = S_A w_A,  S_A = (M_AA)⁻¹ (the Schur complement of K_s on A),
-            // keeps a large penalty from amplifying round-off; the contact force increment is
-            // f_A = C Δu_A = S_A (w_A − Δu_A).
-            let w_c: Vec<f64> = (0..mdim)
-                .map(|k| wc[k] + (0..mdim).map(|j| self.m[(k, j)] * delta[j]).sum::<f64>())
-                .collect();
-            let (f_a, mechanism) = self.force_increment(&a, &c, &w_c, shifted && !none_closed);
-            // corr = δ − Pᵀ f_A, and the predicted Δu on the candidates.
-            let mut corr = delta;
-            for i in 0..na {
-                corr[a[i]] -= f_a[i];
-            }
-            let du_c: Vec<f64> = (0..mdim)
-                .map(|k| wc[k] + (0..mdim).map(|j| self.m[(k, j)] * corr[j]).sum::<f64>())
-                .collect();
-            if du_c.iter().any(|v| !v.is_finite()) {
-                return Err(Error::Solve(
-                    "the tangent is singular: a body is held by contact alone and no contact holds it"
-                        .into(),
-                ));
-            }
+            let guess = Linearized {
+                points,
+                closed: &closed,
+                locs: &locs,
+                tangents: &tangents,
+                wc: &wc,
+            };
+            let (corr, du_c, mechanism) =
+                self.solve_guess(&guess, dofs, hold && none_closed, shifted && !none_closed)?;
             // Predict every point's branch from the linearized step.
             let predicted = predict_branches(points, &locs, &du_c);
             let misses = closed
@@ -317,28 +297,97 @@ impl CondensedContact {
             if let Some(eq) = mechanism {
                 return Err(mechanism_error(&describe(eq)));
             }
-            let updates = search.updates;
-            // The whole step: Δu = w + K_s⁻¹ (δ − Pᵀ C Δu_A).
-            let mut z = vec![0.0; nf];
-            for (k, &e) in self.cand.iter().enumerate() {
-                z[e] = corr[k];
-            }
-            self.base.solve_in_place(&mut z)?;
-            for (wi, zi) in w.iter_mut().zip(&z) {
-                *wi += zi;
-            }
-            if w.iter().any(|v| !v.is_finite()) {
-                return Err(Error::Solve(
-                    "condensed contact step produced a non-finite update".into(),
-                ));
-            }
             return Ok(Some(ContactStep {
-                du: w,
+                du: self.whole_step(w, &corr, nf)?,
                 closed,
-                updates,
+                updates: search.updates,
                 cycled: search.cycled,
             }));
         }
+    }
+
+    /// The dense system of one guess of the branches (`guess`): the contact force increment on
+    /// its equations A and the correction δ − Pᵀ f_A of the step on the candidates, the
+    /// predicted Δu there, and where `check`, an equation a mechanism the load drives moves;
+    /// `hold`: the shifted equations keep their shift (a guess that closes no point of a body
+    /// held by contact alone).
+    fn solve_guess(
+        &self,
+        guess: &Linearized,
+        dofs: &DofMap,
+        hold: bool,
+        check: bool,
+    ) -> Result<(Vec<f64>, Vec<f64>, Option<usize>)> {
+        let mdim = self.cand.len();
+        // Equations of the dense system: those of closed points and the shifted ones.
+        let (a, in_a) = self.dense_equations(guess.points, guess.closed, guess.locs, dofs);
+        let na = a.len();
+        let mut c = Mat::<f64>::zeros(na, na);
+        for &k in &a {
+            if !hold {
+                c[(in_a[k], in_a[k])] -= self.shift[k];
+            }
+        }
+        // δ: the residual change of points whose branch differs from their current one, and
+        // their tangents on A into C.
+        let delta = branch_changes(
+            guess.points,
+            guess.closed,
+            guess.locs,
+            guess.tangents,
+            &in_a,
+            &mut c,
+            mdim,
+        );
+        // Active multipliers may constrain the same motion twice (a node in two conditions
+        // on the same surface): their rows of the dense system are then dependent. A
+        // compliance 1e-10 times the structure's on their diagonal keeps it regular (the
+        // dependent multipliers share the force); only the step is regularized, not the
+        // residual, so Newton still converges to the exact constraints.
+        self.regularize_redundant(&a, &in_a, &mut c, dofs);
+        // w_c = (K_s⁻¹(r + Pᵀδ))_c; on A the stiffness form of Woodbury's identity,
+        //   (S_A + C) Δu_A = S_A w_A,  S_A = (M_AA)⁻¹ (the Schur complement of K_s on A),
+        // keeps a large penalty from amplifying round-off; the contact force increment is
+        // f_A = C Δu_A = S_A (w_A − Δu_A).
+        let wc = guess.wc;
+        let w_c: Vec<f64> = (0..mdim)
+            .map(|k| wc[k] + (0..mdim).map(|j| self.m[(k, j)] * delta[j]).sum::<f64>())
+            .collect();
+        let (f_a, mechanism) = self.force_increment(&a, &c, &w_c, check);
+        // corr = δ − Pᵀ f_A, and the predicted Δu on the candidates.
+        let mut corr = delta;
+        for i in 0..na {
+            corr[a[i]] -= f_a[i];
+        }
+        let du_c: Vec<f64> = (0..mdim)
+            .map(|k| wc[k] + (0..mdim).map(|j| self.m[(k, j)] * corr[j]).sum::<f64>())
+            .collect();
+        if du_c.iter().any(|v| !v.is_finite()) {
+            return Err(Error::Solve(
+                "the tangent is singular: a body is held by contact alone and no contact holds it"
+                    .into(),
+            ));
+        }
+        Ok((corr, du_c, mechanism))
+    }
+
+    /// The whole step from K_s⁻¹ r (`w`) and the correction on the candidates:
+    /// Δu = w + K_s⁻¹ (δ − Pᵀ C Δu_A).
+    fn whole_step(&mut self, mut w: Vec<f64>, corr: &[f64], nf: usize) -> Result<Vec<f64>> {
+        let mut z = vec![0.0; nf];
+        for (k, &e) in self.cand.iter().enumerate() {
+            z[e] = corr[k];
+        }
+        self.base.solve_in_place(&mut z)?;
+        for (wi, zi) in w.iter_mut().zip(&z) {
+            *wi += zi;
+        }
+        if w.iter().any(|v| !v.is_finite()) {
+            return Err(Error::Solve(
+                "condensed contact step produced a non-finite update".into(),
+            ));
+        }
+        Ok(w)
     }
 
     /// Mark the candidates as the nearest points' only (see the module docs).

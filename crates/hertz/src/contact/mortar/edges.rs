@@ -356,6 +356,62 @@ struct Integrals {
     normal: [Dual; 2],
 }
 
+/// A slave edge of a slot: its nodes, its positions (of the geometry), the slot's node among
+/// them and the edge's Gauss rule.
+struct SlaveEdge<'e> {
+    nodes: &'e [usize],
+    xg: &'e [[Dual; 2]],
+    jloc: usize,
+    gauss: &'e [(f64, f64)],
+}
+
+impl SlaveEdge<'_> {
+    /// Add to the slot's integrals `w` those over [lo, hi] of the edge with the dual function
+    /// Φ_j = Σ_b coef[b] N_b, `gap_at(ξ)` the gap, the master nodes with their shape values,
+    /// the force direction and ds/dξ at a point: ∫ Φ_j g, ∫ N_j, and for the slave nodes
+    /// ∫ Φ_j N_k ν, for the master nodes −∫ Φ_j M_l ν.
+    fn accumulate(
+        &self,
+        local: &Local,
+        w: &mut Integrals,
+        coef: &[Dual],
+        (lo, hi): (Dual, Dual),
+        gap_at: GapAt,
+    ) {
+        let zero = lo.cst(0.0);
+        let half = (hi - lo) * 0.5;
+        for &(z, wz) in self.gauss {
+            let xi = lo + half * (1.0 + z);
+            let (shape_s, _) = shape(self.xg.len(), xi);
+            let (g, master, dir, jac) = gap_at(xi);
+            let ds = half * jac * wz;
+            let nj = shape_s[self.jloc];
+            let phi = (0..self.xg.len()).fold(zero, |acc, b| acc + shape_s[b] * coef[b]);
+            w.gap = w.gap + phi * g * ds;
+            w.area = w.area + nj * ds;
+            for (kk, &n) in self.nodes.iter().enumerate() {
+                let i = local.index(n);
+                let share = phi * shape_s[kk] * ds;
+                w.shares[i] = w.shares[i] + share;
+                for d in 0..2 {
+                    w.b[2 * i + d] = w.b[2 * i + d] + share * dir[d];
+                }
+            }
+            for (n, ml) in master {
+                let i = local.index(n);
+                let share = phi * ml * ds;
+                w.shares[i] = w.shares[i] - share;
+                for d in 0..2 {
+                    w.b[2 * i + d] = w.b[2 * i + d] - share * dir[d];
+                }
+            }
+            for d in 0..2 {
+                w.normal[d] = w.normal[d] + phi * dir[d] * ds;
+            }
+        }
+    }
+}
+
 impl Mortar {
     /// The weighted gap of slot `j`, its support and force direction, over the local unknowns;
     /// `overlaps[k]` are the master edges that can overlap slave edge k.
@@ -398,39 +454,14 @@ impl Mortar {
                 let nu = [-(t[1] * e.side) / jac, t[0] * e.side / jac];
                 (x, t, nu, jac, curve(&xc, xi).0)
             };
-            // Φ_j = Σ_b coef[b] N_b over [lo, hi].
+            let slave_edge = SlaveEdge {
+                nodes: &e.nodes,
+                xg: &xg,
+                jloc,
+                gauss,
+            };
             let add = |w: &mut Integrals, coef: &[Dual], lo: Dual, hi: Dual, gap_at: GapAt| {
-                let half = (hi - lo) * 0.5;
-                for &(z, wz) in gauss {
-                    let xi = lo + half * (1.0 + z);
-                    let (shape_s, _) = shape(xg.len(), xi);
-                    let (g, master, dir, jac) = gap_at(xi);
-                    let ds = half * jac * wz;
-                    let nj = shape_s[jloc];
-                    let phi = (0..xg.len()).fold(zero, |acc, b| acc + shape_s[b] * coef[b]);
-                    w.gap = w.gap + phi * g * ds;
-                    w.area = w.area + nj * ds;
-                    // Slave nodes: ∫ Φ_j N_k ν; master nodes: −∫ Φ_j M_l ν.
-                    for (kk, &n) in e.nodes.iter().enumerate() {
-                        let i = local.index(n);
-                        let share = phi * shape_s[kk] * ds;
-                        w.shares[i] = w.shares[i] + share;
-                        for d in 0..2 {
-                            w.b[2 * i + d] = w.b[2 * i + d] + share * dir[d];
-                        }
-                    }
-                    for (n, ml) in master {
-                        let i = local.index(n);
-                        let share = phi * ml * ds;
-                        w.shares[i] = w.shares[i] - share;
-                        for d in 0..2 {
-                            w.b[2 * i + d] = w.b[2 * i + d] - share * dir[d];
-                        }
-                    }
-                    for d in 0..2 {
-                        w.normal[d] = w.normal[d] + phi * dir[d] * ds;
-                    }
-                }
+                slave_edge.accumulate(&local, w, coef, (lo, hi), gap_at)
             };
             // The overlaps [ξ_lo, ξ_hi] of the master edges (at `geo` positions) with the slave
             // edge.

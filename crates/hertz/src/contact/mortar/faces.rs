@@ -36,7 +36,7 @@ use crate::contact::{
     interface_weights, ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState,
 };
 use crate::error::{Error, Result};
-use crate::model::{Model, Pairing, SegmentKind};
+use crate::model::{ContactCondition, Model, Pairing, SegmentKind};
 use std::collections::HashMap;
 
 /// Duals over the coordinates of one slave and one master face (4 + 4 nodes).
@@ -116,78 +116,11 @@ impl FaceMortar {
         let Pairing::Mortar { slave, segments } = &c.pairing else {
             unreachable!("a mortar condition")
         };
-        let err = |msg: &str| Error::Input {
-            span: c.span.clone(),
-            msg: msg.into(),
-        };
-        if !matches!(model.segments[*slave].kind, SegmentKind::Faces { .. }) {
-            return Err(err(
-                "in 3D the slave segment of a mortar condition must be element faces",
-            ));
-        }
-        if segments.iter().any(|&g| {
-            matches!(
-                model.segments[g].kind,
-                SegmentKind::Polynomial { .. } | SegmentKind::Edges { .. }
-            )
-        }) {
-            return Err(err(
-                "mortar contact in 3D meets element faces, rigid planes and spheres (a polynomial \
-                 curve or element edges are 2D masters)",
-            ));
-        }
-        let rigid: Vec<usize> = segments
-            .iter()
-            .copied()
-            .filter(|&g| !matches!(model.segments[g].kind, SegmentKind::Faces { .. }))
-            .collect();
-        let face_segments: Vec<usize> = segments
-            .iter()
-            .copied()
-            .filter(|g| !rigid.contains(g))
-            .collect();
+        let (rigid, face_segments) = split_masters(model, c, *slave, segments)?;
         let slave = FaceSurface::new(model, &[*slave]);
         let master = FaceSurface::new(model, &face_segments);
-        if slave.faces.is_empty() || (master.faces.is_empty() && rigid.is_empty()) {
-            return Err(err("the slave or master segment has no element faces"));
-        }
-        if !master.faces.is_empty() && !rigid.is_empty() {
-            return Err(err(
-                "a 3D mortar condition meets element faces or rigid shapes, not both: give \
-                 each its own condition",
-            ));
-        }
-        let rigid_nodes: Vec<usize> = rigid.iter().filter_map(|&g| rigid_node(model, g)).collect();
-        if rigid_nodes.len() > 4 {
-            return Err(err(
-                "a 3D mortar condition meets at most 4 rigid shapes that move with nodes",
-            ));
-        }
-        if slave.at_node.keys().any(|n| master.at_node.contains_key(n)) {
-            return Err(err(
-                "the slave and master segments share nodes: a surface cannot contact itself",
-            ));
-        }
-        // Quadratic faces are segmented through flat sub-faces ([`super::curved`]), against
-        // element faces only.
-        let quadratic = |f: &Face| matches!(f.kind, FaceKind::Tri6 | FaceKind::Quad8);
-        if slave.faces.iter().any(quadratic) && !rigid.is_empty() {
-            return Err(err(
-                "mortar contact of quadratic (6- and 8-node) slave faces meets element faces, \
-                 not rigid shapes; use node-to-segment contact (n2s...) against a rigid shape",
-            ));
-        }
-        let mut slots: Vec<(usize, Vec<usize>)> = Vec::new();
-        let mut slot_of = HashMap::new();
-        for (k, f) in slave.faces.iter().enumerate() {
-            for &n in &f.nodes {
-                let j = *slot_of.entry(n).or_insert_with(|| {
-                    slots.push((n, Vec::new()));
-                    slots.len() - 1
-                });
-                slots[j].1.push(k);
-            }
-        }
+        let rigid_nodes = check_surfaces(model, c, (&slave, &master), &rigid)?;
+        let (slots, slot_of) = slots_of(&slave);
         // Without a penalty, h is the mean size (√area) of the node's slave faces.
         let nodes: Vec<usize> = slots.iter().map(|s| s.0).collect();
         let reference = |n: usize| model.nodes[n].coords;
@@ -195,29 +128,6 @@ impl FaceMortar {
             .faces
             .iter()
             .map(|f| Facet::at(f, &reference).size)
-            .collect();
-        // ∫ N_j over a flat face: its area over its corner count; ∫ N̂_j over a curved one.
-        let curved_supports: Vec<Option<Vec<f64>>> = slave
-            .faces
-            .iter()
-            .map(|f| {
-                quadratic(f).then(|| {
-                    let x: Vec<[f64; 3]> = f.nodes.iter().map(|&n| reference(n)).collect();
-                    curved::supports(f.kind, &x)
-                })
-            })
-            .collect();
-        let full_support = slots
-            .iter()
-            .map(|(node, faces)| {
-                faces
-                    .iter()
-                    .map(|&k| match &curved_supports[k] {
-                        Some(s) => s[slave.faces[k].nodes.iter().position(|n| n == node).unwrap()],
-                        None => size[k].powi(2) / slave.faces[k].nodes.len() as f64,
-                    })
-                    .sum()
-            })
             .collect();
         let law = MortarLaw::new(
             model,
@@ -227,7 +137,7 @@ impl FaceMortar {
                 let faces = &slots[j].1;
                 faces.iter().map(|&k| size[k]).sum::<f64>() / faces.len() as f64
             },
-            full_support,
+            full_supports(model, &slave, &slots, &size),
         );
         // Against rigid shapes only, where the slave faces are linear.
         let dual = slave
@@ -1221,4 +1131,152 @@ impl Formulation for FaceMortar {
         }
         Ok(searching)
     }
+}
+
+/// The input error of condition `c`.
+fn input_error(c: &ContactCondition, msg: &str) -> Error {
+    Error::Input {
+        span: c.span.clone(),
+        msg: msg.into(),
+    }
+}
+
+/// A 3D mortar condition's masters split into rigid shapes and face segments (model segment
+/// indices): element faces meet element faces, rigid planes and spheres.
+fn split_masters(
+    model: &Model,
+    c: &ContactCondition,
+    slave: usize,
+    segments: &[usize],
+) -> Result<(Vec<usize>, Vec<usize>)> {
+    if !matches!(model.segments[slave].kind, SegmentKind::Faces { .. }) {
+        return Err(input_error(
+            c,
+            "in 3D the slave segment of a mortar condition must be element faces",
+        ));
+    }
+    if segments.iter().any(|&g| {
+        matches!(
+            model.segments[g].kind,
+            SegmentKind::Polynomial { .. } | SegmentKind::Edges { .. }
+        )
+    }) {
+        return Err(input_error(
+            c,
+            "mortar contact in 3D meets element faces, rigid planes and spheres (a polynomial \
+             curve or element edges are 2D masters)",
+        ));
+    }
+    let rigid: Vec<usize> = segments
+        .iter()
+        .copied()
+        .filter(|&g| !matches!(model.segments[g].kind, SegmentKind::Faces { .. }))
+        .collect();
+    let faces = segments
+        .iter()
+        .copied()
+        .filter(|g| !rigid.contains(g))
+        .collect();
+    Ok((rigid, faces))
+}
+
+/// What the slave and master surfaces of a 3D mortar condition may be: not empty, faces or
+/// rigid shapes (at most 4 moving with nodes, whose nodes are returned) but not both, no shared
+/// nodes, quadratic slave faces against faces only (they are segmented through flat sub-faces,
+/// [`super::curved`]).
+fn check_surfaces(
+    model: &Model,
+    c: &ContactCondition,
+    (slave, master): (&FaceSurface, &FaceSurface),
+    rigid: &[usize],
+) -> Result<Vec<usize>> {
+    if slave.faces.is_empty() || (master.faces.is_empty() && rigid.is_empty()) {
+        return Err(input_error(
+            c,
+            "the slave or master segment has no element faces",
+        ));
+    }
+    if !master.faces.is_empty() && !rigid.is_empty() {
+        return Err(input_error(
+            c,
+            "a 3D mortar condition meets element faces or rigid shapes, not both: give \
+             each its own condition",
+        ));
+    }
+    let rigid_nodes: Vec<usize> = rigid.iter().filter_map(|&g| rigid_node(model, g)).collect();
+    if rigid_nodes.len() > 4 {
+        return Err(input_error(
+            c,
+            "a 3D mortar condition meets at most 4 rigid shapes that move with nodes",
+        ));
+    }
+    if slave.at_node.keys().any(|n| master.at_node.contains_key(n)) {
+        return Err(input_error(
+            c,
+            "the slave and master segments share nodes: a surface cannot contact itself",
+        ));
+    }
+    if slave.faces.iter().any(is_quadratic) && !rigid.is_empty() {
+        return Err(input_error(
+            c,
+            "mortar contact of quadratic (6- and 8-node) slave faces meets element faces, \
+             not rigid shapes; use node-to-segment contact (n2s...) against a rigid shape",
+        ));
+    }
+    Ok(rigid_nodes)
+}
+
+/// Whether a face is quadratic (6- or 8-node).
+fn is_quadratic(f: &Face) -> bool {
+    matches!(f.kind, FaceKind::Tri6 | FaceKind::Quad8)
+}
+
+/// The slots of the slave surface: each node with its faces, and each node's slot.
+#[allow(clippy::type_complexity)]
+fn slots_of(slave: &FaceSurface) -> (Vec<(usize, Vec<usize>)>, HashMap<usize, usize>) {
+    let mut slots: Vec<(usize, Vec<usize>)> = Vec::new();
+    let mut slot_of = HashMap::new();
+    for (k, f) in slave.faces.iter().enumerate() {
+        for &n in &f.nodes {
+            let j = *slot_of.entry(n).or_insert_with(|| {
+                slots.push((n, Vec::new()));
+                slots.len() - 1
+            });
+            slots[j].1.push(k);
+        }
+    }
+    (slots, slot_of)
+}
+
+/// Every slot's full support (`MortarLaw::full_support`): ∫ N_j over its flat faces (their
+/// areas over their corner counts, `size` their √area), ∫ N̂_j over curved ones.
+fn full_supports(
+    model: &Model,
+    slave: &FaceSurface,
+    slots: &[(usize, Vec<usize>)],
+    size: &[f64],
+) -> Vec<f64> {
+    let reference = |n: usize| model.nodes[n].coords;
+    let curved_supports: Vec<Option<Vec<f64>>> = slave
+        .faces
+        .iter()
+        .map(|f| {
+            is_quadratic(f).then(|| {
+                let x: Vec<[f64; 3]> = f.nodes.iter().map(|&n| reference(n)).collect();
+                curved::supports(f.kind, &x)
+            })
+        })
+        .collect();
+    slots
+        .iter()
+        .map(|(node, faces)| {
+            faces
+                .iter()
+                .map(|&k| match &curved_supports[k] {
+                    Some(s) => s[slave.faces[k].nodes.iter().position(|n| n == node).unwrap()],
+                    None => size[k].powi(2) / slave.faces[k].nodes.len() as f64,
+                })
+                .sum()
+        })
+        .collect()
 }

@@ -284,43 +284,20 @@ impl MortarLaw {
         j: usize,
         node: usize,
         local: &Local,
-        w: Weighted,
+        mut w: Weighted,
         history: Option<&[SlotState]>,
     ) -> Result<(ContactPoint, SlotState)> {
         let anchor = history
             .and_then(|h| h.get(j))
             .and_then(|s| s.anchor.as_ref());
-        let m = local.m();
         let mut state = SlotState {
             partner: w.partner,
             xi: [0.0; 2],
             ..SlotState::unpaired(self.number, node, ctx.position(node)?.0)
         };
         let has = w.area.v > 0.0;
-        let (gap, b) = if has {
-            // ḡ = g̃ / D with its gradient.
-            let q = w.gap.v / w.area.v;
-            let d = (w.gap.d.iter().zip(&w.area.d))
-                .map(|(a, b)| (a - q * b) / w.area.v)
-                .collect();
-            // With multipliers the force acts along the node's normal (see
-            // `SlipForm::along_normal`), so that it condenses out exactly.
-            let b = match &w.slip {
-                Some(slip) if self.laws[j].is_multipliers() => slip.along_normal(local),
-                _ => w.b,
-            };
-            (Jet { v: q, d }, b)
-        } else {
-            (Jet::constant(f64::NAN, m), vec![Jet::constant(0.0, m); m])
-        };
-        let mut kin = PointKinematics {
-            gap,
-            weight: Jet::constant(if has { 1.0 } else { 0.0 }, m),
-            b,
-            area: 1.0,
-            past_end: None,
-            slip: None,
-        };
+        let b = std::mem::take(&mut w.b);
+        let mut kin = self.slot_kinematics(j, local, &w, b);
         // The multipliers' active-set rule compares a pressure with c·ḡ: c per unit area.
         let laws = Laws {
             c: ctx.laws.c / w.area.v.max(1e-300),
@@ -395,24 +372,71 @@ impl MortarLaw {
             law::penalty::evaluate(&laws, penalty, codes, &kin)
         };
         if has {
-            state.gap = kin.gap.v;
-            let lambda = law::normal_force(&point, &kin, penalty);
-            state.pressure = lambda;
-            // The slot's force on the slave body: λ ∫ Φ_j ν along B for a penalty, whose size
-            // |∫ Φ_j ν| is below D_j where the slave's facets turn (a curved die: 1.4 % on the
-            // shallow ironing's arc), and λ D_j along the node's normal for multipliers.
-            let support = match &w.slip {
-                Some(s) if !self.laws[j].is_multipliers() => {
-                    s.normal.iter().map(|n| n.v * n.v).sum::<f64>().sqrt()
-                }
-                _ => w.area.v,
-            };
-            state.force = lambda * support;
-            state.active = point.closed && (self.laws[j].is_multipliers() || kin.gap.v < 0.0);
+            self.record_force(j, &point, &kin, &w, &mut state);
         } else {
             state.partner = Partner::None;
         }
         Ok((point, state))
+    }
+
+    /// The kinematics of slot `j` from its integrals `w`: the weighted gap ḡ = g̃ / D with its
+    /// gradient, the force direction (with multipliers along the node's normal, see
+    /// `SlipForm::along_normal`, so that it condenses out exactly); none without support.
+    fn slot_kinematics(
+        &self,
+        j: usize,
+        local: &Local,
+        w: &Weighted,
+        b: Vec<Jet>,
+    ) -> PointKinematics {
+        let m = local.m();
+        let has = w.area.v > 0.0;
+        let (gap, b) = if has {
+            let q = w.gap.v / w.area.v;
+            let d = (w.gap.d.iter().zip(&w.area.d))
+                .map(|(a, b)| (a - q * b) / w.area.v)
+                .collect();
+            let b = match &w.slip {
+                Some(slip) if self.laws[j].is_multipliers() => slip.along_normal(local),
+                _ => b,
+            };
+            (Jet { v: q, d }, b)
+        } else {
+            (Jet::constant(f64::NAN, m), vec![Jet::constant(0.0, m); m])
+        };
+        PointKinematics {
+            gap,
+            weight: Jet::constant(if has { 1.0 } else { 0.0 }, m),
+            b,
+            area: 1.0,
+            past_end: None,
+            slip: None,
+        }
+    }
+
+    /// The gap, pressure and force of slot `j` with support into its `state`. The slot's force
+    /// on the slave body: λ ∫ Φ_j ν along B for a penalty, whose size |∫ Φ_j ν| is below D_j
+    /// where the slave's facets turn (a curved die: 1.4 % on the shallow ironing's arc), and
+    /// λ D_j along the node's normal for multipliers.
+    fn record_force(
+        &self,
+        j: usize,
+        point: &ContactPoint,
+        kin: &PointKinematics,
+        w: &Weighted,
+        state: &mut SlotState,
+    ) {
+        state.gap = kin.gap.v;
+        let lambda = law::normal_force(point, kin, self.laws[j].penalty());
+        state.pressure = lambda;
+        let support = match &w.slip {
+            Some(s) if !self.laws[j].is_multipliers() => {
+                s.normal.iter().map(|n| n.v * n.v).sum::<f64>().sqrt()
+            }
+            _ => w.area.v,
+        };
+        state.force = lambda * support;
+        state.active = point.closed && (self.laws[j].is_multipliers() || kin.gap.v < 0.0);
     }
 }
 

@@ -147,12 +147,6 @@ impl NodeToSegment {
         let face = &self.faces.faces[k];
         let nc = face.nodes.len();
         let moving = self.moving_normals(k);
-        let mut local = Local::new(3);
-        local.add(ctx, slot.node)?;
-        for &n in &face.nodes {
-            local.add(ctx, n)?;
-        }
-        // The anchor's face moves the anchor: its corners are unknowns of the pair too.
         let friction_law = slot.friction;
         let anchor_face = anchor
             .filter(|_| friction_law.is_some())
@@ -160,21 +154,12 @@ impl NodeToSegment {
                 Partner::Face(ka) => Some((ka, a.xi)),
                 _ => None,
             });
-        if let Some((ka, _)) = anchor_face {
-            for &n in &self.faces.faces[ka].nodes {
-                local.add(ctx, n)?;
-            }
-        }
         let normals: Vec<&NodalNormal> = if moving {
             face.nodes.iter().map(|a| &cur.normals[a]).collect()
         } else {
             Vec::new()
         };
-        for nn in &normals {
-            for &(b, _) in &nn.jac {
-                local.add(ctx, b)?;
-            }
-        }
+        let local = self.face_local(ctx, slot, k, anchor_face.map(|a| a.0), &normals)?;
         let m = local.m();
         // Dual variables z: the node and corner positions (the first local unknowns), then the
         // corners' nodal normals when they move.
@@ -190,32 +175,10 @@ impl NodeToSegment {
                     .collect()
             })
             .unwrap_or_default();
-        let (zvals, zanchor) = dual_values(&local, npos, &normals, &extra);
-        let nz = zvals.len();
-        if nz > dual::MAXV {
-            return Err(crate::error::Error::Solve(format!(
-                "contact node {} with friction: {nz} variables for one pair, at most {}",
-                ctx.model.nodes[slot.node].label,
-                dual::MAXV
-            )));
-        }
-        let z = dual::seed(&zvals, nz);
-        let v3 = |i: usize| [z[3 * i], z[3 * i + 1], z[3 * i + 2]];
-        let xs = v3(0);
-        let x: Vec<[Dual; 3]> = (1..=nc).map(v3).collect();
-        let n: Vec<[Dual; 3]> = if moving {
-            (1..=nc).map(|a| v3(nc + a)).collect()
-        } else {
-            self.face_normals(k, cur)
-                .iter()
-                .map(|v| v.map(|c| Dual::constant(c, nz)))
-                .collect()
-        };
-        let geom = FaceGeometry {
-            kind: face.kind,
-            x,
-            n,
-        };
+        let (z, zanchor, geom) =
+            self.dual_face(ctx, (slot, k), cur, &local, (npos, &normals, &extra))?;
+        let nz = z.len();
+        let xs = [z[0], z[1], z[2]];
         let jac = self
             .face_geometry_f64(k, cur)
             .jacobian(cur_point(&local), xi0[0], xi0[1]);
@@ -284,6 +247,77 @@ impl NodeToSegment {
             }
         }
         Ok((local, kin, next))
+    }
+
+    /// A node's pair with face `k` in dual variables z (see [`dual_values`]): z, where the
+    /// anchor's own corners begin in it, and the face's geometry in them (its nodal normals
+    /// moving with their corners in large deformation, else fixed).
+    #[allow(clippy::type_complexity)]
+    fn dual_face(
+        &self,
+        ctx: &Ctx,
+        (slot, k): (&Slot, usize),
+        cur: &Current,
+        local: &Local,
+        (npos, normals, extra): (usize, &[&NodalNormal], &[usize]),
+    ) -> Result<(Vec<Dual>, usize, FaceGeometry<Dual>)> {
+        let face = &self.faces.faces[k];
+        let nc = face.nodes.len();
+        let (zvals, zanchor) = dual_values(local, npos, normals, extra);
+        let nz = zvals.len();
+        if nz > dual::MAXV {
+            return Err(crate::error::Error::Solve(format!(
+                "contact node {} with friction: {nz} variables for one pair, at most {}",
+                ctx.model.nodes[slot.node].label,
+                dual::MAXV
+            )));
+        }
+        let z = dual::seed(&zvals, nz);
+        let v3 = |i: usize| [z[3 * i], z[3 * i + 1], z[3 * i + 2]];
+        let x: Vec<[Dual; 3]> = (1..=nc).map(v3).collect();
+        let n: Vec<[Dual; 3]> = if !normals.is_empty() {
+            (1..=nc).map(|a| v3(nc + a)).collect()
+        } else {
+            self.face_normals(k, cur)
+                .iter()
+                .map(|v| v.map(|c| Dual::constant(c, nz)))
+                .collect()
+        };
+        let geom = FaceGeometry {
+            kind: face.kind,
+            x,
+            n,
+        };
+        Ok((z, zanchor, geom))
+    }
+
+    /// The local unknowns of a node against face `k`: the node, the face's corners, those of
+    /// the face `anchor` its friction is anchored to (it moves the anchor), and the nodes the
+    /// corners' moving `normals` depend on.
+    fn face_local(
+        &self,
+        ctx: &Ctx,
+        slot: &Slot,
+        k: usize,
+        anchor: Option<usize>,
+        normals: &[&NodalNormal],
+    ) -> Result<Local> {
+        let mut local = Local::new(3);
+        local.add(ctx, slot.node)?;
+        for &n in &self.faces.faces[k].nodes {
+            local.add(ctx, n)?;
+        }
+        if let Some(ka) = anchor {
+            for &n in &self.faces.faces[ka].nodes {
+                local.add(ctx, n)?;
+            }
+        }
+        for nn in normals {
+            for &(b, _) in &nn.jac {
+                local.add(ctx, b)?;
+            }
+        }
+        Ok(local)
     }
 
     /// The anchor's material point (partner face `ka` at `xia`) in the dual variables `z` of

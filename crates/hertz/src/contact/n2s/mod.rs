@@ -26,20 +26,23 @@
 mod edges;
 mod faces;
 mod rigid;
+mod slots;
+
+use slots::Slot;
 
 use super::dual::{DVec, Dual, Jet};
 use super::geometry::bodies::{self, BodiesAt, Inside, MasterBodies};
 use super::geometry::edges::EdgeSurface;
 use super::geometry::faces::{FaceSurface, NodalNormal};
 use super::geometry::scalar::Scalar;
+use super::law::SlotFriction;
 use super::law::{PointKinematics, SlipKinematics};
-use super::law::{SlotFriction, SlotLaw};
 use super::search::broad::BroadPhase;
 use super::search::{self, Candidate};
 use super::tributary::PressureAreas;
 use super::Anchor;
 use super::{apply_law, ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::model::{Enforcement, Friction, Model, Pairing, SegmentKind};
 use std::collections::HashMap;
 
@@ -54,25 +57,6 @@ const HYSTERESIS_BAND: f64 = 1e-6;
 /// Ramp length at an open boundary for a node without neighbours, as a fraction of the
 /// boundary's edge length.
 const ISOLATED_RAMP: f64 = 0.01;
-struct Slot {
-    node: usize,
-    area: f64,
-    /// Reference positions of the node's neighbours on its own surface.
-    neighbors: Vec<[f64; 3]>,
-    /// Half the distance to the farthest neighbour: how far past an open boundary the node can
-    /// still meet the master.
-    reach: f64,
-    /// The condition's law at this node, its penalty resolved (given, times the node's weight in
-    /// upstream OOFEM input, its number of slave elements; or from the mesh, times its tributary
-    /// area).
-    law: SlotLaw,
-    /// The condition's friction at this node.
-    friction: Option<SlotFriction>,
-    /// E·A/h of the elements under the node with the master's E in series (E their Young's
-    /// modulus, see [`super::friction_modulus`]; A its tributary area, h the distance to its
-    /// neighbours): c_T of the friction multipliers.
-    stiffness: f64,
-}
 
 pub struct NodeToSegment {
     number: usize,
@@ -244,126 +228,12 @@ impl NodeToSegment {
         let Pairing::NodeToSegment { nodes, segments } = &c.pairing else {
             unreachable!("a node-to-segment condition")
         };
-        let err = |msg: String| Error::Input {
-            span: c.span.clone(),
-            msg,
-        };
         let edges = EdgeSurface::new(model, segments);
         let faces = FaceSurface::new(model, segments);
-        let mut seen = std::collections::HashSet::new();
-        for &n in nodes {
-            let label = model.nodes[n].label;
-            if !seen.insert(n) {
-                return Err(err(format!("node {label} is listed twice in `nodeset`")));
-            }
-            let own = edges
-                .edges
-                .iter()
-                .find(|e| e.nodes.contains(&n))
-                .map(|e| ("an edge", e.segment, e.element))
-                .or_else(|| {
-                    faces
-                        .faces
-                        .iter()
-                        .find(|f| f.nodes.contains(&n))
-                        .map(|f| ("a face", f.segment, f.element))
-                });
-            if let Some((what, seg, el)) = own {
-                return Err(err(format!(
-                    "node {label} of `nodeset` belongs to {what} of contact segment {} (element {}): \
-                     a node cannot be in contact with its own surface",
-                    model.segments[seg].number, model.elements[el].label
-                )));
-            }
-        }
+        slots::check_nodes(model, c, nodes, &edges, &faces)?;
         edges::check_support(model, &edges)?;
-        // The nodes of an 8-node face (QSpace) as contact nodes: under a uniform pressure its
-        // consistent nodal forces pull on its corners (−1/12 of its area each), so a corner
-        // held to the master by a node-to-face constraint would need tension: it opens and
-        // sinks in (a Hertz contact's every corner node inside the contact zone opened).
-        if let Some(f) = super::tributary::facets(model, nodes)
-            .iter()
-            .find(|f| f.nodes.len() == 8)
-        {
-            return Err(err(format!(
-                "the contact nodes include the nodes of an 8-node face (of a QSpace element, \
-                 nodes {}): node-to-segment contact cannot hold its corners, which a uniform \
-                 pressure pulls on; use QTRSpace, LSpace or LTRSpace elements on the slave side, \
-                 or make the QSpace surface the master",
-                f.nodes
-                    .iter()
-                    .map(|&n| model.nodes[n].label.to_string())
-                    .collect::<Vec<_>>()
-                    .join(" ")
-            )));
-        }
-
-        let tribs = super::tributary::tributaries(model, nodes);
-        let young = super::stiffest_young(model);
-        let stiffest = young.values().copied().fold(0.0, f64::max);
-        let master = super::master_young(model, segments);
-        let slots = nodes
-            .iter()
-            .zip(tribs)
-            .enumerate()
-            .map(|(k, (&node, t))| {
-                let x = model.nodes[node].coords;
-                let neighbors: Vec<[f64; 3]> = if c.tributary_ramp {
-                    t.neighbors.iter().map(|&m| model.nodes[m].coords).collect()
-                } else {
-                    Vec::new()
-                };
-                let reach = neighbors
-                    .iter()
-                    .map(|y| 0.5 * (0..3).map(|i| (y[i] - x[i]).powi(2)).sum::<f64>().sqrt())
-                    .fold(0.0, f64::max);
-                let h = if t.neighbors.is_empty() {
-                    0.1 * super::model_size(model)
-                } else {
-                    t.neighbors
-                        .iter()
-                        .map(|&m| {
-                            let y = model.nodes[m].coords;
-                            (0..3).map(|i| (y[i] - x[i]).powi(2)).sum::<f64>().sqrt()
-                        })
-                        .sum::<f64>()
-                        / t.neighbors.len() as f64
-                };
-                // A node on no element (a rigid body's) gets the model's stiffest modulus.
-                let e = young.get(&node).copied().unwrap_or(stiffest);
-                let per_modulus = super::law_area(t.measure, model) / h;
-                let weight = c.node_weights.as_ref().map_or(1.0, |w| w[k]);
-                let mesh = super::law::penalty::from_mesh(e, master, per_modulus);
-                let law = SlotLaw::resolve(c.enforcement, mesh, weight);
-                let stiffness = super::friction_modulus(e, master) * per_modulus;
-                Slot {
-                    node,
-                    area: t.measure,
-                    neighbors,
-                    reach,
-                    law,
-                    friction: c.friction.map(|f| law.friction(f, weight)),
-                    stiffness,
-                }
-            })
-            .collect();
-        let rigid: Vec<usize> = segments
-            .iter()
-            .copied()
-            .filter(|&g| {
-                !matches!(
-                    model.segments[g].kind,
-                    SegmentKind::Edges { .. } | SegmentKind::Faces { .. }
-                )
-            })
-            .collect();
-        let rigid_nodes = rigid
-            .iter()
-            .filter_map(|&g| match &model.segments[g].kind {
-                SegmentKind::Circle { node, .. } | SegmentKind::Plane { node, .. } => *node,
-                _ => None,
-            })
-            .collect();
+        let slots = slots::slots(model, c, nodes, segments);
+        let (rigid, rigid_nodes) = rigid_segments(model, segments);
         let mut items_of: HashMap<usize, Vec<Partner>> = HashMap::new();
         for (k, e) in edges.edges.iter().enumerate() {
             items_of
@@ -395,17 +265,7 @@ impl NodeToSegment {
             rigid_nodes,
             dim: model.domain.nsd(),
             tie: 1e-9 * super::model_size(model),
-            covered: model
-                .contacts
-                .iter()
-                .enumerate()
-                .filter(|&(k, _)| k != ci)
-                .filter_map(|(_, c)| match &c.pairing {
-                    Pairing::NodeToSegment { nodes, .. } => Some(nodes.iter().copied()),
-                    _ => None,
-                })
-                .flatten()
-                .collect(),
+            covered: slots::covered(model, ci),
         })
     }
 
@@ -755,4 +615,27 @@ impl Formulation for NodeToSegment {
         }
         Ok(searching)
     }
+}
+
+/// The rigid segments among `segments` (model segment indices) and the reference nodes they
+/// move with.
+fn rigid_segments(model: &Model, segments: &[usize]) -> (Vec<usize>, Vec<usize>) {
+    let rigid: Vec<usize> = segments
+        .iter()
+        .copied()
+        .filter(|&g| {
+            !matches!(
+                model.segments[g].kind,
+                SegmentKind::Edges { .. } | SegmentKind::Faces { .. }
+            )
+        })
+        .collect();
+    let nodes = rigid
+        .iter()
+        .filter_map(|&g| match &model.segments[g].kind {
+            SegmentKind::Circle { node, .. } | SegmentKind::Plane { node, .. } => *node,
+            _ => None,
+        })
+        .collect();
+    (rigid, nodes)
 }

@@ -485,12 +485,51 @@ impl MultiplierElimination {
     ) -> Result<()> {
         let n = rhs.len();
         let (eliminated, decoupled) = eliminable(rows, n, groups, false);
-        // Unknowns kept, and where each row goes in the reduced system.
+        let layout = Layout::new(n, &eliminated, &decoupled, groups);
+        let (reduced_rows, mut b) = layout.reduced_rows(rows, rhs, &eliminated);
+        let (reduced, vals) = reduced_rows.into_pattern();
+        self.count(&eliminated, &decoupled, groups);
+        let kept = &layout.kept;
+        self.factorize_reduced(reduced, &vals, &|k| kept[k], None, describe)?;
+        self.solver.solve_in_place(&mut b)?;
+        // x, then each group's multipliers λ = E (b_S − K_S x).
+        let mut x = vec![0.0; n];
+        for (k, &i) in kept.iter().enumerate() {
+            x[i] = b[k];
+        }
+        let solved = Solved {
+            rows,
+            gone: &layout.gone,
+            rhs,
+        };
+        solved.eliminated_multipliers(&eliminated, &mut x);
+        solved.decoupled_multipliers(&decoupled, groups, &mut x, describe)?;
+        rhs.copy_from_slice(&x);
+        Ok(())
+    }
+}
+
+/// Where the unknowns and rows of the general elimination go.
+struct Layout {
+    /// The unknowns that leave the system: eliminated and decoupled multipliers.
+    gone: Vec<bool>,
+    /// Rows not carried over as they are: the eliminated groups' slave rows and the decoupled
+    /// groups' own rows.
+    replaced: Vec<bool>,
+    /// Eliminated multiplier l is multiplier a of group g: place[l] = (g, a).
+    place: Vec<(usize, usize)>,
+    /// The unknowns kept, and each one's place in the reduced system.
+    kept: Vec<usize>,
+    pos: Vec<usize>,
+    /// Row i of T goes to reduced row `target[i]`; the slave rows' places are taken by their
+    /// group's constraint rows (the first p) and Q₂ᵀ rows (the rest).
+    target: Vec<usize>,
+}
+
+impl Layout {
+    fn new(n: usize, eliminated: &[Eliminated], decoupled: &[usize], groups: &[Group]) -> Layout {
         let mut gone = vec![false; n];
-        // Rows not carried over as they are: the eliminated groups' slave rows and the decoupled
-        // groups' own rows.
         let mut replaced = vec![false; n];
-        // Eliminated multiplier l is multiplier a of group g: place[l] = (g, a).
         let mut place = vec![(usize::MAX, 0); n];
         for (g, el) in eliminated.iter().enumerate() {
             for (a, &l) in el.lambdas.iter().enumerate() {
@@ -503,7 +542,7 @@ impl MultiplierElimination {
         }
         // A decoupled group's rows and columns leave the system; its multipliers are solved
         // from its own rows afterwards.
-        for &g in &decoupled {
+        for &g in decoupled {
             for &l in &groups[g].lambdas {
                 gone[l] = true;
                 replaced[l] = true;
@@ -514,17 +553,34 @@ impl MultiplierElimination {
         for (k, &i) in kept.iter().enumerate() {
             pos[i] = k;
         }
-        let nk = kept.len();
-        // Row i of T goes to reduced row `target[i]`; the slave rows' places are taken by their
-        // group's constraint rows (the first p) and Q₂ᵀ rows (the rest).
         let mut target = pos.clone();
-        for el in &eliminated {
+        for el in eliminated {
             for (a, &l) in el.lambdas.iter().enumerate() {
                 target[l] = pos[el.slave[a]];
             }
         }
-        let mut reduced_rows = RowBuilder::new(nk);
-        let mut b = vec![0.0; nk];
+        Layout {
+            gone,
+            replaced,
+            place,
+            kept,
+            pos,
+            target,
+        }
+    }
+
+    /// The reduced rows and right-hand side: row i minus Σ_g T_iλ E_g (K_S, b_S) of the groups
+    /// whose multipliers it holds, and each eliminated group's slave rows with no multiplier,
+    /// Q₂ᵀ K_S x = Q₂ᵀ b_S.
+    fn reduced_rows(
+        &self,
+        rows: &Rows,
+        rhs: &[f64],
+        eliminated: &[Eliminated],
+    ) -> (RowBuilder, Vec<f64>) {
+        let (gone, pos) = (&self.gone, &self.pos);
+        let mut reduced_rows = RowBuilder::new(self.kept.len());
+        let mut b = vec![0.0; self.kept.len()];
         // Reduced row t += w × (row s of T on the kept unknowns, b_s); each reduced row is built
         // in one go and then closed.
         let mut add_row = |out: &mut RowBuilder, t: usize, s: usize, w: f64| {
@@ -535,19 +591,18 @@ impl MultiplierElimination {
                 }
             }
         };
-        // Row i minus Σ_g T_iλ E_g (K_S, b_S) of the groups whose multipliers it holds.
-        for i in 0..n {
-            if replaced[i] {
+        for i in 0..rhs.len() {
+            if self.replaced[i] {
                 continue;
             }
-            let t = target[i];
+            let t = self.target[i];
             add_row(&mut reduced_rows, t, i, 1.0);
             let mut z: Vec<(usize, Vec<f64>)> = Vec::new();
             for (c, v) in rows.row(i) {
                 if !gone[c] {
                     continue;
                 }
-                let (g, a) = place[c];
+                let (g, a) = self.place[c];
                 if g == usize::MAX {
                     // A decoupled multiplier: zero outside its own rows.
                     continue;
@@ -573,8 +628,7 @@ impl MultiplierElimination {
             }
             reduced_rows.close(t);
         }
-        // The slave rows with no multiplier: Q₂ᵀ K_S x = Q₂ᵀ b_S.
-        for el in &eliminated {
+        for el in eliminated {
             let (r, p) = (el.slave.len(), el.lambdas.len());
             for col in p..r {
                 let t = pos[el.slave[col]];
@@ -584,26 +638,10 @@ impl MultiplierElimination {
                 reduced_rows.close(t);
             }
         }
-        let (reduced, vals) = reduced_rows.into_pattern();
-        self.count(&eliminated, &decoupled, groups);
-        self.factorize_reduced(reduced, &vals, &|k| kept[k], None, describe)?;
-        self.solver.solve_in_place(&mut b)?;
-        // x, then each group's multipliers λ = E (b_S − K_S x).
-        let mut x = vec![0.0; n];
-        for (k, &i) in kept.iter().enumerate() {
-            x[i] = b[k];
-        }
-        let solved = Solved {
-            rows,
-            gone: &gone,
-            rhs,
-        };
-        solved.eliminated_multipliers(&eliminated, &mut x);
-        solved.decoupled_multipliers(&decoupled, groups, &mut x, describe)?;
-        rhs.copy_from_slice(&x);
-        Ok(())
+        (reduced_rows, b)
     }
 }
+
 /// The reduced system's solution and what recovers the multipliers from it.
 struct Solved<'a> {
     rows: &'a Rows,
