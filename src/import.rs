@@ -1,7 +1,7 @@
-//! `hertz import`'s arguments, for [`hertz::mesh::gmsh::import_command`].
+//! `hertz import`: a Gmsh mesh into node, element and set records to `@include`.
 
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
-use hertz::mesh::gmsh::{ImportOptions, Plane};
+use hertz::mesh::gmsh::Plane;
 use hertz::output::vtu::VtuFormat;
 use std::path::PathBuf;
 
@@ -22,15 +22,35 @@ pub struct ImportArgs {
     pub nlgeo: bool,
 }
 
-impl ImportArgs {
-    pub fn options(&self) -> ImportOptions {
-        ImportOptions {
-            mesh: self.mesh.clone(),
-            output: self.output.clone(),
-            plane: self.plane,
-            nlgeo: self.nlgeo,
-        }
+/// `hertz import MESH [-o FILE] [--plane stress|strain] [--nlgeo]`: write the records; returns
+/// what to tell the user (the file, the counts, the sets, and a warning line if the mesh has no
+/// groups).
+pub fn run(args: &ImportArgs) -> hertz::error::Result<Vec<String>> {
+    let mut c = hertz::mesh::gmsh::convert(&args.mesh, args.plane)?;
+    c.nlgeo = args.nlgeo;
+    let out = args
+        .output
+        .clone()
+        .unwrap_or_else(|| args.mesh.with_extension("in"));
+    c.write_fragment(&out, &args.mesh)?;
+    let mut lines = vec![format!(
+        "wrote {}: {} nodes, {} elements ({}D); counts record: {}",
+        out.display(),
+        c.coords.len(),
+        c.elements.len(),
+        c.dim,
+        c.counts()
+    )];
+    lines.extend(c.set_summary().into_iter().map(|l| format!("  {l}")));
+    if c.sets.is_empty() {
+        lines.push(format!(
+            "warning: {} has no physical groups, so the records have no sets (nset 0): hertz \
+             makes one set per physical group; define Physical groups in Gmsh for the body and \
+             each loaded, supported or contact boundary",
+            args.mesh.display()
+        ));
     }
+    Ok(lines)
 }
 
 /// `--plane`'s values.

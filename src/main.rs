@@ -139,8 +139,7 @@ fn main() -> ExitCode {
             run_or_check(file, None, &PetscArgs::default(), &verbosity)
         }
         Command::Import(args) => report(
-            hertz::mesh::gmsh::import_command(&args.options())
-                .map(|lines| lines.iter().for_each(|l| eprintln!("{l}"))),
+            hertz_cli::import::run(&args).map(|lines| lines.iter().for_each(|l| eprintln!("{l}"))),
         ),
         Command::Plot(args) => report(hertz_cli::plot::plot_files(&args).map(|files| {
             files

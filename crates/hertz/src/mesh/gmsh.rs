@@ -12,7 +12,7 @@ use crate::fem::geometry::det_j_at_centre;
 use crate::fem::shape::Shape;
 use crate::model::ElementType;
 use std::collections::{BTreeMap, HashMap};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// One Gmsh element: its type number, physical tags and node tags (Gmsh order).
 #[derive(Debug, Clone)]
@@ -106,19 +106,6 @@ fn refuse_to_overwrite_a_users_file(out: &Path, mesh: &Path) -> Result<()> {
             out.display()
         ),
     })
-}
-
-/// What `hertz import` converts and where it writes.
-#[derive(Debug, Clone)]
-pub struct ImportOptions {
-    /// Gmsh mesh (.msh 2.2 or 4.1, ASCII).
-    pub mesh: PathBuf,
-    /// Output file (default: the mesh's path with the extension .in).
-    pub output: Option<PathBuf>,
-    /// How 2D elements are named.
-    pub plane: Plane,
-    /// Large deformation: `nlgeo 1` on every element record.
-    pub nlgeo: bool,
 }
 
 fn err(path: &Path, line: usize, msg: impl Into<String>) -> Error {
@@ -547,6 +534,45 @@ pub fn convert(path: &Path, plane: Plane) -> Result<Converted> {
     if dim < 2 {
         return Err(err(path, 0, "the mesh has no 2D or 3D elements"));
     }
+    let (coords, node_index) = mesh_nodes(path, &raw, dim)?;
+    let index = |tag: usize| {
+        node_index.get(&tag).copied().ok_or_else(|| {
+            err(
+                path,
+                0,
+                format!("an element refers to node {tag}, which is not in $Nodes"),
+            )
+        })
+    };
+    let mut groups: BTreeMap<(usize, usize), GroupSet> = BTreeMap::new();
+    let (elements, n_flipped) =
+        mesh_elements(path, &raw, dim, plane, &coords, &index, &mut groups)?;
+    boundary_groups(path, &raw, dim, &elements, &index, &mut groups)?;
+    let mut sets: Vec<GroupSet> = groups.into_values().collect();
+    // Mesh-dimension groups first, then boundaries, then lower groups: stable numbering.
+    sets.sort_by_key(|g| (std::cmp::Reverse(g.dim), g.physical));
+    for (i, s) in sets.iter_mut().enumerate() {
+        s.number = i + 1;
+        s.nodes.sort_unstable();
+        s.nodes.dedup();
+        s.boundaries.sort_unstable();
+        s.boundaries.dedup();
+    }
+    Ok(Converted {
+        dim,
+        coords,
+        elements,
+        sets,
+        n_flipped,
+        nlgeo: false,
+    })
+}
+
+/// Each Gmsh node tag's index among the converted nodes.
+type NodeIndex = HashMap<usize, usize>;
+
+/// The mesh's nodes (in the plane z = 0 for a 2D mesh, each tag once) and each tag's index.
+fn mesh_nodes(path: &Path, raw: &RawMesh, dim: usize) -> Result<(Vec<[f64; 3]>, NodeIndex)> {
     let mut node_index = HashMap::with_capacity(raw.nodes.len());
     let mut coords = Vec::with_capacity(raw.nodes.len());
     for (tag, x) in &raw.nodes {
@@ -565,19 +591,23 @@ pub fn convert(path: &Path, plane: Plane) -> Result<Converted> {
         }
         coords.push(*x);
     }
-    let index = |tag: usize| {
-        node_index.get(&tag).copied().ok_or_else(|| {
-            err(
-                path,
-                0,
-                format!("an element refers to node {tag}, which is not in $Nodes"),
-            )
-        })
-    };
-    // Elements of the mesh's dimension.
+    Ok((coords, node_index))
+}
+
+/// The elements of the mesh's dimension in hertz's node order (mirrored where their Jacobian is
+/// negative: how many were is returned too), each in its physical groups.
+#[allow(clippy::type_complexity)]
+fn mesh_elements(
+    path: &Path,
+    raw: &RawMesh,
+    dim: usize,
+    plane: Plane,
+    coords: &[[f64; 3]],
+    index: &dyn Fn(usize) -> Result<usize>,
+    groups: &mut BTreeMap<(usize, usize), GroupSet>,
+) -> Result<(Vec<(ElementType, Vec<usize>)>, usize)> {
     let mut elements = Vec::new();
     let mut n_flipped = 0;
-    let mut groups: BTreeMap<(usize, usize), GroupSet> = BTreeMap::new();
     for e in raw
         .elements
         .iter()
@@ -604,13 +634,25 @@ pub fn convert(path: &Path, plane: Plane) -> Result<Converted> {
             ));
         }
         for &p in &e.physical {
-            group(&mut groups, &raw.names, dim, p)
+            group(groups, &raw.names, dim, p)
                 .elements
                 .push(elements.len());
         }
         elements.push((etype, nodes));
     }
-    // Boundaries of those elements, keyed by their sorted corner nodes.
+    Ok((elements, n_flipped))
+}
+
+/// The lower-dimensional physical groups: boundary elements as (element, boundary) pairs of the
+/// mesh's elements (keyed by their sorted corner nodes), lower ones as nodes.
+fn boundary_groups(
+    path: &Path,
+    raw: &RawMesh,
+    dim: usize,
+    elements: &[(ElementType, Vec<usize>)],
+    index: &dyn Fn(usize) -> Result<usize>,
+    groups: &mut BTreeMap<(usize, usize), GroupSet>,
+) -> Result<()> {
     let corners = |nodes: &[usize], shape_nodes: usize| -> Vec<usize> {
         let mut c: Vec<usize> = nodes[..shape_nodes].to_vec();
         c.sort_unstable();
@@ -637,7 +679,7 @@ pub fn convert(path: &Path, plane: Plane) -> Result<Converted> {
         }
         let nodes: Vec<usize> = e.nodes.iter().map(|&t| index(t)).collect::<Result<_>>()?;
         for &p in &e.physical {
-            let g = group(&mut groups, &raw.names, edim, p);
+            let g = group(groups, &raw.names, edim, p);
             if edim + 1 == dim {
                 let n_corner = match e.gmsh_type {
                     8 => 2,
@@ -659,24 +701,7 @@ pub fn convert(path: &Path, plane: Plane) -> Result<Converted> {
             }
         }
     }
-    let mut sets: Vec<GroupSet> = groups.into_values().collect();
-    // Mesh-dimension groups first, then boundaries, then lower groups: stable numbering.
-    sets.sort_by_key(|g| (std::cmp::Reverse(g.dim), g.physical));
-    for (i, s) in sets.iter_mut().enumerate() {
-        s.number = i + 1;
-        s.nodes.sort_unstable();
-        s.nodes.dedup();
-        s.boundaries.sort_unstable();
-        s.boundaries.dedup();
-    }
-    Ok(Converted {
-        dim,
-        coords,
-        elements,
-        sets,
-        n_flipped,
-        nlgeo: false,
-    })
+    Ok(())
 }
 
 impl Converted {
@@ -791,33 +816,12 @@ impl Converted {
     }
 }
 
-/// `hertz import MESH [-o FILE] [--plane stress|strain] [--nlgeo]`: write the records; returns what to
-/// tell the user (the file, the counts, the sets, and a warning line if the mesh has no groups).
-pub fn import_command(args: &ImportOptions) -> Result<Vec<String>> {
-    let mut c = convert(&args.mesh, args.plane)?;
-    c.nlgeo = args.nlgeo;
-    let out = args
-        .output
-        .clone()
-        .unwrap_or_else(|| args.mesh.with_extension("in"));
-    refuse_to_overwrite_a_users_file(&out, &args.mesh)?;
-    crate::output::write_atomic(&out, c.fragment(&args.mesh).as_bytes())?;
-    let mut lines = vec![format!(
-        "wrote {}: {} nodes, {} elements ({}D); counts record: {}",
-        out.display(),
-        c.coords.len(),
-        c.elements.len(),
-        c.dim,
-        c.counts()
-    )];
-    lines.extend(c.set_summary().into_iter().map(|l| format!("  {l}")));
-    if c.sets.is_empty() {
-        lines.push(format!(
-            "warning: {} has no physical groups, so the records have no sets (nset 0): hertz makes \
-             one set per physical group; define Physical groups in Gmsh for the body and each \
-             loaded, supported or contact boundary",
-            args.mesh.display()
-        ));
+impl Converted {
+    /// Write the records to `out` (see [`Converted::fragment`]; `mesh` the mesh they come
+    /// from), whole or not at all, and only where no file is or over a fragment hertz wrote:
+    /// never over the mesh, an input or any other file of the user's.
+    pub fn write_fragment(&self, out: &Path, mesh: &Path) -> Result<()> {
+        refuse_to_overwrite_a_users_file(out, mesh)?;
+        crate::output::write_atomic(out, self.fragment(mesh).as_bytes())
     }
-    Ok(lines)
 }
