@@ -7,7 +7,7 @@
 use super::dual::{self, DVec, Dual};
 use super::geometry::bodies::Inside;
 use super::law::{self, Laws};
-use super::point::ContactPoint;
+use super::slot::SlotLinearization;
 use crate::assembly::NodalState;
 use crate::error::Result;
 use crate::model::queries::model_size;
@@ -269,7 +269,7 @@ pub trait Formulation {
         first_lambda: usize,
         search: Search,
         history: Option<&[SlotState]>,
-        points: &mut Vec<ContactPoint>,
+        points: &mut Vec<SlotLinearization>,
         states: &mut Vec<SlotState>,
     ) -> Result<f64>;
 }
@@ -329,36 +329,34 @@ pub fn apply_law(
     law: law::SlotLaw,
     lambda_eqs: Option<std::ops::Range<usize>>,
     local: &Local,
-    kin: &law::PointKinematics,
+    kin: &law::SlotKinematics,
     area: f64,
     state: &mut SlotState,
-) -> ContactPoint {
+) -> SlotLinearization {
     let codes = local.codes.clone();
     let multipliers = law.is_multipliers();
-    let (point, penalty) = match (law, lambda_eqs) {
-        (law::SlotLaw::Penalty(p), None) => (law::penalty::evaluate(ctx.laws, p, codes, kin), p),
-        (law, Some(eqs)) => {
-            // A penalty with its forces as unknowns: its compliance 1/ε.
-            let compliance = law.compliance();
-            let lambdas = ctx.nodes.multipliers(eqs.clone());
-            let free = |c| ctx.nodes.is_free(c);
-            let (point, friction) =
-                law::multiplier::evaluate(ctx.laws, lambdas, codes, eqs, kin, compliance, &free);
-            if let Some(s) = &kin.slip {
-                state.friction = friction;
-                // A sticking node keeps its anchor; a sliding one leaves it behind by its
-                // elastic slip (none without a penalty: where it is now, as an open one, the
-                // state's anchor from the kinematics).
-                match friction {
-                    Some((true, _)) => state.anchor = Some(s.kept),
-                    Some((false, _)) if s.slid.is_some() => state.anchor = s.slid,
-                    _ => {}
-                }
-            }
-            (point, 0.0)
+    let free = |c| ctx.nodes.is_free(c);
+    let forces = lambda_eqs.map(|eqs| law::Forces {
+        values: ctx.nodes.multipliers(eqs.clone()),
+        eqs,
+        // A penalty with its forces as unknowns: its compliance 1/ε.
+        compliance: law.compliance(),
+        free: &free,
+    });
+    let forces_known = forces.is_none();
+    let (point, friction) = law.evaluate(ctx.laws, codes, forces, kin);
+    if let Some(s) = kin.slip.as_ref().filter(|_| !forces_known) {
+        state.friction = friction;
+        // A sticking node keeps its anchor; a sliding one leaves it behind by its elastic slip
+        // (none without a penalty: where it is now, as an open one, the state's anchor from
+        // the kinematics).
+        match friction {
+            Some((true, _)) => state.anchor = Some(s.kept),
+            Some((false, _)) if s.slid.is_some() => state.anchor = s.slid,
+            _ => {}
         }
-        (law::SlotLaw::Multipliers, None) => unreachable!("multiplier points have equations"),
-    };
+    }
+    let penalty = if forces_known { law.penalty() } else { 0.0 };
     state.force = law::normal_force(&point, kin, penalty);
     state.active = point.closed && (multipliers || kin.gap.v < 0.0);
     state.pressure = if area > 0.0 {

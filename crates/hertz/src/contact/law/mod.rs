@@ -19,7 +19,7 @@ pub mod penalty;
 use crate::model::{Enforcement, Friction, PenaltySource};
 
 use super::dual::{Dual, Jet};
-use super::point::{BranchRule, ContactPoint};
+use super::slot::{BranchRule, SlotLinearization};
 
 /// A condition's enforcement at one contact slot, its penalty resolved there: what the
 /// formulations ask of a law, through these methods (a new law is a variant here and its file).
@@ -76,6 +76,39 @@ impl SlotLaw {
     }
 }
 
+/// A slot's forces as unknowns: their equations (the friction force's components, if any, then
+/// the normal force), their current values, the compliance in their rows (1/ε of a penalty in
+/// this form, else 0) and whether a displacement code moves with a free equation.
+pub struct Forces<'a> {
+    pub eqs: std::ops::Range<usize>,
+    pub values: &'a [f64],
+    pub compliance: f64,
+    pub free: &'a dyn Fn(usize) -> bool,
+}
+
+impl SlotLaw {
+    /// The slot's linearization from its kinematics `kin` over the displacement `codes`: the
+    /// penalty law where its forces follow the gap, the multiplier law where they are unknowns
+    /// (`forces`; a penalty there with its compliance). With friction, also whether an active
+    /// slot sticks and its friction force's magnitude. The one place the formulations reach a
+    /// law.
+    pub fn evaluate(
+        self,
+        laws: &Laws,
+        codes: Vec<usize>,
+        forces: Option<Forces>,
+        kin: &SlotKinematics,
+    ) -> (SlotLinearization, Option<(bool, f64)>) {
+        match (self, forces) {
+            (SlotLaw::Penalty(p), None) => (penalty::evaluate(laws, p, codes, kin), None),
+            (_, Some(f)) => {
+                multiplier::evaluate(laws, f.values, codes, f.eqs, kin, f.compliance, f.free)
+            }
+            (SlotLaw::Multipliers, None) => unreachable!("multiplier slots have equations"),
+        }
+    }
+}
+
 /// Coulomb friction at one slot: μ and the tangential penalty ε_T in effect (0 with
 /// multipliers).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -85,7 +118,7 @@ pub struct SlotFriction {
 }
 
 /// Kinematics of one contact point.
-pub struct PointKinematics {
+pub struct SlotKinematics {
     pub gap: Jet,
     pub weight: Jet,
     pub b: Vec<Jet>,
@@ -120,10 +153,10 @@ pub struct SlipKinematics {
     pub slid: Option<crate::contact::Anchor>,
 }
 
-impl PointKinematics {
+impl SlotKinematics {
     /// Kinematics evaluated in duals over the local unknowns.
-    pub fn from_duals(gap: Dual, weight: Dual, b: &[Dual], area: f64) -> PointKinematics {
-        PointKinematics {
+    pub fn from_duals(gap: Dual, weight: Dual, b: &[Dual], area: f64) -> SlotKinematics {
+        SlotKinematics {
             gap: gap.into(),
             weight: weight.into(),
             b: b.iter().map(|&v| v.into()).collect(),
@@ -159,16 +192,16 @@ impl Laws {
 }
 
 /// The constraint `gap` the point's rows hold (with its gradient) and the closed branch's
-/// (fe, ke) into a [`ContactPoint`].
-fn point(
+/// (fe, ke) into a [`SlotLinearization`].
+fn linearization(
     codes: Vec<usize>,
     rule: BranchRule,
     gap: &Jet,
     closed: Option<(Vec<f64>, Vec<f64>)>,
     closed_now: bool,
-) -> ContactPoint {
+) -> SlotLinearization {
     let (closed_fe, closed_ke) = closed.unwrap_or_default();
-    ContactPoint {
+    SlotLinearization {
         codes,
         rule,
         closed_fe,
@@ -181,7 +214,7 @@ fn point(
 }
 
 /// Normal force (≥ 0 in compression) of a point in its current branch.
-pub fn normal_force(p: &ContactPoint, k: &PointKinematics, penalty: f64) -> f64 {
+pub fn normal_force(p: &SlotLinearization, k: &SlotKinematics, penalty: f64) -> f64 {
     if !p.closed {
         return 0.0;
     }

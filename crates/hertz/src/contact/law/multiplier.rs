@@ -9,8 +9,7 @@
 //! [`super::Laws::geometric_allowed`]): the gap row holds the node on the master, so a large λ
 //! is no sign of an iterate deep inside it. It comes from the discretization — nodal pressures of a
 //! stiff slave with facets finer than a soft master's exceed E — and dropping the geometric part
-//! there made Newton converge linearly (shallow ironing, block 60 × 10, die E twice the block's:
-//! 20 iterations with the residual falling by half in each, 3 with the part kept).
+//! there makes Newton converge linearly (BENCHMARKS.md, "Evidence behind design choices").
 //!
 //! The weight w only switches the constraint: in the limit of an infinite penalty, the penalty law
 //! holds g = 0 wherever w > 0, and a node it presses towards the end of w's ramp (e → 0, with e
@@ -43,9 +42,9 @@
 //! force plus c_T times the slip instead of ε_T times it. c and c_T are capped at ε and ε_T: at
 //! the cap the rules are the penalty's own.
 
-use super::{point, Laws, PointKinematics, SlipKinematics};
+use super::{linearization, Laws, SlipKinematics, SlotKinematics};
 use crate::contact::dual::{Dual, Jet};
-use crate::contact::point::{BranchRule, ContactPoint};
+use crate::contact::slot::{BranchRule, SlotLinearization};
 
 /// c of a complementarity rule capped at the penalty 1/`compliance` (none: c).
 fn capped(c: f64, compliance: f64) -> f64 {
@@ -57,7 +56,7 @@ fn capped(c: f64, compliance: f64) -> f64 {
 }
 
 /// `codes`: the displacement codes, then the equations of the multipliers `lambdas`: the
-/// friction force's components (if any) and last the normal force. `cn`: 1/ε of a
+/// friction force's components (if any) and last the normal force. `compliance`: 1/ε of a
 /// penalty condition solved in this form, else 0. `free`: whether a displacement code moves with
 /// a free equation (asked only with friction). Returns the point and, for an active point with friction, whether it
 /// sticks and the friction force's magnitude.
@@ -73,10 +72,10 @@ pub fn evaluate(
     lambdas: &[f64],
     mut codes: Vec<usize>,
     eqs: std::ops::Range<usize>,
-    k: &PointKinematics,
-    cn: f64,
+    k: &SlotKinematics,
+    compliance: f64,
     free: &dyn Fn(usize) -> bool,
-) -> (ContactPoint, Option<(bool, f64)>) {
+) -> (SlotLinearization, Option<(bool, f64)>) {
     let m = k.b.len();
     let nt = eqs.len() - 1;
     codes.extend(eqs);
@@ -84,11 +83,11 @@ pub fn evaluate(
     let lambda = lambdas[nt];
     let mut lambda_t = [0.0; 3];
     lambda_t[..nt].copy_from_slice(&lambdas[..nt]);
-    let c = capped(laws.c, cn);
+    let c = capped(laws.c, compliance);
     // The constraint the normal row holds: g; near an open end max(g, e); with a penalty's
     // compliance w·g (the penalty's force is ε·w·⟨−g⟩; the weight only switches a multiplier).
     let h = match &k.past_end {
-        _ if cn > 0.0 => k.weight.product(&k.gap),
+        _ if compliance > 0.0 => k.weight.product(&k.gap),
         Some(e) if e.v > k.gap.v => e.clone(),
         _ => k.gap.clone(),
     };
@@ -97,12 +96,12 @@ pub fn evaluate(
         lambda_t,
         tangential: nt,
         c,
-        compliance: cn,
+        compliance,
         tol: laws.gap_tol,
     };
-    let counts = k.weight.v > 0.0 || (cn == 0.0 && k.past_end.is_some());
+    let counts = k.weight.v > 0.0 || (compliance == 0.0 && k.past_end.is_some());
     if !counts || k.gap.v.is_nan() {
-        return (point(codes, rule, &k.gap, None, false), None);
+        return (linearization(codes, rule, &k.gap, None, false), None);
     }
     let mut fe = vec![0.0; mm];
     let mut ke = vec![0.0; mm * mm];
@@ -114,8 +113,8 @@ pub fn evaluate(
             ke[i * mm + j] = -lambda * k.b[i].d[j];
         }
     }
-    fe[mm - 1] = -(h.v + cn * lambda);
-    ke[(mm - 1) * mm + mm - 1] = -cn;
+    fe[mm - 1] = -(h.v + compliance * lambda);
+    ke[(mm - 1) * mm + mm - 1] = -compliance;
     let mut friction = None;
     match &k.slip {
         Some(s) if nt > 0 => {
@@ -155,9 +154,12 @@ pub fn evaluate(
             }
         }
     }
-    let active = lambda - c * (h.v + cn * lambda) > -c * laws.gap_tol;
+    let active = lambda - c * (h.v + compliance * lambda) > -c * laws.gap_tol;
     let friction = friction.filter(|_| active);
-    (point(codes, rule, &h, Some((fe, ke)), active), friction)
+    (
+        linearization(codes, rule, &h, Some((fe, ke)), active),
+        friction,
+    )
 }
 
 /// The rows C_T of the friction multipliers over (q, λ_T, λ) (m + nt + 1 unknowns), whether the
@@ -184,9 +186,11 @@ fn coulomb(s: &SlipKinematics, lambda: f64, lambda_t: &[f64], m: usize) -> (Vec<
     };
     let gt = tangential(&d);
     let pt = tangential(&lt);
-    let ct = s.compliance;
-    let c = capped(s.stiffness, ct);
-    let v: Vec<Dual> = (0..dim).map(|i| pt[i] + (gt[i] - pt[i] * ct) * c).collect();
+    let compliance_t = s.compliance;
+    let c = capped(s.stiffness, compliance_t);
+    let v: Vec<Dual> = (0..dim)
+        .map(|i| pt[i] + (gt[i] - pt[i] * compliance_t) * c)
+        .collect();
     let norm = v.iter().fold(zero, |a, &x| a + x * x).sqrt();
     // The slip limit μ⟨λ⟩ (its derivative taken on the λ ≥ 0 side at λ = 0).
     let limit = if ln.v >= 0.0 { ln * s.mu } else { zero };

@@ -6,11 +6,11 @@
 //! its value p·g·v (a pull) and the material part only; the solver uses it when it predicts that
 //! the point closes within the step. The point also gives its geometric part per unit force
 //! ([`Geometric`]), so that the solver can take it with the force of its last Newton step
-//! instead of −p·g (see `ContactPoint::hold_force`). A penalty with friction is solved in the
+//! instead of −p·g (see `SlotLinearization::hold_force`). A penalty with friction is solved in the
 //! multipliers' form instead (see [`super::multiplier`]).
 
-use super::{point, Laws, PointKinematics};
-use crate::contact::point::{BranchRule, ContactPoint, Geometric};
+use super::{linearization, Laws, SlotKinematics};
+use crate::contact::slot::{BranchRule, Geometric, SlotLinearization};
 
 /// The factor of [`from_mesh`]: the penalty is this many times the stiffness of the softer body
 /// under a contact slot, overlaps of 10⁻³ of its strain.
@@ -37,11 +37,16 @@ fn softer(slave: f64, master: f64) -> f64 {
     }
 }
 
-pub fn evaluate(laws: &Laws, penalty: f64, codes: Vec<usize>, k: &PointKinematics) -> ContactPoint {
+pub fn evaluate(
+    laws: &Laws,
+    penalty: f64,
+    codes: Vec<usize>,
+    k: &SlotKinematics,
+) -> SlotLinearization {
     let m = k.b.len();
     let g = &k.gap;
     if !(k.weight.v > 0.0) || g.v.is_nan() {
-        return point(codes, BranchRule::Penalty, &k.gap, None, false);
+        return linearization(codes, BranchRule::Penalty, &k.gap, None, false);
     }
     let v: Vec<_> = k.b.iter().map(|b| k.weight.product(b)).collect();
     let geometric = g.v < 0.0 && laws.geometric_allowed(penalty * k.weight.v * g.v, k.area);
@@ -62,7 +67,7 @@ pub fn evaluate(laws: &Laws, penalty: f64, codes: Vec<usize>, k: &PointKinematic
         penalty,
         weight: k.weight.v,
     };
-    let mut p = point(codes, BranchRule::Penalty, g, Some((fe, ke)), g.v <= 0.0);
+    let mut p = linearization(codes, BranchRule::Penalty, g, Some((fe, ke)), g.v <= 0.0);
     p.geometric = Some(geo);
     p
 }

@@ -21,8 +21,9 @@
 //!
 //! Coulomb friction acts on each slave node's weighted slip in a step (`SlipForm`; the shares
 //! of the reference segmentation in small deformation, of the current one in large), with the
-//! penalty law's return map or the friction multipliers of [`law::multiplier`], as node-to-segment friction does, so that a uniform shear traction is
-//! transferred exactly as well.
+//! friction multipliers of [`law::multiplier`] (with a penalty, its compliance in their rows), as
+//! node-to-segment friction does, so that a uniform shear traction is transferred exactly as
+//! well.
 //!
 //! [`edges`]: 2D, straight and quadratic edges, against edges or rigid shapes; [`faces`]: 3D,
 //! triangle and quadrilateral faces against faces (segmented by [`segment`]) or rigid planes and
@@ -34,9 +35,11 @@ pub mod faces;
 pub mod segment;
 
 use super::dual::Jet;
-use super::law::{self, Laws, PointKinematics, SlipKinematics, SlotFriction, SlotLaw};
-use super::{Anchor, ContactPoint, Ctx, Formulation, Local, Partner, SlotState};
+use super::formulation::{self, Anchor, Ctx, Formulation, Local, Partner, SlotState};
+use super::law::{self, Laws, SlipKinematics, SlotFriction, SlotKinematics, SlotLaw};
+use super::slot::SlotLinearization;
 use crate::error::Result;
+use crate::model::queries::{master_young, stiffest_young};
 use crate::model::{Enforcement, Friction, Model, SegmentKind};
 
 /// The formulation of mortar condition `ci`: edges in 2D, faces in 3D.
@@ -179,7 +182,7 @@ impl MortarLaw {
         full_support: Vec<f64>,
     ) -> MortarLaw {
         let c = &model.contacts[ci];
-        let young = super::stiffest_young(model);
+        let young = stiffest_young(model);
         let stiffest = young.values().copied().fold(0.0, f64::max);
         // The slave's modulus at each slot, and the master's (friction's c_T has both).
         let slave: Vec<f64> = slots
@@ -187,7 +190,7 @@ impl MortarLaw {
             .map(|n| young.get(n).copied().unwrap_or(stiffest))
             .collect();
         let master = match &c.pairing {
-            crate::model::Pairing::Mortar { segments, .. } => super::master_young(model, segments),
+            crate::model::Pairing::Mortar { segments, .. } => master_young(model, segments),
             _ => f64::INFINITY,
         };
         let mesh_penalty: Vec<f64> = (0..slots.len())
@@ -202,7 +205,7 @@ impl MortarLaw {
             .map(|l| c.friction.map(|f| l.friction(f, 1.0)))
             .collect();
         let stiffness = (0..slots.len())
-            .map(|j| super::friction_modulus(slave[j], master) / size(j))
+            .map(|j| formulation::friction_modulus(slave[j], master) / size(j))
             .collect();
         MortarLaw {
             number: c.number,
@@ -256,7 +259,7 @@ impl MortarLaw {
     /// The condition's smallest and largest penalty in effect (see
     /// [`super::Formulation::penalties`]).
     fn penalties(&self) -> Option<(usize, f64, f64)> {
-        super::penalty_range(self.number, self.laws.iter().copied())
+        formulation::penalty_range(self.number, self.laws.iter().copied())
     }
 
     fn n_multipliers(&self, slots: usize) -> usize {
@@ -286,7 +289,7 @@ impl MortarLaw {
         local: &Local,
         mut w: Weighted,
         history: Option<&[SlotState]>,
-    ) -> Result<(ContactPoint, SlotState)> {
+    ) -> Result<(SlotLinearization, SlotState)> {
         let anchor = history
             .and_then(|h| h.get(j))
             .and_then(|s| s.anchor.as_ref());
@@ -351,8 +354,13 @@ impl MortarLaw {
                 }
             }
             let free = |c| ctx.nodes.is_free(c);
-            let (point, friction) =
-                law::multiplier::evaluate(&laws, lambdas, codes, eqs, &kin, compliance, &free);
+            let forces = law::Forces {
+                eqs,
+                values: lambdas,
+                compliance,
+                free: &free,
+            };
+            let (point, friction) = self.laws[j].evaluate(&laws, codes, Some(forces), &kin);
             if let Some(s) = &kin.slip {
                 // Traction per unit area: the node's force is its times D_j.
                 state.friction = friction.map(|(stick, t)| (stick, t * w.area.v));
@@ -369,7 +377,7 @@ impl MortarLaw {
             }
             point
         } else {
-            law::penalty::evaluate(&laws, penalty, codes, &kin)
+            self.laws[j].evaluate(&laws, codes, None, &kin).0
         };
         if has {
             self.record_force(j, &point, &kin, &w, &mut state);
@@ -388,7 +396,7 @@ impl MortarLaw {
         local: &Local,
         w: &Weighted,
         b: Vec<Jet>,
-    ) -> PointKinematics {
+    ) -> SlotKinematics {
         let m = local.m();
         let has = w.area.v > 0.0;
         let (gap, b) = if has {
@@ -404,7 +412,7 @@ impl MortarLaw {
         } else {
             (Jet::constant(f64::NAN, m), vec![Jet::constant(0.0, m); m])
         };
-        PointKinematics {
+        SlotKinematics {
             gap,
             weight: Jet::constant(if has { 1.0 } else { 0.0 }, m),
             b,
@@ -421,8 +429,8 @@ impl MortarLaw {
     fn record_force(
         &self,
         j: usize,
-        point: &ContactPoint,
-        kin: &PointKinematics,
+        point: &SlotLinearization,
+        kin: &SlotKinematics,
         w: &Weighted,
         state: &mut SlotState,
     ) {
