@@ -9,7 +9,7 @@
 //! while the contact point moves with the unknowns, as in the linearization. Friction is checked
 //! with multipliers and with a penalty (solved in the multipliers' form, with its compliance), the
 //! tangent over the multipliers too. A penalty point's tangent with a held force (the solver's
-//! `ContactPoint::hold_force`) is checked against the residual ε·g·v written as ε·v ⊗ ∇g − λ·∂v.
+//! `SlotLinearization::hold_force`) is checked against the residual ε·g·v written as ε·v ⊗ ∇g − λ·∂v.
 
 use crate::common;
 
@@ -273,8 +273,8 @@ fn n2s_tangents_are_jacobians_of_residuals_on_straight_and_quadratic_edges() {
 /// state (multipliers, the normal and the friction force's components, at `lambda`), where the
 /// point must stick or slip as `stick` says.
 /// For a penalty point that is closed with its geometric part and weight 1: its closed tangent
-/// with half its force held (`ContactPoint::hold_force`), the penalty and the held force.
-fn held_force_check(p: &hertz::contact::ContactPoint) -> Option<(Vec<f64>, f64, f64)> {
+/// with half its force held (`SlotLinearization::hold_force`), the penalty and the held force.
+fn held_force_check(p: &hertz::contact::SlotLinearization) -> Option<(Vec<f64>, f64, f64)> {
     let geo = p.geometric.as_ref()?;
     if geo.force == 0.0 || geo.weight != 1.0 || p.gap >= 0.0 {
         return None;

@@ -852,7 +852,7 @@ fn shallow_ironing_as_penalty(multipliers: &str, penalty: &str) -> (f64, f64, Ve
 /// a penetration of about 5·10⁻⁶ against gap errors of 10⁻³–10⁻² from a Newton step along the
 /// die's arc) and with `penalty 1e6`: at most 6 iterations a step, no cut-back, and the forces of
 /// the multipliers to 10⁻³. With the geometric tangent part taken from the iterate's force −ε·g
-/// instead of the last step's linear force (`ContactPoint::hold_force`), the mesh's penalty took
+/// instead of the last step's linear force (`SlotLinearization::hold_force`), the mesh's penalty took
 /// 3220 iterations and 55 cut-backs. With `penalty 1e6` a branch search at t = 1.65 cycled
 /// between two guesses with equal misses, and the step of the one taken left the iterate where
 /// it was, for 14 iterations and two cut-backs, until a stalled cycle took the other

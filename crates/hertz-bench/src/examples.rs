@@ -71,7 +71,7 @@ pub const SHALLOW_IRONING: ShallowIroning = ShallowIroning {
     mu: 0.3,
 };
 
-/// Every example, in the order of the README's table.
+/// Every example, in the order of docs/verification.md's table.
 pub fn all() -> Vec<Example> {
     let stretch = 1.0 - PATCH_DELTA / (2.0 * PATCH_H);
     let law = neo_hookean_law();

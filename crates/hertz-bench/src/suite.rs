@@ -1284,7 +1284,7 @@ pub fn run(text: &str) -> Result<Outcome> {
     let _ = std::fs::remove_file(&path);
     let model = read?.model;
     let mut o = Outcome {
-        size: hertz::contact::model_size(&model),
+        size: hertz::model::queries::model_size(&model),
         ..Default::default()
     };
     let t = Instant::now();

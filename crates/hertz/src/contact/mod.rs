@@ -2,11 +2,11 @@
 //!
 //! A condition is a [`Formulation`]: it says which nodes need DOFs, how many multipliers it adds
 //! and which equations its contributions can touch, and evaluates itself at the current state into
-//! local contributions (one per contact point) for the assembler. Every formulation has the same
+//! local contributions (one per slot) for the assembler. Every formulation has the same
 //! inside: [`geometry`] (surfaces, projection, normals), [`search`] (which partner a node meets),
 //! kinematics in [`dual`] arithmetic (gap, weight, force direction and their derivatives) and a
-//! [`law`] (penalty or multiplier, and Coulomb friction: a return map on penalty points, friction
-//! multipliers on node-to-segment multiplier points) that turns them into a residual and
+//! [`law`] (penalty or multipliers, and Coulomb friction, whose forces are multipliers under
+//! either: with a penalty, its compliance 1/ε in their rows) that turns them into a residual and
 //! tangent. Formulations: [`n2n`] (node-to-node), [`n2s`] (node-to-segment),
 //! [`mortar`] (segment-to-segment, 2D edges and 3D faces). The friction history is the anchors
 //! of the converged contact states ([`Anchor`]): the solver restores them with the states when
@@ -18,6 +18,22 @@
 //! the gap with frozen multipliers; contact forces are internal forces, never accumulated between
 //! steps; prescribed normals are normalized; node numbers are labels; rigid segments have their
 //! body on a side fixed by definition.
+//!
+//! # Words
+//!
+//! * **contact node**: a node whose contact is checked (OOFEM's slave node).
+//! * **slot**: what the solver sees of one contact node of one condition: one normal gap (for
+//!   mortar the node's weighted gap over its support), one normal force (a penalty's, or a
+//!   multiplier), its friction, its [`SlotState`] after an evaluation and its
+//!   [`SlotLinearization`] (unknowns, residual and tangent of its closed branch, branch rule).
+//!   Slots are numbered condition by condition in the order of their contact nodes.
+//! * **contact point**: the point of the master a contact node's gap is measured to (its
+//!   projection along the smoothed normal), whose variation the tangent includes.
+//! * **partner**: the master edge, face or rigid shape a slot is paired with ([`Partner`]).
+//! * **branch**: closed (the law's force acts) or open (no force) of a slot; the
+//!   [`BranchRule`] decides it.
+//! * **compliance**: 1/ε of a penalty solved with its forces as unknowns (0 for multipliers).
+//! * **anchor**: the master's material point a sticking slot is held to ([`Anchor`]).
 
 pub mod dual;
 pub mod geometry;
@@ -25,16 +41,15 @@ pub mod law;
 pub mod mortar;
 pub mod n2n;
 pub mod n2s;
-pub mod point;
 pub mod search;
+pub mod slot;
 pub mod tributary;
 
 pub mod formulation;
 mod initial;
 pub mod system;
 
-pub use crate::model::queries::{master_young, model_size, stiffest_young};
-pub use formulation::*;
+pub use formulation::{interface_weights, Anchor, Formulation, Partner, Search, SlotState};
 pub use initial::initial_warnings;
-pub use point::{BranchRule, ContactPoint};
+pub use slot::{BranchRule, SlotLinearization};
 pub use system::{crossing_message, ContactSystem};

@@ -3,9 +3,10 @@
 //! The tangent is symmetric (B = ∇g) and, for the penalty, constant while closed.
 
 use super::dual::{self, Dual};
-use super::law::{PointKinematics, SlotLaw};
+use super::formulation::{self, apply_law, Ctx, Formulation, Local, Partner, Search, SlotState};
+use super::law::{SlotKinematics, SlotLaw};
+use super::slot::SlotLinearization;
 use super::tributary::PressureAreas;
-use super::{apply_law, ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState};
 use crate::error::{Error, Result};
 use crate::model::{Model, Pairing};
 
@@ -103,7 +104,7 @@ impl Formulation for NodeToNode {
     }
 
     fn penalties(&self) -> Option<(usize, f64, f64)> {
-        super::penalty_range(self.number, std::iter::once(self.law))
+        formulation::penalty_range(self.number, std::iter::once(self.law))
     }
 
     fn symmetric(&self) -> bool {
@@ -116,7 +117,7 @@ impl Formulation for NodeToNode {
         first_lambda: usize,
         _search: Search,
         _history: Option<&[SlotState]>,
-        points: &mut Vec<ContactPoint>,
+        points: &mut Vec<SlotLinearization>,
         states: &mut Vec<SlotState>,
     ) -> Result<f64> {
         let dim = ctx.dim;
@@ -129,14 +130,14 @@ impl Formulation for NodeToNode {
             let n = dual::constant_vec(&p.normal[..dim], local.m());
             let gap = dual::dot(&dual::sub(&x[0], &x[1], dim), &n, dim);
             let m = local.m();
-            let kin = PointKinematics::from_duals(
+            let kin = SlotKinematics::from_duals(
                 gap,
                 Dual::constant(1.0, m),
                 &local.distribute(
                     &[(0, Dual::constant(1.0, m)), (1, Dual::constant(-1.0, m))],
                     &n,
                 ),
-                super::law_area(p.area, ctx.model),
+                formulation::law_area(p.area, ctx.model),
             );
             let lambda_eqs = self
                 .law

@@ -18,7 +18,7 @@
 //! curved surface leaves a gap error (10⁻³–10⁻² on the shallow ironing die) far above the
 //! penetration λ/ε of a penalty from the mesh (10⁻⁶). The parts of the tangent that scale with the
 //! force (the geometric part) then carry a force wrong by orders of magnitude. The solver takes them with the force of the last step's linear model instead
-//! ([`ContactPoint::hold_force`]): the Newton step of the penalty with its force as an unknown
+//! ([`SlotLinearization::hold_force`]): the Newton step of the penalty with its force as an unknown
 //! (a perturbed Lagrangian), which converges to the same solution.
 
 use crate::assembly::Contribution;
@@ -42,7 +42,7 @@ pub enum BranchRule {
 }
 
 #[derive(Debug, Clone)]
-pub struct ContactPoint {
+pub struct SlotLinearization {
     /// Location codes of the local displacement unknowns, then (multipliers) the equations of
     /// the friction multipliers, if any, and of the normal multiplier.
     pub codes: Vec<usize>,
@@ -85,7 +85,7 @@ pub struct Branch {
     pub closed: bool,
 }
 
-impl ContactPoint {
+impl SlotLinearization {
     /// Take the closed branch away: the point exerts no force (a multiplier is held at zero).
     pub fn disable(&mut self) {
         self.closed_fe.clear();
@@ -190,9 +190,8 @@ impl ContactPoint {
     /// iterate's −ε·g: the Newton step of the penalty written with its force as an unknown
     /// (λ̂ + ε·g = 0, a perturbed Lagrangian), whose displacement step is the penalty's but for
     /// this part. Where a step along a curved surface leaves a gap error far above the
-    /// penetration λ̂/ε of a stiff penalty, −ε·g is no measure of the force (shallow ironing as
-    /// mortar with the penalty from the mesh, frictionless: 3220 iterations and 55 cut-backs with
-    /// −ε·g, 452 and none with λ̂).
+    /// penetration λ̂/ε of a stiff penalty, −ε·g is no measure of the force (BENCHMARKS.md,
+    /// "Evidence behind design choices").
     pub fn hold_force(&mut self, force: f64) {
         let Some(geo) = &mut self.geometric else {
             return;

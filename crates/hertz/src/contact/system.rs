@@ -1,9 +1,9 @@
 //! [`ContactSystem`]: every contact condition of a model, evaluated together, with two-pass
 //! pairing (a constraint two conditions repeat is dropped once).
 
-use super::formulation::*;
+use super::formulation::{Ctx, Formulation, Partner, Search, SlotState};
 use super::law::Laws;
-use super::point::ContactPoint;
+use super::slot::SlotLinearization;
 use super::{mortar, n2n, n2s};
 use crate::assembly::{ExtraDofs, NodalState};
 use crate::error::Result;
@@ -79,8 +79,7 @@ impl ContactSystem {
 
     /// Whether every contact tangent is symmetric: friction's is not where a point slides (its
     /// force follows the slip, its size the normal force), whatever the formulation's normal
-    /// part. (Taken as symmetric before, a node sliding on a rigid shape had its slip tangent
-    /// cut to one triangle.)
+    /// part.
     pub fn symmetric(&self) -> bool {
         !self.frictional && self.formulations.iter().all(|f| f.symmetric())
     }
@@ -150,13 +149,13 @@ impl ContactSystem {
     }
 
     /// Evaluate every contact point at the state `nodes` without friction history: the points
-    /// (whose [`contribution`](ContactPoint::contribution) is the current residual and tangent)
+    /// (whose [`contribution`](SlotLinearization::contribution) is the current residual and tangent)
     /// and their states.
     pub fn evaluate(
         &self,
         nodes: &NodalState,
         search: Search,
-    ) -> Result<(Vec<ContactPoint>, Vec<SlotState>)> {
+    ) -> Result<(Vec<SlotLinearization>, Vec<SlotState>)> {
         self.evaluate_with_history(nodes, search, None)
     }
 
@@ -167,7 +166,7 @@ impl ContactSystem {
         nodes: &NodalState,
         search: Search,
         history: Option<&[SlotState]>,
-    ) -> Result<(Vec<ContactPoint>, Vec<SlotState>)> {
+    ) -> Result<(Vec<SlotLinearization>, Vec<SlotState>)> {
         let ctx = self.ctx(nodes);
         let start = std::time::Instant::now();
         let mut points = Vec::new();
@@ -253,7 +252,7 @@ impl ContactSystem {
     /// are formed closest first, each node in one pair at most.
     fn drop_repeated_constraints(
         &self,
-        points: &mut [ContactPoint],
+        points: &mut [SlotLinearization],
         states: &mut [SlotState],
         previous: Option<&[SlotState]>,
     ) {

@@ -15,21 +15,18 @@
 //! single updates, the search has no answer, and which guess's step to take is a choice
 //! ([`OnCycle`]).
 
-use crate::contact::point::Branch;
+use crate::contact::slot::Branch;
 use std::collections::HashSet;
 
 /// Which guess's step a branch search that comes back to a guess returns.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum OnCycle {
     /// The last guess: for the predictor of a step, whose first guess is the contact before the
-    /// step's motion (in the first step of a block pressed onto a bump and slid over it, the
-    /// fewest-miss guess took 11 iterations and a cut-back, the last guess 5; the first guess
-    /// inverted an element).
+    /// step's motion, the guess furthest from the new contact.
     Last,
     /// The guess with the fewest points predicted otherwise (the latest of equals): for Newton
-    /// iterations. At the die's corner in shallow ironing the last guess pulled one node with 30
-    /// times its neighbours' force and inverted an element; the fewest-miss guess, the iterate's
-    /// own branches there, let the next iterate decide (no cut-back, at most 7 iterations).
+    /// iterations: the iterate's own branches where the search disagrees, so that the next
+    /// iterate decides, rather than a guess that can pull one node hard at a corner.
     FewestMisses,
     /// The fewest-miss guess, the earliest of equals: for a Newton iteration after one whose
     /// cycled search did not lower the residual (the latest of equals there can be a step that

@@ -33,8 +33,8 @@
 use super::branches::{BranchSearch, ContactStep, OnCycle};
 use super::linear::LinearSolver;
 use crate::assembly::{DofMap, Pattern};
-use crate::contact::point::Branch;
-use crate::contact::ContactPoint;
+use crate::contact::slot::Branch;
+use crate::contact::SlotLinearization;
 use crate::error::{Error, Result};
 use faer::linalg::solvers::{DenseSolveCore, Solve};
 use faer::Mat;
@@ -89,7 +89,7 @@ type PointLocs = Vec<Vec<(usize, f64)>>;
 /// branches, their candidate positions and branch tangents (open, closed), and (K_s⁻¹ r) on
 /// the candidates.
 struct Linearized<'g> {
-    points: &'g [ContactPoint],
+    points: &'g [SlotLinearization],
     closed: &'g [Branch],
     locs: &'g [PointLocs],
     tangents: &'g [[Vec<f64>; 2]],
@@ -220,7 +220,7 @@ impl CondensedContact {
     pub fn step(
         &mut self,
         r: &[f64],
-        points: &[ContactPoint],
+        points: &[SlotLinearization],
         guess: &[bool],
         dofs: &DofMap,
         cycle: OnCycle,
@@ -411,7 +411,7 @@ impl CondensedContact {
     /// current one.
     fn candidate_locs(
         &self,
-        points: &[ContactPoint],
+        points: &[SlotLinearization],
         guess: &[bool],
         dofs: &DofMap,
     ) -> Option<Vec<PointLocs>> {
@@ -449,7 +449,7 @@ impl CondensedContact {
     /// closed points; and each candidate's place in A (usize::MAX: not in it).
     fn dense_equations(
         &self,
-        points: &[ContactPoint],
+        points: &[SlotLinearization],
         closed: &[Branch],
         locs: &[PointLocs],
         dofs: &DofMap,
@@ -545,7 +545,7 @@ impl CondensedContact {
 /// (over the candidates), their branch tangents (`tangents[i]`: open, closed) added to C on
 /// the dense equations (`in_a`).
 fn branch_changes(
-    points: &[ContactPoint],
+    points: &[SlotLinearization],
     closed: &[Branch],
     locs: &[PointLocs],
     tangents: &[[Vec<f64>; 2]],
@@ -590,7 +590,7 @@ fn branch_changes(
 }
 
 /// Every point's branch after the linearized step `du_c` (over the candidates).
-fn predict_branches(points: &[ContactPoint], locs: &[PointLocs], du_c: &[f64]) -> Vec<Branch> {
+fn predict_branches(points: &[SlotLinearization], locs: &[PointLocs], du_c: &[f64]) -> Vec<Branch> {
     points
         .iter()
         .zip(locs)
@@ -714,7 +714,7 @@ fn null_vector(m: faer::MatRef<'_, f64>) -> Option<Vec<f64>> {
 /// every point closed or guessed closed, then the open ones by increasing gap (none without a
 /// partner), until `budget` equations are reached.
 pub fn nearest_equations(
-    points: &[ContactPoint],
+    points: &[SlotLinearization],
     guess: &[bool],
     dofs: &DofMap,
     budget: usize,
@@ -745,6 +745,6 @@ pub fn nearest_equations(
 }
 
 /// Whether point `i` is closed now or in the branch search's first guess.
-fn closed_or_guessed(points: &[ContactPoint], guess: &[bool], i: usize) -> bool {
+fn closed_or_guessed(points: &[SlotLinearization], guess: &[bool], i: usize) -> bool {
     points[i].closed || guess.get(i).copied().unwrap_or(false)
 }

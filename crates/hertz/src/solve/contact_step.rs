@@ -17,8 +17,8 @@ use super::multipliers::{Group, MultiplierElimination};
 use super::report::Phase;
 use super::terms::StepTerms;
 use crate::assembly::{Contribution, DofMap, Evaluation, Pattern};
-use crate::contact::point::Branch;
-use crate::contact::{BranchRule, ContactPoint, SlotState};
+use crate::contact::slot::Branch;
+use crate::contact::{BranchRule, SlotLinearization, SlotState};
 use crate::error::{Error, Result};
 use std::time::Instant;
 
@@ -68,7 +68,7 @@ pub(super) struct ContactStepper {
 }
 
 /// The change of a point's unknowns (over its codes) in a step `du` of the free equations.
-pub(super) fn local_change(dofs: &DofMap, p: &ContactPoint, du: &[f64]) -> Vec<f64> {
+pub(super) fn local_change(dofs: &DofMap, p: &SlotLinearization, du: &[f64]) -> Vec<f64> {
     let nf = dofs.n_free;
     p.codes
         .iter()
@@ -133,7 +133,7 @@ impl ContactStepper {
     /// can open it by a hair; starting from the contact the step began with finds the physical
     /// solution of the linearized problem where starting from the open iterate can settle on
     /// another one (a block balanced on one node).
-    pub fn branch_guess(points: &[ContactPoint], before: &[SlotState]) -> Vec<bool> {
+    pub fn branch_guess(points: &[SlotLinearization], before: &[SlotState]) -> Vec<bool> {
         points
             .iter()
             .enumerate()
@@ -150,7 +150,7 @@ impl ContactStepper {
         eq: &mut Equations,
         u: &[f64],
         rhs: Vec<f64>,
-        points: &[ContactPoint],
+        points: &[SlotLinearization],
         guess: &[bool],
         ks_fresh: Option<&Evaluation>,
         cycle: OnCycle,
@@ -185,7 +185,7 @@ impl ContactStepper {
         &mut self,
         eq: &mut Equations,
         u: &[f64],
-        points: &[ContactPoint],
+        points: &[SlotLinearization],
         guess: &[bool],
         ks_fresh: Option<&Evaluation>,
         terms: &dyn StepTerms,
@@ -267,7 +267,7 @@ impl ContactStepper {
         &mut self,
         eq: &Equations,
         u: &[f64],
-        points: &[ContactPoint],
+        points: &[SlotLinearization],
         guess: &[bool],
     ) -> Result<()> {
         let Condensed::Ready(c) = &self.condensed else {
@@ -320,7 +320,7 @@ impl ContactStepper {
         &self,
         dofs: &DofMap,
         cands: Vec<usize>,
-        points: &[ContactPoint],
+        points: &[SlotLinearization],
         guess: &[bool],
     ) -> (Vec<usize>, bool) {
         let lambdas = dofs.n_free - dofs.n_lambda..dofs.n_free;
@@ -346,7 +346,7 @@ impl ContactStepper {
     }
 
     /// Every multiplier point's multipliers and its slave node's free displacement equations.
-    fn multiplier_groups(&self, dofs: &DofMap, points: &[ContactPoint]) -> Vec<Group> {
+    fn multiplier_groups(&self, dofs: &DofMap, points: &[SlotLinearization]) -> Vec<Group> {
         let n_disp = dofs.n_free - dofs.n_lambda;
         points
             .iter()
@@ -405,7 +405,7 @@ impl ContactStepper {
         eq: &mut Equations,
         u: &[f64],
         rhs: Vec<f64>,
-        points: &[ContactPoint],
+        points: &[SlotLinearization],
         guess: &[bool],
         terms: &dyn StepTerms,
     ) -> Result<ContactStep> {
@@ -454,9 +454,8 @@ impl ContactStepper {
                 (resolving, loose_ok) = (false, false);
                 search = BranchSearch::new(MAX_FULL_UPDATES);
             }
-            // Unlike the condensed step, a cycle keeps the last guess's step here: the first
-            // guess's made two coarse shallow-ironing runs (structural tangent indefinite, so
-            // full tangents) fail where they converge with cut-backs.
+            // Unlike the condensed step, a cycle keeps the last guess's step here (the first
+            // guess's fails on indefinite structural tangents where the last one's converges).
             match search.next(&closed, &predicted) {
                 Some(next) => closed = next,
                 None if loose => resolving = true,
@@ -479,7 +478,7 @@ impl ContactStepper {
         &self,
         eq: &Equations,
         k_structure: &[f64],
-        points: &[ContactPoint],
+        points: &[SlotLinearization],
         closed: &[Branch],
         step: &mut [f64],
         summed: bool,

@@ -5,7 +5,7 @@
 //! accepted.
 
 use crate::assembly::DofMap;
-use crate::contact::{BranchRule, ContactPoint};
+use crate::contact::{BranchRule, SlotLinearization};
 use crate::model::{Analysis, Model};
 
 /// A residual that no longer falls and is within this many times the round-off estimate of the
@@ -45,7 +45,7 @@ pub fn check(
     r: &Residual,
     a: &Analysis,
     it: usize,
-    points: &[ContactPoint],
+    points: &[SlotLinearization],
 ) -> Check {
     let (rhs, f_ext, ebe, du, u) = (r.rhs, r.f_ext, r.ebe, r.du, r.u);
     let nf_u = dofs.n_free - dofs.n_lambda;
@@ -67,7 +67,7 @@ pub fn check(
     }
     // Round-off of closed penalty points: ε·|force row|·X/|g| per entry, X the size of the
     // coordinates the gap is a difference of.
-    let scale = crate::contact::model_size(model);
+    let scale = crate::model::queries::model_size(model);
     for p in points
         .iter()
         .filter(|p| p.closed && p.rule == BranchRule::Penalty)

@@ -7,7 +7,7 @@ use super::partition::Ranks;
 use super::report::{Observer, Phase, PhaseTimes};
 use super::terms::StepTerms;
 use crate::assembly::{Assembler, Contribution, DofMap, Evaluation};
-use crate::contact::{ContactPoint, ContactSystem, Search, SlotState};
+use crate::contact::{ContactSystem, Search, SlotLinearization, SlotState};
 use crate::error::Result;
 use crate::model::Model;
 use std::time::Instant;
@@ -144,7 +144,7 @@ impl<'a> Equations<'a> {
         u: &[f64],
         search: Search,
         history: (&[SlotState], Option<&[f64]>),
-    ) -> Result<(Vec<ContactPoint>, Vec<SlotState>)> {
+    ) -> Result<(Vec<SlotLinearization>, Vec<SlotState>)> {
         let nodes = self.asm.nodal_state(u).with_start(history.1);
         self.contact
             .evaluate_with_history(&nodes, search, Some(history.0))

@@ -24,7 +24,7 @@ use super::report::{IterationReport, Observer, PhaseTimes, StepInfo};
 use super::terms::StepTerms;
 use super::watch::Watch;
 use crate::assembly::{Assembler, Contribution, DofMap, Evaluation, NodalState};
-use crate::contact::{ContactPoint, ContactSystem, Search, SlotState};
+use crate::contact::{ContactSystem, Search, SlotLinearization, SlotState};
 use crate::error::{Error, Result};
 use crate::model::{Analysis, Model};
 
@@ -338,7 +338,7 @@ impl<'a> NewtonContext<'a> {
         let mut prev: Option<Vec<SlotState>> = self.history.converged.clone();
         let mut prev2: Option<Vec<SlotState>> = None;
         // Per penalty point closed in the last Newton step: the force of the step's linear model,
-        // which the next step's geometric tangent part takes (see `ContactPoint::hold_force`).
+        // which the next step's geometric tangent part takes (see `SlotLinearization::hold_force`).
         let mut held: Vec<Option<f64>> = Vec::new();
         let mut last_cycled = false;
         for it in 0..=a.maxiter {
@@ -429,7 +429,7 @@ impl<'a> NewtonContext<'a> {
         &mut self,
         u: &[f64],
         it: usize,
-        points: &[ContactPoint],
+        points: &[SlotLinearization],
         a: &Analysis,
         terms: &dyn StepTerms,
     ) -> Result<(Evaluation, bool)> {
@@ -522,7 +522,7 @@ impl<'a> NewtonContext<'a> {
         &mut self,
         u: &[f64],
         rhs: Vec<f64>,
-        mut points: Vec<ContactPoint>,
+        mut points: Vec<SlotLinearization>,
         ks: Option<&Evaluation>,
         held: &mut Vec<Option<f64>>,
         stalled: bool,
@@ -624,7 +624,7 @@ impl<'a> NewtonContext<'a> {
         let friction = self.history.friction();
         let (before, _) = self.eq.contact_at(u, search, friction)?;
         let (after, _) = self.eq.contact_at(moved, search, friction)?;
-        let residuals = |ps: &[ContactPoint]| {
+        let residuals = |ps: &[SlotLinearization]| {
             let contribs: Vec<Contribution> = ps.iter().map(|p| p.contribution()).collect();
             let mut f = vec![0.0; self.eq.dofs.n_primary()];
             self.eq.asm.add_residuals(&mut f, &contribs);

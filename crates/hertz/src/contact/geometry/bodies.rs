@@ -3,7 +3,7 @@
 //! master's body has crossed the surface, whatever its gap to the partner the search chose says
 //! (past a crease the nearest part of a folded surface can face the node from the open side).
 
-use super::super::search::broad::BroadPhase;
+use crate::contact::search::broad::BroadPhase;
 use crate::fem::geometry::locate;
 use crate::model::Model;
 

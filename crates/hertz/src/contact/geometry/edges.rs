@@ -18,8 +18,8 @@
 //! end node's normal, so a node just past the end still has a contact point; the condition weighs
 //! its force down to zero over the node's tributary length (see `n2s`).
 
-use super::super::dual::Dual;
 use super::scalar::Scalar;
+use crate::contact::dual::Dual;
 use crate::model::{Model, SegmentKind};
 use std::collections::HashMap;
 

@@ -1,7 +1,7 @@
 //! The number type contact geometry is written in: plain `f64` for the search, [`DualN`] for the
 //! kinematics whose derivatives make the tangent.
 
-use super::super::dual::DualN;
+use crate::contact::dual::DualN;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
 pub trait Scalar:

@@ -20,13 +20,14 @@
 
 use super::{nearest_sheet, rigid_node, search_limit, Facing, MortarLaw, SlipForm, Weighted};
 use crate::contact::dual::{self, Dual, Jet};
+use crate::contact::formulation::{
+    interface_weights, Ctx, Formulation, Local, Partner, Search, SlotState,
+};
 use crate::contact::geometry::edges::{shape, EdgeSurface};
 use crate::contact::geometry::rigid;
 use crate::contact::geometry::scalar::Scalar;
 use crate::contact::search::broad::BroadPhase;
-use crate::contact::{
-    interface_weights, ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState,
-};
+use crate::contact::slot::SlotLinearization;
 use crate::error::{Error, Result};
 use crate::model::{Model, Pairing, SegmentKind};
 
@@ -711,7 +712,7 @@ impl Formulation for Mortar {
         first_lambda: usize,
         _search: Search,
         history: Option<&[SlotState]>,
-        points: &mut Vec<ContactPoint>,
+        points: &mut Vec<SlotLinearization>,
         states: &mut Vec<SlotState>,
     ) -> Result<f64> {
         // The search, once per slave edge (each edge serves the slots of its nodes).

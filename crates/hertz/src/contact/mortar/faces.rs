@@ -27,14 +27,15 @@ use super::curved::{self, CurvedPoint};
 use super::segment::{dual_basis, face_rule, overlap, Point};
 use super::{nearest_sheet, rigid_node, search_limit, Facing, MortarLaw, SlipForm, Weighted};
 use crate::contact::dual::{DualN, Jet};
+use crate::contact::formulation::{
+    interface_weights, Ctx, Formulation, Local, Partner, Search, SlotState,
+};
 use crate::contact::geometry::faces::{
     self, cross, dot, face_normal, shape, sub, Face, FaceKind, FaceSurface,
 };
 use crate::contact::geometry::rigid;
 use crate::contact::search::broad::BroadPhase;
-use crate::contact::{
-    interface_weights, ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState,
-};
+use crate::contact::slot::SlotLinearization;
 use crate::error::{Error, Result};
 use crate::model::{ContactCondition, Model, Pairing, SegmentKind};
 use std::collections::HashMap;
@@ -1111,7 +1112,7 @@ impl Formulation for FaceMortar {
         first_lambda: usize,
         _search: Search,
         history: Option<&[SlotState]>,
-        points: &mut Vec<ContactPoint>,
+        points: &mut Vec<SlotLinearization>,
         states: &mut Vec<SlotState>,
     ) -> Result<f64> {
         let (slots, searching) = if self.nlgeo {

@@ -4,11 +4,11 @@ use super::{
     extents, Current, EndWeight, NodeToSegment, Slot, HYSTERESIS_BAND, INSIDE_TOL, ISOLATED_RAMP,
 };
 use crate::contact::dual::{self, DVec, Dual};
+use crate::contact::formulation::{Anchor, Ctx, Local, Partner};
 use crate::contact::geometry::edges::{edge_normal, EdgeGeometry, EdgeSurface};
 use crate::contact::geometry::scalar::Scalar;
-use crate::contact::law::PointKinematics;
+use crate::contact::law::SlotKinematics;
 use crate::contact::search::Candidate;
-use crate::contact::{Anchor, Ctx, Local, Partner};
 use crate::error::{Error, Result};
 use crate::model::Model;
 
@@ -177,7 +177,7 @@ impl NodeToSegment {
         k: usize,
         s0: f64,
         (anchor, held): (Option<&Anchor>, [f64; 3]),
-    ) -> Result<(Local, PointKinematics, Option<Anchor>)> {
+    ) -> Result<(Local, SlotKinematics, Option<Anchor>)> {
         let edge = &self.edges.edges[k];
         let mut local = Local::new(2);
         local.add(ctx, slot.node)?;
@@ -221,8 +221,8 @@ impl NodeToSegment {
         }
         let b = local.distribute(&coeffs, &dir);
         let end = self.edge_weight(ctx.model, slot, k, &geom, xs);
-        let area = crate::contact::law_area(slot.area, ctx.model);
-        let mut kin = PointKinematics::from_duals(gap, end.w, &b, area);
+        let area = crate::contact::formulation::law_area(slot.area, ctx.model);
+        let mut kin = SlotKinematics::from_duals(gap, end.w, &b, area);
         kin.past_end = end.past.map(|(e, _)| e.into());
         let mut next = None;
         if let Some(law) = slot.friction {

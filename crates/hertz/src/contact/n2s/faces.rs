@@ -13,11 +13,11 @@
 use super::ISOLATED_RAMP;
 use super::{extents, Current, EndWeight, NodeToSegment, Slot, HYSTERESIS_BAND, INSIDE_TOL};
 use crate::contact::dual::{self, Dual, Jet};
+use crate::contact::formulation::{Anchor, Ctx, Local, Partner};
 use crate::contact::geometry::faces::{edge_excess, FaceGeometry, NodalNormal};
 use crate::contact::geometry::scalar::Scalar;
-use crate::contact::law::PointKinematics;
+use crate::contact::law::SlotKinematics;
 use crate::contact::search::Candidate;
-use crate::contact::{Anchor, Ctx, Local, Partner};
 use crate::error::Result;
 use crate::model::Model;
 
@@ -143,7 +143,7 @@ impl NodeToSegment {
         xi0: [f64; 2],
         cur: &Current,
         (anchor, held): (Option<&Anchor>, [f64; 3]),
-    ) -> Result<(Local, PointKinematics, Option<Anchor>)> {
+    ) -> Result<(Local, SlotKinematics, Option<Anchor>)> {
         let face = &self.faces.faces[k];
         let nc = face.nodes.len();
         let moving = self.moving_normals(k);
@@ -198,11 +198,11 @@ impl NodeToSegment {
         let chain = |x: &Dual| Jet::chain(x, &dz, m);
         let mut bj: Vec<Jet> = b.iter().map(chain).collect();
         bj.resize(m, Jet::constant(0.0, m));
-        let mut kin = PointKinematics {
+        let mut kin = SlotKinematics {
             gap: chain(&gap),
             weight: chain(&end.w),
             b: bj,
-            area: crate::contact::law_area(slot.area, ctx.model),
+            area: crate::contact::formulation::law_area(slot.area, ctx.model),
             past_end: end.past.as_ref().map(|(e, _)| chain(e)),
             slip: None,
         };

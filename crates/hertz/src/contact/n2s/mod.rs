@@ -31,18 +31,20 @@ mod slots;
 use slots::Slot;
 
 use super::dual::{DVec, Dual, Jet};
+use super::formulation::Anchor;
+use super::formulation::{apply_law, Ctx, Formulation, Local, Partner, Search, SlotState};
 use super::geometry::bodies::{self, BodiesAt, Inside, MasterBodies};
 use super::geometry::edges::EdgeSurface;
 use super::geometry::faces::{FaceSurface, NodalNormal};
 use super::geometry::scalar::Scalar;
 use super::law::SlotFriction;
-use super::law::{PointKinematics, SlipKinematics};
+use super::law::{SlipKinematics, SlotKinematics};
 use super::search::broad::BroadPhase;
 use super::search::{self, Candidate};
+use super::slot::SlotLinearization;
 use super::tributary::PressureAreas;
-use super::Anchor;
-use super::{apply_law, ContactPoint, Ctx, Formulation, Local, Partner, Search, SlotState};
 use crate::error::Result;
+use crate::model::queries::model_size;
 use crate::model::{Enforcement, Friction, Model, Pairing, SegmentKind};
 use std::collections::HashMap;
 
@@ -128,7 +130,7 @@ impl NodeToSegment {
         slid: impl FnOnce([f64; 3]) -> Anchor,
         spread: impl Fn(&DVec) -> Vec<Jet>,
         jet: impl Fn(&Dual) -> Jet,
-        kin: &mut PointKinematics,
+        kin: &mut SlotKinematics,
     ) -> Anchor {
         let dim = self.dim;
         let nv = xs[0].n;
@@ -264,7 +266,7 @@ impl NodeToSegment {
             rigid,
             rigid_nodes,
             dim: model.domain.nsd(),
-            tie: 1e-9 * super::model_size(model),
+            tie: 1e-9 * model_size(model),
             covered: slots::covered(model, ci),
         })
     }
@@ -497,7 +499,7 @@ impl Formulation for NodeToSegment {
     }
 
     fn penalties(&self) -> Option<(usize, f64, f64)> {
-        super::penalty_range(self.number, self.slots.iter().map(|s| s.law))
+        crate::contact::formulation::penalty_range(self.number, self.slots.iter().map(|s| s.law))
     }
 
     fn symmetric(&self) -> bool {
@@ -511,7 +513,7 @@ impl Formulation for NodeToSegment {
         first_lambda: usize,
         search: Search,
         history: Option<&[SlotState]>,
-        points: &mut Vec<ContactPoint>,
+        points: &mut Vec<SlotLinearization>,
         states: &mut Vec<SlotState>,
     ) -> Result<f64> {
         let start = std::time::Instant::now();
@@ -581,7 +583,7 @@ impl Formulation for NodeToSegment {
                     let mut local = Local::new(self.dim);
                     local.add(ctx, slot.node)?;
                     let m = local.m();
-                    let kin = PointKinematics::from_duals(
+                    let kin = SlotKinematics::from_duals(
                         Dual::constant(f64::NAN, m),
                         Dual::constant(0.0, m),
                         &vec![Dual::constant(0.0, m); m],

@@ -2,11 +2,11 @@
 
 use super::{NodeToSegment, Slot};
 use crate::contact::dual::{self, DVec, Dual};
+use crate::contact::formulation::{Anchor, Ctx, Local, Partner};
 use crate::contact::geometry::rigid;
 use crate::contact::geometry::scalar::Scalar;
-use crate::contact::law::PointKinematics;
+use crate::contact::law::SlotKinematics;
 use crate::contact::search::Candidate;
-use crate::contact::{Anchor, Ctx, Local, Partner};
 use crate::error::Result;
 use crate::model::{Model, SegmentKind};
 
@@ -118,7 +118,7 @@ impl NodeToSegment {
         seg: usize,
         t0: f64,
         (anchor, held): (Option<&Anchor>, [f64; 3]),
-    ) -> Result<(Local, PointKinematics, Option<Anchor>)> {
+    ) -> Result<(Local, SlotKinematics, Option<Anchor>)> {
         let model = ctx.model;
         let dim = self.dim;
         let mut local = Local::new(dim);
@@ -174,8 +174,8 @@ impl NodeToSegment {
             coeffs.push((local.index(n), Dual::constant(-1.0, m)));
         }
         let b = local.distribute(&coeffs, &dir);
-        let area = crate::contact::law_area(slot.area, model);
-        let mut kin = PointKinematics::from_duals(gap, Dual::constant(1.0, m), &b, area);
+        let area = crate::contact::formulation::law_area(slot.area, model);
+        let mut kin = SlotKinematics::from_duals(gap, Dual::constant(1.0, m), &b, area);
         let mut next = None;
         if let Some(law) = slot.friction {
             // Anchors are points in the frame of their segment: its origin moved with its node.

@@ -2,10 +2,11 @@
 //! one carries (its tributary area and neighbours, its law and friction, the stiffness of the
 //! elements under it).
 
-use super::super::geometry::edges::EdgeSurface;
-use super::super::geometry::faces::FaceSurface;
-use super::super::law::{SlotFriction, SlotLaw};
+use crate::contact::geometry::edges::EdgeSurface;
+use crate::contact::geometry::faces::FaceSurface;
+use crate::contact::law::{SlotFriction, SlotLaw};
 use crate::error::{Error, Result};
+use crate::model::queries::{master_young, model_size, stiffest_young};
 use crate::model::{ContactCondition, Model, Pairing};
 
 /// A contact node of the condition.
@@ -98,9 +99,9 @@ pub(super) fn slots(
     segments: &[usize],
 ) -> Vec<Slot> {
     let tribs = super::super::tributary::tributaries(model, nodes);
-    let young = super::super::stiffest_young(model);
+    let young = stiffest_young(model);
     let stiffest = young.values().copied().fold(0.0, f64::max);
-    let master = super::super::master_young(model, segments);
+    let master = master_young(model, segments);
     nodes
         .iter()
         .zip(tribs)
@@ -121,17 +122,17 @@ pub(super) fn slots(
                 .map(|y| 0.5 * (0..3).map(|i| (y[i] - x[i]).powi(2)).sum::<f64>().sqrt())
                 .fold(0.0, f64::max);
             let h = if t.neighbors.is_empty() {
-                0.1 * super::super::model_size(model)
+                0.1 * model_size(model)
             } else {
                 t.neighbors.iter().map(|&m| distance(m)).sum::<f64>() / t.neighbors.len() as f64
             };
             // A node on no element (a rigid body's) gets the model's stiffest modulus.
             let e = young.get(&node).copied().unwrap_or(stiffest);
-            let per_modulus = super::super::law_area(t.measure, model) / h;
+            let per_modulus = crate::contact::formulation::law_area(t.measure, model) / h;
             let weight = c.node_weights.as_ref().map_or(1.0, |w| w[k]);
             let mesh = super::super::law::penalty::from_mesh(e, master, per_modulus);
             let law = SlotLaw::resolve(c.enforcement, mesh, weight);
-            let stiffness = super::super::friction_modulus(e, master) * per_modulus;
+            let stiffness = crate::contact::formulation::friction_modulus(e, master) * per_modulus;
             Slot {
                 node,
                 area: t.measure,

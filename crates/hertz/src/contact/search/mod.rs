@@ -5,7 +5,7 @@
 
 pub mod broad;
 
-use super::Partner;
+use super::formulation::Partner;
 
 /// A possible partner of a node at the current state.
 #[derive(Debug, Clone, Copy)]

@@ -352,8 +352,8 @@ impl MultiplierElimination {
             // A solver that needs definite matrices may fail where faer's LU pivots through:
             // MUMPS' LU met a zero pivot on the general elimination of a 3D block sliding with
             // friction.
-            // The condensed counterpart takes over (not first: on the 2D ironing example, whose
-            // hardest step MUMPS solves in 10 iterations, it chattered).
+            // The condensed counterpart takes over (not first: it chatters on steps the general
+            // elimination solves).
             Err(Error::Singular(why)) if self.needs_definite() => {
                 // The failed solver is set up afresh.
                 self.pattern = None;
