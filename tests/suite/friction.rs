@@ -848,27 +848,42 @@ fn shallow_ironing_as_penalty(multipliers: &str, penalty: &str) -> (f64, f64, Ve
     shallow_ironing_run(&text)
 }
 
-/// Shallow ironing without friction as mortar penalty with the penalty from the mesh (10³ E/h,
-/// a penetration of about 5·10⁻⁶ against gap errors of 10⁻³–10⁻² from a Newton step along the
-/// die's arc) and with `penalty 1e6`: at most 6 iterations a step, no cut-back, and the forces of
-/// the multipliers to 10⁻³. With the geometric tangent part taken from the iterate's force −ε·g
-/// instead of the last step's linear force (`SlotLinearization::hold_force`), the mesh's penalty took
-/// 3220 iterations and 55 cut-backs. With `penalty 1e6` a branch search at t = 1.65 cycled
-/// between two guesses with equal misses, and the step of the one taken left the iterate where
-/// it was, for 14 iterations and two cut-backs, until a stalled cycle took the other
-/// (`OnCycle::FewestMissesEarliest`).
+/// Shallow ironing without friction as mortar penalty, the die's arc the slave side: with
+/// `penalty 7e7` (10³ E/h with the die's modulus, about 5·10⁻⁶ of penetration against gap errors
+/// of 10⁻³–10⁻² from a Newton step along the die's arc) and `penalty 1e6`, at most 6 iterations a
+/// step, no cut-back, and the forces of the multipliers to 10⁻³; with the penalty from the mesh
+/// (10³ E/h with the softer body's modulus, the block's: 7·10⁶ here) no cut-back, the same forces
+/// and at most 20 % more iterations in all than the multipliers (449 against 393; `penalty 1e6`
+/// 463, `penalty 7e7` 453). Its worst step is not bounded
+/// here: from 3.5·10⁶ to 7·10⁷ the worst of the 110 steps takes 5 to 9 iterations with no trend
+/// (the die's edge node closing and opening while the penalty's steps recover from the
+/// predictor's gap errors), the totals 450–453. With the geometric tangent part taken from the
+/// iterate's force −ε·g instead of the last step's linear force
+/// (`SlotLinearization::hold_force`), `penalty 7e7` took 3220 iterations and 55 cut-backs. With
+/// `penalty 1e6` a branch search at t = 1.65 cycled between two guesses with equal misses, and
+/// the step of the one taken left the iterate where it was, for 14 iterations and two
+/// cut-backs, until a stalled cycle took the other (`OnCycle::FewestMissesEarliest`).
 #[test]
 #[ignore = "long: runs with `cargo test --release -- --ignored` (CI runs both)"]
 fn a_stiff_penalty_irons_like_the_multipliers() {
     use hertz_bench::examples::SHALLOW_IRONING;
     let multipliers = SHALLOW_IRONING.input().replace(" friction 0.3", "");
-    let (fy_m, fx_fy_m, _) = shallow_ironing_run(&multipliers);
-    for penalty in ["", "penalty 1e6 "] {
+    let (fy_m, fx_fy_m, its_m) = shallow_ironing_run(&multipliers);
+    let total_m: usize = its_m.iter().map(|(_, i)| i).sum();
+    for penalty in ["penalty 7e7 ", "penalty 1e6 ", ""] {
         let (fy, fx_fy, iterations) = shallow_ironing_as_penalty(&multipliers, penalty);
-        assert!(
-            iterations.iter().all(|&(_, i)| i <= 6),
-            "{penalty}: {iterations:?}"
-        );
+        if penalty.is_empty() {
+            let total: usize = iterations.iter().map(|(_, i)| i).sum();
+            assert!(
+                total as f64 <= 1.2 * total_m as f64,
+                "the mesh's penalty: {total} iterations against the multipliers' {total_m}"
+            );
+        } else {
+            assert!(
+                iterations.iter().all(|&(_, i)| i <= 6),
+                "{penalty}: {iterations:?}"
+            );
+        }
         assert!(
             (fy - fy_m).abs() < 1e-3 * fy_m,
             "{penalty}: Fy(1) {fy} against {fy_m}"
