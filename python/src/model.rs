@@ -176,7 +176,9 @@ impl Model {
             let d = PyDict::new(py);
             let (law, e) = match &m.law {
                 MaterialLaw::LinearElastic { young, poisson } => ("IsoLE", Some((young, poisson))),
-                MaterialLaw::Mises { young, poisson, .. } => ("MisesMat", Some((young, poisson))),
+                MaterialLaw::Mises(hertz::model::Mises { young, poisson, .. }) => {
+                    ("MisesMat", Some((young, poisson)))
+                }
                 MaterialLaw::MooneyRivlin { .. }
                 | MaterialLaw::Ogden { .. }
                 | MaterialLaw::SimoPister { .. } => ("hyperelastic", None),
@@ -260,7 +262,7 @@ impl Model {
             .ok_or_else(|| PyKeyError::new_err(format!("no material {number} (1..={n})")))?;
         let (young, poisson) = match &mut m.law {
             MaterialLaw::LinearElastic { young, poisson } => (young, poisson),
-            MaterialLaw::Mises { young, poisson, .. } => (young, poisson),
+            MaterialLaw::Mises(hertz::model::Mises { young, poisson, .. }) => (young, poisson),
             _ => {
                 return Err(PyValueError::new_err(format!(
                     "material {number}: E and nu can be set on IsoLE and MisesMat only"

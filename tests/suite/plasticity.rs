@@ -125,3 +125,289 @@ fn a_cut_back_restores_the_committed_plastic_state() {
     }
     assert!((reference[0].0 - 0.28 / 3.0).abs() < 1e-12);
 }
+
+/// Plastic continua: a steel-like `MisesMat` (E 210, ν 0.3, σ₀ 0.3, H 10).
+fn steel(kinematic: f64) -> hertz::model::Mises {
+    hertz::model::Mises {
+        young: 210.0,
+        poisson: 0.3,
+        hardening: hertz::model::Hardening::Linear {
+            sig0: 0.3,
+            modulus: 10.0,
+        },
+        kinematic,
+        damage: None,
+    }
+}
+
+/// The tangent of every continuum element with `MisesMat` is the Jacobian of its internal force,
+/// from a committed plastic state, in a step that yields further (plastic) and one that unloads
+/// (elastic), in small strain (isotropic and kinematic hardening) and finite strain.
+#[test]
+fn plastic_continuum_tangents_are_jacobians_of_the_internal_force() {
+    use hertz::fem::rule;
+    use hertz::material::plasticity::mises_law;
+    use hertz::solid::{ContinuumKernel, ElementKernel};
+    for (name, shape, mode, nip) in crate::elements::CONTINUUM {
+        for (nlgeo, kinematic) in [(false, 0.0), (false, 8.0), (true, 0.0)] {
+            let law = mises_law(&steel(kinematic), mode, nlgeo);
+            let q = rule(shape, nip).unwrap();
+            let k = ContinuumKernel {
+                shape,
+                nsd: shape.dim(),
+                rule: &q,
+                material: law.as_ref(),
+                thick: 0.7,
+                nlgeo,
+            };
+            let x = crate::elements::distorted_nodes(shape);
+            let nd = shape.n_nodes() * shape.dim();
+            let sl = law.state_len() * q.len();
+            let mut virgin = vec![0.0; sl];
+            for g in 0..q.len() {
+                let n = law.state_len();
+                law.initial_state(&mut virgin[g * n..(g + 1) * n]);
+            }
+            // A plastic first step, committed.
+            let u1: Vec<f64> = (0..nd)
+                .map(|i| 0.02 * ((i as f64 * 0.9 + 0.3).sin()))
+                .collect();
+            let mut old = vec![0.0; sl];
+            let mut f = vec![0.0; nd];
+            k.evaluate_into(&x, &u1, (&virgin, &mut old), &mut f, None, None)
+                .unwrap();
+            assert!(old != virgin, "{name}: the first step yields");
+            for (what, factor) in [("plastic", 1.5), ("elastic", 0.97)] {
+                let u: Vec<f64> = u1.iter().map(|v| v * factor).collect();
+                let mut new = vec![0.0; sl];
+                let mut kt = vec![0.0; nd * nd];
+                k.evaluate_into(&x, &u, (&old, &mut new), &mut f, Some(&mut kt), None)
+                    .unwrap();
+                let h = 1e-8;
+                let scale = kt.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                let mut worst: f64 = 0.0;
+                for j in 0..nd {
+                    let (mut up, mut um) = (u.clone(), u.clone());
+                    up[j] += h;
+                    um[j] -= h;
+                    let (mut fp, mut fm) = (vec![0.0; nd], vec![0.0; nd]);
+                    k.evaluate_into(&x, &up, (&old, &mut new), &mut fp, None, None)
+                        .unwrap();
+                    k.evaluate_into(&x, &um, (&old, &mut new), &mut fm, None, None)
+                        .unwrap();
+                    for i in 0..nd {
+                        let fd = (fp[i] - fm[i]) / (2.0 * h);
+                        worst = worst.max((fd - kt[i * nd + j]).abs() / scale);
+                    }
+                }
+                assert!(
+                    worst < 1e-6,
+                    "{name} nlgeo {nlgeo} hk {kinematic} {what}: relative tangent error {worst:e}"
+                );
+            }
+        }
+    }
+}
+
+/// A brick deformed plastically in large deformation, then turned rigidly by 90°: its second
+/// Piola–Kirchhoff stress, plastic strain and κ stay what they were, and its nodal forces turn
+/// with it.
+#[test]
+fn a_plastic_brick_turned_rigidly_keeps_its_stress_and_plastic_state() {
+    use hertz::fem::{rule, Shape};
+    use hertz::material::plasticity::mises_law;
+    use hertz::model::StressMode;
+    use hertz::solid::{ContinuumKernel, ElementKernel, GpState};
+    let shape = Shape::Hexa8;
+    let law = mises_law(&steel(0.0), StressMode::ThreeD, true);
+    let q = rule(shape, 8).unwrap();
+    let k = ContinuumKernel {
+        shape,
+        nsd: 3,
+        rule: &q,
+        material: law.as_ref(),
+        thick: 1.0,
+        nlgeo: true,
+    };
+    let x = crate::elements::distorted_nodes(shape);
+    let n = law.state_len();
+    let mut virgin = vec![0.0; n * q.len()];
+    for g in 0..q.len() {
+        law.initial_state(&mut virgin[g * n..(g + 1) * n]);
+    }
+    // Stretch along x, shear in xy: plastic through the brick.
+    let u: Vec<f64> = x
+        .iter()
+        .flat_map(|p| [0.2 * p[0] + 0.1 * p[1], -0.05 * p[1], -0.05 * p[2]])
+        .collect();
+    let (mut committed, mut f, mut states) = (vec![0.0; virgin.len()], vec![0.0; 24], Vec::new());
+    k.evaluate_into(
+        &x,
+        &u,
+        (&virgin, &mut committed),
+        &mut f,
+        None,
+        Some(&mut states),
+    )
+    .unwrap();
+    assert!(states
+        .iter()
+        .all(|s: &GpState| s.plastic.unwrap().kappa > 1e-3));
+    // The deformed position x + u turned by 90° about z (and moved): u' = R(X + u) + c − X.
+    let turned: Vec<f64> = (0..8)
+        .flat_map(|a| {
+            let p = [
+                x[a][0] + u[3 * a],
+                x[a][1] + u[3 * a + 1],
+                x[a][2] + u[3 * a + 2],
+            ];
+            [
+                -p[1] + 3.0 - x[a][0],
+                p[0] - 1.0 - x[a][1],
+                p[2] + 0.5 - x[a][2],
+            ]
+        })
+        .collect();
+    // The same step again from the same committed state, turned: the same answer.
+    let (mut again, mut f2, mut states2) = (vec![0.0; virgin.len()], vec![0.0; 24], Vec::new());
+    k.evaluate_into(
+        &x,
+        &turned,
+        (&virgin, &mut again),
+        &mut f2,
+        None,
+        Some(&mut states2),
+    )
+    .unwrap();
+    for (a, b) in states.iter().zip(&states2) {
+        let (pa, pb) = (a.plastic.unwrap(), b.plastic.unwrap());
+        assert!(
+            (pa.kappa - pb.kappa).abs() < 1e-12,
+            "κ {} against {}",
+            pb.kappa,
+            pa.kappa
+        );
+        for i in 0..6 {
+            assert!(
+                (a.stress[i] - b.stress[i]).abs() < 1e-11,
+                "S {:?} against {:?}",
+                b.stress,
+                a.stress
+            );
+            assert!((pa.strain[i] - pb.strain[i]).abs() < 1e-12);
+        }
+    }
+    for (a, b) in committed.iter().zip(&again) {
+        assert!(
+            (a - b).abs() < 1e-12,
+            "state {again:?} against {committed:?}"
+        );
+    }
+    for node in 0..8 {
+        let (fx, fy, fz) = (f[3 * node], f[3 * node + 1], f[3 * node + 2]);
+        let turned_f = [-fy, fx, fz];
+        for i in 0..3 {
+            assert!(
+                (f2[3 * node + i] - turned_f[i]).abs() < 1e-11,
+                "node {node}: {:?}",
+                &f2[3 * node..3 * node + 3]
+            );
+        }
+    }
+}
+
+/// A plate (9 × 4, four elements of `kind` with a node inside, or two quadrilaterals) pushed
+/// past yield by a force: uniaxial stress −P/4 at every integration point, exact, with the
+/// plastic strain of the closed form, in plane stress and plane strain. Full Newton (hertz's
+/// choice for a yielding material where OOFEM keeps the first tangent) converges in a handful
+/// of iterations.
+#[test]
+fn a_plastic_patch_under_uniaxial_force_is_exact_in_every_plane_element() {
+    let (e, nu, s0, h, p) = (15.0, 0.25, 1.0, 0.5, 5.0);
+    for (kind, plane_strain) in [
+        ("TrPlaneStress2d", false),
+        ("TrPlaneStrain", true),
+        ("PlaneStress2d", false),
+        ("Quad1PlaneStrain", true),
+    ] {
+        let triangles = kind.starts_with("Tr");
+        let elements = if triangles {
+            format!(
+                "{kind} 1 nodes 3 1 3 2\n{kind} 2 nodes 3 1 4 3\n{kind} 3 nodes 3 3 5 2\n\
+                 {kind} 4 nodes 3 3 4 5\n"
+            )
+        } else {
+            format!("{kind} 1 nodes 4 1 3 6 2\n{kind} 2 nodes 4 3 4 5 6\n")
+        };
+        let nelem = if triangles { 4 } else { 2 };
+        let text = format!(
+            "plastic.out\nplastic patch\nStaticStructural nsteps 2 rtolf 1e-10 maxiter 10\n\
+             domain {}\nOutputManager\n\
+             ndofman 6 nelem {nelem} ncrosssect 1 nmat 1 nbc 3 nic 0 nltf 1 nset 4\n\
+             Node 1 coords 3 0 0 0\nNode 2 coords 3 0 4 0\nNode 3 coords 3 3 1 0\n\
+             Node 4 coords 3 9 0 0\nNode 5 coords 3 9 4 0\nNode 6 coords 3 4 4 0\n\
+             {elements}SimpleCS 1 thick 1.0 material 1 set 1\n\
+             MisesMat 1 d 0 E {e} n {nu} sig0 {s0} H {h} tAlpha 0\n\
+             BoundaryCondition 1 loadTimeFunction 1 dofs 1 2 values 1 0.0 set 4\n\
+             BoundaryCondition 2 loadTimeFunction 1 dofs 1 1 values 1 0.0 set 2\n\
+             NodalLoad 3 loadTimeFunction 1 dofs 2 1 2 Components 2 {} 0.0 set 3\n\
+             PiecewiseLinFunction 1 npoints 3 t 3 0 1 2 f(t) 3 0 0.5 1\n\
+             Set 1 elementranges {{(1 {nelem})}}\nSet 2 nodes 2 1 2\nSet 3 nodes 2 4 5\n\
+             Set 4 nodes 1 1\n",
+            if plane_strain {
+                "PlaneStrain"
+            } else {
+                "2dPlaneStress"
+            },
+            -p / 2.0
+        );
+        // Node 6 is the top's second node for quadrilaterals; triangles leave it loose.
+        let text = if triangles {
+            text.replace("ndofman 6", "ndofman 5")
+                .replace("Node 6 coords 3 4 4 0\n", "")
+        } else {
+            text.replace("Node 3 coords 3 3 1 0", "Node 3 coords 3 4 0 0")
+        };
+        let model = common::model_from_text(&text).unwrap();
+        let sigma = -p / 4.0;
+        run_analysis(&model, &SolveParams::default(), |r| {
+            assert!(
+                r.info.iterations <= 6,
+                "{kind}: {} iterations",
+                r.info.iterations
+            );
+            if r.step == 2 {
+                for g in r.states.iter().flatten() {
+                    let pl = g.plastic.unwrap();
+                    // Plane stress: σ = (σ, 0, 0); plane strain σ_zz follows from ε_zz = 0.
+                    assert!(
+                        (g.stress[0] - sigma).abs() < 1e-9,
+                        "{kind}: σ {:?}",
+                        g.stress
+                    );
+                    assert!(g.stress[1].abs() < 1e-9 && g.stress[5].abs() < 1e-9);
+                    if !plane_strain {
+                        let kappa = (sigma.abs() - s0) / h;
+                        assert!((pl.kappa - kappa).abs() < 1e-9, "{kind}: κ {}", pl.kappa);
+                        let exx = sigma / e - kappa;
+                        assert!((g.strain[0] - exx).abs() < 1e-9, "{kind}: ε {:?}", g.strain);
+                        let eyy = -nu * sigma / e + 0.5 * kappa;
+                        assert!((g.strain[1] - eyy).abs() < 1e-9, "{kind}: ε {:?}", g.strain);
+                        assert!(
+                            (g.strain[2] - eyy).abs() < 1e-9,
+                            "{kind}: ε_zz {:?}",
+                            g.strain
+                        );
+                    } else {
+                        // σ_zz between 0 and ν·σ_xx, the plastic strain isochoric.
+                        let pe = pl.strain;
+                        assert!((pe[0] + pe[1] + pe[2]).abs() < 1e-12, "{kind}: ε_p {pe:?}");
+                        assert!(pl.kappa > 0.0, "{kind} yields");
+                    }
+                }
+            }
+            Ok(())
+        })
+        .unwrap();
+    }
+}

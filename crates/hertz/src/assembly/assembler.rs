@@ -222,13 +222,13 @@ impl<'m> Assembler<'m> {
         NodalState::new(self.model, self.dofs, u)
     }
 
-    /// Whether any element's material keeps a state (plasticity).
     /// Whether the elements' stiffness is constant (small strain, no law with a state): the
     /// bodies' tangent is then the same at every state.
     pub fn constant_stiffness(&self) -> bool {
         self.constant_stiffness
     }
 
+    /// Whether any element's material keeps a state (plasticity).
     pub fn has_material_state(&self) -> bool {
         !self.material_state.is_empty()
     }

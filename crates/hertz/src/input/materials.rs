@@ -62,37 +62,7 @@ pub(super) fn read_material(r: &Record) -> Result<Material> {
             }
             MaterialLaw::LinearElastic { young, poisson }
         }
-        "misesmat" => {
-            let young = positive("E", r.float("e")?)?;
-            let poisson = r.float("n")?;
-            r.opt_float("talpha")?;
-            let yield_stress = positive("sig0", r.float("sig0")?)?;
-            let hardening = r.opt_float("h")?.unwrap_or(0.0);
-            if !(hardening >= 0.0) {
-                return Err(r.error(format!(
-                    "the hardening modulus H must not be negative, found {hardening}"
-                )));
-            }
-            for (key, what) in [
-                ("omega_crit", "damage"),
-                ("siginf", "saturation hardening"),
-                ("kappa1", "piecewise hardening"),
-            ] {
-                if r.opt_float(key)?.is_some_and(|v| v != 0.0) {
-                    return Err(r.error(format!(
-                        "`{key}` ({what}) is not supported: MisesMat here has linear isotropic \
-                         hardening only (sig0, H)"
-                    )));
-                }
-            }
-            r.opt_float("a")?;
-            MaterialLaw::Mises {
-                young,
-                poisson,
-                yield_stress,
-                hardening,
-            }
-        }
+        "misesmat" => MaterialLaw::Mises(read_mises(r, &positive)?),
         "mooneyrivlincompressiblemat" => {
             let (c1, c2) = (r.float("c1")?, r.float("c2")?);
             let k = positive("k", r.float("k")?)?;
@@ -132,7 +102,7 @@ pub(super) fn read_material(r: &Record) -> Result<Material> {
         },
         other => {
             return Err(r.error(format!(
-                "unsupported material `{other}`; supported: IsoLE, MisesMat (bars), \
+                "unsupported material `{other}`; supported: IsoLE, MisesMat, \
                  MooneyRivlinCompressibleMat, OgdenCompressibleMat, SimoPisterMat (or is a count \
                  before nmat wrong?)"
             )))
@@ -142,5 +112,77 @@ pub(super) fn read_material(r: &Record) -> Result<Material> {
         density,
         talpha,
         law,
+    })
+}
+
+/// `MisesMat`: isotropic elasticity (`E`, `n`), the yield stress by `htype` (0: `sig0` and `H`;
+/// 1: the table `h_eps`, `h(eps)`), damage (`omega_crit`, `a`) and, a hertz extension, linear
+/// kinematic hardening `hk`.
+fn read_mises(r: &Record, positive: &dyn Fn(&str, f64) -> Result<f64>) -> Result<Mises> {
+    let young = positive("E", r.float("e")?)?;
+    let poisson = r.float("n")?;
+    if !(poisson > -1.0 && poisson < 0.5) {
+        return Err(r.error(format!(
+            "Poisson's ratio n must lie in (-1, 0.5), found {poisson}"
+        )));
+    }
+    r.opt_float("talpha")?;
+    // OOFEM's tolerance of its plane-stress return; hertz's returns are exact to round-off.
+    r.opt_float("yieldtol")?;
+    let hardening = match r.opt_int("htype")?.unwrap_or(0) {
+        0 => Hardening::Linear {
+            sig0: positive("sig0", r.float("sig0")?)?,
+            modulus: r.opt_float("h")?.unwrap_or(0.0),
+        },
+        1 => {
+            let kappa = r.float_array("h_eps")?;
+            let stress = r.float_array("h(eps)")?;
+            if kappa.len() != stress.len() || kappa.is_empty() {
+                return Err(r.error(format!(
+                    "`h_eps` and `h(eps)` need the same number of points, at least one (found {} \
+                     and {})",
+                    kappa.len(),
+                    stress.len()
+                )));
+            }
+            if kappa[0] != 0.0 {
+                return Err(r.error(format!(
+                    "the first point of `h_eps` must be 0, found {}",
+                    kappa[0]
+                )));
+            }
+            if kappa.windows(2).any(|w| !(w[1] > w[0])) {
+                return Err(r.error("the points of `h_eps` must increase"));
+            }
+            if stress.iter().any(|s| !(*s > 0.0)) {
+                return Err(r.error("every yield stress of `h(eps)` must be positive"));
+            }
+            Hardening::Table { kappa, stress }
+        }
+        other => {
+            return Err(r.error(format!(
+                "`htype {other}` is not a hardening type: 0 (sig0, H) or 1 (h_eps, h(eps))"
+            )))
+        }
+    };
+    let kinematic = r.opt_float("hk")?.unwrap_or(0.0);
+    if !(kinematic >= 0.0) {
+        return Err(r.error(format!(
+            "the kinematic hardening modulus hk must not be negative, found {kinematic}"
+        )));
+    }
+    let critical = r.opt_float("omega_crit")?.unwrap_or(0.0);
+    let rate = r.opt_float("a")?.unwrap_or(0.0);
+    if !(0.0..1.0).contains(&critical) || !(rate >= 0.0) {
+        return Err(r.error(format!(
+            "damage needs 0 ≤ omega_crit < 1 and a ≥ 0, found omega_crit {critical}, a {rate}"
+        )));
+    }
+    Ok(Mises {
+        young,
+        poisson,
+        hardening,
+        kinematic,
+        damage: (critical > 0.0 && rate > 0.0).then_some(Damage { critical, rate }),
     })
 }

@@ -58,12 +58,15 @@ pub(super) fn resolve_elements(
                 e.label
             )));
         }
-        if matches!(materials[mat - 1].law, MaterialLaw::Mises { .. }) && !e.etype.is_truss() {
-            return Err(span_err(format!(
-                "element {} has material {mat}, a MisesMat: plasticity is implemented for bars \
-                 (Truss1d, Truss2d) only",
-                e.label
-            )));
+        if let MaterialLaw::Mises(m) = &materials[mat - 1].law {
+            if e.nlgeo && m.kinematic != 0.0 && !e.etype.is_truss() {
+                return Err(span_err(format!(
+                    "element {} has `nlgeo 1` and material {mat}, a MisesMat with kinematic \
+                     hardening `hk`: in large deformation hertz has isotropic hardening only \
+                     (use `nlgeo 0`, or drop `hk`)",
+                    e.label
+                )));
+            }
         }
         if matches!(materials[mat - 1].law, MaterialLaw::Dummy) {
             return Err(span_err(format!(

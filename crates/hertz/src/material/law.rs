@@ -58,6 +58,11 @@ pub trait PointLaw: Send + Sync + std::fmt::Debug {
     fn is_inelastic(&self) -> bool {
         self.state_len() > 0
     }
+
+    /// The plastic strain, κ and damage a plastic law's `state` holds (None: not plastic).
+    fn plastic(&self, _state: &[f64]) -> Option<super::plasticity::PlasticState> {
+        None
+    }
 }
 
 /// [`PointLaw::respond`] into separate buffers; returns the normal strain of plane stress.

@@ -1,19 +1,18 @@
 //! Materials: stress and tangent from the deformation at a point, every law behind one trait
 //! ([`PointLaw`], `law.rs`), one file per law: linear elasticity (`IsoLE`; St. Venant–Kirchhoff
-//! in large deformation, S = D:E), von Mises plasticity of bars (`MisesMat`, with a state per
-//! integration point) and the compressible hyperelastic energies of upstream OOFEM
+//! in large deformation, S = D:E), von Mises plasticity (`MisesMat`, [`plasticity`]: small and
+//! finite strain, every stress mode, with a state per integration point) and the compressible hyperelastic energies of upstream OOFEM
 //! ([`hyperelastic`]). The model holds a material's parameters; [`law_of`] makes its law for an
 //! element's stress mode, once per (material, mode, nlgeo).
 
 pub mod elasticity;
 pub mod hyperelastic;
 pub mod law;
-pub mod mises;
+pub mod plasticity;
 pub mod spectral;
 
 pub use elasticity::{voigt_components, voigt_components_of, Elasticity, VOIGT_PAIRS};
 pub use law::{PointLaw, Response};
-pub use mises::UniaxialMises;
 
 use crate::model::{Material, MaterialLaw, StressMode};
 use hyperelastic::{HyperelasticLaw, MooneyRivlin, Ogden, SimoPister};
@@ -27,16 +26,7 @@ pub type Law = Arc<dyn PointLaw>;
 /// with its small-strain moduli (upstream OOFEM aborts there).
 pub fn law_of(m: &Material, mode: StressMode, nlgeo: bool) -> Law {
     match &m.law {
-        MaterialLaw::Mises {
-            young,
-            yield_stress,
-            hardening,
-            ..
-        } => Arc::new(UniaxialMises {
-            young: *young,
-            yield_stress: *yield_stress,
-            hardening: *hardening,
-        }),
+        MaterialLaw::Mises(mises) => plasticity::mises_law(mises, mode, nlgeo),
         MaterialLaw::MooneyRivlin { c1, c2, k } if nlgeo => Arc::new(HyperelasticLaw::new(
             Box::new(MooneyRivlin {
                 c1: *c1,

@@ -323,6 +323,39 @@ pub struct Material {
     pub law: MaterialLaw,
 }
 
+/// `MisesMat`'s parameters: isotropic elasticity, the von Mises yield condition with isotropic
+/// hardening, linear kinematic hardening and damage.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Mises {
+    pub young: f64,
+    pub poisson: f64,
+    /// The yield stress against κ, the equivalent (accumulated) plastic strain.
+    pub hardening: Hardening,
+    /// Linear kinematic (Prager) hardening modulus `hk`, a hertz extension: the back stress
+    /// grows by (2/3)·hk·dε_p (uniaxially hk·dε_p). 0: none.
+    pub kinematic: f64,
+    /// Damage ω(κ) = ω_c·(1 − e^(−aκ)), σ = (1 − ω)·σ_eff (`omega_crit`, `a`).
+    pub damage: Option<Damage>,
+}
+
+/// Isotropic hardening of `MisesMat`: σ_y(κ).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Hardening {
+    /// `htype 0`: σ_y = sig0 + H·κ (H < 0 softens).
+    Linear { sig0: f64, modulus: f64 },
+    /// `htype 1`: piecewise linear through (`h_eps`, `h(eps)`), the first κ 0.
+    Table { kappa: Vec<f64>, stress: Vec<f64> },
+}
+
+/// `MisesMat`'s damage parameters.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Damage {
+    /// ω_c (`omega_crit`), the damage approached as κ grows.
+    pub critical: f64,
+    /// a, the rate in κ.
+    pub rate: f64,
+}
+
 /// The constitutive law of a material record.
 #[derive(Debug, Clone)]
 pub enum MaterialLaw {
@@ -338,14 +371,8 @@ pub enum MaterialLaw {
     },
     /// `SimoPisterMat`: W = ½G(I₁ − 3) − G ln J + ½k(ln J)².
     SimoPister { g: f64, k: f64 },
-    /// `MisesMat` (bars only): von Mises plasticity, yield stress `sig0`, linear isotropic
-    /// hardening modulus `H`.
-    Mises {
-        young: f64,
-        poisson: f64,
-        yield_stress: f64,
-        hardening: f64,
-    },
+    /// `MisesMat`: von Mises plasticity.
+    Mises(Mises),
     /// Upstream OOFEM's `DummyMat` of contact elements: no mechanical law (a bulk element with
     /// it is an input error).
     Dummy,
@@ -371,7 +398,9 @@ impl Material {
     /// Young's modulus (of the small-strain limit for a hyperelastic law).
     pub fn young(&self) -> f64 {
         match &self.law {
-            MaterialLaw::LinearElastic { young, .. } | MaterialLaw::Mises { young, .. } => *young,
+            MaterialLaw::LinearElastic { young, .. } | MaterialLaw::Mises(Mises { young, .. }) => {
+                *young
+            }
             MaterialLaw::Dummy => 0.0,
             law => {
                 let (g, k) = law.hyperelastic_moduli().expect("a hyperelastic law");
@@ -383,9 +412,8 @@ impl Material {
     /// Poisson's ratio (of the small-strain limit for a hyperelastic law).
     pub fn poisson(&self) -> f64 {
         match &self.law {
-            MaterialLaw::LinearElastic { poisson, .. } | MaterialLaw::Mises { poisson, .. } => {
-                *poisson
-            }
+            MaterialLaw::LinearElastic { poisson, .. }
+            | MaterialLaw::Mises(Mises { poisson, .. }) => *poisson,
             MaterialLaw::Dummy => 0.0,
             law => {
                 let (g, k) = law.hyperelastic_moduli().expect("a hyperelastic law");

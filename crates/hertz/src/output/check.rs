@@ -297,9 +297,22 @@ fn compute(model: &Model, rule: &Rule, res: &StepResult) -> Result<f64, String> 
                         states.len()
                     )
                 })?;
+            let plastic = match (keyword, st.plastic) {
+                (13 | 27 | 31 | 52, None) => {
+                    return Err(format!(
+                        "element {element} has no plastic state (internal state type {keyword})"
+                    ))
+                }
+                (_, p) => p.unwrap_or_default(),
+            };
             let vec6 = match keyword {
                 1 => st.stress,
                 4 => st.strain,
+                // OOFEM's internal states of MisesMat: 27 the plastic strain, 31 κ (its
+                // IST_MaxEquivalentStrainLevel), 13 and 52 the damage.
+                27 => plastic.strain,
+                31 => [plastic.kappa, 0.0, 0.0, 0.0, 0.0, 0.0],
+                13 | 52 => [plastic.damage, 0.0, 0.0, 0.0, 0.0, 0.0],
                 81 => {
                     let s = st.stress;
                     let vm = (0.5
@@ -310,11 +323,16 @@ fn compute(model: &Model, rule: &Rule, res: &StepResult) -> Result<f64, String> 
                 }
                 k => {
                     return Err(format!(
-                    "internal state type {k} is not supported (1 stress, 4 strain, 81 von Mises)"
+                    "internal state type {k} is not supported (1 stress, 4 strain, 13 or 52 damage, 27 \
+                     plastic strain, 31 equivalent plastic strain, 81 von Mises)"
                 ))
                 }
             };
-            let n = if *keyword == 81 { 1 } else { 6 };
+            let n = if matches!(keyword, 13 | 31 | 52 | 81) {
+                1
+            } else {
+                6
+            };
             component
                 .checked_sub(1)
                 .filter(|&c| c < n)

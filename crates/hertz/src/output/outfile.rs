@@ -238,6 +238,19 @@ fn element_block(model: &Model, res: &StepResult, e: usize, s: &mut String) {
             values(s, &mut st.stress.iter().copied());
         }
         s.push('\n');
+        if let Some(p) = &st.plastic {
+            // As OOFEM's MisesMat prints its status.
+            s.push_str("              plastic  ");
+            for &x in &p.strain {
+                push_sci(s, x, 4);
+                s.push(' ');
+            }
+            s.push_str("\nstatus { damage ");
+            push_sci(s, p.damage, 4);
+            s.push_str(", kappa  ");
+            push_sci(s, p.kappa, 4);
+            s.push_str("}\n");
+        }
     }
 }
 

@@ -1,12 +1,14 @@
 //! ParaView output: one `.vtu` (unstructured grid, ASCII or raw appended binary) per step and
 //! a `.pvd` collection.
-//! Point data: displacement, reaction; cell data: strain and stress averaged over the element's
+//! Point data: displacement, reaction; cell data: strain and stress (with plastic materials the
+//! plastic strain, κ and damage) averaged over the element's
 //! integration points (full Voigt order xx, yy, zz, yz, xz, xy).
 
 use super::{write_atomic, write_atomic_parts};
 use crate::error::Result;
 use crate::fem::geometry::det_j_at_centre;
 use crate::fem::Shape;
+use crate::material::plasticity::PlasticState;
 use crate::model::Model;
 use crate::solve::StepResult;
 use std::fmt::Write;
@@ -281,10 +283,59 @@ pub fn write_step(
             .collect();
         w.array(name, 6, &vals);
     }
+    if res.states.iter().flatten().any(|g| g.plastic.is_some()) {
+        plastic_cells(res, &mut w);
+    }
     w.xml.push_str("</CellData>\n</Piece>\n");
     let name = format!("{stem}.{}.vtu", res.step);
     w.finish(&dir.join(&name))?;
     Ok(name)
+}
+
+/// Cell data of plastic materials (0 in the other elements): `plastic_strain` (6 components),
+/// `equivalent_plastic_strain` κ and `damage`, averaged over the element's points, and the
+/// largest κ of its points, `max_equivalent_plastic_strain`.
+fn plastic_cells(res: &StepResult, w: &mut VtuWriter) {
+    let averaged = |pick: &dyn Fn(&PlasticState) -> f64| -> Vec<f64> {
+        res.states
+            .iter()
+            .map(|st| {
+                let n = st.len().max(1) as f64;
+                st.iter()
+                    .filter_map(|g| g.plastic.as_ref())
+                    .map(pick)
+                    .sum::<f64>()
+                    / n
+            })
+            .collect()
+    };
+    let strain: Vec<f64> = (0..6)
+        .map(|i| averaged(&|p: &PlasticState| p.strain[i]))
+        .collect::<Vec<_>>()
+        .concat();
+    // Component-major to cell-major.
+    let cells = res.states.len();
+    let strain: Vec<f64> = (0..cells)
+        .flat_map(|c| (0..6).map(move |i| (c, i)))
+        .map(|(c, i)| strain[i * cells + c])
+        .collect();
+    w.array("plastic_strain", 6, &strain);
+    w.array(
+        "equivalent_plastic_strain",
+        1,
+        &averaged(&|p: &PlasticState| p.kappa),
+    );
+    let max: Vec<f64> = res
+        .states
+        .iter()
+        .map(|st| {
+            st.iter()
+                .filter_map(|g| g.plastic.map(|p| p.kappa))
+                .fold(0.0, f64::max)
+        })
+        .collect();
+    w.array("max_equivalent_plastic_strain", 1, &max);
+    w.array("damage", 1, &averaged(&|p: &PlasticState| p.damage));
 }
 
 /// Write the `.pvd` collection of the step files written so far.

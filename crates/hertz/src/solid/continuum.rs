@@ -203,7 +203,9 @@ impl ContinuumKernel<'_> {
             }
         }
         if let Some(st) = states {
-            st.push(self.point_state(pt, &answer));
+            let mut state = self.point_state(pt, &answer);
+            state.plastic = law.plastic(new);
+            st.push(state);
         }
         Ok(())
     }
@@ -333,6 +335,7 @@ impl ContinuumKernel<'_> {
             stress: full_s,
             f,
             p,
+            plastic: None,
         }
     }
 }

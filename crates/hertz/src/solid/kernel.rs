@@ -13,6 +13,8 @@ pub struct GpState {
     pub f: [[f64; 3]; 3],
     /// First Piola–Kirchhoff stress P = F·S, row-major 3×3.
     pub p: [[f64; 3]; 3],
+    /// A plastic law's plastic strain, κ and damage (None for the others).
+    pub plastic: Option<crate::material::plasticity::PlasticState>,
 }
 
 /// A failed evaluation: degenerate reference geometry or an inverted element.

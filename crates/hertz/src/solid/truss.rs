@@ -63,6 +63,7 @@ pub fn evaluate_into(
         let mut g = GpState::default();
         g.strain[0] = strain;
         g.stress[0] = stress;
+        g.plastic = law.plastic(new);
         st.push(g);
     }
     Ok(())

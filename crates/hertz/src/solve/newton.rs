@@ -438,7 +438,15 @@ impl<'a> NewtonContext<'a> {
             Some(s) => s.needs_structure(constant),
             None => {
                 let kept = self.eq.factor_kept && terms.constant_tangent();
-                !kept && (it == 0 || a.manrmsteps.is_some_and(|k| it.is_multiple_of(k)))
+                // OOFEM keeps the step's first tangent where `manrmsteps` is absent (modified
+                // Newton). With a material that yields, the tangent changes within the step
+                // and modified Newton converges linearly (a plastic patch: 50 iterations
+                // without converging, against 4 with full Newton): hertz takes full Newton
+                // there unless `manrmsteps` says otherwise.
+                let every = a
+                    .manrmsteps
+                    .or(self.eq.asm.has_material_state().then_some(1));
+                !kept && (it == 0 || every.is_some_and(|k| it.is_multiple_of(k)))
             }
         };
         let contribs: Vec<Contribution> = points.iter().map(|p| p.contribution()).collect();
