@@ -212,8 +212,11 @@ fn the_hertz_sphere_with_multipliers_matches_hertz_on_one_and_two_ranks() {
 /// On two ranks each assembles its METIS share of the elements (said with `-v`) and PETSc sums
 /// the shares: mortar multipliers (the Hertz cylinder) and Coulomb friction (Cattaneo–Mindlin)
 /// take hertz's own Newton iterations and give its reactions to 1e-10, and the friction's contact
-/// forces to 1e-10 of the largest. So does the friction on one process (the penalty with
+/// forces to 1e-7 of the largest. So does the friction on one process (the penalty with
 /// friction in multiplier form: GMRES on the counterpart, CG + GAMG on its reduced system).
+/// The contact forces are a penalty of 1e7 times gaps of 1.4e-8: a difference of 1e-15 in the
+/// 0.022 displacement, round-off of two solvers, is 1e-8 in a node's force (measured: 6e-8 of
+/// the largest, while the forces' sum, the reaction, agrees to 1e-10).
 #[test]
 fn two_ranks_assemble_their_shares_and_match_hertz() {
     for (file, stem, all_ranks) in [
@@ -243,7 +246,7 @@ fn two_ranks_assemble_their_shares_and_match_hertz() {
                 k.starts_with("bc") && k.contains(".r")
             });
             let name = format!("{stem}.contact.csv");
-            same_columns(&reference.join(&name), &dir.join(&name), 1e-10, |k| {
+            same_columns(&reference.join(&name), &dir.join(&name), 1e-7, |k| {
                 k == "force" || k == "friction"
             });
         }
