@@ -147,6 +147,7 @@ fn kernel<'a>(
         material: law.as_ref(),
         thick: 0.7,
         nlgeo,
+        bbar: false,
     }
 }
 
@@ -1182,5 +1183,105 @@ fn plane_stress_hyperelastic_sheet_is_in_uniaxial_stress() {
             "{stretch}: width {} vs {lateral}",
             last.1
         );
+    }
+}
+
+/// The barred quadrilateral and brick (B-bar in small strain, F-bar in large deformation):
+/// the tangent is the Jacobian of the internal force with every law, the plastic one from a
+/// committed plastic state; a homogeneous deformation gives the plain element's answer (the
+/// centre's volume change is every point's), so the patch test holds.
+#[test]
+fn barred_tangents_are_jacobians_and_homogeneous_fields_are_unchanged() {
+    use hertz::material::plasticity::mises_law;
+    let plastic = hertz::model::Mises {
+        young: YOUNG,
+        poisson: POISSON,
+        hardening: hertz::model::Hardening::Linear {
+            sig0: 2.0,
+            modulus: 5.0,
+        },
+        kinematic: 0.0,
+        damage: None,
+    };
+    for (shape, mode, nip) in [
+        (Shape::Quad4, StressMode::PlaneStrain, 4),
+        (Shape::Hexa8, StressMode::ThreeD, 8),
+    ] {
+        for nlgeo in [false, true] {
+            let mut all = laws(mode, nlgeo);
+            all.push(mises_law(&plastic, mode, nlgeo));
+            for law in all {
+                let q = rule(shape, nip).unwrap();
+                let mut k = kernel(shape, mode, &q, &law, nlgeo);
+                k.bbar = true;
+                let x = distorted_nodes(shape);
+                let nd = shape.n_nodes() * shape.dim();
+                let n = law.state_len();
+                let mut virgin = vec![0.0; n * q.len()];
+                for g in 0..q.len() {
+                    law.initial_state(&mut virgin[g * n..(g + 1) * n]);
+                }
+                let u1: Vec<f64> = (0..nd)
+                    .map(|i| 0.05 * ((i as f64 * 0.9 + 0.3).sin()))
+                    .collect();
+                let mut old = vec![0.0; virgin.len()];
+                let mut f = vec![0.0; nd];
+                k.evaluate_into(&x, &u1, (&virgin, &mut old), &mut f, None, None)
+                    .unwrap();
+                let u: Vec<f64> = u1.iter().map(|v| 1.3 * v).collect();
+                let mut new = vec![0.0; virgin.len()];
+                let mut kt = vec![0.0; nd * nd];
+                k.evaluate_into(&x, &u, (&old, &mut new), &mut f, Some(&mut kt), None)
+                    .unwrap();
+                let h = 1e-7;
+                let scale = kt.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                let mut worst: f64 = 0.0;
+                for j in 0..nd {
+                    let (mut up, mut um) = (u.clone(), u.clone());
+                    up[j] += h;
+                    um[j] -= h;
+                    let (mut fp, mut fm) = (vec![0.0; nd], vec![0.0; nd]);
+                    k.evaluate_into(&x, &up, (&old, &mut new), &mut fp, None, None)
+                        .unwrap();
+                    k.evaluate_into(&x, &um, (&old, &mut new), &mut fm, None, None)
+                        .unwrap();
+                    for i in 0..nd {
+                        let fd = (fp[i] - fm[i]) / (2.0 * h);
+                        worst = worst.max((fd - kt[i * nd + j]).abs() / scale);
+                    }
+                }
+                assert!(
+                    worst < 1e-6,
+                    "{shape:?} nlgeo {nlgeo} {law:?}: relative tangent error {worst:e}"
+                );
+                // A homogeneous deformation: the barred element's forces are the plain one's.
+                let grad = [
+                    [0.02, 0.01, -0.005],
+                    [-0.004, -0.01, 0.003],
+                    [0.006, 0.002, 0.01],
+                ];
+                let uh: Vec<f64> = x
+                    .iter()
+                    .flat_map(|p| {
+                        (0..shape.dim())
+                            .map(|i| (0..shape.dim()).map(|j| grad[i][j] * p[j]).sum::<f64>())
+                            .collect::<Vec<_>>()
+                    })
+                    .collect();
+                let (mut fb, mut fplain) = (vec![0.0; nd], vec![0.0; nd]);
+                k.evaluate_into(&x, &uh, (&virgin, &mut new), &mut fb, None, None)
+                    .unwrap();
+                k.bbar = false;
+                k.evaluate_into(&x, &uh, (&virgin, &mut new), &mut fplain, None, None)
+                    .unwrap();
+                let fs = fplain.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                for i in 0..nd {
+                    assert!(
+                        (fb[i] - fplain[i]).abs() < 1e-12 * fs,
+                        "{shape:?} nlgeo {nlgeo} {law:?}: homogeneous field changed"
+                    );
+                }
+            }
+        }
     }
 }

@@ -159,6 +159,7 @@ fn plastic_continuum_tangents_are_jacobians_of_the_internal_force() {
                 material: law.as_ref(),
                 thick: 0.7,
                 nlgeo,
+                bbar: false,
             };
             let x = crate::elements::distorted_nodes(shape);
             let nd = shape.n_nodes() * shape.dim();
@@ -228,6 +229,7 @@ fn a_plastic_brick_turned_rigidly_keeps_its_stress_and_plastic_state() {
         material: law.as_ref(),
         thick: 1.0,
         nlgeo: true,
+        bbar: false,
     };
     let x = crate::elements::distorted_nodes(shape);
     let n = law.state_len();

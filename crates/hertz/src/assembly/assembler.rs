@@ -412,6 +412,7 @@ impl<'m> Assembler<'m> {
                 material: law.as_ref(),
                 thick: info.thick,
                 nlgeo: el.nlgeo,
+                bbar: el.bbar,
             };
             kernel.evaluate_into(x, ue, (old, new), fe, ke, states)
         };

@@ -46,10 +46,13 @@ pub(super) fn read_elements(
             c.finish(&r);
             continue;
         }
-        let Some(etype) = ElementType::from_keyword(&kw) else {
+        // The barred linear elements: OOFEM's `LSpaceBB` and its plane-strain counterpart.
+        let bbar = matches!(kw.as_str(), "lspacebb" | "quad1planestrainbb");
+        let base = if bbar { &kw[..kw.len() - 2] } else { &kw };
+        let Some(etype) = ElementType::from_keyword(base) else {
             let names: Vec<&str> = ElementType::ALL.iter().map(|(_, t)| t.name()).collect();
             return Err(r.error(format!(
-                "unknown element type `{kw}`; supported: {}",
+                "unknown element type `{kw}`; supported: {}, LSpaceBB, Quad1PlaneStrainBB",
                 names.join(", ")
             )));
         };
@@ -116,6 +119,7 @@ pub(super) fn read_elements(
             label,
             etype,
             nodes: enodes,
+            bbar,
             cross_section: usize::MAX,
             material: usize::MAX,
             nip,

@@ -285,6 +285,10 @@ pub struct Element {
     pub material: usize,
     pub nip: Option<usize>,
     pub nlgeo: bool,
+    /// Every point takes the element's mean volumetric strain (B-bar, F-bar; OOFEM's `LSpaceBB`,
+    /// hertz's `Quad1PlaneStrainBB`): no volumetric locking of the linear quadrilateral and
+    /// brick.
+    pub bbar: bool,
     /// Truss2d plane: 0 = x–z (default), 1 = x–y, 2 = y–z.
     pub truss_plane: u8,
     pub span: Span,

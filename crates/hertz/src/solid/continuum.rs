@@ -25,6 +25,9 @@ pub struct ContinuumKernel<'a> {
     /// Thickness for 2D elements (1 in 3D).
     pub thick: f64,
     pub nlgeo: bool,
+    /// The volumetric deformation of every point the element's mean: B-bar in small strain,
+    /// F-bar in large deformation (see [`super::barred`]).
+    pub bbar: bool,
 }
 
 impl ElementKernel for ContinuumKernel<'_> {
@@ -54,6 +57,10 @@ impl ElementKernel for ContinuumKernel<'_> {
         // B and D·B rows, one pair of buffers for all points (only the first ndof entries used).
         let mut b = [[0.0; MAX_DOFS]; 6];
         let mut db = [[0.0; MAX_DOFS]; 6];
+        let means = match self.bbar {
+            true => Some(self.means(x_ref, u)?),
+            false => None,
+        };
         for (g, qp) in self.rule.iter().enumerate() {
             self.shape.eval(qp.xi, &mut n, &mut dn);
             let det =
@@ -92,15 +99,42 @@ impl ElementKernel for ContinuumKernel<'_> {
                     msg: format!("element inverted (det F = {:.3e})", det3(&f)),
                 });
             }
+            let slice = |g: usize| g * sl..(g + 1) * sl;
+            if let (Some(c), true) = (&means, self.nlgeo) {
+                let point = super::barred::FbarPoint {
+                    dndx: &dndx,
+                    f,
+                    jxw,
+                    nn,
+                };
+                self.fbar_point(
+                    c,
+                    &point,
+                    (&old[slice(g)], &mut new[slice(g)]),
+                    fe,
+                    ke.as_deref_mut(),
+                    states.as_deref_mut(),
+                )
+                .map_err(|msg| KernelError { gp: g + 1, msg })?;
+                continue;
+            }
+            if let Some(c) = &means {
+                // B-bar: the element's mean volumetric strain θ̄ in place of the point's.
+                let theta = h[0][0] + h[1][1] + h[2][2];
+                for (k, row) in e.iter_mut().enumerate() {
+                    row[k] += (c.theta - theta) / 3.0;
+                }
+            }
             let point = Point {
                 dndx: &dndx,
                 f,
                 e,
                 jxw,
                 nn,
+                mean: means.as_ref().map(|c| &c.dndx),
             };
             self.point(
-                (&old[g * sl..(g + 1) * sl], &mut new[g * sl..(g + 1) * sl]),
+                (&old[slice(g)], &mut new[slice(g)]),
                 &point,
                 fe,
                 ke.as_deref_mut(),
@@ -148,6 +182,8 @@ struct Point<'a> {
     e: [[f64; 3]; 3],
     jxw: f64,
     nn: usize,
+    /// B-bar: the element's mean ∂N_a/∂X_I, whose volumetric strain the point takes.
+    mean: Option<&'a [[f64; 3]; MAX_NODES]>,
 }
 
 impl ContinuumKernel<'_> {
@@ -225,6 +261,15 @@ impl ContinuumKernel<'_> {
                     pt.jxw * (0..nsd).map(|jj| fs[i][jj] * pt.dndx[a][jj]).sum::<f64>();
             }
         }
+        if let Some(d0) = pt.mean {
+            // B̄ᵀσ: the mean stress acts through the mean volumetric row.
+            let mean = (s[0][0] + s[1][1] + s[2][2]) / 3.0;
+            for a in 0..pt.nn {
+                for i in 0..nsd {
+                    fe[a * nsd + i] += pt.jxw * mean * (d0[a][i] - pt.dndx[a][i]);
+                }
+            }
+        }
     }
 
     /// k += ∫ Bᵀ D B, B the strain's variation (δE_k = B_k · δu) with F in large deformation,
@@ -250,13 +295,25 @@ impl ContinuumKernel<'_> {
                 }
             }
         }
+        if let Some(d0) = pt.mean {
+            // B̄ = B + ⅓ m ⊗ (b₀ − b) on the normal components.
+            for (row, &c) in answer.comps.iter().enumerate() {
+                if c < 3 {
+                    for a in 0..nn {
+                        for i in 0..nsd {
+                            b[row][a * nsd + i] += (d0[a][i] - dndx[a][i]) / 3.0;
+                        }
+                    }
+                }
+            }
+        }
         // The rows of B that can be non-zero: in 2D not those of a component with z (the
-        // plane-strain ε_zz, whose row vanishes).
+        // plane-strain ε_zz, whose row vanishes but with B-bar).
         let mut rows = [0usize; 6];
         let mut nr = 0;
         for (row, &c) in answer.comps.iter().enumerate() {
             let (ii, jj) = VOIGT_PAIRS[c];
-            if ii < nsd && jj < nsd {
+            if (ii < nsd && jj < nsd) || (pt.mean.is_some() && c < 3) {
                 rows[nr] = row;
                 nr += 1;
             }
@@ -313,8 +370,8 @@ impl ContinuumKernel<'_> {
             full_e[c] = answer.strain[k];
             full_s[c] = answer.stress[k];
         }
-        if nc == 4 {
-            // Plane strain: ε_zz = 0 whatever the reduced vector carries.
+        if nc == 4 && pt.mean.is_none() {
+            // Plane strain: ε_zz = 0 whatever the reduced vector carries (B-bar's is not).
             full_e[2] = 0.0;
         }
         if nc == 3 && answer.normal_strain != 0.0 {

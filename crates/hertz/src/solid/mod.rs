@@ -1,5 +1,6 @@
 //! Element kernels and materials: point-wise physics, no global structures.
 
+pub mod barred;
 pub mod continuum;
 pub mod kernel;
 pub mod loads;
