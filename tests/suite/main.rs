@@ -16,6 +16,7 @@ mod examples;
 mod friction;
 mod gmsh;
 mod hyperelastic;
+mod indentation;
 mod locking;
 mod mortar;
 mod newton;

@@ -1,0 +1,171 @@
+//! Elastoplastic indentation: a rigid cylinder (radius 10, `circlecontactsegment`) pressed into
+//! a von Mises block in plane strain, node-to-segment penalty, on the mesh of
+//! `examples/hertz_rigid_circle.in` (h = 0.04 under the contact, the half-width about 0.4).
+
+use crate::common;
+use hertz::analytic::{contact_modulus, hertz_max_pressure};
+use hertz::solve::run_analysis;
+
+const RADIUS: f64 = 10.0;
+const YOUNG: f64 = 1000.0;
+const NU: f64 = 0.3;
+
+/// The peak pressure p₀ at which a Hertz line contact first yields, over σ_y, and the depth of
+/// that point over the half-width a: the largest von Mises stress on the axis x = 0 of the
+/// plane-strain Hertz field (McEwen; Johnson, Contact Mechanics §4.2: σ_x = −p₀((1 + 2ζ²)/√(1 +
+/// ζ²) − 2ζ), σ_z = −p₀/√(1 + ζ²), σ_y = ν(σ_x + σ_z), no shear on the axis, ζ = z/a), found by
+/// golden-section search. ν = 0.3: p₀ = 1.7937 σ_y at z = 0.7043 a (Johnson's 1.79 and 0.70).
+fn first_yield_of_a_line_contact(nu: f64) -> (f64, f64) {
+    let mises = |z: f64| {
+        let s = (1.0 + z * z).sqrt();
+        let sx = -((1.0 + 2.0 * z * z) / s - 2.0 * z);
+        let sz = -1.0 / s;
+        let sy = nu * (sx + sz);
+        (0.5 * ((sx - sy).powi(2) + (sy - sz).powi(2) + (sz - sx).powi(2))).sqrt()
+    };
+    let (mut lo, mut hi) = (0.0, 3.0);
+    let phi = (5f64.sqrt() - 1.0) / 2.0;
+    for _ in 0..200 {
+        let (a, b) = (hi - phi * (hi - lo), lo + phi * (hi - lo));
+        if mises(a) > mises(b) {
+            hi = b;
+        } else {
+            lo = a;
+        }
+    }
+    let z = 0.5 * (lo + hi);
+    (1.0 / mises(z), z)
+}
+
+/// The rigid-cylinder example with a `MisesMat` block of yield stress `sig0` (perfectly plastic)
+/// on barred quadrilaterals, the cylinder moved down by `depths` (one step each, full Newton).
+fn indentation_input(sig0: f64, depths: &[f64]) -> String {
+    let text = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/hertz_rigid_circle.in"),
+    )
+    .unwrap();
+    let t: Vec<String> = (0..=depths.len()).map(|k| k.to_string()).collect();
+    let f: Vec<String> = std::iter::once(0.0)
+        .chain(depths.iter().copied())
+        .map(|d| (d / depths[depths.len() - 1]).to_string())
+        .collect();
+    let n = depths.len() + 1;
+    text.lines()
+        .map(|l| {
+            if l.starts_with("NonLinearStatic") {
+                // StaticStructural: step k at t = k (NonLinearStatic starts at t = 0).
+                format!("StaticStructural nsteps {} rtolf 1e-8 maxiter 40", n - 1)
+            } else if l.starts_with("IsoLE") {
+                format!("MisesMat 1 d 0 E {YOUNG} n {NU} sig0 {sig0} H 0 tAlpha 0")
+            } else if l.starts_with("ndofman") {
+                l.replace("nltf 1", "nltf 2")
+            } else if l.starts_with("BoundaryCondition 3") {
+                format!(
+                    "BoundaryCondition 3 loadTimeFunction 2 dofs 2 1 2 values 2 0.0 {} set 4",
+                    -depths[depths.len() - 1]
+                )
+            } else if l.starts_with("ConstantFunction") {
+                format!(
+                    "{l}\nPiecewiseLinFunction 2 t {n} {} f(t) {n} {}",
+                    t.join(" "),
+                    f.join(" ")
+                )
+            } else if l.starts_with("Quad1PlaneStrain ") {
+                l.replacen("Quad1PlaneStrain", "Quad1PlaneStrainBB", 1)
+            } else {
+                l.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// One step of an indentation: Hertz's p₀ of its force, how many elements have yielded, the
+/// centre of the one with the largest κ (depth below the surface, distance from the axis), and
+/// the iterations.
+#[derive(Debug)]
+struct Step {
+    p0: f64,
+    yielded: usize,
+    most: (f64, f64),
+    iterations: usize,
+}
+
+fn indent(sig0: f64, depths: &[f64]) -> Vec<Step> {
+    let model = common::model_from_text(&indentation_input(sig0, depths)).unwrap();
+    let e_star = contact_modulus(YOUNG, NU, f64::INFINITY, 0.0);
+    let mut steps = Vec::new();
+    run_analysis(&model, &common::quiet(), |r| {
+        let force = 2.0 * r.contact.iter().map(|s| s.force).sum::<f64>();
+        let (mut yielded, mut most, mut largest) = (0, (0.0, 0.0), 0.0);
+        for (e, points) in r.states.iter().enumerate() {
+            let kappa = points
+                .iter()
+                .filter_map(|p| p.plastic.as_ref().map(|s| s.kappa))
+                .fold(0.0, f64::max);
+            if kappa > 0.0 {
+                yielded += 1;
+            }
+            if kappa > largest {
+                largest = kappa;
+                let nodes = &model.elements[e].nodes;
+                let c = nodes.iter().fold([0.0; 2], |c, &n| {
+                    let x = model.nodes[n].coords;
+                    [c[0] + x[0], c[1] + x[1]]
+                });
+                let k = nodes.len() as f64;
+                most = (-c[1] / k, c[0] / k);
+            }
+        }
+        steps.push(Step {
+            p0: hertz_max_pressure(force, RADIUS, e_star),
+            yielded,
+            most,
+            iterations: r.info.iterations,
+        });
+        Ok(())
+    })
+    .unwrap();
+    steps
+}
+
+/// The cylinder first yields the block where Johnson's criterion says: with σ_y = 11.7 the
+/// predicted p₀ = 1.7937 σ_y = 20.99 is passed halfway through depths 0.020 … 0.040 (p₀ 16.2 …
+/// 24.0 by Hertz of the force, 2.3 % a step). No point yields while p₀ < 0.97 of it, some have
+/// yielded once p₀ > 1.03 of it, and the most strained point of the first plastic step lies on
+/// the axis (within 0.25 a) at a depth of 0.6 to 0.8 a (0.7043 a predicted). Measured: the last
+/// elastic step at p₀/σ_y = 1.7455, the first plastic one at 1.7860 (0.4 % below the
+/// prediction), its largest κ at depth 0.26 = 0.68 a, 0.05 a off the axis; at most 3 iterations
+/// a step (asserted: 5).
+#[test]
+fn a_rigid_cylinder_first_yields_the_block_at_johnsons_load_and_depth() {
+    let (ratio, depth) = first_yield_of_a_line_contact(NU);
+    assert!((ratio - 1.7937).abs() < 1e-4 && (depth - 0.7043).abs() < 1e-4);
+    let sig0 = 11.7;
+    let depths: Vec<f64> = (0..=16).map(|k| 0.020 + 0.00125 * k as f64).collect();
+    let steps = indent(sig0, &depths);
+    let p_yield = ratio * sig0;
+    for (k, s) in steps.iter().enumerate() {
+        if s.p0 < 0.97 * p_yield {
+            assert_eq!(s.yielded, 0, "step {}: {s:?}", k + 1);
+        }
+        if s.p0 > 1.03 * p_yield {
+            assert!(s.yielded > 0, "step {}: p0 {}", k + 1, s.p0);
+        }
+        assert!(
+            s.iterations <= 5,
+            "step {}: {} iterations",
+            k + 1,
+            s.iterations
+        );
+    }
+    let first = steps.iter().find(|s| s.yielded > 0).unwrap();
+    let e_star = contact_modulus(YOUNG, NU, f64::INFINITY, 0.0);
+    // a = 2R p₀/E* for a line contact.
+    let a = 2.0 * RADIUS * first.p0 / e_star;
+    let (z, x) = first.most;
+    assert!(
+        z > 0.6 * a && z < 0.8 * a && x < 0.25 * a,
+        "{z} {x}, a = {a}"
+    );
+}
