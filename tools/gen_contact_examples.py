@@ -6,7 +6,8 @@
   cattaneo_mindlin.in    elastic cylinder on an elastic block pressed, then sheared (friction)
   hertz_mortar.in        hertz_rigid_circle.in with mortar contact (multipliers)
   hertz_cylinder_mortar.in  hertz_cylinder.in with mortar contact between the two bodies
-All but the last are half models (x >= 0) with symmetry conditions on x = 0. Meshes are structured and graded:
+  indentation.in         hertz_rigid_circle.in's cylinder pressed into a plastic block and lifted
+All but hertz_cylinder_mortar.in are half models (x >= 0) with symmetry conditions on x = 0. Meshes are structured and graded:
 a fine zone of spacing h near the contact, then geometric growth."""
 
 
@@ -310,7 +311,7 @@ for the force P, P and Q per unit thickness:
   q(x) = mu p0 sqrt(1 - x^2/a^2) - mu p0 (c/a) sqrt(1 - x^2/c^2)  (|x| < c),  mu p(x) in the slip zone
 Checks (tests/suite/friction.rs): c within one element (h = {h:g}), q(x) against the formula.
 hertz: P = 5.7449, Q = 0.8293 (Q/(mu P) = 0.481), a = 0.5160, c = 0.3717; stick zone half-width
-0.3689; q(x) within 3.1 % of mu p0 (beyond one element from the cusp at +-c); 2 and 3 iterations.
+0.3689; q(x) within 3.1 % of mu p0 (beyond one element from the cusp at +-c); 2 and 4 iterations.
 Run:  cargo run --release -- run examples/cattaneo_mindlin.in
 """
     lines = header("cattaneo_mindlin.out", "Cattaneo-Mindlin: a cylinder pressed then sheared on a block (plane strain)", comment)
@@ -383,6 +384,67 @@ Run:  cargo run --release -- run examples/hertz_mortar.in
     write("examples/hertz_mortar.in", lines)
 
 
+# The indentation: yield stress, hardening modulus, deepest indentation, steps down and up.
+INDENT = (5.0, 10.0, 0.15, 10, 10)
+
+
+def indentation():
+    """hertz_rigid_circle's cylinder pressed into an elastic-perfectly plastic block (MisesMat on
+    barred quadrilaterals) and lifted off again: a residual imprint."""
+    R, h, fine, W, H, _ = RIGID
+    sig0, hard, delta, down, up = INDENT
+    m, xs, ys, ids, eids, ref = rigid_block()
+    m.elems = [("Quad1PlaneStrainBB", n, extra) for (_, n, extra) in m.elems]
+    top = [col[-1] for col in ids]
+    contact_nodes = [top[i] for i, x in enumerate(xs) if x <= 3.0]
+    sym = [ids[0][j] for j in range(len(ys))]
+    bottom = [col[0] for col in ids]
+    comment = f"""
+Elastoplastic indentation and its residual imprint, plane strain, half model (x >= 0): the rigid
+cylinder of hertz_rigid_circle.in (R = {R:g}, circlecontactsegment moving with node {ref}) pushed
+down by {delta:g} in {down} steps into a block {W:g} x {H:g} of von Mises steel-like material (E = {E:g},
+nu = {NU:g}, sig0 = {sig0:g}, H = {hard:g}: nearly perfectly plastic) on barred quadrilaterals (Quad1PlaneStrainBB:
+plastic flow keeps the volume, plain ones lock), then lifted back to its start in {up} steps.
+Node-to-segment penalty on the top nodes with x <= 3, h = {h:g} near the contact.
+First yield (Johnson, von Mises, nu = 0.3): p0 = 1.79 sig0 at 0.70 a below the surface, at
+F = pi R p0^2/E* = 2.3 here, within the first step; by the deepest step the plastic zone is wide and the mean pressure F/(2a)
+nears the plane-strain limit of a rigid-plastic flat punch, (2 + pi) sig0/sqrt(3) = 2.97 sig0.
+On lifting, the block springs back elastically, the contact opens before the cylinder is back,
+and a residual imprint with residual stresses stays. hertz: 4 to 7 iterations a step loading, 1 to
+3 unloading; at the deepest step F = 35.56, a = 1.48, mean pressure 2.40 sig0; the contact opens
+between depths 0.105 and 0.090 and the imprint is 0.0926 deep on the axis (tests/suite/indentation.rs).
+With H = 0 (perfectly plastic) Newton cycles between contact and plastic states at the deepest
+step and solves it in two substeps (53 iterations); H = E/100 keeps every step to 7 iterations.
+Run:  cargo run --release -- run examples/indentation.in
+      cargo run --release -- plot examples/indentation.out --step 10   (load-unload curve, pressure)
+The .vtu files carry equivalent_plastic_strain and plastic_strain per element (ParaView).
+"""
+    lines = header("indentation.out", "Elastoplastic indentation by a rigid cylinder, load and unload (plane strain)", comment)
+    sets = [
+        f"Set 1 elementranges {{(1 {len(m.elems)})}}",
+        nodeset(2, sym),
+        nodeset(3, bottom),
+        nodeset(4, [ref]),
+    ]
+    bcs = [
+        "BoundaryCondition 1 loadTimeFunction 1 dofs 1 1 values 1 0.0 set 2",
+        "BoundaryCondition 2 loadTimeFunction 1 dofs 1 2 values 1 0.0 set 3",
+        f"BoundaryCondition 3 loadTimeFunction 2 dofs 2 1 2 values 2 0.0 {-delta:g} set 4",
+        f"n2spenaltycontact 4 loadTimeFunction 1 penalty {1e4 * E:g} nodeset {len(contact_nodes)} "
+        + " ".join(map(str, contact_nodes)) + " segmentset 1 1",
+    ]
+    lines += common_records(
+        m, ["SimpleCS 1 thick 1.0 material 1 set 1"],
+        [f"MisesMat 1 d 0. E {E:g} n {NU:g} sig0 {sig0:g} H {hard:g} tAlpha 0."], bcs,
+        ["ConstantFunction 1 f(t) 1.0",
+         f"PiecewiseLinFunction 2 t 3 0 {down} {down + up} f(t) 3 0 1 0"],
+        sets, 1,
+        [f"circlecontactsegment 1 centerpoint 2 0 {R:g} radius {R:g} node {ref}"],
+        f"StaticStructural nsteps {down + up} rtolf 1e-8 maxiter 40",
+    )
+    write("examples/indentation.in", lines)
+
+
 # cattaneo_mindlin's shear: the top's horizontal displacement in step 2.
 DX_CM = 0.005
 
@@ -391,3 +453,4 @@ hertz_cylinder()
 flat_punch()
 cattaneo_mindlin()
 hertz_mortar()
+indentation()

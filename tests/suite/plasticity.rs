@@ -128,13 +128,15 @@ fn a_cut_back_restores_the_committed_plastic_state() {
 
 /// Plastic continua: a steel-like `MisesMat` (E 210, ν 0.3, σ₀ 0.3, H 10).
 fn steel(kinematic: f64) -> hertz::model::Mises {
+    hardened(kinematic, 10.0)
+}
+
+/// [`steel`] with isotropic hardening modulus `modulus` (0: perfectly plastic).
+fn hardened(kinematic: f64, modulus: f64) -> hertz::model::Mises {
     hertz::model::Mises {
         young: 210.0,
         poisson: 0.3,
-        hardening: hertz::model::Hardening::Linear {
-            sig0: 0.3,
-            modulus: 10.0,
-        },
+        hardening: hertz::model::Hardening::Linear { sig0: 0.3, modulus },
         kinematic,
         damage: None,
     }
@@ -142,15 +144,29 @@ fn steel(kinematic: f64) -> hertz::model::Mises {
 
 /// The tangent of every continuum element with `MisesMat` is the Jacobian of its internal force,
 /// from a committed plastic state, in a step that yields further (plastic) and one that unloads
-/// (elastic), in small strain (isotropic and kinematic hardening) and finite strain.
+/// (elastic), in small strain (isotropic and kinematic hardening, and none: perfectly plastic)
+/// and finite strain (hardening and none), plain and barred.
 #[test]
 fn plastic_continuum_tangents_are_jacobians_of_the_internal_force() {
     use hertz::fem::rule;
     use hertz::material::plasticity::mises_law;
     use hertz::solid::{ContinuumKernel, ElementKernel};
     for (name, shape, mode, nip) in crate::elements::CONTINUUM {
-        for (nlgeo, kinematic) in [(false, 0.0), (false, 8.0), (true, 0.0)] {
-            let law = mises_law(&steel(kinematic), mode, nlgeo);
+        let barrable = matches!(name, "Quad1PlaneStrain" | "LSpace");
+        let cases = [
+            (false, 0.0, 10.0, false),
+            (false, 8.0, 10.0, false),
+            (true, 0.0, 10.0, false),
+            (false, 0.0, 0.0, false),
+            (true, 0.0, 0.0, false),
+            (false, 0.0, 0.0, true),
+            (true, 0.0, 0.0, true),
+        ];
+        for (nlgeo, kinematic, modulus, bbar) in cases {
+            if bbar && !barrable {
+                continue;
+            }
+            let law = mises_law(&hardened(kinematic, modulus), mode, nlgeo);
             let q = rule(shape, nip).unwrap();
             let k = ContinuumKernel {
                 shape,
@@ -159,7 +175,7 @@ fn plastic_continuum_tangents_are_jacobians_of_the_internal_force() {
                 material: law.as_ref(),
                 thick: 0.7,
                 nlgeo,
-                bbar: false,
+                bbar,
             };
             let x = crate::elements::distorted_nodes(shape);
             let nd = shape.n_nodes() * shape.dim();
@@ -203,7 +219,8 @@ fn plastic_continuum_tangents_are_jacobians_of_the_internal_force() {
                 }
                 assert!(
                     worst < 1e-6,
-                    "{name} nlgeo {nlgeo} hk {kinematic} {what}: relative tangent error {worst:e}"
+                    "{name} nlgeo {nlgeo} hk {kinematic} H {modulus} bbar {bbar} {what}: \
+                     relative tangent error {worst:e}"
                 );
             }
         }
