@@ -61,8 +61,9 @@ impl StepData {
 
 /// One converged step: `displacement` and `reaction` (n_nodes × DOFs per node, rows in the
 /// order of `Model.node_labels`, columns x, y(, z); reactions are zero where nothing is
-/// prescribed), `iterations`, `substeps`, and `contact`: the columns of the contact CSV as
-/// arrays (one entry per contact node).
+/// prescribed), `iterations`, `substeps`, `contact`: the columns of the contact CSV as arrays
+/// (one entry per contact node), and `points`: the integration points' results as arrays (one
+/// row per point, see [`points_dict`]).
 #[pyclass(module = "hertz", name = "Step", frozen)]
 pub struct Step {
     #[pyo3(get)]
@@ -79,6 +80,8 @@ pub struct Step {
     reaction: Py<PyArray2<f64>>,
     #[pyo3(get)]
     contact: Py<PyDict>,
+    #[pyo3(get)]
+    points: Py<PyDict>,
 }
 
 #[pymethods]
@@ -89,6 +92,45 @@ impl Step {
             self.step, self.time, self.iterations
         )
     }
+}
+
+/// The integration points of one step, element by element: `element` (label), `gp` (from 1),
+/// `strain` and `stress` (n × 6, Voigt xx yy zz yz xz xy with engineering shears; the
+/// Green–Lagrange strain and second Piola–Kirchhoff stress with `nlgeo 1`), and where a
+/// material is plastic `plastic_strain` (n × 6), `kappa` and `damage` (0 at elastic points).
+fn points_dict<'py>(
+    py: Python<'py>,
+    model: &HModel,
+    states: &[Vec<GpState>],
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    let all = || {
+        states
+            .iter()
+            .enumerate()
+            .flat_map(|(e, pts)| pts.iter().enumerate().map(move |(g, p)| (e, g, p)))
+    };
+    let n = all().count();
+    let element: Vec<i64> = all()
+        .map(|(e, _, _)| model.elements[e].label as i64)
+        .collect();
+    let gp: Vec<i64> = all().map(|(_, g, _)| g as i64 + 1).collect();
+    d.set_item("element", element.into_pyarray(py))?;
+    d.set_item("gp", gp.into_pyarray(py))?;
+    let six = |f: &dyn Fn(&GpState) -> [f64; 6]| all().flat_map(|(_, _, p)| f(p)).collect();
+    d.set_item("strain", array2(py, n, 6, six(&|p| p.strain)))?;
+    d.set_item("stress", array2(py, n, 6, six(&|p| p.stress)))?;
+    if all().any(|(_, _, p)| p.plastic.is_some()) {
+        let plastic = |p: &GpState| p.plastic.unwrap_or_default();
+        d.set_item(
+            "plastic_strain",
+            array2(py, n, 6, six(&|p| plastic(p).strain)),
+        )?;
+        let col = |f: &dyn Fn(&GpState) -> f64| all().map(|(_, _, p)| f(p)).collect::<Vec<f64>>();
+        d.set_item("kappa", col(&|p| plastic(p).kappa).into_pyarray(py))?;
+        d.set_item("damage", col(&|p| plastic(p).damage).into_pyarray(py))?;
+    }
+    Ok(d)
 }
 
 /// The contact CSV's columns of one step.
@@ -166,6 +208,7 @@ impl Result {
                 displacement: array2(py, n, nd, std::mem::take(&mut s.displacement)).unbind(),
                 reaction: array2(py, n, nd, std::mem::take(&mut s.reaction)).unbind(),
                 contact: contact_dict(py, &model, &s.contact)?.unbind(),
+                points: points_dict(py, &model, &s.states)?.unbind(),
             };
             steps.push(Py::new(py, step)?);
         }

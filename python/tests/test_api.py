@@ -322,3 +322,21 @@ def test_writing_never_overwrites_the_input(tmp_path):
     with pytest.raises(hertz.HertzError):
         hertz.read(src).solve().write(tmp_path)
     assert src.read_text() == before
+
+
+def test_points_carry_the_plastic_state():
+    """A Mises bar cycled past yield (OOFEM's Mises01): the points' strain and stress at step 6
+    are OOFEM's check values, and σ = (1 − ω) E (ε − ε_p) at every step (E = 1)."""
+    model = hertz.read(ROOT / "tests" / "data" / "oofem" / "Mises01.in")
+    result = model.solve()
+    assert result.converged
+    step = result.steps[5]
+    points = step.points
+    assert list(points["element"]) == [1] and list(points["gp"]) == [1]
+    assert points["strain"][0, 0] == pytest.approx(4.0, abs=1e-4)
+    assert points["stress"][0, 0] == pytest.approx(1.2423, abs=1e-4)
+    assert points["kappa"][0] > 0 and 0 < points["damage"][0] < 0.1
+    for s in result.steps:
+        p = s.points
+        elastic = p["strain"][0, 0] - p["plastic_strain"][0, 0]
+        assert p["stress"][0, 0] == pytest.approx((1 - p["damage"][0]) * elastic, abs=1e-12)
