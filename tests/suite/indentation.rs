@@ -170,16 +170,17 @@ fn a_rigid_cylinder_first_yields_the_block_at_johnsons_load_and_depth() {
     );
 }
 
-/// examples/indentation.in: the cylinder pressed 0.15 into a nearly perfectly plastic block
-/// (σ₀ = 5, H = 10 = E/100) in ten steps and lifted back in ten. Each step converges without a
-/// cut-back in at most 8 iterations. At the deepest step the mean pressure F/(2a) lies between
+/// examples/indentation.in: the cylinder pressed 0.15 into a perfectly plastic block (σ₀ = 5,
+/// H = 0) in ten steps and lifted back in ten. Each step converges without a cut-back in at most
+/// 10 iterations (the deepest took 40 and a cut-back before Newton halved the steps that raise
+/// the residual where a material yields). At the deepest step the mean pressure F/(2a) lies between
 /// 2 σ₀ and the rigid-plastic flat punch's (2 + π) σ₀/√3 = 2.97 σ₀ (an elastic–plastic contact
 /// stays below the fully plastic limit; a locking mesh exceeds it). On lifting, the contact
 /// opens before the cylinder is back, and the block keeps an imprint: the surface on the axis
 /// stays below its start by more than a third of the deepest indentation and by less than the
-/// cylinder's position at the last step with contact; the plastic strain stays. Measured: 4 to 7
-/// iterations a step loading, 1 to 3 unloading; mean pressure 2.40 σ₀; the contact opens between
-/// depths 0.105 and 0.090, the imprint 0.0926 deep; largest κ 0.072 at the deepest step and
+/// cylinder's position at the last step with contact; the plastic strain stays. Measured: 4 to 9
+/// iterations a step loading, 1 or 2 unloading; mean pressure 2.33 σ₀; the contact opens between
+/// depths 0.105 and 0.090, the imprint 0.0945 deep; largest κ 0.085 at the deepest step and
 /// after (the unloading is elastic).
 #[test]
 fn an_indentation_leaves_a_residual_imprint() {
@@ -211,7 +212,7 @@ fn an_indentation_leaves_a_residual_imprint() {
     .unwrap();
     assert_eq!(steps.len(), 20);
     for (k, s) in steps.iter().enumerate() {
-        assert!(s.4 <= 8 && s.5 == 1, "step {}: {s:?}", k + 1);
+        assert!(s.4 <= 10 && s.5 == 1, "step {}: {s:?}", k + 1);
     }
     let (force, a, kappa, ..) = steps[9];
     let mean = force / (2.0 * a) / sig0;
