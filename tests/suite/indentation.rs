@@ -37,17 +37,21 @@ fn first_yield_of_a_line_contact(nu: f64) -> (f64, f64) {
     (1.0 / mises(z), z)
 }
 
-/// The rigid-cylinder example with a `MisesMat` block of yield stress `sig0` (perfectly plastic)
-/// on barred quadrilaterals, the cylinder moved down by `depths` (one step each, full Newton).
-fn indentation_input(sig0: f64, depths: &[f64]) -> String {
+/// A rigid-cylinder example (`example`: node-to-segment `hertz_rigid_circle.in` or mortar
+/// `hertz_mortar.in`) with a `MisesMat` block of yield stress `sig0` (perfectly plastic) on
+/// barred quadrilaterals, the cylinder moved down by `depths` (one step each, full Newton).
+fn indentation_input(example: &str, sig0: f64, depths: &[f64]) -> String {
     let text = std::fs::read_to_string(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/hertz_rigid_circle.in"),
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("examples")
+            .join(example),
     )
     .unwrap();
+    let deepest = depths.iter().copied().fold(0.0, f64::max);
     let t: Vec<String> = (0..=depths.len()).map(|k| k.to_string()).collect();
     let f: Vec<String> = std::iter::once(0.0)
         .chain(depths.iter().copied())
-        .map(|d| (d / depths[depths.len() - 1]).to_string())
+        .map(|d| (d / deepest).to_string())
         .collect();
     let n = depths.len() + 1;
     text.lines()
@@ -62,7 +66,7 @@ fn indentation_input(sig0: f64, depths: &[f64]) -> String {
             } else if l.starts_with("BoundaryCondition 3") {
                 format!(
                     "BoundaryCondition 3 loadTimeFunction 2 dofs 2 1 2 values 2 0.0 {} set 4",
-                    -depths[depths.len() - 1]
+                    -deepest
                 )
             } else if l.starts_with("ConstantFunction") {
                 format!(
@@ -81,19 +85,26 @@ fn indentation_input(sig0: f64, depths: &[f64]) -> String {
 }
 
 /// One step of an indentation: Hertz's p₀ of its force, how many elements have yielded, the
-/// centre of the one with the largest κ (depth below the surface, distance from the axis), and
-/// the iterations.
+/// centre of the one with the largest κ (depth below the surface, distance from the axis), the
+/// force F of the whole cylinder, the surface's displacement on the axis, the iterations and
+/// substeps.
 #[derive(Debug)]
 struct Step {
     p0: f64,
     yielded: usize,
     most: (f64, f64),
+    force: f64,
+    surface: f64,
     iterations: usize,
+    substeps: usize,
 }
 
-fn indent(sig0: f64, depths: &[f64]) -> Vec<Step> {
-    let model = common::model_from_text(&indentation_input(sig0, depths)).unwrap();
+fn indent(example: &str, sig0: f64, depths: &[f64]) -> Vec<Step> {
+    let model = common::model_from_text(&indentation_input(example, sig0, depths)).unwrap();
     let e_star = contact_modulus(YOUNG, NU, f64::INFINITY, 0.0);
+    let top = (0..model.nodes.len())
+        .find(|&n| model.nodes[n].coords[0] == 0.0 && model.nodes[n].coords[1] == 0.0)
+        .unwrap();
     let mut steps = Vec::new();
     run_analysis(&model, &common::quiet(), |r| {
         let force = 2.0 * r.contact.iter().map(|s| s.force).sum::<f64>();
@@ -121,7 +132,10 @@ fn indent(sig0: f64, depths: &[f64]) -> Vec<Step> {
             p0: hertz_max_pressure(force, RADIUS, e_star),
             yielded,
             most,
+            force,
+            surface: r.displacement(top, 2).unwrap(),
             iterations: r.info.iterations,
+            substeps: r.info.substeps,
         });
         Ok(())
     })
@@ -143,7 +157,7 @@ fn a_rigid_cylinder_first_yields_the_block_at_johnsons_load_and_depth() {
     assert!((ratio - 1.7937).abs() < 1e-4 && (depth - 0.7043).abs() < 1e-4);
     let sig0 = 11.7;
     let depths: Vec<f64> = (0..=16).map(|k| 0.020 + 0.00125 * k as f64).collect();
-    let steps = indent(sig0, &depths);
+    let steps = indent("hertz_rigid_circle.in", sig0, &depths);
     let p_yield = ratio * sig0;
     for (k, s) in steps.iter().enumerate() {
         if s.p0 < 0.97 * p_yield {
@@ -239,4 +253,34 @@ fn an_indentation_leaves_a_residual_imprint() {
         "{imprint}"
     );
     assert!(kappa_end >= kappa, "{kappa_end} {kappa}");
+}
+
+/// Node-to-segment penalty and mortar multipliers indent the perfectly plastic block alike: the
+/// cylinder pressed 0.15 in ten steps and lifted in ten (σ₀ = 5), each step without a cut-back
+/// in at most 12 iterations (measured: 4 to 9 node-to-segment, 4 to 10 mortar, the most at the
+/// deepest step); the deepest step's force and the residual imprint agree to 1e-3 (measured:
+/// 4.5e-5 and 1.3e-4).
+#[test]
+fn node_to_segment_and_mortar_leave_the_same_imprint() {
+    let depths: Vec<f64> = (1..=20)
+        .map(|k| 0.015 * if k <= 10 { k } else { 20 - k } as f64)
+        .collect();
+    let n2s = indent("hertz_rigid_circle.in", 5.0, &depths);
+    let mortar = indent("hertz_mortar.in", 5.0, &depths);
+    for (name, steps) in [("n2s", &n2s), ("mortar", &mortar)] {
+        assert_eq!(steps.len(), 20);
+        for (k, s) in steps.iter().enumerate() {
+            assert!(
+                s.iterations <= 12 && s.substeps == 1,
+                "{name} step {}: {s:?}",
+                k + 1
+            );
+        }
+    }
+    let force = mortar[9].force / n2s[9].force - 1.0;
+    let imprint = mortar[19].surface / n2s[19].surface - 1.0;
+    assert!(
+        force.abs() < 1e-3 && imprint.abs() < 1e-3,
+        "{force} {imprint}"
+    );
 }
