@@ -2,6 +2,7 @@
 //! library's reader and solved by its solver; nothing is printed. Results come back as numpy
 //! arrays built once from the solver's vectors.
 
+mod arrays;
 mod model;
 mod observer;
 mod result;

@@ -1,7 +1,7 @@
 //! `hertz.Result` and `hertz.Step`: the converged steps of a run as numpy arrays, and the files
 //! `hertz run` writes.
 
-use crate::model::array2;
+use crate::arrays::array2;
 use crate::to_py_err;
 use hertz::assembly::DofMap;
 use hertz::contact::SlotState;

@@ -1,10 +1,8 @@
 //! Walking the records of an input file: the next record of a block (a record of another block
 //! means a count is wrong), numbered records each once, unread tokens warned of.
 
-use super::conditions::is_condition;
-use super::functions::FUNCTION_KEYWORDS;
+use super::keywords::{is_condition, FUNCTION_KEYWORDS, MATERIAL_KEYWORDS};
 use super::lexer::Line;
-use super::materials::MATERIAL_KEYWORDS;
 use super::record::Record;
 use crate::error::{Error, Result};
 use crate::model::*;

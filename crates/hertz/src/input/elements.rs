@@ -46,10 +46,7 @@ pub(super) fn read_elements(
             c.finish(&r);
             continue;
         }
-        // The barred linear elements: OOFEM's `LSpaceBB` and its plane-strain counterpart.
-        let bbar = matches!(kw.as_str(), "lspacebb" | "quad1planestrainbb");
-        let base = if bbar { &kw[..kw.len() - 2] } else { &kw };
-        let Some(etype) = ElementType::from_keyword(base) else {
+        let Some((etype, bbar)) = element_keyword(&kw) else {
             let names: Vec<&str> = ElementType::ALL.iter().map(|(_, t)| t.name()).collect();
             return Err(r.error(format!(
                 "unknown element type `{kw}`; supported: {}, LSpaceBB, Quad1PlaneStrainBB",
@@ -206,4 +203,12 @@ pub(super) fn read_cross_sections(c: &mut Cursor, n: &Counts) -> Result<Vec<Cros
     let cross_sections = cs.finish();
 
     Ok(cross_sections)
+}
+
+/// The element type of a keyword (lower case) and whether it is barred: OOFEM's `LSpaceBB` and
+/// its plane-strain counterpart `Quad1PlaneStrainBB`.
+fn element_keyword(kw: &str) -> Option<(ElementType, bool)> {
+    let bbar = matches!(kw, "lspacebb" | "quad1planestrainbb");
+    let base = if bbar { &kw[..kw.len() - 2] } else { kw };
+    ElementType::from_keyword(base).map(|t| (t, bbar))
 }

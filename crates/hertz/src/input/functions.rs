@@ -4,9 +4,6 @@ use super::cursor::{Block, Cursor, Numbered};
 use crate::error::Result;
 use crate::model::*;
 
-pub(super) const FUNCTION_KEYWORDS: [&str; 3] =
-    ["constantfunction", "piecewiselinfunction", "peakfunction"];
-
 /// The time-function records.
 pub(super) fn read_time_functions(c: &mut Cursor, nltf: usize) -> Result<Vec<TimeFunction>> {
     let mut funcs = Numbered::new("time function", nltf);

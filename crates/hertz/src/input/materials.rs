@@ -5,14 +5,6 @@ use super::record::Record;
 use crate::error::Result;
 use crate::model::*;
 
-pub(super) const MATERIAL_KEYWORDS: [&str; 5] = [
-    "isole",
-    "misesmat",
-    "mooneyrivlincompressiblemat",
-    "ogdencompressiblemat",
-    "simopistermat",
-];
-
 /// The material records.
 pub(super) fn read_materials(c: &mut Cursor, nmat: usize) -> Result<Vec<Material>> {
     let mut mats = Numbered::new("material", nmat);

@@ -6,6 +6,7 @@ mod cursor;
 mod elements;
 mod functions;
 mod header;
+mod keywords;
 pub mod lexer;
 mod materials;
 mod nodes;

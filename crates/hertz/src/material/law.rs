@@ -60,7 +60,7 @@ pub trait PointLaw: Send + Sync + std::fmt::Debug {
     }
 
     /// The plastic strain, κ and damage a plastic law's `state` holds (None: not plastic).
-    fn plastic(&self, _state: &[f64]) -> Option<super::plasticity::PlasticState> {
+    fn plastic(&self, _state: &[f64]) -> Option<PlasticState> {
         None
     }
 }
@@ -80,4 +80,16 @@ pub fn respond_into(
     };
     law.respond(strain, old, &mut out)?;
     Ok(out.normal_strain)
+}
+
+/// What a plastic law reports of a point's state ([`PointLaw::plastic`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct PlasticState {
+    /// The plastic strain (full Voigt, engineering shears; finite strain: the Hencky plastic
+    /// strain ½ ln C_p).
+    pub strain: [f64; 6],
+    /// κ, the equivalent plastic strain.
+    pub kappa: f64,
+    /// ω, the damage.
+    pub damage: f64,
 }

@@ -13,8 +13,7 @@ use crate::fem::{QuadPoint, Shape};
 use crate::material::{voigt_components_of, PointLaw, Response, VOIGT_PAIRS};
 
 /// Maximum nodes and DOFs per element.
-pub use crate::fem::MAX_NODES;
-pub const MAX_DOFS: usize = 3 * MAX_NODES;
+pub use crate::fem::{MAX_DOFS, MAX_NODES};
 
 /// Everything a continuum kernel needs besides nodal data.
 pub struct ContinuumKernel<'a> {
@@ -58,7 +57,12 @@ impl ElementKernel for ContinuumKernel<'_> {
         let mut b = [[0.0; MAX_DOFS]; 6];
         let mut db = [[0.0; MAX_DOFS]; 6];
         let means = match self.bbar {
-            true => Some(self.means(x_ref, u)?),
+            true => Some(super::barred::means(
+                (self.shape, self.nsd, self.rule),
+                self.nlgeo,
+                x_ref,
+                u,
+            )?),
             false => None,
         };
         for (g, qp) in self.rule.iter().enumerate() {
@@ -102,12 +106,14 @@ impl ElementKernel for ContinuumKernel<'_> {
             let slice = |g: usize| g * sl..(g + 1) * sl;
             if let (Some(c), true) = (&means, self.nlgeo) {
                 let point = super::barred::FbarPoint {
+                    nsd: self.nsd,
                     dndx: &dndx,
                     f,
                     jxw,
                     nn,
                 };
-                self.fbar_point(
+                super::barred::fbar_point(
+                    self.material,
                     c,
                     &point,
                     (&old[slice(g)], &mut new[slice(g)]),

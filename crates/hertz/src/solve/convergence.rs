@@ -37,6 +37,17 @@ pub struct Check {
     pub floor_excess: f64,
 }
 
+impl Check {
+    /// On the round-off floor, a residual is accepted once Newton stops gaining on it: when it
+    /// is more than half the `last` iteration's (iteration `it`).
+    pub fn accept_on_floor(&mut self, it: usize, last: Option<f64>) {
+        if !self.converged && self.on_floor && it > 0 && last.is_some_and(|l| self.worst > 0.5 * l)
+        {
+            self.converged = true;
+        }
+    }
+}
+
 /// OOFEM's convergence test per DOF-id group (spec §1.3), with the round-off floor of penalty
 /// forces; multiplier rows (gaps) against rtolf times the largest displacement.
 pub fn check(

@@ -1,5 +1,6 @@
 //! Linear solvers, the condensed contact solve and the Newton/load-stepping driver.
 
+mod backtrack;
 pub mod branches;
 pub mod condensed;
 mod contact_step;

@@ -13,6 +13,7 @@
 //! stops gaining on a residual within that floor, the step is as converged as double precision
 //! allows (a warning then says the penalty is larger than double precision resolves).
 
+use super::backtrack::Backtrack;
 use super::branches::OnCycle;
 use super::contact_step::{local_change, ContactStepper};
 use super::convergence::{check, penalty_warning, precision_warning, Residual};
@@ -27,48 +28,6 @@ use crate::assembly::{Assembler, Contribution, DofMap, Evaluation, NodalState};
 use crate::contact::{ContactSystem, Search, SlotLinearization, SlotState};
 use crate::error::{Error, Result};
 use crate::model::{Analysis, Model};
-
-/// The backtracking of a Newton step where a material yields: its steps across the kinks of
-/// plastic loading and unloading (with contact nodes opening and closing over a plastic zone)
-/// can cycle. From the second step on, a step is halved (up to [`MAX_HALVINGS`] times, each an
-/// iteration) while the residual along it, r·Δu, keeps more than [`SLOPE_KEPT`] of its size at
-/// the step's start (Crisfield's line-search test; the residual's norm may rise once on
-/// Newton's way to quadratic convergence, so it is no test). Measured on
-/// examples/indentation.in (perfectly plastic): the deepest step cycled for 40 iterations and
-/// was cut in two (53 in all); with this, 9 and no cut-back; a plastic patch keeps its 6.
-#[derive(Default)]
-struct Backtrack {
-    /// r·Δu where the step Δu started, halved with the step.
-    slope: f64,
-    halvings: usize,
-}
-
-const MAX_HALVINGS: usize = 4;
-const SLOPE_KEPT: f64 = 0.8;
-
-impl Backtrack {
-    /// A new step `du` from the residual `rhs`.
-    fn start(&mut self, rhs: &[f64], du: &[f64]) {
-        self.slope = rhs.iter().zip(du).map(|(r, d)| r * d).sum();
-        self.halvings = 0;
-    }
-
-    /// Whether the step `du` that led to `u` (free DOFs), whose residual is `rhs`, is to be
-    /// halved: if so, `u` and `du` are moved back to its half.
-    fn halves(&mut self, rhs: &[f64], u: &mut [f64], du: &mut [f64]) -> bool {
-        let slope: f64 = rhs.iter().zip(du.iter()).map(|(r, d)| r * d).sum();
-        if !(slope.abs() > SLOPE_KEPT * self.slope.abs()) || self.halvings == MAX_HALVINGS {
-            return false;
-        }
-        self.halvings += 1;
-        self.slope *= 0.5;
-        for (x, d) in u.iter_mut().zip(du.iter_mut()) {
-            *d *= 0.5;
-            *x -= *d;
-        }
-        true
-    }
-}
 
 /// The state a cut-back restores (see [`NewtonContext::checkpoint`]).
 pub(super) struct Checkpoint {
@@ -383,7 +342,7 @@ impl<'a> NewtonContext<'a> {
         // which the next step's geometric tangent part takes (see `SlotLinearization::hold_force`).
         let mut held: Vec<Option<f64>> = Vec::new();
         let mut last_cycled = false;
-        let mut backtrack = Backtrack::default();
+        let mut backtrack = self.eq.asm.has_material_state().then(Backtrack::default);
         for it in 0..=a.maxiter {
             if self.eq.observer.interrupted() {
                 return Err(Error::Interrupted);
@@ -407,14 +366,7 @@ impl<'a> NewtonContext<'a> {
                 u,
             };
             let mut check = check(self.eq.model(), self.eq.dofs, &residual, a, it, &points);
-            // On the round-off floor: accepted once Newton stops gaining on it.
-            if !check.converged
-                && check.on_floor
-                && it > 0
-                && last.is_some_and(|l| check.worst > 0.5 * l)
-            {
-                check.converged = true;
-            }
+            check.accept_on_floor(it, last);
             info.residual_history.push(check.worst);
             info.iterations += 1;
             self.eq.observer.iteration(&self.iteration_report(
@@ -436,11 +388,8 @@ impl<'a> NewtonContext<'a> {
             if !check.worst.is_finite() {
                 return Err(Error::Solve("residual is not finite".into()));
             }
-            if it > 1
-                && it < a.maxiter
-                && self.eq.asm.has_material_state()
-                && backtrack.halves(&rhs, &mut u[..nf], &mut du)
-            {
+            let halved = |b: &mut Backtrack| b.halves(&rhs, &mut u[..nf], &mut du);
+            if it > 1 && it < a.maxiter && backtrack.as_mut().is_some_and(halved) {
                 continue;
             }
             if it == a.maxiter {
@@ -448,7 +397,7 @@ impl<'a> NewtonContext<'a> {
                     (check.floor_excess > 1.0).then_some(check.floor_excess);
                 break;
             }
-            let start = rhs.clone();
+            let start = backtrack.is_some().then(|| rhs.clone());
             let step = match self.stepper.is_some() {
                 true => {
                     // A cycled search whose step did not lower the residual takes the earliest
@@ -466,7 +415,9 @@ impl<'a> NewtonContext<'a> {
             for i in 0..nf {
                 u[i] += step[i];
             }
-            backtrack.start(&start, &step);
+            if let (Some(b), Some(r)) = (backtrack.as_mut(), &start) {
+                b.start(r, &step);
+            }
             du = step;
             prev2 = prev.replace(states);
         }

@@ -23,6 +23,7 @@
 pub mod finite_strain;
 pub mod small_strain;
 
+pub use super::law::PlasticState;
 use super::law::{PointLaw, Response};
 use crate::model::{Damage, Hardening, Mises, StressMode};
 
@@ -235,18 +236,6 @@ fn solve_consistency(m: &Mises, q: f64, kappa: f64, c: f64) -> Result<(f64, f64)
         };
     }
     Err("the plastic return did not converge".into())
-}
-
-/// What a plastic law reports of a point's state.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct PlasticState {
-    /// The plastic strain (full Voigt, engineering shears; finite strain: the Hencky plastic
-    /// strain ½ ln C_p).
-    pub strain: V6,
-    /// κ, the equivalent plastic strain.
-    pub kappa: f64,
-    /// ω, the damage.
-    pub damage: f64,
 }
 
 /// A law of the full strain (small strain ε or Green–Lagrange E, engineering shears), as
