@@ -1,12 +1,12 @@
 //! `hertz.Model`: a model read by the library's reader, its arrays, the parameters a study
 //! changes, and `solve`.
 
+use crate::arrays::{array2, array2_i64};
 use crate::observer::PyObserver;
 use crate::result::{Result as PyResultObj, StepData};
 use crate::to_py_err;
 use hertz::model::{Enforcement, MaterialLaw, Model as HModel, PenaltySource};
 use hertz::solve::{run_analysis_observed, SolveParams};
-use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::exceptions::{PyKeyError, PyValueError};
 use pyo3::prelude::*;
@@ -50,30 +50,6 @@ pub fn read_string(py: Python<'_>, text: &str, name: &str) -> PyResult<Model> {
     })
 }
 
-/// A (rows × cols) float array from row-major values.
-pub(crate) fn array2<'py>(
-    py: Python<'py>,
-    rows: usize,
-    cols: usize,
-    values: Vec<f64>,
-) -> Bound<'py, PyArray2<f64>> {
-    Array2::from_shape_vec((rows, cols), values)
-        .expect("rows × cols values")
-        .into_pyarray(py)
-}
-
-/// A (rows × cols) integer array from row-major values.
-fn array2_i64<'py>(
-    py: Python<'py>,
-    rows: usize,
-    cols: usize,
-    values: Vec<i64>,
-) -> Bound<'py, PyArray2<i64>> {
-    Array2::from_shape_vec((rows, cols), values)
-        .expect("rows × cols values")
-        .into_pyarray(py)
-}
-
 impl Model {
     fn label_array<'py>(&self, py: Python<'py>, nodes: &[usize]) -> Bound<'py, PyArray1<i64>> {
         nodes
@@ -114,22 +90,24 @@ impl Model {
         self.label_array(py, &all)
     }
 
-    /// Per element type (OOFEM's keyword, e.g. "LSpace"): a dict with `labels` (m) and
+    /// Per element keyword (OOFEM's, e.g. "LSpace", "LSpaceBB"): a dict with `labels` (m) and
     /// `connectivity` (m × nodes per element, node labels in OOFEM's order).
     #[getter]
     fn elements<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let out = PyDict::new(py);
-        for (_, et) in hertz::model::ElementType::ALL {
-            let els: Vec<_> = self
-                .model
-                .elements
+        // In the order of hertz's element types, each barred kind after its plain one.
+        let mut groups: std::collections::BTreeMap<(usize, bool), Vec<&hertz::model::Element>> =
+            Default::default();
+        for e in &self.model.elements {
+            let kind = hertz::model::ElementType::ALL
                 .iter()
-                .filter(|e| e.etype == et)
-                .collect();
-            if els.is_empty() {
-                continue;
-            }
-            let k = et.n_nodes();
+                .position(|&(_, t)| t == e.etype)
+                .unwrap_or(usize::MAX);
+            groups.entry((kind, e.bbar)).or_default().push(e);
+        }
+        let out = PyDict::new(py);
+        for els in groups.into_values() {
+            let keyword = els[0].keyword();
+            let k = els[0].etype.n_nodes();
             let conn = els
                 .iter()
                 .flat_map(|e| e.nodes.iter().map(|&n| self.model.nodes[n].label as i64))
@@ -138,7 +116,7 @@ impl Model {
             let labels: Vec<i64> = els.iter().map(|e| e.label as i64).collect();
             d.set_item("labels", labels.into_pyarray(py))?;
             d.set_item("connectivity", array2_i64(py, els.len(), k, conn))?;
-            out.set_item(et.name(), d)?;
+            out.set_item(keyword, d)?;
         }
         Ok(out)
     }

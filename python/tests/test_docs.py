@@ -58,3 +58,19 @@ def test_the_penalty_study_converges_to_hertz_and_plots(tmp_path):
     closed = contact["x"][contact["pressure"] > 0]
     assert abs(closed.max() - a) < 0.04
     assert png.stat().st_size > 10_000
+
+
+def test_the_plastic_zone_lies_below_the_imprint_and_is_drawn(tmp_path):
+    """examples/python/plastic_zone.py: the imprint the command's test measures (0.0945), the
+    largest plastic strain under the contact (within its half-width, 1.48, and no deeper than
+    it) and kept after lift-off, and a figure."""
+    pytest.importorskip("matplotlib")
+    spec = importlib.util.spec_from_file_location("zone", EXAMPLES / "python" / "plastic_zone.py")
+    zone = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(zone)
+    png = tmp_path / "zone.png"
+    with contextlib.redirect_stdout(io.StringIO()):
+        imprint, kappa, (x, y) = zone.main(png)
+    assert abs(imprint - 0.0945) < 5e-4
+    assert kappa > 0.02 and 0 <= x < 1.48 and -1.48 < y < 0
+    assert png.stat().st_size > 10_000

@@ -295,6 +295,14 @@ pub struct Element {
 }
 
 impl Element {
+    /// OOFEM's keyword of the element: its type's, with `BB` for a barred one.
+    pub fn keyword(&self) -> String {
+        match self.bbar {
+            true => format!("{}BB", self.etype.name()),
+            false => self.etype.name().to_string(),
+        }
+    }
+
     /// The DOF ids every node of this element carries, in element order.
     pub fn dof_ids(&self) -> &'static [DofId] {
         match self.etype {
