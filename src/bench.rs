@@ -71,6 +71,11 @@ pub struct BenchArgs {
     #[arg(long, value_name = "N", requires = "write",
           value_parser = clap::value_parser!(u64).range(2..=100))]
     pub rigid_sphere: Option<u64>,
+    /// With --rigid-sphere: the sphere pressed in ten steps and lifted in ten into a perfectly
+    /// plastic block of yield stress SIG0 on barred bricks, and its elastic twin
+    /// (rigid_sphere_plastic.in, rigid_sphere_elastic.in)
+    #[arg(long, value_name = "SIG0", requires = "rigid_sphere")]
+    pub plastic: Option<f64>,
     /// With --write: a block of N x N x N/4 bricks on a rigid plane, pressed and then pushed
     /// obliquely, all of its (N+1)^2 bottom nodes slave nodes with friction 0.3 (every one
     /// slides; 40: 55 000 unknowns, 1 681 slave nodes; solve it with `hertz run`)
@@ -188,8 +193,23 @@ pub fn main(args: BenchArgs) -> ExitCode {
         return write_text(dir, "shallow_ironing3d.in", &text);
     }
     if let (Some(n), Some(dir)) = (args.rigid_sphere, &write) {
-        let text = hertz_bench::verify::RigidSphereBlock::uniform(n as usize, multipliers).input();
-        return write_text(dir, "rigid_sphere_block.in", &text);
+        let problem = hertz_bench::verify::RigidSphereBlock::uniform(n as usize, multipliers);
+        if let Some(sig0) = args.plastic {
+            let twin = write_text(
+                dir,
+                "rigid_sphere_elastic.in",
+                &problem.pressed_and_lifted(None),
+            );
+            if twin != ExitCode::SUCCESS {
+                return twin;
+            }
+            return write_text(
+                dir,
+                "rigid_sphere_plastic.in",
+                &problem.pressed_and_lifted(Some(sig0)),
+            );
+        }
+        return write_text(dir, "rigid_sphere_block.in", &problem.input());
     }
     if let (Some(n), Some(dir)) = (args.pushed_block, &write) {
         let law = if multipliers {

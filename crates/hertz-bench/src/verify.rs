@@ -1496,6 +1496,31 @@ impl RigidSphereBlock<'_> {
         }
     }
 
+    /// [`Self::input`] pressed in ten steps and lifted in ten, on barred bricks (`LSpaceBB`), of
+    /// a perfectly plastic `MisesMat` with yield stress `sig0`, or with `None` its elastic twin.
+    pub fn pressed_and_lifted(&self, sig0: Option<f64>) -> String {
+        let text = self.input();
+        let lines = text.lines().map(|l| match l.split_whitespace().next() {
+            Some("StaticStructural") => {
+                "StaticStructural nsteps 20 deltat 1 rtolf 1e-8 maxiter 25".to_string()
+            }
+            Some("ndofman") => l.replace("nltf 1", "nltf 2"),
+            Some("IsoLE") => match sig0 {
+                Some(s) => format!("MisesMat 1 d 0 E {E} n {NU} sig0 {s} H 0 tAlpha 0"),
+                None => l.to_string(),
+            },
+            Some("LSpace") => l.replacen("LSpace", "LSpaceBB", 1),
+            Some("BoundaryCondition") if l.starts_with("BoundaryCondition 5 ") => {
+                l.replace("loadTimeFunction 1", "loadTimeFunction 2")
+            }
+            Some("ConstantFunction") => {
+                format!("{l}\nPiecewiseLinFunction 2 t 3 0 10 20 f(t) 3 0 1 0")
+            }
+            _ => l.to_string(),
+        });
+        lines.collect::<Vec<_>>().join("\n") + "\n"
+    }
+
     /// Every top node a slave node (`slaveset`).
     pub fn input(&self) -> String {
         self.input_with("rigid_sphere_block", |inp, _| {
