@@ -99,13 +99,33 @@ def rigid_block():
     return m, xs, ys, ids, eids, ref
 
 
+def rigid_records(m, ids, ref, xs, delta, ltf):
+    """The rigid-cylinder problem's sets and conditions: symmetry on x = 0, the bottom held, the
+    cylinder's node moved down by `delta` times load-time function `ltf`, and node-to-segment
+    penalty contact of the top nodes with x <= 3."""
+    top = [col[-1] for col in ids]
+    contact_nodes = [top[i] for i, x in enumerate(xs) if x <= 3.0]
+    sym = [ids[0][j] for j in range(len(ids[0]))]
+    bottom = [col[0] for col in ids]
+    sets = [
+        f"Set 1 elementranges {{(1 {len(m.elems)})}}",
+        nodeset(2, sym),
+        nodeset(3, bottom),
+        nodeset(4, [ref]),
+    ]
+    bcs = [
+        "BoundaryCondition 1 loadTimeFunction 1 dofs 1 1 values 1 0.0 set 2",
+        "BoundaryCondition 2 loadTimeFunction 1 dofs 1 2 values 1 0.0 set 3",
+        f"BoundaryCondition 3 loadTimeFunction {ltf} dofs 2 1 2 values 2 0.0 {-delta:g} set 4",
+        f"n2spenaltycontact 4 loadTimeFunction 1 penalty {1e4 * E:g} nodeset {len(contact_nodes)} "
+        + " ".join(map(str, contact_nodes)) + " segmentset 1 1",
+    ]
+    return sets, bcs
+
+
 def hertz_rigid():
     R, h, fine, W, H, delta = RIGID
     m, xs, ys, ids, eids, ref = rigid_block()
-    top = [col[-1] for col in ids]
-    contact_nodes = [top[i] for i, x in enumerate(xs) if x <= 3.0]
-    sym = [ids[0][j] for j in range(len(ys))]
-    bottom = [col[0] for col in ids]
     comment = f"""
 Hertz contact of a rigid cylinder on an elastic block, plane strain, half model (x >= 0).
 Rigid circle of radius R = {R:g} (circlecontactsegment moving with node {ref}) is pushed down by
@@ -118,19 +138,7 @@ Run:  cargo run --release --example hertz -- examples/hertz_rigid_circle.in
       (prints p0 and a against Hertz; `hertz run` solves and writes the results)
 """
     lines = header("hertz_rigid_circle.out", "Hertz: rigid cylinder on an elastic block (plane strain)", comment)
-    sets = [
-        f"Set 1 elementranges {{(1 {len(m.elems)})}}",
-        nodeset(2, sym),
-        nodeset(3, bottom),
-        nodeset(4, [ref]),
-    ]
-    bcs = [
-        "BoundaryCondition 1 loadTimeFunction 1 dofs 1 1 values 1 0.0 set 2",
-        "BoundaryCondition 2 loadTimeFunction 1 dofs 1 2 values 1 0.0 set 3",
-        f"BoundaryCondition 3 loadTimeFunction 1 dofs 2 1 2 values 2 0.0 {-delta:g} set 4",
-        f"n2spenaltycontact 4 loadTimeFunction 1 penalty {1e4 * E:g} nodeset {len(contact_nodes)} "
-        + " ".join(map(str, contact_nodes)) + " segmentset 1 1",
-    ]
+    sets, bcs = rigid_records(m, ids, ref, xs, delta, 1)
     lines += common_records(
         m, ["SimpleCS 1 thick 1.0 material 1 set 1"], [f"IsoLE 1 d 0. E {E:g} n {NU:g} tAlpha 0."], bcs,
         ["ConstantFunction 1 f(t) 1.0"], sets, 1,
@@ -395,10 +403,6 @@ def indentation():
     sig0, hard, delta, down, up = INDENT
     m, xs, ys, ids, eids, ref = rigid_block()
     m.elems = [("Quad1PlaneStrainBB", n, extra) for (_, n, extra) in m.elems]
-    top = [col[-1] for col in ids]
-    contact_nodes = [top[i] for i, x in enumerate(xs) if x <= 3.0]
-    sym = [ids[0][j] for j in range(len(ys))]
-    bottom = [col[0] for col in ids]
     comment = f"""
 Elastoplastic indentation and its residual imprint, plane strain, half model (x >= 0): the rigid
 cylinder of hertz_rigid_circle.in (R = {R:g}, circlecontactsegment moving with node {ref}) pushed
@@ -419,19 +423,7 @@ Run:  cargo run --release -- run examples/indentation.in
 The .vtu files carry equivalent_plastic_strain and plastic_strain per element (ParaView).
 """
     lines = header("indentation.out", "Elastoplastic indentation by a rigid cylinder, load and unload (plane strain)", comment)
-    sets = [
-        f"Set 1 elementranges {{(1 {len(m.elems)})}}",
-        nodeset(2, sym),
-        nodeset(3, bottom),
-        nodeset(4, [ref]),
-    ]
-    bcs = [
-        "BoundaryCondition 1 loadTimeFunction 1 dofs 1 1 values 1 0.0 set 2",
-        "BoundaryCondition 2 loadTimeFunction 1 dofs 1 2 values 1 0.0 set 3",
-        f"BoundaryCondition 3 loadTimeFunction 2 dofs 2 1 2 values 2 0.0 {-delta:g} set 4",
-        f"n2spenaltycontact 4 loadTimeFunction 1 penalty {1e4 * E:g} nodeset {len(contact_nodes)} "
-        + " ".join(map(str, contact_nodes)) + " segmentset 1 1",
-    ]
+    sets, bcs = rigid_records(m, ids, ref, xs, delta, 2)
     lines += common_records(
         m, ["SimpleCS 1 thick 1.0 material 1 set 1"],
         [f"MisesMat 1 d 0. E {E:g} n {NU:g} sig0 {sig0:g} H {hard:g} tAlpha 0."], bcs,

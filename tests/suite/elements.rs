@@ -55,6 +55,40 @@ pub(crate) const CONTINUUM: [(&str, Shape, StressMode, usize); 10] = [
     ("QSpace", Shape::Hexa20, StressMode::ThreeD, 27),
 ];
 
+/// The largest difference between `k`'s tangent at displacements `u` (from the committed point
+/// states `old`) and central differences of its force with step `h`, relative to the tangent's
+/// largest entry.
+pub(crate) fn tangent_error(
+    k: &dyn ElementKernel,
+    x: &[[f64; 3]],
+    u: &[f64],
+    old: &[f64],
+    h: f64,
+) -> f64 {
+    let nd = u.len();
+    let mut new = vec![0.0; old.len()];
+    let (mut f, mut kt) = (vec![0.0; nd], vec![0.0; nd * nd]);
+    k.evaluate_into(x, u, (old, &mut new), &mut f, Some(&mut kt), None)
+        .unwrap();
+    let scale = kt.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut worst: f64 = 0.0;
+    for j in 0..nd {
+        let (mut up, mut um) = (u.to_vec(), u.to_vec());
+        up[j] += h;
+        um[j] -= h;
+        let (mut fp, mut fm) = (vec![0.0; nd], vec![0.0; nd]);
+        k.evaluate_into(x, &up, (old, &mut new), &mut fp, None, None)
+            .unwrap();
+        k.evaluate_into(x, &um, (old, &mut new), &mut fm, None, None)
+            .unwrap();
+        for i in 0..nd {
+            let fd = (fp[i] - fm[i]) / (2.0 * h);
+            worst = worst.max((fd - kt[i * nd + j]).abs() / scale);
+        }
+    }
+    worst
+}
+
 /// `corners` followed by the midpoints of `edges` (the quadratic element's mid-edge nodes).
 fn with_mid_edges(corners: Vec<[f64; 3]>, edges: &[&[usize]]) -> Vec<[f64; 3]> {
     let mut v = corners.clone();
@@ -1229,27 +1263,7 @@ fn barred_tangents_are_jacobians_and_homogeneous_fields_are_unchanged() {
                 k.evaluate_into(&x, &u1, (&virgin, &mut old), &mut f, None, None)
                     .unwrap();
                 let u: Vec<f64> = u1.iter().map(|v| 1.3 * v).collect();
-                let mut new = vec![0.0; virgin.len()];
-                let mut kt = vec![0.0; nd * nd];
-                k.evaluate_into(&x, &u, (&old, &mut new), &mut f, Some(&mut kt), None)
-                    .unwrap();
-                let h = 1e-7;
-                let scale = kt.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-                let mut worst: f64 = 0.0;
-                for j in 0..nd {
-                    let (mut up, mut um) = (u.clone(), u.clone());
-                    up[j] += h;
-                    um[j] -= h;
-                    let (mut fp, mut fm) = (vec![0.0; nd], vec![0.0; nd]);
-                    k.evaluate_into(&x, &up, (&old, &mut new), &mut fp, None, None)
-                        .unwrap();
-                    k.evaluate_into(&x, &um, (&old, &mut new), &mut fm, None, None)
-                        .unwrap();
-                    for i in 0..nd {
-                        let fd = (fp[i] - fm[i]) / (2.0 * h);
-                        worst = worst.max((fd - kt[i * nd + j]).abs() / scale);
-                    }
-                }
+                let worst = tangent_error(&k, &x, &u, &old, 1e-7);
                 assert!(
                     worst < 1e-6,
                     "{shape:?} nlgeo {nlgeo} {law:?}: relative tangent error {worst:e}"
@@ -1269,6 +1283,7 @@ fn barred_tangents_are_jacobians_and_homogeneous_fields_are_unchanged() {
                     })
                     .collect();
                 let (mut fb, mut fplain) = (vec![0.0; nd], vec![0.0; nd]);
+                let mut new = vec![0.0; virgin.len()];
                 k.evaluate_into(&x, &uh, (&virgin, &mut new), &mut fb, None, None)
                     .unwrap();
                 k.bbar = false;

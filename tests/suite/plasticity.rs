@@ -196,27 +196,7 @@ fn plastic_continuum_tangents_are_jacobians_of_the_internal_force() {
             assert!(old != virgin, "{name}: the first step yields");
             for (what, factor) in [("plastic", 1.5), ("elastic", 0.97)] {
                 let u: Vec<f64> = u1.iter().map(|v| v * factor).collect();
-                let mut new = vec![0.0; sl];
-                let mut kt = vec![0.0; nd * nd];
-                k.evaluate_into(&x, &u, (&old, &mut new), &mut f, Some(&mut kt), None)
-                    .unwrap();
-                let h = 1e-8;
-                let scale = kt.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-                let mut worst: f64 = 0.0;
-                for j in 0..nd {
-                    let (mut up, mut um) = (u.clone(), u.clone());
-                    up[j] += h;
-                    um[j] -= h;
-                    let (mut fp, mut fm) = (vec![0.0; nd], vec![0.0; nd]);
-                    k.evaluate_into(&x, &up, (&old, &mut new), &mut fp, None, None)
-                        .unwrap();
-                    k.evaluate_into(&x, &um, (&old, &mut new), &mut fm, None, None)
-                        .unwrap();
-                    for i in 0..nd {
-                        let fd = (fp[i] - fm[i]) / (2.0 * h);
-                        worst = worst.max((fd - kt[i * nd + j]).abs() / scale);
-                    }
-                }
+                let worst = crate::elements::tangent_error(&k, &x, &u, &old, 1e-8);
                 assert!(
                     worst < 1e-6,
                     "{name} nlgeo {nlgeo} hk {kinematic} H {modulus} bbar {bbar} {what}: \

@@ -186,10 +186,6 @@ impl Law3d for LogStrainMises {
         Ok(())
     }
 
-    fn symmetric_tangent(&self) -> bool {
-        self.params.damage.is_none()
-    }
-
     fn params(&self) -> &Mises {
         &self.params
     }

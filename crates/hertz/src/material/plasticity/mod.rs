@@ -252,7 +252,10 @@ pub trait Law3d: Send + Sync + std::fmt::Debug {
         tangent: &mut M6,
         new: &mut [f64],
     ) -> Result<(), String>;
-    fn symmetric_tangent(&self) -> bool;
+    /// Symmetric but where damage grows.
+    fn symmetric_tangent(&self) -> bool {
+        self.params().damage.is_none()
+    }
     fn plastic(&self, state: &[f64]) -> PlasticState;
     fn params(&self) -> &Mises;
 }

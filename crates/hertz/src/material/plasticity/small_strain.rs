@@ -48,10 +48,6 @@ impl Law3d for SmallStrainMises {
         Ok(())
     }
 
-    fn symmetric_tangent(&self) -> bool {
-        self.params.damage.is_none()
-    }
-
     fn params(&self) -> &Mises {
         &self.params
     }
