@@ -20,7 +20,7 @@ const POISSON: f64 = 0.3;
 
 /// The laws an element is checked with: linear elasticity, and in large deformation the
 /// hyperelastic laws (in plane stress with the out-of-plane stretch solved at each point).
-fn laws(mode: StressMode, nlgeo: bool) -> Vec<Law> {
+pub(crate) fn laws(mode: StressMode, nlgeo: bool) -> Vec<Law> {
     let mut v: Vec<Law> = vec![std::sync::Arc::new(Elasticity::new(YOUNG, POISSON, mode))];
     if nlgeo {
         let wrap = |h: Box<dyn hertz::material::hyperelastic::Energy>| -> Law {
@@ -182,6 +182,7 @@ fn kernel<'a>(
         thick: 0.7,
         nlgeo,
         bbar: false,
+        hoop: None,
     }
 }
 

@@ -4,6 +4,7 @@
 //! ones do not.
 
 use crate::common;
+use hertz::model::ElementType;
 use hertz::solve::run_analysis;
 
 const INNER: f64 = 1.0;
@@ -22,11 +23,37 @@ fn ring(kind: &str, nu: f64) -> String {
     )
 }
 
-/// The quarter ring's input: `kind` Q4, Q4BB (barred), T3 (each quadrilateral cut in two) or
-/// Q8, of `material` (number 1), every inner node moved radially by `delta` times load-time
-/// function 1 (one record each), the two straight edges on rollers.
+/// The quarter ring's input on 8 × 8 elements (see [`ring_mesh`]).
 fn ring_input(kind: &str, material: &str, analysis: &str, function: &str, delta: f64) -> String {
-    let (n, q8) = (8usize, kind == "Q8");
+    ring_mesh((kind, 8), material, analysis, function, delta)
+}
+
+/// The quarter ring's input on `n` × `n` elements of `kind`: Q4, Q4BB (barred), T3 (each
+/// quadrilateral cut in two) or Q8 in plane strain, or the axisymmetric L4Axisymm, Axisymm3d
+/// (cut in two) or Q4Axisymm, for which the ring is the meridian of a spherical shell (x = r,
+/// y = z: the straight edges are its equator's plane and the axis); of `material` (number 1),
+/// every inner node moved radially by `delta` times load-time function 1 (one record each), the
+/// two straight edges on rollers.
+pub(crate) fn ring_mesh(
+    (kind, n): (&str, usize),
+    material: &str,
+    analysis: &str,
+    function: &str,
+    delta: f64,
+) -> String {
+    let (keyword, corners) = match kind {
+        "Q4" => ("Quad1PlaneStrain", 4),
+        "Q4BB" => ("Quad1PlaneStrainBB", 4),
+        "T3" => ("TrPlaneStrain", 3),
+        "Q8" => ("QPlaneStrain", 8),
+        other => (
+            other,
+            ElementType::from_keyword(&other.to_lowercase())
+                .unwrap()
+                .n_nodes(),
+        ),
+    };
+    let q8 = corners == 8;
     let m = if q8 { 2 * n } else { n };
     let id = |i: usize, j: usize| i * (m + 1) + j + 1;
     let on = |i: usize, j: usize| !(q8 && i % 2 == 1 && j % 2 == 1);
@@ -56,17 +83,14 @@ fn ring_input(kind: &str, material: &str, analysis: &str, function: &str, delta:
                 }
             };
             let (a, b, cc, d) = (c(0, 0), c(2, 0), c(2, 2), c(0, 2));
-            match kind {
-                "Q4" => elements.push(format!("Quad1PlaneStrain {{}} nodes 4 {a} {b} {cc} {d}")),
-                "Q4BB" => {
-                    elements.push(format!("Quad1PlaneStrainBB {{}} nodes 4 {a} {b} {cc} {d}"))
-                }
-                "T3" => {
-                    elements.push(format!("TrPlaneStrain {{}} nodes 3 {a} {b} {cc}"));
-                    elements.push(format!("TrPlaneStrain {{}} nodes 3 {a} {cc} {d}"));
+            match corners {
+                4 => elements.push(format!("{keyword} {{}} nodes 4 {a} {b} {cc} {d}")),
+                3 => {
+                    elements.push(format!("{keyword} {{}} nodes 3 {a} {b} {cc}"));
+                    elements.push(format!("{keyword} {{}} nodes 3 {a} {cc} {d}"));
                 }
                 _ => elements.push(format!(
-                    "QPlaneStrain {{}} nodes 8 {a} {b} {cc} {d} {} {} {} {}",
+                    "{keyword} {{}} nodes 8 {a} {b} {cc} {d} {} {} {} {}",
                     c(1, 0),
                     c(2, 1),
                     c(1, 2),
@@ -123,7 +147,7 @@ fn ring_input(kind: &str, material: &str, analysis: &str, function: &str, delta:
 
 /// The radial force on the quarter's inner edge in every step, the Newton iterations of each,
 /// and the reader's warnings.
-fn inner_forces(text: &str) -> (Vec<(f64, usize)>, Vec<String>) {
+pub(crate) fn inner_forces(text: &str) -> (Vec<(f64, usize)>, Vec<String>) {
     let read = hertz::input::read_model_str(text, "ring.in").unwrap();
     let model = read.model;
     let mut forces = Vec::new();

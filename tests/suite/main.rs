@@ -5,6 +5,7 @@
 
 mod common;
 
+mod axisymmetry;
 mod cli;
 mod condensed;
 mod contact3d;
@@ -17,7 +18,7 @@ mod friction;
 mod gmsh;
 mod hyperelastic;
 mod indentation;
-mod locking;
+pub(crate) mod locking;
 mod mortar;
 mod newton;
 mod oofem_suite;

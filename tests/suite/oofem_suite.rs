@@ -97,6 +97,20 @@ fn contact_n2s_lagrange_multiplier_two_steps() {
     check_file("contact_N2S_LM.in");
 }
 
+/// A thin ring under internal pressure on two `L4Axisymm` (hoop strain and shear at the
+/// centroid, as OOFEM's), the pressure named by the element's `BoundaryLoads`: displacements,
+/// strains and stresses (hoop component 3) to OOFEM's values.
+#[test]
+fn axisymm01_thin_ring_on_axisymmetric_quadrilaterals() {
+    check_file("axisymm01.in");
+}
+
+/// The same ring on four `Axisymm3d` triangles, its values to 1e-6.
+#[test]
+fn axisymm04_thin_ring_on_axisymmetric_triangles() {
+    check_file("axisymm04.in");
+}
+
 /// A bar pulled, compressed and pulled again past yield with linear hardening and damage
 /// (`MisesMat` with `omega_crit`): the stress of the damaged bar at steps 2, 6 and 20.
 #[test]

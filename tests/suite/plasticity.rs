@@ -176,6 +176,7 @@ fn plastic_continuum_tangents_are_jacobians_of_the_internal_force() {
                 thick: 0.7,
                 nlgeo,
                 bbar,
+                hoop: None,
             };
             let x = crate::elements::distorted_nodes(shape);
             let nd = shape.n_nodes() * shape.dim();
@@ -227,6 +228,7 @@ fn a_plastic_brick_turned_rigidly_keeps_its_stress_and_plastic_state() {
         thick: 1.0,
         nlgeo: true,
         bbar: false,
+        hoop: None,
     };
     let x = crate::elements::distorted_nodes(shape);
     let n = law.state_len();

@@ -413,6 +413,7 @@ impl<'m> Assembler<'m> {
                 thick: info.thick,
                 nlgeo: el.nlgeo,
                 bbar: el.bbar,
+                hoop: el.etype.hoop_rule(),
             };
             kernel.evaluate_into(x, ue, (old, new), fe, ke, states)
         };

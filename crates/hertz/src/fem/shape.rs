@@ -91,6 +91,16 @@ impl Shape {
         }
     }
 
+    /// The reference element's centroid.
+    pub fn centroid(self) -> [f64; 3] {
+        match self {
+            Shape::Tri3 | Shape::Tri6 => [1.0 / 3.0, 1.0 / 3.0, 0.0],
+            Shape::Tet4 | Shape::Tet10 => [0.25, 0.25, 0.25],
+            Shape::Wedge6 => [1.0 / 3.0, 1.0 / 3.0, 0.0],
+            _ => [0.0; 3],
+        }
+    }
+
     /// Evaluate N_a(ξ) into `n` and ∂N_a/∂ξ_k into `dn[a][k]`.
     pub fn eval(self, xi: [f64; 3], n: &mut [f64], dn: &mut [[f64; 3]]) {
         match self.dim() {

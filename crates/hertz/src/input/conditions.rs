@@ -198,10 +198,8 @@ pub(super) fn read_load(
         return Err(r.error("`cstype 1` (local load coordinates) is not supported"));
     }
     r.opt_int("loadtype")?;
-    if set == 0 {
-        return Err(r.error(format!(
-            "{kw} needs `set` (legacy element boundaryloads are not supported)"
-        )));
+    if set == 0 && !matches!(kind, LoadKind::Edge | LoadKind::Surface) {
+        return Err(r.error(format!("{kw} needs `set`")));
     }
     Ok(Load {
         number,

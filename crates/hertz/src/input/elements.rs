@@ -2,6 +2,7 @@
 
 use super::cursor::{check_ref, Block, Cursor, Numbered};
 use super::header::Counts;
+use super::record::Record;
 use crate::error::Result;
 use crate::model::*;
 use std::collections::HashMap;
@@ -15,6 +16,9 @@ pub(super) struct ElementBlock {
     pub(super) elem_mat: Vec<Option<usize>>,
     pub(super) contact_elements: Vec<super::upstream::ContactElement>,
     pub(super) contact_index: HashMap<usize, usize>,
+    /// The elements' `BoundaryLoads` pairs: (element index, load number, boundary number) and
+    /// the record, for messages.
+    pub(super) boundary_loads: Vec<(usize, usize, usize, crate::error::Span)>,
 }
 
 /// The element records.
@@ -30,6 +34,7 @@ pub(super) fn read_elements(
     let mut elem_mat: Vec<Option<usize>> = Vec::with_capacity(nelem);
     let mut contact_elements: Vec<super::upstream::ContactElement> = Vec::new();
     let mut contact_index: HashMap<usize, usize> = HashMap::new();
+    let mut boundary_loads = Vec::new();
     for i in 0..nelem {
         let r = c.next_of(Block::Element, i, nelem)?;
         let kw = r.keyword().to_string();
@@ -78,32 +83,17 @@ pub(super) fn read_elements(
         if sorted.len() != enodes.len() {
             return Err(r.error(format!("element {label} lists the same node twice")));
         }
-        let nip = r.opt_usize("nip")?;
-        if let Some(n) = nip {
-            if crate::fem::rule(etype.shape(), n).is_none() {
-                return Err(r.error(format!("{} does not support nip {n}", etype.name())));
-            }
-        }
-        let nlgeo = match r.opt_int("nlgeo")? {
-            None | Some(0) => false,
-            Some(1) => true,
-            Some(v) => return Err(r.error(format!("`nlgeo` must be 0 or 1, found {v}"))),
-        };
-        let truss_plane = match (etype, r.opt_int("cs")?) {
-            (_, None) => 0,
-            (ElementType::Truss2d, Some(v @ 0..=2)) => v as u8,
-            (ElementType::Truss2d, Some(v)) => {
-                return Err(r.error(format!("Truss2d `cs` must be 0, 1 or 2, found {v}")))
-            }
-            (_, Some(_)) => return Err(r.error("keyword `cs` only applies to Truss2d")),
-        };
+        let (nip, nlgeo, truss_plane) = read_options(&r, etype)?;
         if nlgeo && etype.is_truss() {
             return Err(r.error("nlgeo 1 is not supported on truss elements"));
         }
-        for k in ["bodyloads", "boundaryloads", "activityltf", "lcs"] {
+        for k in ["bodyloads", "activityltf", "lcs"] {
             if r.flag(k) {
                 return Err(r.error(format!("element keyword `{k}` is not supported; use sets")));
             }
+        }
+        for (load, boundary) in read_boundary_loads(&r, etype)? {
+            boundary_loads.push((elements.len(), load, boundary, r.span()));
         }
         r.flag("reducedshearint");
         elem_cs.push(r.opt_usize("crosssect")?);
@@ -134,6 +124,7 @@ pub(super) fn read_elements(
         elem_mat,
         contact_elements,
         contact_index,
+        boundary_loads,
     })
 }
 
@@ -211,4 +202,52 @@ fn element_keyword(kw: &str) -> Option<(ElementType, bool)> {
     let bbar = matches!(kw, "lspacebb" | "quad1planestrainbb");
     let base = if bbar { &kw[..kw.len() - 2] } else { kw };
     ElementType::from_keyword(base).map(|t| (t, bbar))
+}
+
+/// An element record's `BoundaryLoads`: pairs of a load number and one of the element's
+/// boundary numbers (OOFEM's legacy way of loading an edge or face).
+fn read_boundary_loads(r: &Record, etype: ElementType) -> Result<Vec<(usize, usize)>> {
+    let Some(pairs) = r.opt_int_array("boundaryloads")? else {
+        return Ok(Vec::new());
+    };
+    let boundaries = etype.shape().boundaries().len() as i64;
+    if pairs.len() % 2 != 0
+        || pairs
+            .chunks(2)
+            .any(|p| p[0] < 1 || !(1..=boundaries).contains(&p[1]))
+    {
+        return Err(r.error(format!(
+            "`BoundaryLoads` lists pairs of a load number and a boundary number (1 to \
+             {boundaries} for {}), found {pairs:?}",
+            etype.name()
+        )));
+    }
+    Ok(pairs
+        .chunks(2)
+        .map(|p| (p[0] as usize, p[1] as usize))
+        .collect())
+}
+
+/// An element record's `nip` (checked against its shape's rules), `nlgeo` and Truss2d's `cs`.
+fn read_options(r: &Record, etype: ElementType) -> Result<(Option<usize>, bool, u8)> {
+    let nip = r.opt_usize("nip")?;
+    if let Some(n) = nip {
+        if crate::fem::rule(etype.shape(), n).is_none() {
+            return Err(r.error(format!("{} does not support nip {n}", etype.name())));
+        }
+    }
+    let nlgeo = match r.opt_int("nlgeo")? {
+        None | Some(0) => false,
+        Some(1) => true,
+        Some(v) => return Err(r.error(format!("`nlgeo` must be 0 or 1, found {v}"))),
+    };
+    let truss_plane = match (etype, r.opt_int("cs")?) {
+        (_, None) => 0,
+        (ElementType::Truss2d, Some(v @ 0..=2)) => v as u8,
+        (ElementType::Truss2d, Some(v)) => {
+            return Err(r.error(format!("Truss2d `cs` must be 0, 1 or 2, found {v}")))
+        }
+        (_, Some(_)) => return Err(r.error("keyword `cs` only applies to Truss2d")),
+    };
+    Ok((nip, nlgeo, truss_plane))
 }

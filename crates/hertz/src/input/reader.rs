@@ -12,8 +12,8 @@ use super::materials::read_materials;
 use super::nodes::read_nodes;
 use super::record::Record;
 use super::resolve::{
-    check_geometry, check_loads_act, elements_ref_nodes, interior_boundary_warnings,
-    resolve_elements, warn_early_function_times,
+    attach_boundary_loads, check_axisymmetry, check_geometry, check_loads_act, elements_ref_nodes,
+    interior_boundary_warnings, resolve_elements, warn_early_function_times,
 };
 use super::sets::{explain_missing_sets, read_sets, Refs};
 use crate::error::{Error, Result};
@@ -126,10 +126,12 @@ pub(super) fn model_from_lines(
 
     let functions = read_time_functions(&mut c, n.nltf)?;
 
-    let sets = match early_sets {
+    let mut sets = match early_sets {
         Some(s) => s,
         None => read_sets(&mut c, nset, &refs).map_err(explain)?,
     };
+    let mut loads = loads;
+    attach_boundary_loads(&mut loads, &mut sets, &block.boundary_loads)?;
 
     expect_end(&c)?;
 
@@ -163,6 +165,7 @@ pub(super) fn model_from_lines(
         segments,
         contacts,
     };
+    check_axisymmetry(&model)?;
     advise(&model, c.warnings);
     Ok(ReadResult {
         model,

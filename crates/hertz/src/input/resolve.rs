@@ -268,6 +268,19 @@ pub(super) fn check_geometry(coords: &[[f64; 3]], elements: &[Element]) -> Resul
         if el.etype.is_truss() {
             continue;
         }
+        if let Some(k) = x
+            .iter()
+            .position(|p| p[0] < 0.0)
+            .filter(|_| el.etype.is_axisymmetric())
+        {
+            return Err(err(format!(
+                "{} {} has a node at x = {}: x is the radius of an axisymmetric element, never \
+                 negative (the axis is x = 0)",
+                el.etype.name(),
+                el.label,
+                x[k][0]
+            )));
+        }
         let shape = el.etype.shape();
         let nip = el.nip.unwrap_or(el.etype.default_nip());
         let rule = crate::fem::rule(shape, nip).expect("nip validated");
@@ -286,6 +299,94 @@ pub(super) fn check_geometry(coords: &[[f64; 3]], elements: &[Element]) -> Resul
                 el.label
             )));
         }
+    }
+    Ok(())
+}
+
+/// Edge and surface loads named by elements' `BoundaryLoads` (OOFEM's legacy form: pairs of a
+/// load number and a boundary number on the element record) act on a set of their own, appended
+/// to `sets`; a load named so must have no `set`, a load with neither is an error.
+pub(super) fn attach_boundary_loads(
+    loads: &mut [Load],
+    sets: &mut Vec<Set>,
+    named: &[(usize, usize, usize, crate::error::Span)],
+) -> Result<()> {
+    for (_, number, _, span) in named {
+        let Some(load) = loads.iter().find(|l| l.number == *number) else {
+            return Err(Error::Input {
+                span: span.clone(),
+                msg: format!(
+                    "`BoundaryLoads` names load {number}, which is no edge or surface load"
+                ),
+            });
+        };
+        if load.set != 0 || !matches!(load.kind, LoadKind::Edge | LoadKind::Surface) {
+            return Err(Error::Input {
+                span: span.clone(),
+                msg: format!(
+                    "`BoundaryLoads` names {} {number}, which {}",
+                    load.kind.record_name(),
+                    if load.set != 0 {
+                        "has a `set` already: give its boundaries one way"
+                    } else {
+                        "acts on no element boundary"
+                    }
+                ),
+            });
+        }
+    }
+    for load in loads.iter_mut().filter(|l| l.set == 0) {
+        let boundaries: Vec<(usize, usize)> = named
+            .iter()
+            .filter(|(_, n, _, _)| *n == load.number)
+            .map(|&(e, _, b, _)| (e, b))
+            .collect();
+        if boundaries.is_empty() {
+            return Err(Error::Input {
+                span: load.span.clone(),
+                msg: format!(
+                    "{} {} needs `set`, or elements that name it in `BoundaryLoads`",
+                    load.kind.record_name(),
+                    load.number
+                ),
+            });
+        }
+        sets.push(Set {
+            boundaries,
+            ..Default::default()
+        });
+        load.set = sets.len();
+    }
+    Ok(())
+}
+
+/// An axisymmetric model is axisymmetric throughout: its elements all axisymmetric (per radian)
+/// or none, and without contact conditions (their weighting by the radius is still to come).
+pub(super) fn check_axisymmetry(model: &Model) -> Result<()> {
+    let axi = |e: &&Element| e.etype.is_axisymmetric();
+    let Some(first) = model.elements.iter().find(axi) else {
+        return Ok(());
+    };
+    if let Some(other) = model.elements.iter().find(|e| !e.etype.is_axisymmetric()) {
+        return Err(Error::Input {
+            span: other.span.clone(),
+            msg: format!(
+                "{} {} in a model with axisymmetric elements ({} {}): an axisymmetric model is \
+                 per radian throughout, give every element an axisymmetric type",
+                other.etype.name(),
+                other.label,
+                first.etype.name(),
+                first.label
+            ),
+        });
+    }
+    if let Some(c) = model.contacts.first() {
+        return Err(Error::Input {
+            span: c.span.clone(),
+            msg: "contact is not supported in axisymmetric models yet (its integrals must be \
+                  weighted by the radius); the elements and loads are"
+                .into(),
+        });
     }
     Ok(())
 }

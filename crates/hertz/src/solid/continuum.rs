@@ -11,6 +11,7 @@ use super::kernel::{ElementKernel, GpState, KernelError};
 use crate::fem::geometry::{det3, map_derivatives};
 use crate::fem::{QuadPoint, Shape};
 use crate::material::{voigt_components_of, PointLaw, Response, VOIGT_PAIRS};
+use crate::model::HoopRule;
 
 /// Maximum nodes and DOFs per element.
 pub use crate::fem::{MAX_DOFS, MAX_NODES};
@@ -27,6 +28,18 @@ pub struct ContinuumKernel<'a> {
     /// The volumetric deformation of every point the element's mean: B-bar in small strain,
     /// F-bar in large deformation (see [`super::barred`]).
     pub bbar: bool,
+    /// Axisymmetric (x = r, y = z): the hoop strain u_r/r in the out-of-plane place, every
+    /// integral per radian (weighted by r, `thick` unused); where the hoop strain and the shear
+    /// are taken in small strain (in large deformation at every point: F₃₃ = 1 + u_r/R).
+    pub hoop: Option<HoopRule>,
+}
+
+/// An axisymmetric point's hoop and shear rows: ∂u_r/r per node (N_a/r at the point or
+/// N_a(0)/r_c at the centroid), and with the centroid rule ∂N_a/∂X there for γ_rz.
+#[derive(Clone)]
+struct Hoop {
+    n_over_r: [f64; MAX_NODES],
+    shear: Option<[[f64; 3]; MAX_NODES]>,
 }
 
 impl ElementKernel for ContinuumKernel<'_> {
@@ -65,6 +78,10 @@ impl ElementKernel for ContinuumKernel<'_> {
             )?),
             false => None,
         };
+        let centroid = match self.hoop {
+            Some(HoopRule::Centroid) if !self.nlgeo => Some(self.centroid_rows(x_ref)?),
+            _ => None,
+        };
         for (g, qp) in self.rule.iter().enumerate() {
             self.shape.eval(qp.xi, &mut n, &mut dn);
             let det =
@@ -72,31 +89,20 @@ impl ElementKernel for ContinuumKernel<'_> {
                     gp: g + 1,
                     msg: "degenerate element geometry (det J = 0)".into(),
                 })?;
-            let jxw = det.abs() * qp.weight * self.thick;
-            // Deformation gradient F = I + ∂u/∂X.
-            let mut f = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-            let mut h = [[0.0; 3]; 3];
-            for a in 0..nn {
-                for i in 0..nsd {
-                    for j in 0..nsd {
-                        h[i][j] += u[a * nsd + i] * dndx[a][j];
-                    }
+            let mut jxw = det.abs() * qp.weight * self.thick;
+            let mut h = gradient(u, &dndx, nn, nsd);
+            let hoop = match self.hoop {
+                Some(_) => {
+                    let (hoop, r) = self
+                        .hoop_at(&n, x_ref, centroid.as_ref())
+                        .map_err(|msg| KernelError { gp: g + 1, msg })?;
+                    jxw = det.abs() * qp.weight * r;
+                    hoop.add_to_gradient(u, nn, &mut h);
+                    Some(hoop)
                 }
-            }
-            for i in 0..3 {
-                for j in 0..3 {
-                    f[i][j] += h[i][j];
-                }
-            }
-            let mut e = [[0.0; 3]; 3];
-            for i in 0..3 {
-                for j in 0..3 {
-                    e[i][j] = 0.5 * (h[i][j] + h[j][i]);
-                    if self.nlgeo {
-                        e[i][j] += 0.5 * (0..3).map(|k| h[k][i] * h[k][j]).sum::<f64>();
-                    }
-                }
-            }
+                None => None,
+            };
+            let (f, mut e) = deformation(&h, self.nlgeo);
             if self.nlgeo && det3(&f) <= 0.0 {
                 return Err(KernelError {
                     gp: g + 1,
@@ -138,6 +144,7 @@ impl ElementKernel for ContinuumKernel<'_> {
                 jxw,
                 nn,
                 mean: means.as_ref().map(|c| &c.dndx),
+                hoop: hoop.as_ref(),
             };
             self.point(
                 (&old[slice(g)], &mut new[slice(g)]),
@@ -153,11 +160,41 @@ impl ElementKernel for ContinuumKernel<'_> {
     }
 }
 
-/// ∫ N_a dV for each node of an element (for body forces), `thick` in 2D.
+/// The displacement gradient H = ∂u/∂X at a point.
+fn gradient(u: &[f64], dndx: &[[f64; 3]; MAX_NODES], nn: usize, nsd: usize) -> [[f64; 3]; 3] {
+    let mut h = [[0.0; 3]; 3];
+    for a in 0..nn {
+        for i in 0..nsd {
+            for j in 0..nsd {
+                h[i][j] += u[a * nsd + i] * dndx[a][j];
+            }
+        }
+    }
+    h
+}
+
+/// F = I + H and the strain: ½(H + Hᵀ) in small strain, E = ½(H + Hᵀ + HᵀH) with `nlgeo`.
+fn deformation(h: &[[f64; 3]; 3], nlgeo: bool) -> ([[f64; 3]; 3], [[f64; 3]; 3]) {
+    let mut f = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    let mut e = [[0.0; 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            f[i][j] += h[i][j];
+            e[i][j] = 0.5 * (h[i][j] + h[j][i]);
+            if nlgeo {
+                e[i][j] += 0.5 * (0..3).map(|k| h[k][i] * h[k][j]).sum::<f64>();
+            }
+        }
+    }
+    (f, e)
+}
+
+/// ∫ N_a dV for each node of an element (for body forces): `thick` in 2D, or with None per
+/// radian of an axisymmetric element (dV = r dA).
 pub fn integrate_shape(
     shape: Shape,
     rule: &[QuadPoint],
-    thick: f64,
+    thick: Option<f64>,
     x_ref: &[[f64; 3]],
     out: &mut [f64],
 ) -> Result<(), KernelError> {
@@ -173,8 +210,9 @@ pub fn integrate_shape(
                 gp: g + 1,
                 msg: "degenerate element geometry (det J = 0)".into(),
             })?;
+        let weight = thick.unwrap_or_else(|| (0..nn).map(|a| n[a] * x_ref[a][0]).sum());
         for a in 0..nn {
-            out[a] += n[a] * det.abs() * qp.weight * thick;
+            out[a] += n[a] * det.abs() * qp.weight * weight;
         }
     }
     Ok(())
@@ -190,9 +228,66 @@ struct Point<'a> {
     nn: usize,
     /// B-bar: the element's mean ∂N_a/∂X_I, whose volumetric strain the point takes.
     mean: Option<&'a [[f64; 3]; MAX_NODES]>,
+    /// Axisymmetric: the hoop (and centroid shear) rows.
+    hoop: Option<&'a Hoop>,
+}
+
+impl Hoop {
+    /// The hoop strain's (and with the centroid rule the shear's) part of the displacement
+    /// gradient `h`: H₃₃ = u_r/r, H_rz and H_zr from the centroid's gradient.
+    fn add_to_gradient(&self, u: &[f64], nn: usize, h: &mut [[f64; 3]; 3]) {
+        h[2][2] = (0..nn).map(|a| u[a * 2] * self.n_over_r[a]).sum();
+        if let Some(dc) = &self.shear {
+            h[0][1] = (0..nn).map(|a| u[a * 2] * dc[a][1]).sum();
+            h[1][0] = (0..nn).map(|a| u[a * 2 + 1] * dc[a][0]).sum();
+        }
+    }
 }
 
 impl ContinuumKernel<'_> {
+    /// An axisymmetric point's hoop rows (the `centroid`'s where given, else N_a/r) and its
+    /// radius r, from its shape functions `n`.
+    fn hoop_at(
+        &self,
+        n: &[f64; MAX_NODES],
+        x_ref: &[[f64; 3]],
+        centroid: Option<&Hoop>,
+    ) -> Result<(Hoop, f64), String> {
+        let nn = self.shape.n_nodes();
+        let r: f64 = (0..nn).map(|a| n[a] * x_ref[a][0]).sum();
+        if !(r > 0.0) {
+            return Err(format!("an axisymmetric point at radius {r:.3e} ≤ 0"));
+        }
+        let hoop = centroid.cloned().unwrap_or(Hoop {
+            n_over_r: std::array::from_fn(|a| if a < nn { n[a] / r } else { 0.0 }),
+            shear: None,
+        });
+        Ok((hoop, r))
+    }
+
+    /// The centroid's hoop and shear rows of an axisymmetric element (OOFEM's rule).
+    fn centroid_rows(&self, x_ref: &[[f64; 3]]) -> Result<Hoop, KernelError> {
+        let nn = self.shape.n_nodes();
+        let (mut n, mut dn) = ([0.0; MAX_NODES], [[0.0; 3]; MAX_NODES]);
+        let mut dndx = [[0.0; 3]; MAX_NODES];
+        self.shape.eval(self.shape.centroid(), &mut n, &mut dn);
+        map_derivatives(self.nsd, nn, x_ref, &dn, &mut dndx).ok_or_else(|| KernelError {
+            gp: 0,
+            msg: "degenerate element geometry at its centroid (det J = 0)".into(),
+        })?;
+        let r: f64 = (0..nn).map(|a| n[a] * x_ref[a][0]).sum();
+        if !(r > 0.0) {
+            return Err(KernelError {
+                gp: 0,
+                msg: format!("an axisymmetric element's centroid at radius {r:.3e} ≤ 0"),
+            });
+        }
+        Ok(Hoop {
+            n_over_r: std::array::from_fn(|a| if a < nn { n[a] / r } else { 0.0 }),
+            shear: Some(dndx),
+        })
+    }
+
     /// The material's response at a point: σ(ε), or S(E) with the geometric stiffness.
     fn point(
         &self,
@@ -267,6 +362,17 @@ impl ContinuumKernel<'_> {
                     pt.jxw * (0..nsd).map(|jj| fs[i][jj] * pt.dndx[a][jj]).sum::<f64>();
             }
         }
+        if let Some(hoop) = pt.hoop {
+            // The hoop stress through δε_θ = F₃₃ δu_r/r; with the centroid rule the shear
+            // through the centroid's gradient instead of the point's (small strain: F = I).
+            for a in 0..pt.nn {
+                fe[a * nsd] += pt.jxw * fm[2][2] * s[2][2] * hoop.n_over_r[a];
+                if let Some(dc) = &hoop.shear {
+                    fe[a * nsd] += pt.jxw * s[0][1] * (dc[a][1] - pt.dndx[a][1]);
+                    fe[a * nsd + 1] += pt.jxw * s[0][1] * (dc[a][0] - pt.dndx[a][0]);
+                }
+            }
+        }
         if let Some(d0) = pt.mean {
             // B̄ᵀσ: the mean stress acts through the mean volumetric row.
             let mean = (s[0][0] + s[1][1] + s[2][2]) / 3.0;
@@ -301,6 +407,25 @@ impl ContinuumKernel<'_> {
                 }
             }
         }
+        if let Some(hoop) = pt.hoop {
+            for (row, &c) in answer.comps.iter().enumerate() {
+                match (c, &hoop.shear) {
+                    (2, _) => {
+                        for a in 0..nn {
+                            b[row][a * nsd] = fm[2][2] * hoop.n_over_r[a];
+                            b[row][a * nsd + 1] = 0.0;
+                        }
+                    }
+                    (5, Some(dc)) => {
+                        for a in 0..nn {
+                            b[row][a * nsd] = dc[a][1];
+                            b[row][a * nsd + 1] = dc[a][0];
+                        }
+                    }
+                    _ => {}
+                }
+            }
+        }
         if let Some(d0) = pt.mean {
             // B̄ = B + ⅓ m ⊗ (b₀ − b) on the normal components.
             for (row, &c) in answer.comps.iter().enumerate() {
@@ -314,12 +439,13 @@ impl ContinuumKernel<'_> {
             }
         }
         // The rows of B that can be non-zero: in 2D not those of a component with z (the
-        // plane-strain ε_zz, whose row vanishes but with B-bar).
+        // plane-strain ε_zz, whose row vanishes but with B-bar and the axisymmetric hoop).
         let mut rows = [0usize; 6];
         let mut nr = 0;
+        let zz = pt.mean.is_some() || pt.hoop.is_some();
         for (row, &c) in answer.comps.iter().enumerate() {
             let (ii, jj) = VOIGT_PAIRS[c];
-            if (ii < nsd && jj < nsd) || (pt.mean.is_some() && c < 3) {
+            if (ii < nsd && jj < nsd) || (zz && c < 3) {
                 rows[nr] = row;
                 nr += 1;
             }
@@ -362,6 +488,11 @@ impl ContinuumKernel<'_> {
                 for i in 0..nsd {
                     k[(a * nsd + i) * ndof + bb * nsd + i] += pt.jxw * gab;
                 }
+                if let Some(hoop) = pt.hoop {
+                    // S₃₃ δF₃₃ ΔF₃₃, δF₃₃ = δu_r/R.
+                    k[(a * nsd) * ndof + bb * nsd] +=
+                        pt.jxw * s[2][2] * hoop.n_over_r[a] * hoop.n_over_r[bb];
+                }
             }
         }
     }
@@ -376,8 +507,9 @@ impl ContinuumKernel<'_> {
             full_e[c] = answer.strain[k];
             full_s[c] = answer.stress[k];
         }
-        if nc == 4 && pt.mean.is_none() {
-            // Plane strain: ε_zz = 0 whatever the reduced vector carries (B-bar's is not).
+        if nc == 4 && pt.mean.is_none() && pt.hoop.is_none() {
+            // Plane strain: ε_zz = 0 whatever the reduced vector carries (B-bar's and the
+            // axisymmetric hoop strain are not).
             full_e[2] = 0.0;
         }
         if nc == 3 && answer.normal_strain != 0.0 {

@@ -36,7 +36,8 @@ pub fn reference_contributions(model: &Model, load: &Load) -> Result<Vec<(usize,
             for (e, local) in load_boundaries(model, load)? {
                 let el = &model.elements[e];
                 let shape = el.etype.shape();
-                let thick = if shape.dim() == 2 {
+                let axisymmetric = el.etype.is_axisymmetric();
+                let thick = if shape.dim() == 2 && !axisymmetric {
                     element_thickness(model, e)
                 } else {
                     1.0
@@ -53,7 +54,18 @@ pub fn reference_contributions(model: &Model, load: &Load) -> Result<Vec<(usize,
                             t[i] += dn[k][0] * x[i];
                         }
                     }
-                    let dl = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
+                    let mut dl = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
+                    if axisymmetric {
+                        // Per radian: r ds, integrated exactly (3 points; OOFEM takes one point
+                        // on a linear edge, its QUIRK: the total is right, the share of the two
+                        // nodes is not where r varies along the edge).
+                        let x = |a: usize| model.nodes[el.nodes[a]].coords[0];
+                        dl *= local
+                            .iter()
+                            .enumerate()
+                            .map(|(k, &a)| n[k] * x(a))
+                            .sum::<f64>();
+                    }
                     for (k, &a) in local.iter().enumerate() {
                         out.extend(
                             comps().map(|(d, c)| (el.nodes[a], d, c * n[k] * dl * w * thick)),
@@ -117,7 +129,7 @@ pub fn element_thickness(model: &Model, e: usize) -> f64 {
         .unwrap_or(1.0)
 }
 
-/// ∫ N_a dV over element e (with thickness in 2D and area for bars).
+/// ∫ N_a dV over element e (with thickness in 2D, per radian in axisymmetry, and area for bars).
 fn element_shape_integrals(model: &Model, e: usize) -> Result<Vec<f64>> {
     let el = &model.elements[e];
     if el.etype.is_truss() {
@@ -129,10 +141,10 @@ fn element_shape_integrals(model: &Model, e: usize) -> Result<Vec<f64>> {
     let shape = el.etype.shape();
     let nip = el.nip.unwrap_or(el.etype.default_nip());
     let qr = rule(shape, nip).expect("nip validated by the reader");
-    let thick = if shape.dim() == 2 {
-        element_thickness(model, e)
-    } else {
-        1.0
+    let thick = match (shape.dim(), el.etype.is_axisymmetric()) {
+        (2, false) => Some(element_thickness(model, e)),
+        (2, true) => None,
+        _ => Some(1.0),
     };
     let x: Vec<[f64; 3]> = el.nodes.iter().map(|&n| model.nodes[n].coords).collect();
     let mut w = vec![0.0; el.nodes.len()];
