@@ -340,3 +340,25 @@ def test_points_carry_the_plastic_state():
         p = s.points
         elastic = p["strain"][0, 0] - p["plastic_strain"][0, 0]
         assert p["stress"][0, 0] == pytest.approx((1 - p["damage"][0]) * elastic, abs=1e-12)
+
+
+def test_an_axisymmetric_model_from_arrays_is_the_file_s():
+    """OOFEM's axisymm04 ring (four Axisymm3d, pressure 10 on the bore per radian) built from
+    arrays gives the file's displacements and its check value u_r(node 1) = 0.820426459."""
+    nodes = np.array([[4.0, 0.0], [4.0, 0.1], [4.1, 0.0], [4.1, 0.1], [4.2, 0.0], [4.2, 0.1]])
+    model = hertz.from_arrays(
+        nodes,
+        {"Axisymm3d": [[1, 4, 2], [1, 3, 4], [3, 6, 4], [3, 5, 6]]},
+        domain="2dPlaneStress",
+        materials=[("IsoLE", {"d": 1.0, "E": 1000.0, "n": 0.0, "tAlpha": 0})],
+        conditions=[
+            ("BoundaryCondition", {"loadTimeFunction": 1, "dofs": [2], "values": [0.0], "set": 1}),
+            ("ConstantEdgeLoad", {"loadTimeFunction": 1, "components": [10.0, 0.0], "set": 2}),
+        ],
+        sets={1: {"nodes": [1, 3, 5]}, 2: {"boundaries": [[1, 3]]}},
+        name="ring",
+    )
+    built = model.solve().steps[-1].displacement
+    read = hertz.read(ROOT / "tests" / "data" / "oofem" / "axisymm04.in").solve().steps[-1].displacement
+    assert np.allclose(built, read, rtol=0, atol=1e-15)
+    assert built[0, 0] == pytest.approx(0.820426459, abs=1e-6)

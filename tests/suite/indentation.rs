@@ -284,3 +284,55 @@ fn node_to_segment_and_mortar_leave_the_same_imprint() {
         "{force} {imprint}"
     );
 }
+
+/// A rigid sphere (R = 10) pressed 0.05 into a perfectly plastic quarter block of 10³ barred
+/// bricks (σ₀ = 10, node-to-face penalty, `hertz bench --rigid-sphere 10 --plastic 10`) and
+/// lifted: no cut-back and at most 6 iterations a step; the deepest step's mean pressure
+/// F/(πa²) between first yield's (⅔ · 1.61 σ₀ = 1.07 σ₀) and the fully plastic limit (Tabor's
+/// 2.8 σ₀, asserted below 3 σ₀); after lift-off the contact is open, the imprint stays and so
+/// does the plastic strain. Measured: at most 5 iterations a step, F/(πa²) = 1.26 σ₀ at
+/// a = 0.86 (the last closed node's radius; E a/(σ₀ R) = 8.6, the elastic–plastic range of
+/// indentation), an imprint 0.038 deep on the axis after lift-off from 0.05.
+#[test]
+fn a_rigid_sphere_indents_a_plastic_block_in_3d() {
+    let sig0 = 10.0;
+    let text =
+        hertz_bench::verify::RigidSphereBlock::uniform(10, false).pressed_and_lifted(Some(sig0));
+    let model = common::model_from_text(&text).unwrap();
+    let top = (0..model.nodes.len())
+        .find(|&n| model.nodes[n].coords == [0.0, 0.0, 0.0])
+        .unwrap();
+    let mut steps = Vec::new();
+    run_analysis(&model, &common::quiet(), |r| {
+        let force = 4.0 * r.contact.iter().map(|s| s.force).sum::<f64>();
+        let a = r
+            .contact
+            .iter()
+            .filter(|s| s.active)
+            .map(|s| model.nodes[s.node].coords[0].hypot(model.nodes[s.node].coords[1]))
+            .fold(0.0, f64::max);
+        let kappa = r
+            .states
+            .iter()
+            .flatten()
+            .filter_map(|p| p.plastic.as_ref().map(|s| s.kappa))
+            .fold(0.0, f64::max);
+        let surface = r.displacement(top, 3).unwrap();
+        steps.push((force, a, kappa, surface, r.info.iterations, r.info.substeps));
+        Ok(())
+    })
+    .unwrap();
+    assert_eq!(steps.len(), 20);
+    for (k, s) in steps.iter().enumerate() {
+        assert!(s.4 <= 6 && s.5 == 1, "step {}: {s:?}", k + 1);
+    }
+    let (force, a, kappa, ..) = steps[9];
+    let mean = force / (std::f64::consts::PI * a * a) / sig0;
+    assert!(mean > 1.07 && mean < 3.0, "mean pressure {mean} σ₀");
+    let (force_end, _, kappa_end, imprint, ..) = steps[19];
+    assert!(
+        force_end == 0.0 && imprint < 0.0 && kappa_end == kappa,
+        "{:?}",
+        steps[19]
+    );
+}
