@@ -202,7 +202,10 @@ pub(super) fn read_analysis(r: &Record) -> Result<(Analysis, usize, usize, usize
     let rtolv = r.opt_float("rtolv")?;
     let rtolf = r.opt_float("rtolf")?.or(rtolv).unwrap_or(1e-3);
     let rtold = r.opt_float("rtold")?.or(rtolv).unwrap_or(0.0);
-    let maxiter = r.opt_usize("maxiter")?.unwrap_or(50).max(1);
+    let maxiter = r.opt_usize("maxiter")?.unwrap_or(50);
+    if maxiter == 0 {
+        return Err(r.error("`maxiter` must be at least 1"));
+    }
     let manrmsteps = r.opt_usize("manrmsteps")?.filter(|&k| k > 0);
     let refloadmode = match r.opt_int("refloadmode")?.unwrap_or(0) {
         v @ (0 | 1) => v as u8,

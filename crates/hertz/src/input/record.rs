@@ -84,7 +84,14 @@ impl Record {
     }
 
     fn parse_float(&self, key: &str, t: &str) -> Result<f64> {
-        parse_f64(t).ok_or_else(|| self.error(format!("`{key}` expects a number, found `{t}`")))
+        let v = parse_f64(t)
+            .ok_or_else(|| self.error(format!("`{key}` expects a number, found `{t}`")))?;
+        if !v.is_finite() {
+            return Err(self.error(format!(
+                "`{key}` value `{t}` is beyond the range of double precision (about 1.8e308)"
+            )));
+        }
+        Ok(v)
     }
 
     pub fn opt_int(&self, key: &str) -> Result<Option<i64>> {
@@ -162,6 +169,14 @@ impl Record {
         parse: impl Fn(&str) -> Result<T>,
     ) -> Result<Vec<T>> {
         let values = &self.tokens[start..start + n];
+        // NaN and infinities spelt out are not numbers an input may hold.
+        let non_finite = |t: &str| {
+            let l = t.trim_start_matches(['+', '-']).to_ascii_lowercase();
+            matches!(l.as_str(), "nan" | "inf" | "infinity")
+        };
+        if let Some(t) = values.iter().find(|t| non_finite(t)) {
+            return Err(self.error(format!("`{key}` expects finite numbers, found `{t}`")));
+        }
         if let Some(k) = values.iter().position(|t| {
             t.starts_with(|c: char| c.is_ascii_alphabetic()) && parse_f64(t).is_none()
         }) {
