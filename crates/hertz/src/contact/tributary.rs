@@ -1,5 +1,5 @@
-//! What each contact node stands for on its own surface: its tributary length·thickness (2D) or
-//! area (3D), for the pressure output, and its neighbours on that surface, for the weights at the
+//! What each contact node stands for on its own surface: its tributary length·thickness (2D),
+//! area per radian (axisymmetric: ∫ N_a r ds) or area (3D), for the pressure output, and its neighbours on that surface, for the weights at the
 //! ends of an open master. Element boundaries whose nodes all belong to the same condition's
 //! contact nodes make up the surface.
 
@@ -36,9 +36,11 @@ fn triangle_area(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
 pub struct Facet {
     /// Its nodes (model indices), in the element's boundary order.
     pub nodes: Vec<usize>,
-    /// The thickness of its 2D element (unused in 3D).
+    /// The thickness of its 2D element (unused in 3D and in axisymmetry).
     thick: f64,
     plane: bool,
+    /// Of an axisymmetric element: its measure per radian, ∫ N_a r ds.
+    axisymmetric: bool,
     /// Its element is in large deformation: its current measure is the one that counts.
     pub nlgeo: bool,
 }
@@ -47,6 +49,9 @@ impl Facet {
     /// Each node's share of the facet's length × thickness (2D) or area (3D) at positions `x`
     /// (in the facet's node order).
     pub fn shares(&self, x: &[[f64; 3]]) -> Vec<f64> {
+        if self.axisymmetric {
+            return axisymmetric_shares(x);
+        }
         if self.plane {
             if x.len() == 2 {
                 vec![0.5 * dist(x[0], x[1]) * self.thick; 2]
@@ -66,6 +71,25 @@ impl Facet {
             vec![a / x.len() as f64; x.len()]
         }
     }
+}
+
+/// Each node's ∫ N_a r ds over an axisymmetric element's edge at positions `x` (ends, then the
+/// middle of a quadratic edge; r = x): its area per radian, integrated exactly (3 points).
+fn axisymmetric_shares(x: &[[f64; 3]]) -> Vec<f64> {
+    let shape = crate::fem::Shape::edge_shape(x.len());
+    let (mut n, mut dn) = ([0.0; 3], [[0.0; 3]; 3]);
+    let mut out = vec![0.0; x.len()];
+    for (xi, w) in crate::fem::gauss_line(3).expect("3-point rule") {
+        shape.eval([xi, 0.0, 0.0], &mut n, &mut dn);
+        let t: [f64; 2] =
+            std::array::from_fn(|i| (0..x.len()).map(|a| dn[a][0] * x[a][i]).sum::<f64>());
+        let r: f64 = (0..x.len()).map(|a| n[a] * x[a][0]).sum();
+        let ds = t[0].hypot(t[1]) * w;
+        for (a, o) in out.iter_mut().enumerate() {
+            *o += n[a] * r * ds;
+        }
+    }
+    out
 }
 
 /// The shares of a 6- or 8-node face's area (positions `x`, corners then mid-sides): its area
@@ -117,14 +141,16 @@ pub fn facets(model: &Model, nodes: &[usize]) -> Vec<Facet> {
                 continue;
             }
             let plane = shape.dim() == 2;
+            let axisymmetric = el.etype.is_axisymmetric();
             out.push(Facet {
                 nodes: bn,
-                thick: if plane {
+                thick: if plane && !axisymmetric {
                     crate::solid::loads::element_thickness(model, ei)
                 } else {
                     0.0
                 },
                 plane,
+                axisymmetric,
                 nlgeo: el.nlgeo,
             });
         }

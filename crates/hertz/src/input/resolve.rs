@@ -361,7 +361,7 @@ pub(super) fn attach_boundary_loads(
 }
 
 /// An axisymmetric model is axisymmetric throughout: its elements all axisymmetric (per radian)
-/// or none, and without contact conditions (their weighting by the radius is still to come).
+/// or none, and without mortar contact (its integrals' weighting by the radius is to come).
 pub(super) fn check_axisymmetry(model: &Model) -> Result<()> {
     let axi = |e: &&Element| e.etype.is_axisymmetric();
     let Some(first) = model.elements.iter().find(axi) else {
@@ -380,11 +380,15 @@ pub(super) fn check_axisymmetry(model: &Model) -> Result<()> {
             ),
         });
     }
-    if let Some(c) = model.contacts.first() {
+    if let Some(c) = model
+        .contacts
+        .iter()
+        .find(|c| matches!(c.pairing, Pairing::Mortar { .. }))
+    {
         return Err(Error::Input {
             span: c.span.clone(),
-            msg: "contact is not supported in axisymmetric models yet (its integrals must be \
-                  weighted by the radius); the elements and loads are"
+            msg: "mortar contact is not supported in axisymmetric models yet (its integrals must \
+                  be weighted by the radius); node-to-segment and node-to-node contact are"
                 .into(),
         });
     }
