@@ -55,6 +55,27 @@ pub(crate) const CONTINUUM: [(&str, Shape, StressMode, usize); 10] = [
     ("QSpace", Shape::Hexa20, StressMode::ThreeD, 27),
 ];
 
+/// The point states `law` starts from at the `npoints` points of kernel `k`, and those a first
+/// step to displacements `u1` leaves (its committed state): (virgin, committed).
+pub(crate) fn first_step_state(
+    k: &dyn ElementKernel,
+    law: &dyn hertz::material::PointLaw,
+    npoints: usize,
+    x: &[[f64; 3]],
+    u1: &[f64],
+) -> (Vec<f64>, Vec<f64>) {
+    let n = law.state_len();
+    let mut virgin = vec![0.0; n * npoints];
+    for g in 0..npoints {
+        law.initial_state(&mut virgin[g * n..(g + 1) * n]);
+    }
+    let mut old = vec![0.0; virgin.len()];
+    let mut f = vec![0.0; u1.len()];
+    k.evaluate_into(x, u1, (&virgin, &mut old), &mut f, None, None)
+        .unwrap();
+    (virgin, old)
+}
+
 /// The largest difference between `k`'s tangent at displacements `u` (from the committed point
 /// states `old`) and central differences of its force with step `h`, relative to the tangent's
 /// largest entry.

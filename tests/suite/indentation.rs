@@ -204,26 +204,7 @@ fn an_indentation_leaves_a_residual_imprint() {
         .find(|&n| model.nodes[n].coords[0] == 0.0 && model.nodes[n].coords[1] == 0.0)
         .unwrap();
     let (sig0, delta) = (5.0, 0.15);
-    let mut steps = Vec::new();
-    run_analysis(&model, &common::quiet(), |r| {
-        let force = 2.0 * r.contact.iter().map(|s| s.force).sum::<f64>();
-        let a = r
-            .contact
-            .iter()
-            .filter(|s| s.active)
-            .map(|s| model.nodes[s.node].coords[0])
-            .fold(0.0, f64::max);
-        let kappa = r
-            .states
-            .iter()
-            .flatten()
-            .filter_map(|p| p.plastic.as_ref().map(|s| s.kappa))
-            .fold(0.0, f64::max);
-        let surface = r.displacement(top, 2).unwrap();
-        steps.push((force, a, kappa, surface, r.info.iterations, r.info.substeps));
-        Ok(())
-    })
-    .unwrap();
+    let steps = pressed_and_lifted(&model, 2.0, |x| x[0], (top, 2));
     assert_eq!(steps.len(), 20);
     for (k, s) in steps.iter().enumerate() {
         assert!(s.4 <= 10 && s.5 == 1, "step {}: {s:?}", k + 1);
@@ -302,26 +283,7 @@ fn a_rigid_sphere_indents_a_plastic_block_in_3d() {
     let top = (0..model.nodes.len())
         .find(|&n| model.nodes[n].coords == [0.0, 0.0, 0.0])
         .unwrap();
-    let mut steps = Vec::new();
-    run_analysis(&model, &common::quiet(), |r| {
-        let force = 4.0 * r.contact.iter().map(|s| s.force).sum::<f64>();
-        let a = r
-            .contact
-            .iter()
-            .filter(|s| s.active)
-            .map(|s| model.nodes[s.node].coords[0].hypot(model.nodes[s.node].coords[1]))
-            .fold(0.0, f64::max);
-        let kappa = r
-            .states
-            .iter()
-            .flatten()
-            .filter_map(|p| p.plastic.as_ref().map(|s| s.kappa))
-            .fold(0.0, f64::max);
-        let surface = r.displacement(top, 3).unwrap();
-        steps.push((force, a, kappa, surface, r.info.iterations, r.info.substeps));
-        Ok(())
-    })
-    .unwrap();
+    let steps = pressed_and_lifted(&model, 4.0, |x| x[0].hypot(x[1]), (top, 3));
     assert_eq!(steps.len(), 20);
     for (k, s) in steps.iter().enumerate() {
         assert!(s.4 <= 6 && s.5 == 1, "step {}: {s:?}", k + 1);
@@ -335,4 +297,37 @@ fn a_rigid_sphere_indents_a_plastic_block_in_3d() {
         "{:?}",
         steps[19]
     );
+}
+
+/// Every step of a pressed-and-lifted indentation: the indenter's force (`parts` times the
+/// modelled part's contact forces), the last closed node's distance from the axis (`radius` of
+/// its coordinates), the largest κ, the displacement of node `top` along DOF `dof`, the
+/// iterations and the substeps.
+fn pressed_and_lifted(
+    model: &hertz::model::Model,
+    parts: f64,
+    radius: fn([f64; 3]) -> f64,
+    (top, dof): (usize, u8),
+) -> Vec<(f64, f64, f64, f64, usize, usize)> {
+    let mut steps = Vec::new();
+    run_analysis(model, &common::quiet(), |r| {
+        let force = parts * r.contact.iter().map(|s| s.force).sum::<f64>();
+        let a = r
+            .contact
+            .iter()
+            .filter(|s| s.active)
+            .map(|s| radius(model.nodes[s.node].coords))
+            .fold(0.0, f64::max);
+        let kappa = r
+            .states
+            .iter()
+            .flatten()
+            .filter_map(|p| p.plastic.as_ref().map(|s| s.kappa))
+            .fold(0.0, f64::max);
+        let surface = r.displacement(top, dof).unwrap();
+        steps.push((force, a, kappa, surface, r.info.iterations, r.info.substeps));
+        Ok(())
+    })
+    .unwrap();
+    steps
 }
