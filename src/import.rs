@@ -14,7 +14,7 @@ pub struct ImportArgs {
     /// file is overwritten only if `hertz import` wrote it
     #[arg(short, long, value_name = "FILE")]
     pub output: Option<PathBuf>,
-    /// 2D element types: plane stress or plane strain
+    /// 2D element types: plane stress, plane strain or axisymmetric
     #[arg(long, default_value = "stress", value_parser = plane_parser())]
     pub plane: Plane,
     /// Large deformation: `nlgeo 1` on every element record
@@ -22,7 +22,7 @@ pub struct ImportArgs {
     pub nlgeo: bool,
 }
 
-/// `hertz import MESH [-o FILE] [--plane stress|strain] [--nlgeo]`: write the records; returns
+/// `hertz import MESH [-o FILE] [--plane stress|strain|axisymmetric] [--nlgeo]`: write the records; returns
 /// what to tell the user (the file, the counts, the sets, and a warning line if the mesh has no
 /// groups).
 pub fn run(args: &ImportArgs) -> hertz::error::Result<Vec<String>> {
@@ -60,9 +60,12 @@ fn plane_parser() -> impl TypedValueParser<Value = Plane> {
             .help("PlaneStress2d, TrPlaneStress2d, QPlaneStress2d, QTrPlStr"),
         PossibleValue::new("strain")
             .help("Quad1PlaneStrain, TrPlaneStrain, QPlaneStrain, QTrPlaneStrain"),
+        PossibleValue::new("axisymmetric")
+            .help("L4Axisymm, Axisymm3d, Q4Axisymm: x is the radius, per radian"),
     ])
     .map(|s| match s.as_str() {
         "strain" => Plane::Strain,
+        "axisymmetric" => Plane::Axisymmetric,
         _ => Plane::Stress,
     })
 }

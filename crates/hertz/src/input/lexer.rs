@@ -154,7 +154,7 @@ fn line_error(path: &Path, line: usize, text: &str, msg: String) -> Error {
     }
 }
 
-/// `@gmsh "mesh.msh" [plane stress|strain] [nlgeo]`: the mesh's node, element and set records,
+/// `@gmsh "mesh.msh" [plane stress|strain|axisymmetric] [nlgeo]`: the mesh's node, element and set records,
 /// as `hertz import` writes them (`nlgeo`: with `nlgeo 1`), in place of the line. They are located in messages as
 /// `mesh.msh [converted]:k`, record k of the conversion. Returns the mesh file's path.
 fn splice_gmsh(
@@ -178,10 +178,11 @@ fn splice_gmsh(
     let plane = match options[..] {
         [] | ["plane", "stress"] => Plane::Stress,
         ["plane", "strain"] => Plane::Strain,
+        ["axisymmetric"] => Plane::Axisymmetric,
         ref other => {
             return Err(here(format!(
-                "`@gmsh` takes `plane stress` or `plane strain`, then `nlgeo`, after the file \
-                 name, found `{}`",
+                "`@gmsh` takes `plane stress`, `plane strain` or `axisymmetric`, then `nlgeo`, \
+                 after the file name, found `{}`",
                 other.join(" ")
             )))
         }

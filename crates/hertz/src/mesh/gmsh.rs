@@ -68,6 +68,8 @@ pub enum Plane {
     Stress,
     /// Quad1PlaneStrain, TrPlaneStrain, QPlaneStrain, QTrPlaneStrain
     Strain,
+    /// L4Axisymm, Axisymm3d, Q4Axisymm (x the radius; no 6-node axisymmetric triangle)
+    Axisymmetric,
 }
 
 /// The first words of every file `hertz import` writes (see [`Converted::fragment`]).
@@ -476,6 +478,15 @@ fn hertz_element(
         (9, Plane::Strain) => (E::QTrPlaneStrain, &[0, 1, 2, 3, 4, 5]),
         (16, Plane::Stress) => (E::QPlaneStress2d, &[0, 1, 2, 3, 4, 5, 6, 7]),
         (16, Plane::Strain) => (E::QPlaneStrain, &[0, 1, 2, 3, 4, 5, 6, 7]),
+        (2, Plane::Axisymmetric) => (E::Axisymm3d, &[0, 1, 2]),
+        (3, Plane::Axisymmetric) => (E::L4Axisymm, &[0, 1, 2, 3]),
+        (16, Plane::Axisymmetric) => (E::Q4Axisymm, &[0, 1, 2, 3, 4, 5, 6, 7]),
+        (9, Plane::Axisymmetric) => {
+            return Err("6-node triangles have no axisymmetric element (OOFEM has none): mesh \
+                        the section with quadrilaterals (`Mesh.RecombineAll = 1`) or linear \
+                        triangles"
+                .into())
+        }
         (4, _) => (E::LTRSpace, &[1, 2, 3, 0]),
         // Gmsh's hexahedron starts on its bottom face, OOFEM's LSpace on its top face.
         (5, _) => (E::LSpace, &[4, 7, 6, 5, 0, 3, 2, 1]),
