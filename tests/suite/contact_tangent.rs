@@ -807,6 +807,64 @@ fn mortar_tangents_are_jacobians_of_residuals() {
     }
 }
 
+/// An input's nodes and circle centre moved by 1 along x (for an axisymmetric model: off the
+/// axis).
+fn off_the_axis(text: &str) -> String {
+    let shift = |l: &str, key: &str| -> Option<String> {
+        let i = l.find(key)? + key.len();
+        let rest = &l[i..];
+        let x: f64 = rest.split_whitespace().next()?.parse().ok()?;
+        let after = rest.trim_start().split_once(' ').map_or("", |x| x.1);
+        Some(format!("{}{} {after}", &l[..i], x + 1.0))
+    };
+    text.lines()
+        .map(|l| {
+            shift(l, "coords 2 ")
+                .or_else(|| shift(l, "centerpoint 2 "))
+                .unwrap_or_else(|| l.to_string())
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// The same in axisymmetry (the blocks on `L4Axisymm` and `Q4Axisymm`, moved to radii 1 to 3):
+/// every integral carries the slave point's radius, current in large deformation, and the
+/// tangent stays the Jacobian of the residual.
+#[test]
+fn axisymmetric_mortar_tangents_are_jacobians_of_residuals() {
+    for nlgeo in [0u8, 1] {
+        for (law, lambda) in [
+            (
+                "s2spenaltycontact 4 loadTimeFunction 1 penalty 1e4 slavesegment 1 segmentset 1 2",
+                0.0,
+            ),
+            (
+                "s2slagrangianmultipliercontact 4 loadTimeFunction 1 slavesegment 1 segmentset 1 2",
+                3.0,
+            ),
+        ] {
+            for (name, text, disp, active) in mortar2d_cases(nlgeo, law) {
+                let text = off_the_axis(
+                    &text
+                        .replace("\nQPlaneStress2d ", "\nQ4Axisymm ")
+                        .replace("\nPlaneStress2d ", "\nL4Axisymm "),
+                );
+                assert!(
+                    text.contains("Axisymm") && text.contains("coords 2 1 "),
+                    "{name}"
+                );
+                check(&Case {
+                    name: format!("axisymmetric-mortar-{name}-nlgeo{nlgeo}-{}", &law[..4]),
+                    text,
+                    disp,
+                    lambda,
+                    active,
+                });
+            }
+        }
+    }
+}
+
 /// The multiplier law's production tangent — no `set_pressure_limit` — is the Jacobian of its
 /// residual at any pressure: with multipliers at 100 times the stiffest E, the 2D mortar cases
 /// in large deformation, where the geometric part λ ∂B is not zero ([`mortar2d_cases`]: straight

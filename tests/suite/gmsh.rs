@@ -670,5 +670,8 @@ fn quadratic_triangles_have_no_axisymmetric_element() {
         .err()
         .unwrap()
         .to_string();
-    assert!(err.contains("6-node triangles have no axisymmetric element"), "{err}");
+    assert!(
+        err.contains("6-node triangles have no axisymmetric element"),
+        "{err}"
+    );
 }

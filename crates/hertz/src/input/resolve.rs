@@ -361,7 +361,7 @@ pub(super) fn attach_boundary_loads(
 }
 
 /// An axisymmetric model is axisymmetric throughout: its elements all axisymmetric (per radian)
-/// or none, and without mortar contact (its integrals' weighting by the radius is to come).
+/// or none.
 pub(super) fn check_axisymmetry(model: &Model) -> Result<()> {
     let axi = |e: &&Element| e.etype.is_axisymmetric();
     let Some(first) = model.elements.iter().find(axi) else {
@@ -378,18 +378,6 @@ pub(super) fn check_axisymmetry(model: &Model) -> Result<()> {
                 first.etype.name(),
                 first.label
             ),
-        });
-    }
-    if let Some(c) = model
-        .contacts
-        .iter()
-        .find(|c| matches!(c.pairing, Pairing::Mortar { .. }))
-    {
-        return Err(Error::Input {
-            span: c.span.clone(),
-            msg: "mortar contact is not supported in axisymmetric models yet (its integrals must \
-                  be weighted by the radius); node-to-segment and node-to-node contact are"
-                .into(),
         });
     }
     Ok(())

@@ -482,10 +482,12 @@ fn hertz_element(
         (3, Plane::Axisymmetric) => (E::L4Axisymm, &[0, 1, 2, 3]),
         (16, Plane::Axisymmetric) => (E::Q4Axisymm, &[0, 1, 2, 3, 4, 5, 6, 7]),
         (9, Plane::Axisymmetric) => {
-            return Err("6-node triangles have no axisymmetric element (OOFEM has none): mesh \
+            return Err(
+                "6-node triangles have no axisymmetric element (OOFEM has none): mesh \
                         the section with quadrilaterals (`Mesh.RecombineAll = 1`) or linear \
                         triangles"
-                .into())
+                    .into(),
+            )
         }
         (4, _) => (E::LTRSpace, &[1, 2, 3, 0]),
         // Gmsh's hexahedron starts on its bottom face, OOFEM's LSpace on its top face.

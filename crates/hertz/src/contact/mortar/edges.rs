@@ -56,6 +56,8 @@ pub struct Mortar {
     /// shapes, which face the whole edge; against master edges the basis is adapted to the
     /// overlap ([`dual_basis_over`]).
     dual: Vec<[[f64; 4]; 4]>,
+    /// Axisymmetric slave elements: every integral per radian, its arc length weighted by r.
+    axisymmetric: bool,
 }
 
 impl Mortar {
@@ -110,7 +112,12 @@ impl Mortar {
             let (x, y) = (model.nodes[a].coords, model.nodes[b].coords);
             (0..3).map(|i| (y[i] - x[i]).powi(2)).sum::<f64>().sqrt()
         };
-        // ∫ N_j over a straight edge: L/2 at a 2-node edge's ends, L/6 and 2L/3 on a 3-node one.
+        // ∫ N_j over a straight edge: L/2 at a 2-node edge's ends, L/6 and 2L/3 on a 3-node one
+        // (∫ N_j r ds in axisymmetry).
+        let axisymmetric = slave
+            .edges
+            .iter()
+            .any(|e| model.elements[e.element].etype.is_axisymmetric());
         let full_support = slots
             .iter()
             .map(|(n, edges)| {
@@ -123,7 +130,15 @@ impl Mortar {
                             (_, Some(2)) => 2.0 / 3.0,
                             _ => 1.0 / 6.0,
                         };
-                        share * length(k)
+                        match axisymmetric {
+                            true => {
+                                let x: Vec<[f64; 3]> =
+                                    e.nodes.iter().map(|&m| model.nodes[m].coords).collect();
+                                let j = e.nodes.iter().position(|m| m == n).expect("its node");
+                                radius_weighted_integral(&x, j)
+                            }
+                            false => share * length(k),
+                        }
                     })
                     .sum()
             })
@@ -150,11 +165,12 @@ impl Mortar {
             .iter()
             .map(|e| {
                 let x: Vec<[f64; 3]> = e.nodes.iter().map(|&n| model.nodes[n].coords).collect();
-                edge_dual_basis(&x)
+                edge_dual_basis(&x, axisymmetric)
             })
             .collect();
         Ok(Mortar {
             dual,
+            axisymmetric,
             search_limit,
             law,
             rigid_nodes: rigid.iter().filter_map(|&g| rigid_node(model, g)).collect(),
@@ -312,8 +328,23 @@ fn solve(s0: f64, m: usize, linear: bool, f: impl Fn(Dual) -> (Dual, Dual)) -> D
 
 /// The dual basis of a slave edge (straight or quadratic) at reference positions `x`
 /// (see [`super::segment::dual_basis`]).
-fn edge_dual_basis(x: &[[f64; 3]]) -> [[f64; 4]; 4] {
-    dual_basis_over(x, &[(0.0, 1.0)])
+fn edge_dual_basis(x: &[[f64; 3]], axisymmetric: bool) -> [[f64; 4]; 4] {
+    dual_basis_over(x, &[(0.0, 1.0)], axisymmetric)
+}
+
+/// ∫ N_j r ds over an edge at positions `x` (ends, then the middle of a quadratic edge; r = x):
+/// node j's area per radian on it.
+fn radius_weighted_integral(x: &[[f64; 3]], j: usize) -> f64 {
+    let k = x.len();
+    let mut total = 0.0;
+    for &(z, wz) in &GAUSS5 {
+        let s = 0.5 * (1.0 + z);
+        let (n, dn) = shape(k, s);
+        let t: [f64; 2] = std::array::from_fn(|i| (0..k).map(|a| dn[a] * x[a][i]).sum());
+        let r: f64 = (0..k).map(|a| n[a] * x[a][0]).sum();
+        total += 0.5 * wz * t[0].hypot(t[1]) * r * n[j];
+    }
+    total
 }
 
 /// The dual basis of a slave edge (reference positions `x`) biorthogonal over the parts
@@ -323,7 +354,7 @@ fn edge_dual_basis(x: &[[f64; 3]]) -> [[f64; 4]; 4] {
 /// whole edge it is [`edge_dual_basis`]; over the part that overlaps the master, ḡ_j is the gap
 /// at node j of the gap field's linear (or quadratic) fit over the overlap, so its sign is the
 /// gap's.
-fn dual_basis_over<T: Scalar>(x: &[[f64; 3]], spans: &[(T, T)]) -> [[T; 4]; 4] {
+fn dual_basis_over<T: Scalar>(x: &[[f64; 3]], spans: &[(T, T)], axisymmetric: bool) -> [[T; 4]; 4] {
     let k = x.len();
     let zero = spans[0].0.cst(0.0);
     let (mut m, mut d) = ([[zero; 4]; 4], [zero; 4]);
@@ -334,7 +365,11 @@ fn dual_basis_over<T: Scalar>(x: &[[f64; 3]], spans: &[(T, T)]) -> [[T; 4]; 4] {
             let (n, dn) = shape(k, s);
             let t: [T; 2] =
                 std::array::from_fn(|i| (0..k).fold(zero, |acc, a| acc + dn[a] * x[a][i]));
-            let ds = half * wz * (t[0] * t[0] + t[1] * t[1]).sqrt();
+            let mut ds = half * wz * (t[0] * t[0] + t[1] * t[1]).sqrt();
+            if axisymmetric {
+                // Biorthogonal per radian: weighted by r.
+                ds = ds * (0..k).fold(zero, |acc, a| acc + n[a] * x[a][0]);
+            }
             for a in 0..k {
                 d[a] = d[a] + n[a] * ds;
                 for b in 0..k {
@@ -449,10 +484,12 @@ impl Mortar {
             let gauss: &[(f64, f64)] = if xg.len() == 3 { &GAUSS5 } else { &GAUSS };
             // One Gauss point at ξ: the slave point (geometry and current), ν into the slave
             // body, and ds/dξ.
+            // In axisymmetry ds/dξ carries the radius r of the slave point (per radian).
             let at = |xi: Dual| {
                 let (x, t, _) = curve(&xg, xi);
-                let jac = (t[0] * t[0] + t[1] * t[1]).sqrt();
-                let nu = [-(t[1] * e.side) / jac, t[0] * e.side / jac];
+                let len = (t[0] * t[0] + t[1] * t[1]).sqrt();
+                let nu = [-(t[1] * e.side) / len, t[0] * e.side / len];
+                let jac = if self.axisymmetric { len * x[0] } else { len };
                 (x, t, nu, jac, curve(&xc, xi).0)
             };
             let slave_edge = SlaveEdge {
@@ -477,7 +514,7 @@ impl Mortar {
                 let xref: Vec<[f64; 3]> =
                     e.nodes.iter().map(|&n| ctx.model.nodes[n].coords).collect();
                 let spans: Vec<(Dual, Dual)> = pieces.iter().map(|p| (p.2, p.3)).collect();
-                dual_basis_over(&xref, &spans)[jloc]
+                dual_basis_over(&xref, &spans, self.axisymmetric)[jloc]
             };
             for (mi, yg, lo, hi) in pieces {
                 let me = &self.master.edges[mi];
