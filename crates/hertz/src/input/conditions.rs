@@ -194,9 +194,17 @@ pub(super) fn read_load(
             dofs.len()
         )));
     }
-    if r.opt_int("cstype")?.unwrap_or(0) != 0 {
-        return Err(r.error("`cstype 1` (local load coordinates) is not supported"));
-    }
+    let local = match r.opt_int("cstype")?.unwrap_or(0) {
+        0 => false,
+        1 if matches!(kind, LoadKind::Edge) && domain.nsd() == 2 && components.len() == 2 => true,
+        1 => {
+            return Err(r.error(
+                "`cstype 1` (local load coordinates) is supported on 2D edge loads of two \
+                 components only",
+            ))
+        }
+        v => return Err(r.error(format!("`cstype` must be 0 or 1, found {v}"))),
+    };
     r.opt_int("loadtype")?;
     if set == 0 && !matches!(kind, LoadKind::Edge | LoadKind::Surface) {
         return Err(r.error(format!("{kw} needs `set`")));
@@ -208,6 +216,7 @@ pub(super) fn read_load(
         dofs,
         components,
         set,
+        local,
         span: r.span(),
     })
 }

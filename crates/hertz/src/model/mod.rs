@@ -551,6 +551,9 @@ pub struct Load {
     pub dofs: Vec<DofId>,
     pub components: Vec<f64>,
     pub set: usize,
+    /// `csType 1` of a 2D edge load: its components are in the edge's own axes (OOFEM's: the
+    /// second along the outward normal, the first along its turn by −90°), on the reference edge.
+    pub local: bool,
     /// The record, for messages.
     pub span: Span,
 }

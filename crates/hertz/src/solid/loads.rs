@@ -66,9 +66,19 @@ pub fn reference_contributions(model: &Model, load: &Load) -> Result<Vec<(usize,
                             .map(|(k, &a)| n[k] * x(a))
                             .sum::<f64>();
                     }
+                    let point: [f64; 3] = std::array::from_fn(|i| {
+                        let x = |a: usize| model.nodes[el.nodes[a]].coords[i];
+                        local.iter().enumerate().map(|(k, &a)| n[k] * x(a)).sum()
+                    });
+                    let traction: Vec<(DofId, f64)> = match load.local {
+                        true => edge_axes(model, e, (point, t), load),
+                        false => comps().collect(),
+                    };
                     for (k, &a) in local.iter().enumerate() {
                         out.extend(
-                            comps().map(|(d, c)| (el.nodes[a], d, c * n[k] * dl * w * thick)),
+                            traction
+                                .iter()
+                                .map(|&(d, c)| (el.nodes[a], d, c * n[k] * dl * w * thick)),
                         );
                     }
                 }
@@ -110,6 +120,30 @@ pub fn reference_contributions(model: &Model, load: &Load) -> Result<Vec<(usize,
         }
     }
     Ok(out)
+}
+
+/// A `csType 1` edge load's global components at a point of element `e`'s edge whose tangent
+/// (along the edge's node order) is `t`: OOFEM's f = T f_local with T = [[n_y, n_x], [−n_x,
+/// n_y]], n the edge's outward unit normal (outward by the element's geometry, whatever its node
+/// order; OOFEM takes the normal from the node order, inward on a clockwise element).
+fn edge_axes(
+    model: &Model,
+    e: usize,
+    (point, t): ([f64; 3], [f64; 3]),
+    load: &Load,
+) -> Vec<(DofId, f64)> {
+    let el = &model.elements[e];
+    let len = t[0].hypot(t[1]);
+    let mut n = [t[1] / len, -t[0] / len];
+    let x = |a: &usize| model.nodes[*a].coords;
+    let count = el.nodes.len() as f64;
+    let centre: [f64; 2] =
+        std::array::from_fn(|i| el.nodes.iter().map(|a| x(a)[i]).sum::<f64>() / count);
+    if (point[0] - centre[0]) * n[0] + (point[1] - centre[1]) * n[1] < 0.0 {
+        n = [-n[0], -n[1]];
+    }
+    let (f1, f2) = (load.components[0], load.components[1]);
+    vec![(1, n[1] * f1 + n[0] * f2), (2, -n[0] * f1 + n[1] * f2)]
 }
 
 /// The element boundaries an edge or surface load acts on (see [`Load::boundaries`]).
