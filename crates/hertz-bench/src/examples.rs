@@ -289,6 +289,22 @@ Run:  cargo run --release -- run examples/ironing.in",
             input: IRONING.input(),
         },
         Example {
+            file: "o_ring.in",
+            title: "An O-ring squeezed 25 % between rigid plates (axisymmetric, large deformation)",
+            header: "An O-ring of cross-section radius 1 about r = 3 (axisymmetric: x = r, y = z, per radian),
+half model z >= 0 (u_z = 0 on z = 0), nearly incompressible neo-Hookean rubber
+(mooneyrivlincompressiblemat c1 = 0.5, c2 = 0, k = 1000: G = 1, K = 1000 G) on 8 x 4 Q4Axisymm
+elements in large deformation, squeezed 25 % of its section by a rigid plate (planecontactsegment
+moving with node 154, down 0.25 in 10 steps), the arc's nodes node-to-segment with the mesh's
+penalty.
+hertz: 3-5 iterations a step (8 in the last), no cut-back; det F within 8e-4 of 1 at every
+point; the plate's force per radian 0.147, 0.330, ..., 2.96 (tests/suite/axisymmetry.rs).
+Run:  cargo run --release -- run examples/o_ring.in
+      cargo run --release -- plot examples/o_ring.out -c load   (force against the plate's travel)"
+                .to_string(),
+            input: super::verify::o_ring(4, 10),
+        },
+        Example {
             file: "shallow_ironing.in",
             title: "Shallow ironing (Yang, Laursen and Meng): published force range, with friction",
             header: format!(

@@ -1580,3 +1580,74 @@ impl RigidSphereBlock<'_> {
         )
     }
 }
+
+/// An O-ring (cross-section radius 1 about r = 3; half model z ≥ 0, u_z = 0 on z = 0) of
+/// nearly incompressible neo-Hookean rubber (G = 1, K = 1000 G) on `Q4Axisymm` in large
+/// deformation, squeezed 25 % by a rigid plate (`planecontactsegment`, moved down 0.25 in
+/// `steps` steps), its arc's nodes node-to-segment with the mesh's penalty. The section is the
+/// square [−1, 1] × [0, 1] of 2n × n elements mapped onto the half disk.
+pub fn o_ring(n: usize, steps: usize) -> String {
+    let (mu, mv) = (4 * n, 2 * n);
+    let id = |i: usize, j: usize| i * (mv + 1) + j + 1;
+    let on = |i: usize, j: usize| !(i % 2 == 1 && j % 2 == 1);
+    let (mut nodes, mut arc, mut plane) = (Vec::new(), Vec::new(), Vec::new());
+    for i in 0..=mu {
+        for j in (0..=mv).filter(|&j| on(i, j)) {
+            let (u, v) = (-1.0 + 2.0 * i as f64 / mu as f64, j as f64 / mv as f64);
+            let (x, y) = (
+                u * (1.0 - v * v / 2.0).sqrt(),
+                v * (1.0 - u * u / 2.0).sqrt(),
+            );
+            nodes.push(format!("node {} coords 2 {} {}", id(i, j), 3.0 + x, y));
+            if i == 0 || i == mu || j == mv {
+                arc.push(id(i, j));
+            }
+            if j == 0 {
+                plane.push(id(i, j));
+            }
+        }
+    }
+    let mut elements = Vec::new();
+    for i in 0..2 * n {
+        for j in 0..n {
+            let c = |a: usize, b: usize| id(2 * i + a, 2 * j + b);
+            elements.push(format!(
+                "Q4Axisymm {} nodes 8 {} {} {} {} {} {} {} {} nlgeo 1",
+                elements.len() + 1,
+                c(0, 0),
+                c(2, 0),
+                c(2, 2),
+                c(0, 2),
+                c(1, 0),
+                c(2, 1),
+                c(1, 2),
+                c(0, 1)
+            ));
+        }
+    }
+    let plate = id(mu, mv) + 1;
+    let list = |v: &[usize]| {
+        let s: Vec<String> = v.iter().map(|x| x.to_string()).collect();
+        format!("{} {}", v.len(), s.join(" "))
+    };
+    format!(
+        "oring.out\nO-ring\nStaticStructural nsteps {steps} rtolf 1e-8 maxiter 30\n\
+         domain 2dPlaneStress\nOutputManager\n\
+         ndofman {} nelem {} ncrosssect 1 nmat 1 nbc 3 nic 0 nltf 2 nset 3 ncontactseg 1\n{}\n\
+         node {plate} coords 2 3 1.5\n{}\n\
+         planecontactsegment 1 point 2 3 1 normal 2 0 -1 node {plate}\n\
+         SimpleCS 1 material 1 set 1\nMooneyRivlinCompressibleMat 1 d 0 c1 0.5 c2 0 k 1000\n\
+         BoundaryCondition 1 loadTimeFunction 1 dofs 1 2 values 1 0 set 2\n\
+         BoundaryCondition 2 loadTimeFunction 2 dofs 2 1 2 values 2 0 -0.25 set 3\n\
+         n2spenaltycontact 3 loadTimeFunction 1 nodeset {} segmentset 1 1\n\
+         ConstantFunction 1 f(t) 1\nPiecewiseLinFunction 2 t 2 0 {steps} f(t) 2 0 1\n\
+         Set 1 elementranges {{(1 {})}}\nSet 2 nodes {}\nSet 3 nodes 1 {plate}\n",
+        nodes.len() + 1,
+        elements.len(),
+        nodes.join("\n"),
+        elements.join("\n"),
+        list(&arc),
+        elements.len(),
+        list(&plane),
+    )
+}
