@@ -80,22 +80,8 @@ fn cylinder(kind: &str, (nr, nz): (usize, usize), p: f64) -> String {
         for j in 0..nz {
             let s = if q8 { 2 } else { 1 };
             let c = |a: usize, b: usize| id(s * i + a * s / 2, s * j + b * s / 2);
-            let (n1, n2, n3, n4) = (c(0, 0), c(2, 0), c(2, 2), c(0, 2));
             let label = elements.len() + 1;
-            match corners {
-                4 => elements.push(format!("{kind} {label} nodes 4 {n1} {n2} {n3} {n4}")),
-                3 => {
-                    elements.push(format!("{kind} {label} nodes 3 {n1} {n2} {n3}"));
-                    elements.push(format!("{kind} {} nodes 3 {n1} {n3} {n4}", label + 1));
-                }
-                _ => elements.push(format!(
-                    "{kind} {label} nodes 8 {n1} {n2} {n3} {n4} {} {} {} {}",
-                    c(1, 0),
-                    c(2, 1),
-                    c(1, 2),
-                    c(0, 1)
-                )),
-            }
+            elements.extend(crate::common::cell_records(kind, label, corners, c));
             if i == 0 {
                 // The bore: edge 4 (nodes 4–1) of a quadrilateral, 3 of the second triangle.
                 bore.push(match corners {
@@ -434,18 +420,8 @@ fn shrink_fit(kind: &str, n: usize) -> String {
         for i in 0..n {
             for j in 0..2 {
                 let c = |a: usize, b: usize| id(s * i + a * s / 2, s * j + b * s / 2);
-                let (n1, n2, n3, n4) = (c(0, 0), c(2, 0), c(2, 2), c(0, 2));
                 let label = elements.len() + 1;
-                elements.push(match q8 {
-                    true => format!(
-                        "{kind} {label} nodes 8 {n1} {n2} {n3} {n4} {} {} {} {}",
-                        c(1, 0),
-                        c(2, 1),
-                        c(1, 2),
-                        c(0, 1)
-                    ),
-                    false => format!("{kind} {label} nodes 4 {n1} {n2} {n3} {n4}"),
-                });
+                elements.extend(crate::common::cell_records(kind, label, corners, c));
                 if i == 0 {
                     bore.push(format!("{label} 4"));
                 }
@@ -620,17 +596,7 @@ fn pressurized_annulus(kind: &str, n: usize, p: f64) -> String {
         for j in 0..n {
             let c = |a: usize, b: usize| id(2 * i + a, 2 * j + b);
             let label = elements.len() + 1;
-            elements.push(format!(
-                "{kind} {label} nodes 8 {} {} {} {} {} {} {} {}",
-                c(0, 0),
-                c(2, 0),
-                c(2, 2),
-                c(0, 2),
-                c(1, 0),
-                c(2, 1),
-                c(1, 2),
-                c(0, 1)
-            ));
+            elements.extend(crate::common::cell_records(kind, label, 8, c));
             if i == 0 {
                 bore.push(format!("{label} 4"));
             }

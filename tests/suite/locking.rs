@@ -82,28 +82,10 @@ pub(crate) fn ring_mesh(
                     id(i + a / 2, j + b / 2)
                 }
             };
-            let (a, b, cc, d) = (c(0, 0), c(2, 0), c(2, 2), c(0, 2));
-            match corners {
-                4 => elements.push(format!("{keyword} {{}} nodes 4 {a} {b} {cc} {d}")),
-                3 => {
-                    elements.push(format!("{keyword} {{}} nodes 3 {a} {b} {cc}"));
-                    elements.push(format!("{keyword} {{}} nodes 3 {a} {cc} {d}"));
-                }
-                _ => elements.push(format!(
-                    "{keyword} {{}} nodes 8 {a} {b} {cc} {d} {} {} {} {}",
-                    c(1, 0),
-                    c(2, 1),
-                    c(1, 2),
-                    c(0, 1)
-                )),
-            }
+            let label = elements.len() + 1;
+            elements.extend(common::cell_records(keyword, label, corners, c));
         }
     }
-    let elements: Vec<String> = elements
-        .iter()
-        .enumerate()
-        .map(|(k, e)| e.replacen("{}", &(k + 1).to_string(), 1))
-        .collect();
     let inner: Vec<usize> = (0..=m).filter(|&j| on(0, j)).map(|j| id(0, j)).collect();
     let (x_axis, y_axis): (Vec<usize>, Vec<usize>) = (
         (1..=m).filter(|&i| on(i, 0)).map(|i| id(i, 0)).collect(),

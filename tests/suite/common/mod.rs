@@ -562,3 +562,30 @@ pub fn with_rigid_master(text: &str, record: &str, reference: [f64; 3]) -> Strin
     }
     out
 }
+
+/// The element records of one cell of a structured grid: `c(a, b)` the node at the cell's local
+/// position (a, b) ∈ {0, 1, 2}² (1: a mid-side), `corners` 4 (one quadrilateral), 3 (two
+/// triangles cut along its diagonal 1–3) or 8 (a quadrilateral with mid-side nodes), numbered
+/// from `label` in OOFEM's node order.
+pub fn cell_records(
+    keyword: &str,
+    label: usize,
+    corners: usize,
+    c: impl Fn(usize, usize) -> usize,
+) -> Vec<String> {
+    let (n1, n2, n3, n4) = (c(0, 0), c(2, 0), c(2, 2), c(0, 2));
+    match corners {
+        4 => vec![format!("{keyword} {label} nodes 4 {n1} {n2} {n3} {n4}")],
+        3 => vec![
+            format!("{keyword} {label} nodes 3 {n1} {n2} {n3}"),
+            format!("{keyword} {} nodes 3 {n1} {n3} {n4}", label + 1),
+        ],
+        _ => vec![format!(
+            "{keyword} {label} nodes 8 {n1} {n2} {n3} {n4} {} {} {} {}",
+            c(1, 0),
+            c(2, 1),
+            c(1, 2),
+            c(0, 1)
+        )],
+    }
+}
