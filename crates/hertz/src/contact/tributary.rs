@@ -75,7 +75,7 @@ impl Facet {
 
 /// Each node's ∫ N_a r ds over an axisymmetric element's edge at positions `x` (ends, then the
 /// middle of a quadratic edge; r = x): its area per radian, integrated exactly (3 points).
-fn axisymmetric_shares(x: &[[f64; 3]]) -> Vec<f64> {
+pub(crate) fn axisymmetric_shares(x: &[[f64; 3]]) -> Vec<f64> {
     let shape = crate::fem::Shape::edge_shape(x.len());
     let (mut n, mut dn) = ([0.0; 3], [[0.0; 3]; 3]);
     let mut out = vec![0.0; x.len()];

@@ -135,7 +135,7 @@ impl Mortar {
                                 let x: Vec<[f64; 3]> =
                                     e.nodes.iter().map(|&m| model.nodes[m].coords).collect();
                                 let j = e.nodes.iter().position(|m| m == n).expect("its node");
-                                radius_weighted_integral(&x, j)
+                                crate::contact::tributary::axisymmetric_shares(&x)[j]
                             }
                             false => share * length(k),
                         }
@@ -330,21 +330,6 @@ fn solve(s0: f64, m: usize, linear: bool, f: impl Fn(Dual) -> (Dual, Dual)) -> D
 /// (see [`super::segment::dual_basis`]).
 fn edge_dual_basis(x: &[[f64; 3]], axisymmetric: bool) -> [[f64; 4]; 4] {
     dual_basis_over(x, &[(0.0, 1.0)], axisymmetric)
-}
-
-/// ∫ N_j r ds over an edge at positions `x` (ends, then the middle of a quadratic edge; r = x):
-/// node j's area per radian on it.
-fn radius_weighted_integral(x: &[[f64; 3]], j: usize) -> f64 {
-    let k = x.len();
-    let mut total = 0.0;
-    for &(z, wz) in &GAUSS5 {
-        let s = 0.5 * (1.0 + z);
-        let (n, dn) = shape(k, s);
-        let t: [f64; 2] = std::array::from_fn(|i| (0..k).map(|a| dn[a] * x[a][i]).sum());
-        let r: f64 = (0..k).map(|a| n[a] * x[a][0]).sum();
-        total += 0.5 * wz * t[0].hypot(t[1]) * r * n[j];
-    }
-    total
 }
 
 /// The dual basis of a slave edge (reference positions `x`) biorthogonal over the parts
