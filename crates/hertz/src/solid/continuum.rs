@@ -36,7 +36,6 @@ pub struct ContinuumKernel<'a> {
 
 /// An axisymmetric point's hoop and shear rows: ∂u_r/r per node (N_a/r at the point or
 /// N_a(0)/r_c at the centroid), and with the centroid rule ∂N_a/∂X there for γ_rz.
-#[derive(Clone)]
 struct Hoop {
     n_over_r: [f64; MAX_NODES],
     shear: Option<[[f64; 3]; MAX_NODES]>,
@@ -91,14 +90,17 @@ impl ElementKernel for ContinuumKernel<'_> {
                 })?;
             let mut jxw = det.abs() * qp.weight * self.thick;
             let mut h = gradient(u, &dndx, nn, nsd);
+            // Axisymmetric: the hoop rows at the point, unless the centroid's serve every point.
+            let pointwise: Option<Hoop>;
             let hoop = match self.hoop {
                 Some(_) => {
-                    let (hoop, r) = self
-                        .hoop_at(&n, x_ref, centroid.as_ref())
+                    let r = self
+                        .radius_at(&n, x_ref)
                         .map_err(|msg| KernelError { gp: g + 1, msg })?;
                     jxw = det.abs() * qp.weight * r;
-                    hoop.add_to_gradient(u, nn, &mut h);
-                    Some(hoop)
+                    pointwise = centroid.is_none().then(|| Hoop::at_point(&n, nn, r));
+                    let hoop = centroid.as_ref().or(pointwise.as_ref());
+                    hoop.inspect(|hoop| hoop.add_to_gradient(u, nn, &mut h))
                 }
                 None => None,
             };
@@ -144,7 +146,7 @@ impl ElementKernel for ContinuumKernel<'_> {
                 jxw,
                 nn,
                 mean: means.as_ref().map(|c| &c.dndx),
-                hoop: hoop.as_ref(),
+                hoop,
             };
             self.point(
                 (&old[slice(g)], &mut new[slice(g)]),
@@ -233,6 +235,14 @@ struct Point<'a> {
 }
 
 impl Hoop {
+    /// The rows of a point with shape functions `n` (of `nn` nodes) at radius `r`: N_a/r.
+    fn at_point(n: &[f64; MAX_NODES], nn: usize, r: f64) -> Hoop {
+        Hoop {
+            n_over_r: std::array::from_fn(|a| if a < nn { n[a] / r } else { 0.0 }),
+            shear: None,
+        }
+    }
+
     /// The hoop strain's (and with the centroid rule the shear's) part of the displacement
     /// gradient `h`: H₃₃ = u_r/r, H_rz and H_zr from the centroid's gradient.
     fn add_to_gradient(&self, u: &[f64], nn: usize, h: &mut [[f64; 3]; 3]) {
@@ -245,24 +255,13 @@ impl Hoop {
 }
 
 impl ContinuumKernel<'_> {
-    /// An axisymmetric point's hoop rows (the `centroid`'s where given, else N_a/r) and its
-    /// radius r, from its shape functions `n`.
-    fn hoop_at(
-        &self,
-        n: &[f64; MAX_NODES],
-        x_ref: &[[f64; 3]],
-        centroid: Option<&Hoop>,
-    ) -> Result<(Hoop, f64), String> {
-        let nn = self.shape.n_nodes();
-        let r: f64 = (0..nn).map(|a| n[a] * x_ref[a][0]).sum();
-        if !(r > 0.0) {
-            return Err(format!("an axisymmetric point at radius {r:.3e} ≤ 0"));
+    /// The radius r of an axisymmetric point, from its shape functions `n`.
+    fn radius_at(&self, n: &[f64; MAX_NODES], x_ref: &[[f64; 3]]) -> Result<f64, String> {
+        let r: f64 = (0..self.shape.n_nodes()).map(|a| n[a] * x_ref[a][0]).sum();
+        match r > 0.0 {
+            true => Ok(r),
+            false => Err(format!("an axisymmetric point at radius {r:.3e} ≤ 0")),
         }
-        let hoop = centroid.cloned().unwrap_or(Hoop {
-            n_over_r: std::array::from_fn(|a| if a < nn { n[a] / r } else { 0.0 }),
-            shear: None,
-        });
-        Ok((hoop, r))
     }
 
     /// The centroid's hoop and shear rows of an axisymmetric element (OOFEM's rule).
