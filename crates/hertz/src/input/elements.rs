@@ -249,5 +249,18 @@ fn read_options(r: &Record, etype: ElementType) -> Result<(Option<usize>, bool, 
         }
         (_, Some(_)) => return Err(r.error("keyword `cs` only applies to Truss2d")),
     };
+    // OOFEM's point count of an axisymmetric element's hoop and shear terms: hertz takes them
+    // as its guide says (the centroid for L4Axisymm, every point otherwise), which `nipfish 1`,
+    // OOFEM's default, describes; another count is not what hertz computes (and leaves OOFEM's
+    // Q4Axisymm without a B matrix: its QUIRK).
+    match r.opt_int("nipfish")? {
+        Some(v) if v != 1 || !etype.is_axisymmetric() => {
+            return Err(r.error(format!(
+                "`nipfish {v}` is not supported: axisymmetric elements take their hoop strain \
+                 as the guide's Axisymmetric models says (`nipfish 1`, OOFEM's default)"
+            )))
+        }
+        _ => {}
+    }
     Ok((nip, nlgeo, truss_plane))
 }
