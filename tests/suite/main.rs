@@ -26,5 +26,6 @@ mod oofem_suite;
 mod petsc;
 mod plasticity;
 mod plot;
+mod pressure;
 mod robustness;
 mod upstream;

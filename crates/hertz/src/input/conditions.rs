@@ -194,17 +194,32 @@ pub(super) fn read_load(
             dofs.len()
         )));
     }
-    let local = match r.opt_int("cstype")?.unwrap_or(0) {
-        0 => false,
-        1 if matches!(kind, LoadKind::Edge) && domain.nsd() == 2 && components.len() == 2 => true,
-        1 => {
-            return Err(r.error(
-                "`cstype 1` (local load coordinates) is supported on 2D edge loads of two \
-                 components only",
-            ))
-        }
-        v => return Err(r.error(format!("`cstype` must be 0 or 1, found {v}"))),
-    };
+    let nsd = domain.nsd();
+    let local =
+        match r.opt_int("cstype")?.unwrap_or(0) {
+            0 => false,
+            1 => match kind {
+                LoadKind::Edge if nsd == 2 && dofs == [1, 2] => true,
+                LoadKind::Surface if nsd == 3 && dofs == [1, 2, 3] => true,
+                _ => return Err(r.error(
+                    "`cstype 1` (components in the boundary's own axes) is supported on 2D edge \
+                     loads with `dofs 2 1 2` and on 3D surface loads with `dofs 3 1 2 3`",
+                )),
+            },
+            v => return Err(r.error(format!("`cstype` must be 0 or 1, found {v}"))),
+        };
+    let follower = r.flag("follower");
+    if follower && !local {
+        return Err(r.error(
+            "`follower` needs `cstype 1`: a follower traction is given in the boundary's own axes",
+        ));
+    }
+    if follower && nsd == 3 && (components[0] != 0.0 || components[1] != 0.0) {
+        return Err(r.error(
+            "a `follower` surface load is a pressure: its components in the face's plane must \
+             be 0 (`components 3 0 0 p`, p along the outward normal)",
+        ));
+    }
     r.opt_int("loadtype")?;
     if set == 0 && !matches!(kind, LoadKind::Edge | LoadKind::Surface) {
         return Err(r.error(format!("{kw} needs `set`")));
@@ -217,6 +232,7 @@ pub(super) fn read_load(
         components,
         set,
         local,
+        follower,
         span: r.span(),
     })
 }

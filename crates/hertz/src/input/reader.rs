@@ -12,8 +12,9 @@ use super::materials::read_materials;
 use super::nodes::read_nodes;
 use super::record::Record;
 use super::resolve::{
-    attach_boundary_loads, check_axisymmetry, check_geometry, check_loads_act, elements_ref_nodes,
-    interior_boundary_warnings, resolve_elements, warn_early_function_times,
+    attach_boundary_loads, check_axisymmetry, check_follower_loads, check_geometry,
+    check_loads_act, elements_ref_nodes, interior_boundary_warnings, resolve_elements,
+    warn_early_function_times,
 };
 use super::sets::{explain_missing_sets, read_sets, Refs};
 use crate::error::{Error, Result};
@@ -166,6 +167,7 @@ pub(super) fn model_from_lines(
         contacts,
     };
     check_axisymmetry(&model)?;
+    check_follower_loads(&model)?;
     advise(&model, c.warnings);
     Ok(ReadResult {
         model,

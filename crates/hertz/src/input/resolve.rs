@@ -362,6 +362,39 @@ pub(super) fn attach_boundary_loads(
 
 /// An axisymmetric model is axisymmetric throughout: its elements all axisymmetric (per radian)
 /// or none.
+/// A follower load needs large deformation (`nlgeo 1`) on the elements it acts on, and a
+/// nonlinear analysis: in small strain the configuration never changes.
+pub(super) fn check_follower_loads(model: &Model) -> Result<()> {
+    for load in model.loads.iter().filter(|l| l.follower) {
+        let error = |msg: String| Error::Input {
+            span: load.span.clone(),
+            msg,
+        };
+        if model.analysis.kind != crate::model::AnalysisKind::NonLinearStatic {
+            return Err(error(format!(
+                "follower load {} needs NonLinearStatic: a follower traction changes with the \
+                 state",
+                load.number
+            )));
+        }
+        let boundaries = load.boundaries(&model.sets[load.set - 1], &model.elements);
+        for (e, _) in boundaries.map_err(&error)? {
+            let el = &model.elements[e];
+            if !el.nlgeo {
+                return Err(error(format!(
+                    "follower load {} acts on {} {}, which is small strain: a follower \
+                     traction acts on the current boundary, give the element `nlgeo 1` (or drop \
+                     `follower` for a traction on the reference boundary)",
+                    load.number,
+                    el.etype.name(),
+                    el.label
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
 pub(super) fn check_axisymmetry(model: &Model) -> Result<()> {
     let axi = |e: &&Element| e.etype.is_axisymmetric();
     let Some(first) = model.elements.iter().find(axi) else {

@@ -551,9 +551,14 @@ pub struct Load {
     pub dofs: Vec<DofId>,
     pub components: Vec<f64>,
     pub set: usize,
-    /// `csType 1` of a 2D edge load: its components are in the edge's own axes (OOFEM's: the
-    /// second along the outward normal, the first along its turn by −90°), on the reference edge.
+    /// `csType 1`: the components are in the boundary's own axes, the normal one outward (a 2D
+    /// edge: OOFEM's, the second along the outward normal, the first along its turn by −90°; a
+    /// 3D face: the third along the outward normal, the first horizontal, as OOFEM's `LSpace`).
     pub local: bool,
+    /// `follower` (hertz's): a `csType 1` traction on the current boundary, per current length
+    /// or area, instead of on the reference one (a pressure that turns and stretches with the
+    /// surface in large deformation; see [`crate::solid::follower`]).
+    pub follower: bool,
     /// The record, for messages.
     pub span: Span,
 }
@@ -716,5 +721,10 @@ impl Model {
                 None => (1..=a.nsteps).map(|n| n as f64 * a.deltat).collect(),
             },
         }
+    }
+
+    /// Whether a load follows the boundary it acts on (its force depends on the state).
+    pub fn has_follower_loads(&self) -> bool {
+        self.loads.iter().any(|l| l.follower)
     }
 }

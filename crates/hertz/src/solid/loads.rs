@@ -6,8 +6,12 @@ use crate::error::{Error, Result};
 use crate::fem::{gauss_line, rule};
 use crate::model::{DofId, Load, LoadKind, Model};
 
-/// Contributions of one load at unit time-function value.
+/// Contributions of one load at unit time-function value. A follower load has none: it
+/// depends on the state, and the step adds it ([`super::follower`]).
 pub fn reference_contributions(model: &Model, load: &Load) -> Result<Vec<(usize, DofId, f64)>> {
+    if load.follower {
+        return Ok(Vec::new());
+    }
     let set = &model.sets[load.set - 1];
     let mut out = Vec::new();
     let comps = || {
@@ -112,8 +116,22 @@ pub fn reference_contributions(model: &Model, load: &Load) -> Result<Vec<(usize,
                         g1[0] * g2[1] - g1[1] * g2[0],
                     ];
                     let da = (cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]).sqrt() * qp.weight;
+                    let traction: Vec<(DofId, f64)> = match load.local {
+                        true => {
+                            let point: [f64; 3] = std::array::from_fn(|i| {
+                                let x = |a: usize| model.nodes[el.nodes[a]].coords[i];
+                                local.iter().enumerate().map(|(k, &a)| n[k] * x(a)).sum()
+                            });
+                            face_axes(model, e, point, cr, &load.components)
+                        }
+                        false => comps().collect(),
+                    };
                     for (k, &a) in local.iter().enumerate() {
-                        out.extend(comps().map(|(d, c)| (el.nodes[a], d, c * n[k] * da)));
+                        out.extend(
+                            traction
+                                .iter()
+                                .map(|&(d, c)| (el.nodes[a], d, c * n[k] * da)),
+                        );
                     }
                 }
             }
@@ -132,22 +150,72 @@ fn edge_axes(
     (point, t): ([f64; 3], [f64; 3]),
     load: &Load,
 ) -> Vec<(DofId, f64)> {
-    let el = &model.elements[e];
     let len = t[0].hypot(t[1]);
-    let mut n = [t[1] / len, -t[0] / len];
-    let x = |a: &usize| model.nodes[*a].coords;
-    let count = el.nodes.len() as f64;
-    let centre: [f64; 2] =
-        std::array::from_fn(|i| el.nodes.iter().map(|a| x(a)[i]).sum::<f64>() / count);
-    if (point[0] - centre[0]) * n[0] + (point[1] - centre[1]) * n[1] < 0.0 {
-        n = [-n[0], -n[1]];
-    }
+    let normal = [t[1], -t[0], 0.0];
+    let sign = outward_sign(model, e, point, normal);
+    let n = [sign * normal[0] / len, sign * normal[1] / len];
     let (f1, f2) = (load.components[0], load.components[1]);
     vec![(1, n[1] * f1 + n[0] * f2), (2, -n[0] * f1 + n[1] * f2)]
 }
 
+/// A `csType 1` surface load's global components at `point` of a face of element `e` whose
+/// normal (g₁ × g₂, any length) is `normal`: f = f₁ x̂ + f₂ ŷ + f₃ n̂ with n̂ the outward unit
+/// normal (by the element's geometry), x̂ horizontal, (n̂_y, −n̂_x, 0) normalized, or x̂ = (1, 0, 0)
+/// on a horizontal face, and ŷ = n̂ × x̂: OOFEM's `LSpace` axes. OOFEM takes one normal per face
+/// (the mean of its corners') and leaves x̂ unnormalized (its length is √(1 − n̂_z²)), QUIRKs:
+/// the same on a flat face with a vertical tangential load or none; here the normal is the
+/// face's own at each point, exact on a curved face.
+pub fn face_axes(
+    model: &Model,
+    e: usize,
+    point: [f64; 3],
+    normal: [f64; 3],
+    f: &[f64],
+) -> Vec<(DofId, f64)> {
+    let len = (normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]).sqrt();
+    let sign = outward_sign(model, e, point, normal);
+    let n = normal.map(|c| sign * c / len);
+    let h = n[0].hypot(n[1]);
+    let x = if (n[2].abs() - 1.0).abs() < 1e-5 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [n[1] / h, -n[0] / h, 0.0]
+    };
+    let y = [
+        n[1] * x[2] - n[2] * x[1],
+        n[2] * x[0] - n[0] * x[2],
+        n[0] * x[1] - n[1] * x[0],
+    ];
+    (0..3)
+        .map(|i| (i as DofId + 1, f[0] * x[i] + f[1] * y[i] + f[2] * n[i]))
+        .collect()
+}
+
+/// +1 if `normal` at `point` of a boundary of element `e` points out of the element (away from
+/// the centroid of its nodes), else −1.
+pub fn outward_sign(model: &Model, e: usize, point: [f64; 3], normal: [f64; 3]) -> f64 {
+    let el = &model.elements[e];
+    let count = el.nodes.len() as f64;
+    let centre: [f64; 3] = std::array::from_fn(|i| {
+        el.nodes
+            .iter()
+            .map(|&a| model.nodes[a].coords[i])
+            .sum::<f64>()
+            / count
+    });
+    let side: f64 = (0..3).map(|i| (point[i] - centre[i]) * normal[i]).sum();
+    if side < 0.0 {
+        -1.0
+    } else {
+        1.0
+    }
+}
+
 /// The element boundaries an edge or surface load acts on (see [`Load::boundaries`]).
-fn load_boundaries(model: &Model, load: &Load) -> Result<Vec<(usize, &'static [usize])>> {
+pub(super) fn load_boundaries(
+    model: &Model,
+    load: &Load,
+) -> Result<Vec<(usize, &'static [usize])>> {
     let set = &model.sets[load.set - 1];
     load.boundaries(set, &model.elements)
         .map_err(|msg| Error::Input {

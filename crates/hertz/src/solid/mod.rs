@@ -2,6 +2,7 @@
 
 pub mod barred;
 pub mod continuum;
+pub mod follower;
 pub mod kernel;
 pub mod loads;
 pub mod truss;

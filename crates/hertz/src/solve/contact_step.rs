@@ -338,10 +338,11 @@ impl ContactStepper {
     }
 
     /// Give up condensing for the rest of the analysis: full tangents, on a pattern with both
-    /// triangles if a contact tangent is not symmetric.
+    /// triangles if a contact tangent or a follower load's is not symmetric.
     pub fn condense_off(&mut self, eq: &mut Equations) {
         self.condensed = Condensed::Off;
-        eq.asm.set_symmetric(eq.contact.symmetric());
+        let follower = eq.model().has_follower_loads();
+        eq.asm.set_symmetric(eq.contact.symmetric() && !follower);
         eq.solver.reset();
     }
 

@@ -90,6 +90,8 @@ impl<'a> NewtonContext<'a> {
         observer: &'a dyn Observer,
     ) -> Result<(NewtonContext<'a>, Vec<String>)> {
         let mut asm = Assembler::new(model, dofs)?;
+        // A follower load's tangent is not symmetric.
+        asm.set_symmetric(!model.has_follower_loads());
         let zero = vec![0.0; dofs.n_primary()];
         let initial = contact
             .evaluate(&NodalState::new(model, dofs, &zero), Search::Fresh)?

@@ -10,11 +10,12 @@
 use super::newton::NewtonContext;
 use super::params::SolveParams;
 use super::report::{Observer, Phase, Silent, StepInfo, StepReport};
-use super::terms::Statics;
+use super::terms::{FollowerTerms, StepTerms};
 use crate::assembly::DofMap;
 use crate::contact::{ContactSystem, SlotState};
 use crate::error::{Error, Result};
 use crate::model::{AnalysisKind, Model};
+use crate::solid::follower::FollowerLoads;
 use crate::solid::loads::reference_contributions;
 use crate::solid::GpState;
 use std::time::Instant;
@@ -66,6 +67,8 @@ pub fn run_analysis_observed(
         steps: model.step_times().len(),
     });
     let history = LoadHistory::new(model, &dofs)?;
+    let follower = FollowerLoads::new(model, &dofs)?;
+    let mut applied_factors = vec![0.0; model.loads.len()];
     let (mut ctx, mut initial_warnings) =
         NewtonContext::new(model, &dofs, contact, params, observer)?;
     let np = dofs.n_primary();
@@ -78,6 +81,7 @@ pub fn run_analysis_observed(
         let step = k + 1;
         ctx.begin_step(step);
         let target = history.external_at(t, &applied);
+        let factors = history.factors_at(t, &applied_factors);
         let mut info = StepInfo {
             warnings: std::mem::take(&mut initial_warnings),
             ..Default::default()
@@ -88,10 +92,15 @@ pub fn run_analysis_observed(
             from: &applied,
             to: &target,
             prescribed: &history.prescribed_at(t),
+            factors: (&applied_factors, &factors),
+            follower: &follower,
         };
         step_with_cutbacks(&mut ctx, &mut u, &goal, params, &mut info)?;
+        let (mut ev, contact_states) = ctx.commit_step(&u)?;
+        // The reactions balance the follower loads too.
+        goal.terms(1.0, model, &dofs).add_forces(&u, &mut ev.f_int);
         applied = target;
-        let (ev, contact_states) = ctx.commit_step(&u)?;
+        applied_factors = factors;
         let reactions: Vec<f64> = (0..dofs.n_prescribed)
             .map(|i| ev.f_int[nf + i] - applied[nf + i])
             .collect();
@@ -174,6 +183,27 @@ impl<'a> LoadHistory<'a> {
         }
     }
 
+    /// The factor of every load at time `t` (`applied` those of the last step): what its time
+    /// function scales it by, as [`Self::external_at`] sums them.
+    fn factors_at(&self, t: f64, applied: &[f64]) -> Vec<f64> {
+        let (model, a) = (self.model, &self.model.analysis);
+        model
+            .loads
+            .iter()
+            .zip(applied)
+            .map(|(load, &before)| {
+                let func = &model.functions[load.function - 1];
+                match a.kind {
+                    AnalysisKind::NonLinearStatic if a.refloadmode == 1 => {
+                        before + func.eval(t) - func.eval(t - a.deltat)
+                    }
+                    AnalysisKind::NonLinearStatic => before + func.eval(t),
+                    _ => func.eval(t),
+                }
+            })
+            .collect()
+    }
+
     /// The prescribed values at time `t`.
     fn prescribed_at(&self, t: f64) -> Vec<f64> {
         self.dofs
@@ -188,13 +218,32 @@ impl<'a> LoadHistory<'a> {
 }
 
 /// What a load step goes to: step number and time, external forces from and to, the prescribed
-/// values at its end.
+/// values at its end, and the follower loads with their factors from and to.
 struct StepGoal<'g> {
     step: usize,
     t: f64,
     from: &'g [f64],
     to: &'g [f64],
     prescribed: &'g [f64],
+    factors: (&'g [f64], &'g [f64]),
+    follower: &'g FollowerLoads,
+}
+
+impl<'g> StepGoal<'g> {
+    /// The follower loads at the fraction `alpha` of the step.
+    fn terms(&self, alpha: f64, model: &'g Model, dofs: &'g DofMap) -> FollowerTerms<'g> {
+        let (from, to) = self.factors;
+        FollowerTerms {
+            loads: self.follower,
+            model,
+            dofs,
+            scale: from
+                .iter()
+                .zip(to)
+                .map(|(a, b)| a + alpha * (b - a))
+                .collect(),
+        }
+    }
 }
 
 /// Why an attempt at a step failed.
@@ -240,7 +289,8 @@ fn step_with_cutbacks(
             let up_sub: Vec<f64> = (0..np)
                 .map(|i| start_u[nf + i] + alpha * (goal.prescribed[i] - start_u[nf + i]))
                 .collect();
-            match ctx.newton(u, (&f_sub, &up_sub), a, info, &Statics) {
+            let terms = goal.terms(alpha, ctx.model(), ctx.dofs());
+            match ctx.newton(u, (&f_sub, &up_sub), a, info, &terms) {
                 Ok(true) => {
                     ctx.commit_substep(u)?;
                     if alpha > furthest.0 && alpha < 1.0 {

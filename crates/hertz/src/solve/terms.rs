@@ -1,9 +1,11 @@
 //! Terms a driver adds to the bodies' equations in every Newton iteration of a step: a time
 //! integrator's inertia (the forces M·a(u) and their tangent a₀·M) or damping. The Newton
 //! iteration takes them with the step's target and knows nothing else of them; statics adds
-//! none ([`Statics`]).
+//! the follower loads' forces ([`FollowerTerms`]), nothing without them ([`Statics`]).
 
-use crate::assembly::Pattern;
+use crate::assembly::{Contribution, DofMap, Pattern};
+use crate::model::Model;
+use crate::solid::follower::FollowerLoads;
 
 /// Forces that depend on the state, with their tangent, added to the internal forces.
 pub trait StepTerms {
@@ -29,6 +31,55 @@ pub struct Statics;
 impl StepTerms for Statics {
     fn add_forces(&self, _u: &[f64], _f_int: &mut [f64]) {}
     fn add_tangent(&self, _u: &[f64], _pattern: &Pattern, _k: &mut [f64]) {}
+}
+
+/// The follower loads at given load factors: forces that turn and stretch with the boundary.
+pub struct FollowerTerms<'a> {
+    pub loads: &'a FollowerLoads,
+    pub model: &'a Model,
+    pub dofs: &'a DofMap,
+    /// The load factor of every load of the model (its time function's value in the step).
+    pub scale: Vec<f64>,
+}
+
+impl FollowerTerms<'_> {
+    fn contributions(&self, u: &[f64], want_k: bool) -> Vec<Contribution> {
+        self.loads
+            .contributions(self.model, self.dofs, u, &self.scale, want_k)
+    }
+}
+
+impl StepTerms for FollowerTerms<'_> {
+    fn add_forces(&self, u: &[f64], f_int: &mut [f64]) {
+        for c in self.contributions(u, false) {
+            for (&code, &fa) in c.codes.iter().zip(&c.fe) {
+                for (p, wp) in self.dofs.entries(code) {
+                    f_int[p] += wp * fa;
+                }
+            }
+        }
+    }
+
+    fn add_tangent(&self, u: &[f64], pattern: &Pattern, k: &mut [f64]) {
+        let nf = self.dofs.n_free;
+        for c in self.contributions(u, true) {
+            let nd = c.codes.len();
+            for (a, &ca) in c.codes.iter().enumerate() {
+                for (p, wp) in self.dofs.entries(ca).filter(|&(p, _)| p < nf) {
+                    for (b, &cb) in c.codes.iter().enumerate() {
+                        for (q, wq) in self.dofs.entries(cb).filter(|&(q, _)| q < nf) {
+                            // Both triangles: the model's pattern is not symmetric.
+                            k[pattern.position(p, q)] += wp * wq * c.ke[a * nd + b];
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    fn constant_tangent(&self) -> bool {
+        self.loads.is_empty()
+    }
 }
 
 #[cfg(test)]
