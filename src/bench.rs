@@ -67,7 +67,7 @@ pub struct BenchArgs {
     pub ironing3d: Option<u64>,
     /// With --write: a rigid sphere pressed into a quarter block of N x N x N bricks, all of its
     /// (N+1)^2 top nodes slave nodes (30: 89 000 unknowns, 961 slave nodes; solve it with
-    /// `hertz run`)
+    /// `hertz run`), and its section as a body of revolution (rigid_sphere_section.in)
     #[arg(long, value_name = "N", requires = "write",
           value_parser = clap::value_parser!(u64).range(2..=100))]
     pub rigid_sphere: Option<u64>,
@@ -208,6 +208,14 @@ pub fn main(args: BenchArgs) -> ExitCode {
                 "rigid_sphere_plastic.in",
                 &problem.pressed_and_lifted(Some(sig0)),
             );
+        }
+        let section = write_text(
+            dir,
+            "rigid_sphere_section.in",
+            &problem.axisymmetric_section(),
+        );
+        if section != ExitCode::SUCCESS {
+            return section;
         }
         return write_text(dir, "rigid_sphere_block.in", &problem.input());
     }

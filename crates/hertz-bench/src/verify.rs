@@ -2,7 +2,7 @@
 //! wedges) and any node order (a cube symmetry applied to every element, see
 //! [`super::mesh::cube_symmetry`]), so that a test can run each in every orientation.
 
-use super::mesh::{uniform, Block, Input, Solid};
+use super::mesh::{uniform, Block, Input, Kind, Solid};
 use super::suite::{analysis, history, n2s, s2s, Law};
 
 /// Young's modulus and Poisson's ratio of the verification bodies.
@@ -1527,6 +1527,50 @@ impl RigidSphereBlock<'_> {
             let top = inp.nodes_where(&|p| p[2].abs() < 1e-12);
             (None, format!("slaveset {}", inp.node_set(&top)))
         })
+    }
+
+    /// The same problem in axisymmetry: the block's section x = 0 (r along `xs`, z along `zs`)
+    /// as a body of revolution on `L4Axisymm` (a cylinder of the block's half-width, the same
+    /// spacing under the sphere), every top node a slave node, u_r held on the axis.
+    pub fn axisymmetric_section(&self) -> String {
+        let r = self.radius;
+        let mut inp = Input::default();
+        let zs = self.zs.clone();
+        let block = inp.block2d(Kind::Q4, &self.xs, &|_| zs.clone(), "mat 1 crossSect 1");
+        for e in &mut inp.elements {
+            *e = e.replacen("Quad1PlaneStrain", "L4Axisymm", 1);
+        }
+        let reference = inp.node(0.0, r, 0.0);
+        inp.sections.push("SimpleCS 1".into());
+        inp.materials
+            .push(format!("IsoLE 1 d 0 E {E} n {NU} tAlpha 0"));
+        inp.segments.push(format!(
+            "circlecontactsegment 1 centerpoint 2 0 {r} radius {r} node {reference}"
+        ));
+        let axis = inp.nodes_where(&|p| p[0].abs() < 1e-12 && p[1] < r - 1.0);
+        let axis = inp.node_set(&axis);
+        let bottom = inp.node_set(&block.bottom);
+        let top = inp.node_set(&block.top);
+        let tool = inp.node_set(&[reference]);
+        for (k, (dof, set)) in [(1, axis), (2, bottom)].iter().enumerate() {
+            inp.bcs.push(format!(
+                "BoundaryCondition {} loadTimeFunction 1 dofs 1 {dof} values 1 0 set {set}",
+                k + 1
+            ));
+        }
+        inp.bcs.push(format!(
+            "BoundaryCondition 3 loadTimeFunction 1 dofs 2 1 2 values 2 0 {} set {tool}",
+            -self.depth
+        ));
+        // The contact record is the fourth, as in 3D.
+        inp.bcs
+            .push(format!("{} slaveset {top} segmentset 1 1", self.law));
+        inp.functions.push("ConstantFunction 1 f(t) 1.0".into());
+        inp.render(
+            "rigid_sphere_section",
+            "StaticStructural nsteps 1 deltat 1 rtolf 1e-8 maxiter 25",
+            "2dPlaneStress",
+        )
     }
 
     /// The input titled `title`, whose slave side `slave` sets up on the block: it returns a
