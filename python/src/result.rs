@@ -9,7 +9,7 @@ use hertz::model::Model as HModel;
 use hertz::output::vtu::VtuFormat;
 use hertz::output::writer::RunWriter;
 use hertz::solid::GpState;
-use hertz::solve::{StepInfo, StepResult};
+use hertz::solve::{Energy, Motion, StepInfo, StepResult};
 use numpy::{IntoPyArray, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -27,18 +27,31 @@ pub struct StepData {
     /// n_nodes × DOFs per node, row-major (taken for the numpy arrays).
     displacement: Vec<f64>,
     reaction: Vec<f64>,
+    /// Dynamics: velocities and accelerations (primary DOFs, as `u`) and the energies.
+    motion: Option<(Vec<f64>, Vec<f64>, Energy)>,
+    /// Dynamics: nodal velocities and accelerations (as `displacement`).
+    velocity: Option<Vec<f64>>,
+    acceleration: Option<Vec<f64>>,
+}
+
+/// Values of the primary vector `x` at every node's DOFs (n_nodes × DOFs per node).
+fn nodal(res: &StepResult, model: &HModel, x: &[f64]) -> Vec<f64> {
+    let ids = model.domain.default_dofs();
+    let nd = ids.len();
+    let mut out = vec![0.0; model.nodes.len() * nd];
+    for n in 0..model.nodes.len() {
+        for (k, &d) in ids.iter().enumerate() {
+            out[n * nd + k] = res.dofs.code(n, d).map_or(0.0, |c| res.dofs.value(x, c));
+        }
+    }
+    out
 }
 
 impl StepData {
     pub fn from_result(res: &StepResult, model: &HModel) -> StepData {
         let ids = model.domain.default_dofs();
         let nd = ids.len();
-        let mut displacement = vec![0.0; model.nodes.len() * nd];
-        for n in 0..model.nodes.len() {
-            for (k, &d) in ids.iter().enumerate() {
-                displacement[n * nd + k] = res.displacement(n, d).unwrap_or(0.0);
-            }
-        }
+        let displacement = nodal(res, model, res.u);
         let mut reaction = vec![0.0; model.nodes.len() * nd];
         for (i, &(n, d, _)) in res.dofs.prescribed.iter().enumerate() {
             if let Some(k) = ids.iter().position(|&id| id == d) {
@@ -55,13 +68,20 @@ impl StepData {
             info: res.info.clone(),
             displacement,
             reaction,
+            motion: res
+                .motion
+                .map(|m| (m.velocity.to_vec(), m.acceleration.to_vec(), m.energy)),
+            velocity: res.motion.map(|m| nodal(res, model, m.velocity)),
+            acceleration: res.motion.map(|m| nodal(res, model, m.acceleration)),
         }
     }
 }
 
 /// One converged step: `displacement` and `reaction` (n_nodes × DOFs per node, rows in the
 /// order of `Model.node_labels`, columns x, y(, z); reactions are zero where nothing is
-/// prescribed), `iterations`, `substeps`, `contact`: the columns of the contact CSV as arrays
+/// prescribed), in a dynamic analysis `velocity` and `acceleration` (the same shape; None in
+/// statics) and `energy` (kinetic, internal, contact, damping, external, supports, balance: the
+/// columns of the energy CSV), `iterations`, `substeps`, `contact`: the columns of the contact CSV as arrays
 /// (one entry per contact node), and `points`: the integration points' results as arrays (one
 /// row per point, see [`points_dict`]).
 #[pyclass(module = "hertz", name = "Step", frozen)]
@@ -78,6 +98,12 @@ pub struct Step {
     displacement: Py<PyArray2<f64>>,
     #[pyo3(get)]
     reaction: Py<PyArray2<f64>>,
+    #[pyo3(get)]
+    velocity: Option<Py<PyArray2<f64>>>,
+    #[pyo3(get)]
+    acceleration: Option<Py<PyArray2<f64>>>,
+    #[pyo3(get)]
+    energy: Option<Py<PyDict>>,
     #[pyo3(get)]
     contact: Py<PyDict>,
     #[pyo3(get)]
@@ -200,7 +226,28 @@ impl Result {
         let n = model.nodes.len();
         let mut steps = Vec::with_capacity(data.len());
         for s in &mut data {
+            let energy = match &s.motion {
+                Some((_, _, e)) => {
+                    let d = PyDict::new(py);
+                    for (k, x) in [
+                        ("kinetic", e.kinetic),
+                        ("internal", e.internal),
+                        ("contact", e.contact),
+                        ("damping", e.damping),
+                        ("external", e.external),
+                        ("supports", e.supports),
+                        ("balance", e.balance()),
+                    ] {
+                        d.set_item(k, x)?;
+                    }
+                    Some(d.unbind())
+                }
+                None => None,
+            };
             let step = Step {
+                velocity: s.velocity.take().map(|v| array2(py, n, nd, v).unbind()),
+                acceleration: s.acceleration.take().map(|a| array2(py, n, nd, a).unbind()),
+                energy,
                 step: s.step,
                 time: s.time,
                 iterations: s.info.iterations,
@@ -252,6 +299,11 @@ impl Result {
                         states: &s.states,
                         contact: &s.contact,
                         info: &s.info,
+                        motion: s.motion.as_ref().map(|(v, a, e)| Motion {
+                            velocity: v,
+                            acceleration: a,
+                            energy: *e,
+                        }),
                     })
                     .map_err(err)?;
             }

@@ -12,6 +12,7 @@ mod contact3d;
 mod contact_geometry;
 mod contact_suite;
 mod contact_tangent;
+mod dynamics;
 mod elements;
 mod examples;
 mod friction;

@@ -4,10 +4,12 @@
 
 pub mod assembler;
 pub mod dofs;
+pub mod mass;
 pub mod nodal;
 
 pub use assembler::{Assembler, Evaluation, Pattern, PatternValues};
 pub use dofs::{DofMap, ExtraDofs};
+pub use mass::MassMatrix;
 pub use nodal::NodalState;
 
 /// A local contribution of something other than an element (a contact pair): location codes, the

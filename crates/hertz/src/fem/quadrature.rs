@@ -64,6 +64,19 @@ fn triangle(n: usize) -> Option<Vec<([f64; 2], f64)>> {
                 ([0.2, 0.6], w2),
             ])
         }
+        // Radon's rule, degree 5 (mass matrices of quadratic and axisymmetric triangles).
+        7 => {
+            let s15 = 15f64.sqrt();
+            let mut out = vec![([1.0 / 3.0, 1.0 / 3.0], 9.0 / 80.0)];
+            for (a, w) in [
+                ((6.0 - s15) / 21.0, (155.0 - s15) / 2400.0),
+                ((6.0 + s15) / 21.0, (155.0 + s15) / 2400.0),
+            ] {
+                let b = 1.0 - 2.0 * a;
+                out.extend([([a, a], w), ([b, a], w), ([a, b], w)]);
+            }
+            Some(out)
+        }
         _ => None,
     }
 }
@@ -81,6 +94,36 @@ fn tetra(n: usize) -> Option<Vec<([f64; 3], f64)>> {
                 ([b, b, a], w),
                 ([b, b, b], w),
             ])
+        }
+        // Walkington's 14-point rule, degree 5 (mass matrices of quadratic tetrahedra).
+        14 => {
+            let mut out = Vec::with_capacity(14);
+            for (a, w) in [
+                (0.092_735_250_310_891_23, 0.012_248_840_519_393_66),
+                (0.310_885_919_263_300_6, 0.018_781_320_953_002_64),
+            ] {
+                let b = 1.0 - 3.0 * a;
+                out.extend([
+                    ([a, a, a], w),
+                    ([b, a, a], w),
+                    ([a, b, a], w),
+                    ([a, a, b], w),
+                ]);
+            }
+            let (c, d, w) = (
+                0.454_496_295_874_350_4,
+                0.045_503_704_125_649_65,
+                0.007_091_003_462_846_911,
+            );
+            out.extend([
+                ([c, c, d], w),
+                ([c, d, c], w),
+                ([d, c, c], w),
+                ([c, d, d], w),
+                ([d, c, d], w),
+                ([d, d, c], w),
+            ]);
+            Some(out)
         }
         _ => None,
     }
@@ -224,6 +267,44 @@ mod tests {
             .map(|p| p.weight * p.xi[0] * p.xi[1])
             .sum();
         assert!((v - 1.0 / 120.0).abs() < 1e-14);
+    }
+
+    /// The mass rules (Radon's 7 points, Walkington's 14) integrate every monomial of degree ≤ 5
+    /// exactly: ∫_T xⁱyʲ = i!j!/(i+j+2)!, ∫_tet xⁱyʲzᵏ = i!j!k!/(i+j+k+3)!.
+    #[test]
+    fn degree_five_rules_integrate_quintics() {
+        let fact = |n: u32| (1..=n).map(f64::from).product::<f64>();
+        for i in 0..=5u32 {
+            for j in 0..=5 - i {
+                let v: f64 = rule(Shape::Tri3, 7)
+                    .unwrap()
+                    .iter()
+                    .map(|p| p.weight * p.xi[0].powi(i as i32) * p.xi[1].powi(j as i32))
+                    .sum();
+                let exact = fact(i) * fact(j) / fact(i + j + 2);
+                assert!(
+                    (v - exact).abs() < 1e-15,
+                    "triangle x^{i} y^{j}: {v} vs {exact}"
+                );
+                for k in 0..=5 - i - j {
+                    let v: f64 = rule(Shape::Tet4, 14)
+                        .unwrap()
+                        .iter()
+                        .map(|p| {
+                            p.weight
+                                * p.xi[0].powi(i as i32)
+                                * p.xi[1].powi(j as i32)
+                                * p.xi[2].powi(k as i32)
+                        })
+                        .sum();
+                    let exact = fact(i) * fact(j) * fact(k) / fact(i + j + k + 3);
+                    assert!(
+                        (v - exact).abs() < 1e-15,
+                        "tetrahedron x^{i} y^{j} z^{k}: {v} vs {exact}"
+                    );
+                }
+            }
+        }
     }
 
     #[test]

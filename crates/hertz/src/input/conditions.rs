@@ -236,3 +236,83 @@ pub(super) fn read_load(
         span: r.span(),
     })
 }
+
+/// The initial-condition records (`nic` of them): `InitialCondition n conditions k <L> <value>
+/// … set s dofs m id…`, L = u (displacement), v (velocity) or a (acceleration) (spec §1.6).
+pub(super) fn read_initial_conditions(
+    c: &mut Cursor,
+    nic: usize,
+    nset: usize,
+    analysis: &Analysis,
+) -> Result<Vec<InitialCondition>> {
+    let mut out = Vec::with_capacity(nic);
+    for i in 0..nic {
+        let r = c.next_of(Block::InitialCondition, i, nic)?;
+        if r.keyword() != "initialcondition" {
+            return Err(r.error(format!(
+                "expected an InitialCondition record, found `{}`",
+                r.keyword()
+            )));
+        }
+        let number = r.number()?;
+        if number != i + 1 {
+            return Err(r.error(format!(
+                "initial conditions are numbered 1..{nic} in order, found {number} in place {}",
+                i + 1
+            )));
+        }
+        if analysis.dynamics.is_none() {
+            return Err(r.error(
+                "initial conditions need a dynamic analysis (NonLinearDynamic); a static one \
+                 starts from rest",
+            ));
+        }
+        if r.opt_string("f")?.is_some() || r.opt_string("field")?.is_some() {
+            return Err(r.error(
+                "only the `conditions k <u|v|a> value …` form of InitialCondition is supported",
+            ));
+        }
+        let Some(pairs) = r.opt_tagged_values("conditions")? else {
+            return Err(r.error("InitialCondition needs `conditions k <u|v|a> value …`"));
+        };
+        let (mut displacement, mut velocity, mut acceleration) = (None, None, None);
+        for (tag, value) in pairs {
+            let slot = match tag.chars().next() {
+                Some('u') => &mut displacement,
+                Some('v') => &mut velocity,
+                Some('a') => &mut acceleration,
+                _ => {
+                    return Err(r.error(format!(
+                        "initial condition `{tag}`: the kind is u (displacement), v (velocity) or \
+                         a (acceleration) (OOFEM ignores others silently)"
+                    )))
+                }
+            };
+            *slot = Some(value);
+        }
+        let set = r.usize("set")?;
+        check_ref(&r, "set", Some(set), nset)?;
+        let dofs = r
+            .int_array("dofs")?
+            .into_iter()
+            .map(|d| match d {
+                1..=3 => Ok(d as DofId),
+                _ => Err(r.error(format!(
+                    "DOF {d} in `dofs` is not a displacement (1, 2 or 3)"
+                ))),
+            })
+            .collect::<Result<Vec<_>>>()?;
+        r.opt_int("valtype")?;
+        c.finish(&r);
+        out.push(InitialCondition {
+            number,
+            set,
+            dofs,
+            displacement,
+            velocity,
+            acceleration,
+            span: r.span(),
+        });
+    }
+    Ok(out)
+}

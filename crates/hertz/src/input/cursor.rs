@@ -70,6 +70,7 @@ pub(super) enum Block {
     CrossSection,
     Material,
     Condition,
+    InitialCondition,
     TimeFunction,
     Set,
 }
@@ -83,6 +84,7 @@ impl Block {
             "structuralfecontactsurface" => Block::ContactSurface,
             "dummymat" => Block::Material,
             "set" => Block::Set,
+            "initialcondition" => Block::InitialCondition,
             _ if ElementType::from_keyword(kw).is_some()
                 || super::upstream::CONTACT_ELEMENTS.iter().any(|c| c.0 == kw) =>
             {
@@ -105,6 +107,7 @@ impl Block {
             Block::CrossSection => "cross-section",
             Block::Material => "material",
             Block::Condition => "boundary-condition",
+            Block::InitialCondition => "initial-condition",
             Block::TimeFunction => "time-function",
             Block::Set => "set",
         }
@@ -119,6 +122,7 @@ impl Block {
             Block::CrossSection => "ncrosssect",
             Block::Material => "nmat",
             Block::Condition => "nbc",
+            Block::InitialCondition => "nic",
             Block::TimeFunction => "nltf",
             Block::Set => "nset",
         }

@@ -8,7 +8,8 @@ use crate::model::*;
 /// Upper bound on the number of steps (guards allocations against absurd inputs).
 pub(super) const MAX_STEPS: usize = 10_000_000;
 
-pub(super) const SUPPORTED_ANALYSES: &str = "LinearStatic, NonLinearStatic, StaticStructural";
+pub(super) const SUPPORTED_ANALYSES: &str =
+    "LinearStatic, NonLinearStatic, StaticStructural, NonLinearDynamic";
 
 /// The records before the counts: the engineering model (with its modules), the domain and the
 /// output manager.
@@ -154,6 +155,7 @@ pub(super) fn read_analysis(r: &Record) -> Result<(Analysis, usize, usize, usize
         "linearstatic" => AnalysisKind::LinearStatic,
         "nonlinearstatic" => AnalysisKind::NonLinearStatic,
         "staticstructural" => AnalysisKind::StaticStructural,
+        "nonlineardynamic" => AnalysisKind::NonLinearDynamic,
         k => {
             return Err(r.error(format!(
                 "unsupported analysis type `{k}`; supported: {SUPPORTED_ANALYSES}"
@@ -238,6 +240,11 @@ pub(super) fn read_analysis(r: &Record) -> Result<(Analysis, usize, usize, usize
     ] {
         r.flag(k);
     }
+    let dynamics = if kind == AnalysisKind::NonLinearDynamic {
+        Some(read_dynamics(r)?)
+    } else {
+        None
+    };
     let nmodules = r.opt_usize("nmodules")?.unwrap_or(0);
     let ninit = r.opt_usize("ninitmodules")?.unwrap_or(0);
     let nmonitors = r.opt_usize("nmonitors")?.unwrap_or(0);
@@ -253,8 +260,54 @@ pub(super) fn read_analysis(r: &Record) -> Result<(Analysis, usize, usize, usize
         refloadmode,
         initialguess,
         errorcheck: false,
+        dynamics,
     };
     Ok((analysis, nmodules, ninit, nmonitors))
+}
+
+/// `NonLinearDynamic`'s time integration (spec §1.2): `ddtScheme` (0 three-point backward, the
+/// default; 1 backward Euler; 2 Newmark with `gamma`, `beta`), Rayleigh damping `eta`, and
+/// hertz's `lumpedmass`.
+fn read_dynamics(r: &Record) -> Result<Dynamics> {
+    let scheme = match r.opt_int("ddtscheme")?.unwrap_or(0) {
+        0 => TimeScheme::ThreePointBackward,
+        1 => TimeScheme::BackwardEuler,
+        2 => {
+            let gamma = r.opt_float("gamma")?.unwrap_or(0.5);
+            let beta = r.opt_float("beta")?.unwrap_or(0.25);
+            if !(beta > 0.0 && gamma >= 0.5 && 2.0 * beta >= gamma) {
+                return Err(r.error(format!(
+                    "Newmark needs γ ≥ ½ and β ≥ γ/2 > 0 to be unconditionally stable, found γ \
+                     {gamma}, β {beta}"
+                )));
+            }
+            TimeScheme::Newmark { gamma, beta }
+        }
+        v => {
+            return Err(r.error(format!(
+                "`ddtScheme {v}` is not supported by NonLinearDynamic: 0 (three-point \
+                 backward), 1 (backward Euler) or 2 (Newmark)"
+            )))
+        }
+    };
+    let eta = r.opt_float("eta")?.unwrap_or(0.0);
+    if eta < 0.0 {
+        return Err(r.error(format!(
+            "`eta` (mass-proportional damping) must not be negative, found {eta}"
+        )));
+    }
+    if r.opt_float("delta")?.is_some_and(|d| d != 0.0) {
+        return Err(r.error(
+            "stiffness-proportional damping (`delta`) is not supported yet; use `eta` \
+             (mass-proportional)",
+        ));
+    }
+    Ok(Dynamics {
+        scheme,
+        eta,
+        lumped: r.flag("lumpedmass"),
+        keep_contact_mass: r.flag("keepcontactmass"),
+    })
 }
 
 pub(super) fn read_domain(r: &Record) -> Result<DomainKind> {

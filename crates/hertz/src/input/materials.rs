@@ -5,8 +5,8 @@ use super::record::Record;
 use crate::error::Result;
 use crate::model::*;
 
-/// The material records.
-pub(super) fn read_materials(c: &mut Cursor, nmat: usize) -> Result<Vec<Material>> {
+/// The material records; `dynamic`: the analysis needs mass, so a density `d` > 0.
+pub(super) fn read_materials(c: &mut Cursor, nmat: usize, dynamic: bool) -> Result<Vec<Material>> {
     let mut mats = Numbered::new("material", nmat);
     for i in 0..nmat {
         let r = c.next_of(Block::Material, i, nmat)?;
@@ -19,6 +19,12 @@ pub(super) fn read_materials(c: &mut Cursor, nmat: usize) -> Result<Vec<Material
         } else {
             read_material(&r)?
         };
+        if dynamic && !matches!(m.law, MaterialLaw::Dummy) && !(m.density > 0.0) {
+            return Err(r.error(format!(
+                "a dynamic analysis needs mass: the density `d` must be positive, found {}",
+                m.density
+            )));
+        }
         mats.put(&r, m)?;
         c.finish(&r);
     }

@@ -2,7 +2,7 @@
 //! checking counts, record numbers and every cross reference: the blocks in turn (their readers
 //! in this folder), then the checks across them ([`super::resolve`]).
 
-use super::conditions::{read_conditions, Conditions};
+use super::conditions::{read_conditions, read_initial_conditions, Conditions};
 use super::cursor::{Block, Cursor, Numbered};
 use super::elements::{read_cross_sections, read_elements};
 use super::functions::read_time_functions;
@@ -111,7 +111,7 @@ pub(super) fn model_from_lines(
 
     let cross_sections = read_cross_sections(&mut c, &n)?;
 
-    let materials = read_materials(&mut c, n.nmat)?;
+    let materials = read_materials(&mut c, n.nmat, analysis.dynamics.is_some())?;
 
     let Conditions {
         dirichlet,
@@ -120,10 +120,7 @@ pub(super) fn model_from_lines(
         pending_contacts,
     } = read_conditions(&mut c, &n, &analysis, &domain, &node_index)?;
 
-    if nic > 0 {
-        let r = c.next("initial-condition record 1")?;
-        return Err(r.error("initial conditions are not supported (set nic 0)"));
-    }
+    let initial_conditions = read_initial_conditions(&mut c, nic, nset, &analysis)?;
 
     let functions = read_time_functions(&mut c, n.nltf)?;
 
@@ -165,6 +162,7 @@ pub(super) fn model_from_lines(
         sets,
         segments,
         contacts,
+        initial_conditions,
     };
     check_axisymmetry(&model)?;
     check_follower_loads(&model)?;

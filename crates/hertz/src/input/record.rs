@@ -188,6 +188,28 @@ impl Record {
         values.iter().map(|t| parse(t)).collect()
     }
 
+    /// A count `k` after `key` and k (tag, number) pairs: OOFEM's `conditions 2 u 0.1 v 3`.
+    pub fn opt_tagged_values(&self, key: &str) -> Result<Option<Vec<(String, f64)>>> {
+        let Some(i) = self.find(key) else {
+            return Ok(None);
+        };
+        let n_tok = self.value_token(key, 0)?.unwrap_or("");
+        let k = usize::try_from(self.parse_int(key, n_tok)?)
+            .map_err(|_| self.error(format!("`{key}` count must not be negative")))?;
+        if i + 2 + 2 * k > self.tokens.len() {
+            return Err(self.error(format!(
+                "`{key}` announces {k} (kind, value) pairs but only {} tokens follow",
+                self.tokens.len() - i - 2
+            )));
+        }
+        self.mark(i + 2, 2 * k);
+        self.tokens[i + 2..i + 2 + 2 * k]
+            .chunks(2)
+            .map(|pair| Ok((pair[0].clone(), self.parse_float(key, &pair[1])?)))
+            .collect::<Result<Vec<_>>>()
+            .map(Some)
+    }
+
     pub fn opt_int_array(&self, key: &str) -> Result<Option<Vec<i64>>> {
         let Some((start, n)) = self.array_len(key)? else {
             return Ok(None);

@@ -35,6 +35,8 @@ pub struct Analysis {
     /// Tangent predictor from prescribed-value increments.
     pub initialguess: bool,
     pub errorcheck: bool,
+    /// The time integration of a dynamic analysis.
+    pub dynamics: Option<Dynamics>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -42,6 +44,69 @@ pub enum AnalysisKind {
     LinearStatic,
     NonLinearStatic,
     StaticStructural,
+    /// Implicit dynamics, Newton in every time step (spec §1.2).
+    NonLinearDynamic,
+}
+
+/// How a dynamic analysis integrates in time (`NonLinearDynamic`, spec §1.2).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Dynamics {
+    pub scheme: TimeScheme,
+    /// Mass-proportional (Rayleigh) damping: C = eta·M.
+    pub eta: f64,
+    /// hertz's `lumpedmass`: the lumped (HRZ) mass instead of the consistent one.
+    pub lumped: bool,
+    /// hertz's `keepcontactmass`: keep the mass of the contact nodes (OOFEM's way, which
+    /// chatters and makes energy at impact) instead of moving it into the bodies.
+    pub keep_contact_mass: bool,
+}
+
+/// OOFEM's `ddtScheme`: the kinematics of a step from its displacement increment Δu,
+/// a = a0 Δu − a2 v − a3 a, v' = a1 Δu − a4 v − a5 a − a6 Δu_prev (spec §1.2).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum TimeScheme {
+    /// `ddtScheme 0` (OOFEM's default): three-point backward velocity with a Newmark-like
+    /// acceleration; strongly dissipative, its first step backward Euler.
+    ThreePointBackward,
+    /// `ddtScheme 1`: backward Euler.
+    BackwardEuler,
+    /// `ddtScheme 2`: Newmark's family; γ = ½, β = ¼ is the trapezoidal rule (no dissipation).
+    Newmark { gamma: f64, beta: f64 },
+}
+
+impl TimeScheme {
+    /// The constants a0..a6 for step size `dt`; `first`: no previous increment exists (the
+    /// three-point scheme's first step is backward Euler).
+    pub fn constants(self, dt: f64, first: bool) -> [f64; 7] {
+        match self {
+            TimeScheme::Newmark { gamma, beta } => [
+                1.0 / (beta * dt * dt),
+                gamma / (beta * dt),
+                1.0 / (beta * dt),
+                1.0 / (2.0 * beta) - 1.0,
+                gamma / beta - 1.0,
+                0.5 * dt * (gamma / beta - 2.0),
+                0.0,
+            ],
+            TimeScheme::ThreePointBackward if !first => {
+                [2.0 / (dt * dt), 1.5 / dt, 2.0 / dt, 0.0, 0.0, 0.0, 0.5 / dt]
+            }
+            _ => [1.0 / (dt * dt), 1.0 / dt, 1.0 / dt, 0.0, 0.0, 0.0, 0.0],
+        }
+    }
+}
+
+/// An `InitialCondition` record: values at the start of a dynamic analysis on the DOFs `dofs`
+/// of the nodes of `set` (spec §1.6).
+#[derive(Debug, Clone)]
+pub struct InitialCondition {
+    pub number: usize,
+    pub set: usize,
+    pub dofs: Vec<DofId>,
+    pub displacement: Option<f64>,
+    pub velocity: Option<f64>,
+    pub acceleration: Option<f64>,
+    pub span: Span,
 }
 
 /// Domain type (spec §1.5).
@@ -707,6 +772,7 @@ pub struct Model {
     pub sets: Vec<Set>,
     pub segments: Vec<ContactSegment>,
     pub contacts: Vec<ContactCondition>,
+    pub initial_conditions: Vec<InitialCondition>,
 }
 
 impl Model {
@@ -716,6 +782,7 @@ impl Model {
         match a.kind {
             AnalysisKind::LinearStatic => (1..=a.nsteps).map(|n| n as f64).collect(),
             AnalysisKind::NonLinearStatic => (0..a.nsteps).map(|n| n as f64 * a.deltat).collect(),
+            AnalysisKind::NonLinearDynamic => (1..=a.nsteps).map(|n| n as f64 * a.deltat).collect(),
             AnalysisKind::StaticStructural => match &a.prescribed_times {
                 Some(t) => t.clone(),
                 None => (1..=a.nsteps).map(|n| n as f64 * a.deltat).collect(),

@@ -255,13 +255,22 @@ fn compute(model: &Model, rule: &Rule, res: &StepResult) -> Result<f64, String> 
         RuleKind::LoadLevel => Ok(1.0),
         RuleKind::Node { node, dof, unknown } => {
             let n = node_index(model, *node)?;
-            if *unknown != 'd' {
-                return Err(format!(
-                    "unknown `{unknown}`: static analyses only have displacements (d)"
-                ));
-            }
-            res.displacement(n, *dof)
-                .ok_or_else(|| format!("node {node} has no DOF {dof}"))
+            let code = res
+                .dofs
+                .code(n, *dof)
+                .ok_or_else(|| format!("node {node} has no DOF {dof}"))?;
+            let values = match (unknown, &res.motion) {
+                ('d', _) => res.u,
+                ('v', Some(m)) => m.velocity,
+                ('a', Some(m)) => m.acceleration,
+                ('v' | 'a', None) => {
+                    return Err(format!(
+                        "unknown `{unknown}`: a static analysis has displacements (d) only"
+                    ))
+                }
+                _ => return Err(format!("unknown `{unknown}`: d, v or a")),
+            };
+            Ok(res.dofs.value(values, code))
         }
         RuleKind::Reaction { node, dof } => {
             let n = node_index(model, *node)?;

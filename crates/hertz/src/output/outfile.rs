@@ -72,6 +72,13 @@ pub fn step_block(model: &Model, res: &StepResult) -> Vec<String> {
     let mut parts = Vec::new();
     let mut s = String::new();
     match model.analysis.kind {
+        AnalysisKind::NonLinearDynamic => {
+            let _ = write!(
+                s,
+                "\n\nOutput for time {}, solution step number {}\nEquilibrium reached in {} iterations\n\n",
+                sci(res.time, 3), res.step, res.info.iterations
+            );
+        }
         AnalysisKind::NonLinearStatic => {
             let _ = write!(
                 s,
@@ -172,6 +179,13 @@ fn node_block(model: &Model, res: &StepResult, n: usize, s: &mut String) {
         push_int(s, usize::from(d), 0);
         s.push_str("   d ");
         push_sci_sign(s, res.dofs.value(res.u, code), 8);
+        if let Some(m) = &res.motion {
+            // Dynamics (spec §1.1): `dof k   d u   v v   a a`.
+            s.push_str("   v ");
+            push_sci_sign(s, res.dofs.value(m.velocity, code), 8);
+            s.push_str("   a ");
+            push_sci_sign(s, res.dofs.value(m.acceleration, code), 8);
+        }
         s.push('\n');
     }
 }
@@ -349,6 +363,30 @@ pub fn history_csv_row(res: &StepResult) -> String {
     }
     s.push('\n');
     s
+}
+
+/// Header of the energy CSV of a dynamic analysis (see [`crate::solve::Energy`]).
+pub const ENERGY_CSV_HEADER: &str =
+    "step,time,kinetic,internal,contact,damping,external,supports,balance";
+
+/// The energy CSV's row of a dynamic step (empty for a static one).
+pub fn energy_csv_row(res: &StepResult) -> String {
+    let Some(m) = &res.motion else {
+        return String::new();
+    };
+    let e = &m.energy;
+    format!(
+        "{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}\n",
+        res.step,
+        res.time,
+        e.kinetic,
+        e.internal,
+        e.contact,
+        e.damping,
+        e.external,
+        e.supports,
+        e.balance()
+    )
 }
 
 /// Header of the Newton residual CSV.

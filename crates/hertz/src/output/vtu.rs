@@ -1,6 +1,6 @@
 //! ParaView output: one `.vtu` (unstructured grid, ASCII or raw appended binary) per step and
 //! a `.pvd` collection.
-//! Point data: displacement, reaction; cell data: strain and stress (with plastic materials the
+//! Point data: displacement (and in dynamics velocity, acceleration), reaction; cell data: strain and stress (with plastic materials the
 //! plastic strain, κ and damage) averaged over the element's
 //! integration points (full Voigt order xx, yy, zz, yz, xz, xy).
 
@@ -226,6 +226,19 @@ pub fn write_step(
         .map(|(n, d)| res.displacement(n, d).unwrap_or(0.0))
         .collect();
     w.array("displacement", 3, &disp);
+    if let Some(m) = &res.motion {
+        for (name, values) in [("velocity", m.velocity), ("acceleration", m.acceleration)] {
+            let field: Vec<f64> = (0..nn)
+                .flat_map(|n| (1..=3u8).map(move |d| (n, d)))
+                .map(|(n, d)| {
+                    res.dofs
+                        .code(n, d)
+                        .map_or(0.0, |c| res.dofs.value(values, c))
+                })
+                .collect();
+            w.array(name, 3, &field);
+        }
+    }
     let mut reac = vec![0.0; 3 * nn];
     for (&(n, d, _), &r) in res.dofs.prescribed.iter().zip(res.reactions) {
         reac[3 * n + d as usize - 1] = r;

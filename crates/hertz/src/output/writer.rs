@@ -1,5 +1,5 @@
 //! [`RunWriter`]: the files of a run (`.out`, VTU per step and PVD, contact, step and Newton
-//! CSV histories), fed step by step and written whole at the end. `hertz run` and the Python
+//! CSV histories, and in dynamics the energies), fed step by step and written whole at the end. `hertz run` and the Python
 //! module's `Result.write` share it, so both write the same files.
 
 use super::names::OutputNames;
@@ -22,6 +22,8 @@ pub struct RunWriter<'m> {
     contact_csv: String,
     history_csv: String,
     newton_csv: String,
+    /// Dynamics: the energies per step.
+    energy_csv: String,
     written: Vec<PathBuf>,
     clock: Duration,
 }
@@ -49,6 +51,7 @@ impl<'m> RunWriter<'m> {
             contact_csv: format!("{}\n", outfile::CONTACT_CSV_HEADER),
             history_csv: String::new(),
             newton_csv: format!("{}\n", outfile::NEWTON_CSV_HEADER),
+            energy_csv: format!("{}\n", outfile::ENERGY_CSV_HEADER),
             written: Vec::new(),
             clock: Duration::ZERO,
         })
@@ -76,6 +79,7 @@ impl<'m> RunWriter<'m> {
         }
         self.history_csv.push_str(&outfile::history_csv_row(res));
         self.newton_csv.push_str(&outfile::newton_csv_rows(res));
+        self.energy_csv.push_str(&outfile::energy_csv_row(res));
         let name = name?;
         self.written.push(self.dir.join(&name));
         self.vtus.push((res.time, name));
@@ -103,6 +107,11 @@ impl<'m> RunWriter<'m> {
             let csv_path = self.names.path("contact.csv");
             write_atomic(&csv_path, self.contact_csv.as_bytes())?;
             self.written.push(csv_path);
+        }
+        if self.model.analysis.dynamics.is_some() {
+            let p = self.names.path("energy.csv");
+            write_atomic(&p, self.energy_csv.as_bytes())?;
+            self.written.push(p);
         }
         for (ext, text) in [
             ("steps.csv", &self.history_csv),

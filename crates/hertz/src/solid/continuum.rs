@@ -220,6 +220,37 @@ pub fn integrate_shape(
     Ok(())
 }
 
+/// ∫ N_a N_b dV over the reference element (row-major, nodes × nodes), as
+/// [`integrate_shape`] weights it: the scalar block of the consistent mass per unit density.
+pub fn integrate_shape_products(
+    shape: Shape,
+    rule: &[QuadPoint],
+    thick: Option<f64>,
+    x_ref: &[[f64; 3]],
+) -> Result<Vec<f64>, KernelError> {
+    let nn = shape.n_nodes();
+    let mut out = vec![0.0; nn * nn];
+    let mut n = [0.0; MAX_NODES];
+    let mut dn = [[0.0; 3]; MAX_NODES];
+    let mut dndx = [[0.0; 3]; MAX_NODES];
+    for (g, qp) in rule.iter().enumerate() {
+        shape.eval(qp.xi, &mut n, &mut dn);
+        let det =
+            map_derivatives(shape.dim(), nn, x_ref, &dn, &mut dndx).ok_or_else(|| KernelError {
+                gp: g + 1,
+                msg: "degenerate element geometry (det J = 0)".into(),
+            })?;
+        let weight = thick.unwrap_or_else(|| (0..nn).map(|a| n[a] * x_ref[a][0]).sum());
+        let dv = det.abs() * qp.weight * weight;
+        for a in 0..nn {
+            for b in 0..nn {
+                out[a * nn + b] += n[a] * n[b] * dv;
+            }
+        }
+    }
+    Ok(out)
+}
+
 /// Kinematics at one integration point.
 struct Point<'a> {
     dndx: &'a [[f64; 3]; MAX_NODES],

@@ -5,6 +5,7 @@ pub mod continuum;
 pub mod follower;
 pub mod kernel;
 pub mod loads;
+pub mod mass;
 pub mod truss;
 
 pub use continuum::ContinuumKernel;

@@ -5,6 +5,7 @@ pub mod branches;
 pub mod condensed;
 mod contact_step;
 pub mod convergence;
+pub mod dynamics;
 mod equations;
 pub mod krylov;
 pub mod linear;
@@ -21,7 +22,7 @@ mod watch;
 
 pub use params::{SolveParams, SolverChoice, SolverFactory};
 pub use report::{IterationReport, Observer, Phase, PhaseTimes, Silent, StepInfo, StepReport};
-pub use stepping::{run_analysis, run_analysis_observed, StepResult};
+pub use stepping::{run_analysis, run_analysis_observed, Energy, Motion, StepResult};
 pub use terms::{Statics, StepTerms};
 
 use crate::assembly::DofMap;

@@ -250,17 +250,20 @@ impl<'a> NewtonContext<'a> {
     }
 
     /// The load step converged at `u`: its contact states become the next step's history and
-    /// search hint. Returns the evaluation for output and the contact states.
-    pub fn commit_step(&mut self, u: &[f64]) -> Result<(Evaluation, Vec<SlotState>)> {
+    /// search hint. Returns the evaluation for output (its forces the elements' and the
+    /// contact's), the contact states, and the contact's forces alone (primary numbering).
+    pub fn commit_step(&mut self, u: &[f64]) -> Result<(Evaluation, Vec<SlotState>, Vec<f64>)> {
         let (points, states) =
             self.eq
                 .contact_at(u, self.history.search(), self.history.friction())?;
         let contribs: Vec<Contribution> = points.iter().map(|p| p.contribution()).collect();
         let t = std::time::Instant::now();
         let ev = self.eq.asm.evaluate(u, false, true, None, &contribs)?;
+        let mut contact = vec![0.0; u.len()];
+        self.eq.asm.add_residuals(&mut contact, &contribs);
         self.eq.times.assembly += super::equations::since(t);
         self.history.converged = Some(states.clone());
-        Ok((ev, states))
+        Ok((ev, states, contact))
     }
 
     /// Why a failed step may be the material's (see [`super::softening`]), at the state `u`.
@@ -666,6 +669,11 @@ impl<'a> NewtonContext<'a> {
             terms,
         )?;
         Ok(step.du)
+    }
+
+    /// The contact (slave) nodes, one per contact point.
+    pub fn contact_nodes(&self) -> &[usize] {
+        &self.watch.slot_nodes
     }
 
     /// Why the last attempt did not converge, in words, if something specific shows.

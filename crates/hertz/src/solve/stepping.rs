@@ -33,6 +33,48 @@ pub struct StepResult<'a> {
     /// Contact state of every contact node.
     pub contact: &'a [SlotState],
     pub info: &'a StepInfo,
+    /// A dynamic analysis's velocities, accelerations and energies.
+    pub motion: Option<Motion<'a>>,
+}
+
+/// The motion of a dynamic step: velocity and acceleration of every primary DOF (as `u`) and the
+/// energies so far.
+#[derive(Clone, Copy)]
+pub struct Motion<'a> {
+    pub velocity: &'a [f64],
+    pub acceleration: &'a [f64],
+    pub energy: Energy,
+}
+
+/// Energies of a dynamic analysis at a step: the kinetic energy and the work done since the
+/// start (each integrated by the trapezoidal rule over every step's increment).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Energy {
+    pub kinetic: f64,
+    /// Work of the elements' internal forces (the strain energy of elastic bodies).
+    pub internal: f64,
+    /// Work of the contact forces on the bodies (the penalty's stored energy, friction's
+    /// dissipation).
+    pub contact: f64,
+    /// Work of the damping forces (energy dissipated by Rayleigh damping).
+    pub damping: f64,
+    /// Work of the external loads.
+    pub external: f64,
+    /// Work of the support forces on prescribed motion.
+    pub supports: f64,
+    /// The kinetic energy at the start.
+    pub initial: f64,
+}
+
+impl Energy {
+    /// What the scheme created (> 0) or lost (< 0): kinetic + internal + contact + damping −
+    /// external − supports − initial; zero for the trapezoidal rule on linear elastic bodies.
+    pub fn balance(&self) -> f64 {
+        self.kinetic + self.internal + self.contact + self.damping
+            - self.external
+            - self.supports
+            - self.initial
+    }
 }
 
 impl StepResult<'_> {
@@ -60,6 +102,9 @@ pub fn run_analysis_observed(
     observer: &dyn Observer,
     mut on_step: impl FnMut(&StepResult) -> Result<()>,
 ) -> Result<()> {
+    if model.analysis.dynamics.is_some() {
+        return super::dynamics::run(model, params, observer, on_step);
+    }
     let contact = ContactSystem::new(model)?;
     let dofs = DofMap::new(model, &contact.extra_dofs())?;
     observer.phase(&Phase::SetUp {
@@ -96,7 +141,7 @@ pub fn run_analysis_observed(
             follower: &follower,
         };
         step_with_cutbacks(&mut ctx, &mut u, &goal, params, &mut info)?;
-        let (mut ev, contact_states) = ctx.commit_step(&u)?;
+        let (mut ev, contact_states, _) = ctx.commit_step(&u)?;
         // The reactions balance the follower loads too.
         goal.terms(1.0, model, &dofs).add_forces(&u, &mut ev.f_int);
         applied = target;
@@ -127,13 +172,14 @@ pub fn run_analysis_observed(
             states: &states,
             contact: &contact_states,
             info: &info,
+            motion: None,
         })?;
     }
     Ok(())
 }
 
 /// The loads and prescribed values of a model over time.
-struct LoadHistory<'a> {
+pub(super) struct LoadHistory<'a> {
     model: &'a Model,
     dofs: &'a DofMap,
     /// Per time function, the load vector it scales.
@@ -141,7 +187,7 @@ struct LoadHistory<'a> {
 }
 
 impl<'a> LoadHistory<'a> {
-    fn new(model: &'a Model, dofs: &'a DofMap) -> Result<LoadHistory<'a>> {
+    pub(super) fn new(model: &'a Model, dofs: &'a DofMap) -> Result<LoadHistory<'a>> {
         Ok(LoadHistory {
             model,
             dofs,
@@ -165,7 +211,7 @@ impl<'a> LoadHistory<'a> {
 
     /// The external forces at time `t`, `applied` those of the last step (NonLinearStatic
     /// `refloadmode 1` adds the increment to them).
-    fn external_at(&self, t: f64, applied: &[f64]) -> Vec<f64> {
+    pub(super) fn external_at(&self, t: f64, applied: &[f64]) -> Vec<f64> {
         let (model, a) = (self.model, &self.model.analysis);
         match a.kind {
             AnalysisKind::NonLinearStatic => {
@@ -185,7 +231,7 @@ impl<'a> LoadHistory<'a> {
 
     /// The factor of every load at time `t` (`applied` those of the last step): what its time
     /// function scales it by, as [`Self::external_at`] sums them.
-    fn factors_at(&self, t: f64, applied: &[f64]) -> Vec<f64> {
+    pub(super) fn factors_at(&self, t: f64, applied: &[f64]) -> Vec<f64> {
         let (model, a) = (self.model, &self.model.analysis);
         model
             .loads
@@ -205,7 +251,7 @@ impl<'a> LoadHistory<'a> {
     }
 
     /// The prescribed values at time `t`.
-    fn prescribed_at(&self, t: f64) -> Vec<f64> {
+    pub(super) fn prescribed_at(&self, t: f64) -> Vec<f64> {
         self.dofs
             .prescribed
             .iter()

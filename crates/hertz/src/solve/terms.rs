@@ -33,6 +33,23 @@ impl StepTerms for Statics {
     fn add_tangent(&self, _u: &[f64], _pattern: &Pattern, _k: &mut [f64]) {}
 }
 
+/// Two drivers' terms together (a time integrator's inertia and the follower loads).
+pub struct Both<'a>(pub &'a dyn StepTerms, pub &'a dyn StepTerms);
+
+impl StepTerms for Both<'_> {
+    fn add_forces(&self, u: &[f64], f_int: &mut [f64]) {
+        self.0.add_forces(u, f_int);
+        self.1.add_forces(u, f_int);
+    }
+    fn add_tangent(&self, u: &[f64], pattern: &Pattern, k: &mut [f64]) {
+        self.0.add_tangent(u, pattern, k);
+        self.1.add_tangent(u, pattern, k);
+    }
+    fn constant_tangent(&self) -> bool {
+        self.0.constant_tangent() && self.1.constant_tangent()
+    }
+}
+
 /// The follower loads at given load factors: forces that turn and stretch with the boundary.
 pub struct FollowerTerms<'a> {
     pub loads: &'a FollowerLoads,

@@ -1,0 +1,477 @@
+//! Implicit dynamics (`NonLinearDynamic`, spec §1.2): in every time step Newton solves
+//! M·a(u) + η·M·v(u) + F_int(u) + F_contact(u) = F_ext(t), with a and v of the step's
+//! displacement increment by OOFEM's `ddtScheme` ([`TimeScheme::constants`]); the inertia is a
+//! [`StepTerms`] of the same Newton iteration statics uses.
+//!
+//! Where hertz differs from OOFEM, on purpose: the mass couples prescribed and free DOFs (OOFEM
+//! drops M_fp·a_p, QUIRK: base excitation is then wrong with consistent mass); the starting
+//! acceleration is in equilibrium, M·a₀ = F_ext(0) − F_int(u₀) − η·M·v₀, where no initial
+//! condition gives one (OOFEM takes 0, QUIRK); the reactions are the support forces, inertia
+//! and damping included (OOFEM's omit them, QUIRK); a step that does not converge is cut in
+//! time (the scheme's constants follow the substep).
+
+use super::newton::NewtonContext;
+use super::params::SolveParams;
+use super::report::{Observer, Phase, StepInfo, StepReport};
+use super::stepping::{Energy, LoadHistory, Motion, StepResult};
+use super::terms::{Both, FollowerTerms, StepTerms};
+use crate::assembly::{DofMap, MassMatrix, Pattern};
+use crate::contact::{ContactSystem, SlotState};
+use crate::error::{Error, Result};
+use crate::model::{Dynamics, Model};
+use crate::solid::follower::FollowerLoads;
+use crate::solid::GpState;
+use std::time::Instant;
+
+/// The inertia and damping of a step: M·(c₀·u + base) with c₀ = a0 + η·a1 and base the
+/// history's part (a(u) + η·v(u) = c₀·u + base), tangent c₀·M.
+struct Inertia<'a> {
+    mass: &'a MassMatrix,
+    c0: f64,
+    base: Vec<f64>,
+    n_free: usize,
+}
+
+impl StepTerms for Inertia<'_> {
+    fn add_forces(&self, u: &[f64], f_int: &mut [f64]) {
+        let x: Vec<f64> = u
+            .iter()
+            .zip(&self.base)
+            .map(|(u, b)| self.c0 * u + b)
+            .collect();
+        self.mass.apply_add(1.0, &x, f_int);
+    }
+
+    fn add_tangent(&self, _u: &[f64], pattern: &Pattern, k: &mut [f64]) {
+        self.mass.add_to_tangent(self.c0, self.n_free, pattern, k);
+    }
+
+    /// Constant within a step; the driver asks for a new factorization when c₀ changes.
+    fn constant_tangent(&self) -> bool {
+        true
+    }
+}
+
+/// The state of the motion at the end of a (sub)step.
+#[derive(Clone)]
+struct State {
+    u: Vec<f64>,
+    v: Vec<f64>,
+    a: Vec<f64>,
+    /// The last increment (the three-point scheme's history); None at the start and after a
+    /// change of step size.
+    du: Option<Vec<f64>>,
+    /// The forces at this state, for the energies' trapezoidal rule: the elements', the
+    /// contact's, the damping's, the external loads' (follower ones included) and the supports'.
+    forces: Forces,
+    /// The support forces on the prescribed DOFs (inertia and damping included).
+    reactions: Vec<f64>,
+    energy: Energy,
+}
+
+/// A converged (sub)step's contact states and material point states.
+type Converged = (Vec<SlotState>, Vec<Vec<GpState>>);
+
+#[derive(Clone, Default)]
+struct Forces {
+    internal: Vec<f64>,
+    contact: Vec<f64>,
+    damping: Vec<f64>,
+    external: Vec<f64>,
+}
+
+/// What stays fixed over the run.
+struct Run<'a> {
+    model: &'a Model,
+    dofs: &'a DofMap,
+    dynamics: Dynamics,
+    mass: MassMatrix,
+    history: LoadHistory<'a>,
+    follower: FollowerLoads,
+    /// c₀ of the factorization the solver holds.
+    last_c0: Option<f64>,
+}
+
+/// Run a `NonLinearDynamic` analysis (see the module's doc), calling `on_step` after each step.
+pub fn run(
+    model: &Model,
+    params: &SolveParams,
+    observer: &dyn Observer,
+    mut on_step: impl FnMut(&StepResult) -> Result<()>,
+) -> Result<()> {
+    let dynamics = model.analysis.dynamics.expect("a dynamic analysis");
+    let contact = ContactSystem::new(model)?;
+    let dofs = DofMap::new(model, &contact.extra_dofs())?;
+    observer.phase(&Phase::SetUp {
+        unknowns: dofs.n_free,
+        steps: model.step_times().len(),
+    });
+    let (mut ctx, mut initial_warnings) =
+        NewtonContext::new(model, &dofs, contact, params, observer)?;
+    let mut massless = vec![false; model.nodes.len()];
+    if !dynamics.keep_contact_mass {
+        for &n in ctx.contact_nodes() {
+            massless[n] = true;
+        }
+    }
+    let mut run = Run {
+        model,
+        dofs: &dofs,
+        dynamics,
+        mass: MassMatrix::new(model, &dofs, dynamics.lumped, &massless)?,
+        history: LoadHistory::new(model, &dofs)?,
+        follower: FollowerLoads::new(model, &dofs)?,
+        last_c0: None,
+    };
+    let mut state = run.initial_state(&mut ctx)?;
+    let times = model.step_times();
+    let dt = model.analysis.deltat;
+    for (k, &t) in times.iter().enumerate() {
+        let clock = Instant::now();
+        let step = k + 1;
+        ctx.begin_step(step);
+        let mut info = StepInfo {
+            warnings: std::mem::take(&mut initial_warnings),
+            ..Default::default()
+        };
+        let (contact_states, states) =
+            run.step_with_cutbacks(&mut ctx, &mut state, (t - dt, t), params, &mut info)?;
+        info.wall_seconds = clock.elapsed().as_secs_f64();
+        ctx.finish_step_info(&mut info);
+        observer.step(&StepReport {
+            step,
+            n_steps: times.len(),
+            time: t,
+            iterations: info.iterations,
+            residual: info.residual_history.last().copied().unwrap_or(0.0),
+            substeps: info.substeps,
+            wall_seconds: info.wall_seconds,
+            times: info.times,
+            krylov_iterations: info.solver.krylov_iterations,
+        });
+        on_step(&StepResult {
+            step,
+            time: t,
+            dofs: &dofs,
+            u: &state.u,
+            reactions: &state.reactions,
+            states: &states,
+            contact: &contact_states,
+            info: &info,
+            motion: Some(Motion {
+                velocity: &state.v,
+                acceleration: &state.a,
+                energy: state.energy,
+            }),
+        })?;
+    }
+    Ok(())
+}
+
+impl Run<'_> {
+    /// The support forces on the prescribed DOFs at a state with accelerations `acc` and
+    /// forces `f`: F_int + F_c + C·v + M·a − F_ext.
+    fn support_forces(&self, f: &Forces, acc: &[f64]) -> Vec<f64> {
+        let (np, nf) = (self.dofs.n_primary(), self.dofs.n_free);
+        let mut m = vec![0.0; np];
+        self.mass.apply_add(1.0, acc, &mut m);
+        (nf..np)
+            .map(|p| f.internal[p] + f.contact[p] + f.damping[p] + m[p] - f.external[p])
+            .collect()
+    }
+
+    /// The start: displacements and velocities from the initial conditions (prescribed DOFs
+    /// from their conditions at t = 0), accelerations from them or, where none is given, from
+    /// equilibrium.
+    fn initial_state(&self, ctx: &mut NewtonContext) -> Result<State> {
+        let (model, dofs) = (self.model, self.dofs);
+        let (np, nf) = (dofs.n_primary(), dofs.n_free);
+        let mut u = vec![0.0; np];
+        let mut v = vec![0.0; np];
+        let mut a = vec![0.0; np];
+        let mut given_a = false;
+        for ic in &model.initial_conditions {
+            for &n in &model.sets[ic.set - 1].nodes {
+                for &d in &ic.dofs {
+                    let Some(code) = dofs.code(n, d).filter(|&c| c < nf) else {
+                        continue;
+                    };
+                    for (value, target) in [
+                        (ic.displacement, &mut u),
+                        (ic.velocity, &mut v),
+                        (ic.acceleration, &mut a),
+                    ] {
+                        if let Some(x) = value {
+                            target[code] = x;
+                        }
+                    }
+                    given_a |= ic.acceleration.is_some();
+                }
+            }
+        }
+        u[nf..].copy_from_slice(&self.history.prescribed_at(0.0));
+        let (ev, _, contact) = ctx.commit_step(&u)?;
+        let external = self.external_forces(0.0, &u);
+        let mut damping = vec![0.0; np];
+        self.mass.apply_add(self.dynamics.eta, &v, &mut damping);
+        let internal: Vec<f64> = ev.f_int.iter().zip(&contact).map(|(f, c)| f - c).collect();
+        if !given_a {
+            // M_ff a_f = F_ext − F_int − F_c − C v over the displacement equations.
+            let n_disp = nf - dofs.n_lambda;
+            let rhs: Vec<f64> = (0..n_disp)
+                .map(|i| external[i] - ev.f_int[i] - damping[i])
+                .collect();
+            let af = self.solve_mass(&rhs);
+            a[..n_disp].copy_from_slice(&af);
+        }
+        let kinetic = self.mass.half_norm(&v);
+        let forces = Forces {
+            internal,
+            contact,
+            damping,
+            external,
+        };
+        Ok(State {
+            reactions: self.support_forces(&forces, &a),
+            u,
+            v,
+            a,
+            du: None,
+            forces,
+            energy: Energy {
+                kinetic,
+                initial: kinetic,
+                ..Default::default()
+            },
+        })
+    }
+
+    /// x with M_ff·x = b over the first b.len() equations (the displacement ones), 0 on the
+    /// DOFs without mass (contact nodes whose mass moved into the body: they follow by
+    /// equilibrium): conjugate gradients preconditioned by the diagonal (M is positive definite
+    /// and well conditioned on the DOFs with mass).
+    fn solve_mass(&self, b: &[f64]) -> Vec<f64> {
+        let n = b.len();
+        let np = self.dofs.n_primary();
+        let diag = self.mass.diagonal(n);
+        let has = |i: usize| diag[i] > 0.0;
+        let apply = |x: &[f64]| {
+            let mut full = vec![0.0; np];
+            full[..n].copy_from_slice(x);
+            let mut y = vec![0.0; np];
+            self.mass.apply_add(1.0, &full, &mut y);
+            y.truncate(n);
+            (0..n)
+                .map(|i| if has(i) { y[i] } else { 0.0 })
+                .collect::<Vec<f64>>()
+        };
+        let precondition = |r: &[f64]| -> Vec<f64> {
+            (0..n)
+                .map(|i| if has(i) { r[i] / diag[i] } else { 0.0 })
+                .collect()
+        };
+        let dot = |x: &[f64], y: &[f64]| x.iter().zip(y).map(|(a, b)| a * b).sum::<f64>();
+        let mut x = vec![0.0; n];
+        let mut r: Vec<f64> = (0..n).map(|i| if has(i) { b[i] } else { 0.0 }).collect();
+        let norm_b = dot(&r, &r).sqrt();
+        let mut z = precondition(&r);
+        let mut p = z.clone();
+        let mut rz = dot(&r, &z);
+        for _ in 0..n.max(1) {
+            if dot(&r, &r).sqrt() <= 1e-14 * norm_b || norm_b == 0.0 {
+                break;
+            }
+            let mp = apply(&p);
+            let alpha = rz / dot(&p, &mp);
+            for i in 0..n {
+                x[i] += alpha * p[i];
+                r[i] -= alpha * mp[i];
+            }
+            z = precondition(&r);
+            let rz_new = dot(&r, &z);
+            let beta = rz_new / rz;
+            rz = rz_new;
+            for i in 0..n {
+                p[i] = z[i] + beta * p[i];
+            }
+        }
+        x
+    }
+
+    /// The external forces at time `t` and state `u`: the loads and the follower loads.
+    fn external_forces(&self, t: f64, u: &[f64]) -> Vec<f64> {
+        let np = self.dofs.n_primary();
+        let mut f = self.history.external_at(t, &vec![0.0; np]);
+        let terms = self.follower_terms(t);
+        // The follower terms add −F to the internal side.
+        let mut neg = vec![0.0; np];
+        terms.add_forces(u, &mut neg);
+        for (f, n) in f.iter_mut().zip(&neg) {
+            *f -= n;
+        }
+        f
+    }
+
+    fn follower_terms(&self, t: f64) -> FollowerTerms<'_> {
+        FollowerTerms {
+            loads: &self.follower,
+            model: self.model,
+            dofs: self.dofs,
+            scale: self
+                .history
+                .factors_at(t, &vec![0.0; self.model.loads.len()]),
+        }
+    }
+
+    /// Advance `state` from time `span.0` to `span.1`, in 2, 4, … substeps when Newton does not
+    /// converge; returns the contact and material states at the end.
+    fn step_with_cutbacks(
+        &mut self,
+        ctx: &mut NewtonContext,
+        state: &mut State,
+        span: (f64, f64),
+        params: &SolveParams,
+        info: &mut StepInfo,
+    ) -> Result<Converged> {
+        let start = state.clone();
+        let checkpoint = ctx.checkpoint();
+        let mut why = String::new();
+        for level in 0..=params.max_cutbacks {
+            let nsub = 1usize << level;
+            *state = start.clone();
+            ctx.rollback(&checkpoint);
+            if level > 0 {
+                // A new step size: the three-point scheme restarts from backward Euler.
+                state.du = None;
+            }
+            let h = (span.1 - span.0) / nsub as f64;
+            let mut contact = None;
+            for s in 1..=nsub {
+                let t = span.0 + s as f64 * h;
+                match self.substep(ctx, state, (t, h), info) {
+                    Ok(Some(states)) => contact = Some(states),
+                    Ok(None) => {
+                        why = format!(
+                            "no convergence in {} iterations{}",
+                            self.model.analysis.maxiter,
+                            ctx.diagnosis()
+                                .map(|d| format!(" ({d})"))
+                                .unwrap_or_default()
+                        );
+                        contact = None;
+                        break;
+                    }
+                    Err(Error::Solve(msg)) => {
+                        why = msg;
+                        contact = None;
+                        break;
+                    }
+                    Err(e) => return Err(e),
+                }
+            }
+            if let Some(states) = contact {
+                info.substeps = nsub;
+                return Ok(states);
+            }
+            ctx.attempt_failed();
+            self.last_c0 = None;
+            if level < params.max_cutbacks {
+                ctx.observer().retry(&format!(
+                    "t = {}: {why}; retrying in {} time substeps",
+                    span.1,
+                    2 * nsub
+                ));
+            }
+        }
+        Err(Error::Solve(format!(
+            "the time step to t = {} did not converge even after {} halvings: {why}",
+            span.1, params.max_cutbacks
+        )))
+    }
+
+    /// One Newton solve from `state` to time `t` over the step `h`; None if it did not converge.
+    fn substep(
+        &mut self,
+        ctx: &mut NewtonContext,
+        state: &mut State,
+        (t, h): (f64, f64),
+        info: &mut StepInfo,
+    ) -> Result<Option<Converged>> {
+        let (np, nf) = (self.dofs.n_primary(), self.dofs.n_free);
+        let eta = self.dynamics.eta;
+        let k = self.dynamics.scheme.constants(h, state.du.is_none());
+        let c0 = k[0] + eta * k[1];
+        let zero = vec![0.0; np];
+        let du_prev = state.du.as_deref().unwrap_or(&zero);
+        // a(u) + η v(u) = c0 (u − u_n) + h_n.
+        let base: Vec<f64> = (0..np)
+            .map(|i| {
+                -c0 * state.u[i]
+                    - (k[2] + eta * k[4]) * state.v[i]
+                    - (k[3] + eta * k[5]) * state.a[i]
+                    - eta * k[6] * du_prev[i]
+            })
+            .collect();
+        if self.last_c0 != Some(c0) {
+            // The tangent's mass part changed: factorize afresh.
+            ctx.attempt_failed();
+            self.last_c0 = Some(c0);
+        }
+        let inertia = Inertia {
+            mass: &self.mass,
+            c0,
+            base,
+            n_free: nf,
+        };
+        let follower = self.follower_terms(t);
+        let terms = Both(&inertia, &follower);
+        let f_ext = self.history.external_at(t, &zero);
+        let up = self.history.prescribed_at(t);
+        let mut u = state.u.clone();
+        if !ctx.newton(&mut u, (&f_ext, &up), &self.model.analysis, info, &terms)? {
+            return Ok(None);
+        }
+        ctx.commit_substep(&u)?;
+        let du: Vec<f64> = u.iter().zip(&state.u).map(|(a, b)| a - b).collect();
+        let a: Vec<f64> = (0..np)
+            .map(|i| k[0] * du[i] - k[2] * state.v[i] - k[3] * state.a[i])
+            .collect();
+        let v: Vec<f64> = (0..np)
+            .map(|i| k[1] * du[i] - k[4] * state.v[i] - k[5] * state.a[i] - k[6] * du_prev[i])
+            .collect();
+        let (ev, states, contact) = ctx.commit_step(&u)?;
+        let mut damping = vec![0.0; np];
+        self.mass.apply_add(eta, &v, &mut damping);
+        let forces = Forces {
+            internal: ev.f_int.iter().zip(&contact).map(|(f, c)| f - c).collect(),
+            contact,
+            damping,
+            external: self.external_forces(t, &u),
+        };
+        let work = |old: &[f64], new: &[f64]| -> f64 {
+            (0..np).map(|i| 0.5 * (old[i] + new[i]) * du[i]).sum()
+        };
+        let old = &state.forces;
+        let mut energy = state.energy;
+        energy.internal += work(&old.internal, &forces.internal);
+        energy.contact += work(&old.contact, &forces.contact);
+        energy.damping += work(&old.damping, &forces.damping);
+        energy.external += work(&old.external, &forces.external);
+        // The supports' forces at both ends, on the prescribed DOFs' increments.
+        let reactions = self.support_forces(&forces, &a);
+        energy.supports += (0..np - nf)
+            .map(|i| 0.5 * (state.reactions[i] + reactions[i]) * du[nf + i])
+            .sum::<f64>();
+        energy.kinetic = self.mass.half_norm(&v);
+        *state = State {
+            u,
+            v,
+            a,
+            du: Some(du),
+            forces,
+            reactions,
+            energy,
+        };
+        Ok(Some((states, ev.states.unwrap_or_default())))
+    }
+}
