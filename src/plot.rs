@@ -4,7 +4,8 @@
 //!   curve p0·√(1 − (s − c)²/a²) when asked;
 //! - load–displacement: the summed reaction of each driven boundary condition against its
 //!   prescribed value over the steps (`STEM.steps.csv`);
-//! - the Newton residual per iteration, one line per step (`STEM.newton.csv`).
+//! - the Newton residual per iteration, one line per step (`STEM.newton.csv`);
+//! - a dynamic analysis's energies over time (`STEM.energy.csv`).
 
 use hertz::error::{Error, Result};
 use plotters::coord::Shift;
@@ -25,6 +26,8 @@ pub enum Chart {
     Load,
     /// Newton residual per iteration, one line per step
     Residuals,
+    /// Energies of a dynamic analysis over time
+    Energy,
 }
 
 /// Coordinate along the contact surface for the pressure chart.
@@ -599,10 +602,47 @@ pub fn residual_figure(path: &Path) -> Result<Figure> {
     })
 }
 
+/// The energy chart from an energy CSV: kinetic, internal, contact and damping energies, the
+/// external and supports' work, and their balance (what the time scheme created or lost) over
+/// time; the columns that stay zero are left out.
+pub fn energy_figure(path: &Path) -> Result<Figure> {
+    let t = Table::read(path)?;
+    let ct = need(&t, path, "time")?;
+    let mut series = Vec::new();
+    for name in [
+        "kinetic", "internal", "contact", "damping", "external", "supports", "balance",
+    ] {
+        let j = need(&t, path, name)?;
+        if name != "balance" && t.rows.iter().all(|r| r[j] == 0.0) {
+            continue;
+        }
+        series.push(Series {
+            label: name.into(),
+            points: t.rows.iter().map(|r| (r[ct], r[j])).collect(),
+            markers: false,
+        });
+    }
+    Ok(Figure {
+        title: "Energies".into(),
+        x_label: "time".into(),
+        y_label: "energy (work since the start)".into(),
+        log_y: false,
+        x_integer: false,
+        series,
+    })
+}
+
 /// The stem of a run from any of its files (`out/run.contact.csv` -> `out/run`).
 fn stem_of(run: &Path) -> PathBuf {
     let name = run.file_name().and_then(|n| n.to_str()).unwrap_or("");
-    for suffix in [".contact.csv", ".steps.csv", ".newton.csv", ".out", ".pvd"] {
+    for suffix in [
+        ".contact.csv",
+        ".steps.csv",
+        ".newton.csv",
+        ".energy.csv",
+        ".out",
+        ".pvd",
+    ] {
         if let Some(stem) = name.strip_suffix(suffix) {
             return run.with_file_name(stem);
         }
@@ -624,6 +664,7 @@ pub fn plot_files(args: &PlotArgs) -> Result<Vec<PathBuf>> {
             (Chart::Pressure, "contact.csv"),
             (Chart::Load, "steps.csv"),
             (Chart::Residuals, "newton.csv"),
+            (Chart::Energy, "energy.csv"),
         ]
         .into_iter()
         .filter(|(_, ext)| input(ext).is_file())
@@ -653,6 +694,7 @@ pub fn plot_files(args: &PlotArgs) -> Result<Vec<PathBuf>> {
             Chart::Load if args.time => (load_figure(&input("steps.csv"), true)?, "load_time"),
             Chart::Load => (load_figure(&input("steps.csv"), false)?, "load"),
             Chart::Residuals => (residual_figure(&input("newton.csv"))?, "residuals"),
+            Chart::Energy => (energy_figure(&input("energy.csv"))?, "energy"),
         };
         let out = dir.join(format!("{base}.{name}.{ext}"));
         draw(&fig, &out)?;
@@ -663,6 +705,25 @@ pub fn plot_files(args: &PlotArgs) -> Result<Vec<PathBuf>> {
 
 #[cfg(test)]
 mod tests {
+    /// The energy chart draws the energies that are not zero throughout, and the balance always
+    /// (the scheme's error, zero when it keeps the energy).
+    #[test]
+    fn energy_chart_shows_what_moves_and_the_balance() {
+        let dir = std::env::temp_dir().join(format!("hertz-plot-e-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("run.energy.csv");
+        let csv = format!(
+            "{}\n1,0.1,0.4,0.1,0,0,0,0,0\n2,0.2,0.3,0.2,0,0,0,0,1e-17\n",
+            hertz::output::outfile::ENERGY_CSV_HEADER
+        );
+        std::fs::write(&path, csv).unwrap();
+        let fig = super::energy_figure(&path).unwrap();
+        let labels: Vec<&str> = fig.series.iter().map(|s| s.label.as_str()).collect();
+        assert_eq!(labels, ["kinetic", "internal", "balance"]);
+        assert_eq!(fig.series[1].points, [(0.1, 0.1), (0.2, 0.2)]);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
     /// `--along r` measures the distance from the axis, whichever coordinate the axis runs
     /// along: the same nodes in the plane z = 1 and in the plane y = 1 give the same radii.
     #[test]
