@@ -40,6 +40,22 @@ impl Pattern {
     pub fn nnz(&self) -> usize {
         self.row_idx.len()
     }
+
+    /// Σ_j |K_ij| of every row of the matrix with `values` on this pattern (both triangles
+    /// counted where one is stored).
+    pub fn abs_row_sums(&self, values: &[f64]) -> Vec<f64> {
+        let mut sums = vec![0.0; self.n];
+        for col in 0..self.n {
+            for i in self.col_ptr[col]..self.col_ptr[col + 1] {
+                let row = self.row_idx[i];
+                sums[row] += values[i].abs();
+                if self.symmetric && row != col {
+                    sums[col] += values[i].abs();
+                }
+            }
+        }
+        sums
+    }
 }
 
 /// Per-element data prepared once: location codes, rule and material table indices.

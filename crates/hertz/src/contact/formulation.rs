@@ -248,6 +248,11 @@ pub trait Formulation {
     /// Its condition's number and the smallest and largest penalty in effect at its slots, if
     /// it is a penalty condition (for messages: a penalty from the mesh differs per slot).
     fn penalties(&self) -> Option<(usize, f64, f64)>;
+    /// Take each contact node's penalty from the mesh as `stiffness[node]` (a force per
+    /// displacement) where the condition gives none: explicit dynamics, whose stable step a
+    /// penalty far stiffer than the node's own stiffness would shorten. None by default (the
+    /// rule of [`crate::contact::law::penalty::from_mesh`] stays).
+    fn set_mesh_penalties(&mut self, _stiffness: &[f64]) {}
     /// The master nodes of a partner (an edge's or a face's nodes; none for others).
     fn partner_nodes(&self, _partner: Partner) -> &[usize] {
         &[]

@@ -143,6 +143,14 @@ impl ContactSystem {
             .collect()
     }
 
+    /// Each node-to-segment node's penalty from the mesh as `stiffness[node]` where its
+    /// condition gives none (see [`Formulation::set_mesh_penalties`]).
+    pub fn set_mesh_penalties(&mut self, stiffness: &[f64]) {
+        for f in &mut self.formulations {
+            f.set_mesh_penalties(stiffness);
+        }
+    }
+
     /// Whether any condition has friction (whose history the solver must keep).
     pub fn has_friction(&self) -> bool {
         self.frictional

@@ -9,7 +9,7 @@ use crate::model::*;
 pub(super) const MAX_STEPS: usize = 10_000_000;
 
 pub(super) const SUPPORTED_ANALYSES: &str =
-    "LinearStatic, NonLinearStatic, StaticStructural, NonLinearDynamic";
+    "LinearStatic, NonLinearStatic, StaticStructural, NonLinearDynamic, NlDEIDynamic";
 
 /// The records before the counts: the engineering model (with its modules), the domain and the
 /// output manager.
@@ -156,6 +156,7 @@ pub(super) fn read_analysis(r: &Record) -> Result<(Analysis, usize, usize, usize
         "nonlinearstatic" => AnalysisKind::NonLinearStatic,
         "staticstructural" => AnalysisKind::StaticStructural,
         "nonlineardynamic" => AnalysisKind::NonLinearDynamic,
+        "nldeidynamic" => AnalysisKind::NlDEIDynamic,
         k => {
             return Err(r.error(format!(
                 "unsupported analysis type `{k}`; supported: {SUPPORTED_ANALYSES}"
@@ -240,10 +241,10 @@ pub(super) fn read_analysis(r: &Record) -> Result<(Analysis, usize, usize, usize
     ] {
         r.flag(k);
     }
-    let dynamics = if kind == AnalysisKind::NonLinearDynamic {
-        Some(read_dynamics(r)?)
-    } else {
-        None
+    let dynamics = match kind {
+        AnalysisKind::NonLinearDynamic => Some(read_dynamics(r)?),
+        AnalysisKind::NlDEIDynamic => Some(read_explicit(r)?),
+        _ => None,
     };
     let nmodules = r.opt_usize("nmodules")?.unwrap_or(0);
     let ninit = r.opt_usize("ninitmodules")?.unwrap_or(0);
@@ -307,6 +308,35 @@ fn read_dynamics(r: &Record) -> Result<Dynamics> {
         eta,
         lumped: r.flag("lumpedmass"),
         keep_contact_mass: r.flag("keepcontactmass"),
+    })
+}
+
+/// `NlDEIDynamic` (spec §1.4): central differences on the lumped mass, `deltat` and the damping
+/// coefficient `dumpcoef` (C = c·M) required, `reduct` the safety factor on the stable step.
+fn read_explicit(r: &Record) -> Result<Dynamics> {
+    if r.opt_float("deltat")?.is_none() {
+        return Err(r.error("NlDEIDynamic needs `deltat`"));
+    }
+    let eta = r.float("dumpcoef")?;
+    if eta < 0.0 {
+        return Err(r.error(format!("`dumpcoef` must not be negative, found {eta}")));
+    }
+    let reduct = r.opt_float("reduct")?.unwrap_or(1.0);
+    if !(reduct > 0.0 && reduct <= 1.0) {
+        return Err(r.error(format!(
+            "`reduct` (the fraction of the stable time step) must be in (0, 1], found {reduct}"
+        )));
+    }
+    if r.opt_int("drflag")?.unwrap_or(0) != 0 {
+        return Err(r.error("dynamic relaxation (`drflag` 1) is not supported"));
+    }
+    r.opt_float("tau")?;
+    r.opt_float("py")?;
+    Ok(Dynamics {
+        scheme: TimeScheme::CentralDifference { reduct },
+        eta,
+        lumped: true,
+        keep_contact_mass: true,
     })
 }
 

@@ -46,6 +46,8 @@ pub enum AnalysisKind {
     StaticStructural,
     /// Implicit dynamics, Newton in every time step (spec §1.2).
     NonLinearDynamic,
+    /// Explicit dynamics, central differences with lumped mass (spec §1.4).
+    NlDEIDynamic,
 }
 
 /// How a dynamic analysis integrates in time (`NonLinearDynamic`, spec §1.2).
@@ -72,6 +74,9 @@ pub enum TimeScheme {
     BackwardEuler,
     /// `ddtScheme 2`: Newmark's family; γ = ½, β = ¼ is the trapezoidal rule (no dissipation).
     Newmark { gamma: f64, beta: f64 },
+    /// `NlDEIDynamic`'s explicit central differences; the time step at most `reduct` times the
+    /// stable one.
+    CentralDifference { reduct: f64 },
 }
 
 impl TimeScheme {
@@ -782,7 +787,9 @@ impl Model {
         match a.kind {
             AnalysisKind::LinearStatic => (1..=a.nsteps).map(|n| n as f64).collect(),
             AnalysisKind::NonLinearStatic => (0..a.nsteps).map(|n| n as f64 * a.deltat).collect(),
-            AnalysisKind::NonLinearDynamic => (1..=a.nsteps).map(|n| n as f64 * a.deltat).collect(),
+            AnalysisKind::NonLinearDynamic | AnalysisKind::NlDEIDynamic => {
+                (1..=a.nsteps).map(|n| n as f64 * a.deltat).collect()
+            }
             AnalysisKind::StaticStructural => match &a.prescribed_times {
                 Some(t) => t.clone(),
                 None => (1..=a.nsteps).map(|n| n as f64 * a.deltat).collect(),

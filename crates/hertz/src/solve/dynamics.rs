@@ -210,7 +210,8 @@ impl Run<'_> {
             }
         }
         u[nf..].copy_from_slice(&self.history.prescribed_at(0.0));
-        let (ev, _, contact) = ctx.commit_step(&u)?;
+        let committed = ctx.commit_step(&u)?;
+        let (ev, contact) = (committed.ev, committed.contact);
         let external = self.external_forces(0.0, &u);
         let mut damping = vec![0.0; np];
         self.mass.apply_add(self.dynamics.eta, &v, &mut damping);
@@ -439,7 +440,8 @@ impl Run<'_> {
         let v: Vec<f64> = (0..np)
             .map(|i| k[1] * du[i] - k[4] * state.v[i] - k[5] * state.a[i] - k[6] * du_prev[i])
             .collect();
-        let (ev, states, contact) = ctx.commit_step(&u)?;
+        let committed = ctx.commit_step(&u)?;
+        let (ev, states, contact) = (committed.ev, committed.states, committed.contact);
         let mut damping = vec![0.0; np];
         self.mass.apply_add(eta, &v, &mut damping);
         let forces = Forces {

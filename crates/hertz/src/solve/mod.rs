@@ -7,6 +7,7 @@ mod contact_step;
 pub mod convergence;
 pub mod dynamics;
 mod equations;
+pub mod explicit;
 pub mod krylov;
 pub mod linear;
 pub mod multipliers;

@@ -66,6 +66,19 @@ impl ContactHistory {
     }
 }
 
+/// A converged state's evaluation ([`NewtonContext::commit_step`]).
+pub struct Committed {
+    /// The internal forces (elements and contact) and the material points' states.
+    pub ev: Evaluation,
+    /// The contact points' states.
+    pub states: Vec<SlotState>,
+    /// The contact's forces alone (primary numbering).
+    pub contact: Vec<f64>,
+    /// Σ_j |K_c,ij| of the contact's tangent over the free equations (explicit dynamics' stable
+    /// time step).
+    pub contact_row_sums: Vec<f64>,
+}
+
 /// The solver state of one analysis: the equations, how contact steps are solved, the contact
 /// history and what the iterations showed.
 pub(super) struct NewtonContext<'a> {
@@ -251,8 +264,8 @@ impl<'a> NewtonContext<'a> {
 
     /// The load step converged at `u`: its contact states become the next step's history and
     /// search hint. Returns the evaluation for output (its forces the elements' and the
-    /// contact's), the contact states, and the contact's forces alone (primary numbering).
-    pub fn commit_step(&mut self, u: &[f64]) -> Result<(Evaluation, Vec<SlotState>, Vec<f64>)> {
+    /// contact's), the contact states and the contact's own forces and stiffness.
+    pub fn commit_step(&mut self, u: &[f64]) -> Result<Committed> {
         let (points, states) =
             self.eq
                 .contact_at(u, self.history.search(), self.history.friction())?;
@@ -261,9 +274,28 @@ impl<'a> NewtonContext<'a> {
         let ev = self.eq.asm.evaluate(u, false, true, None, &contribs)?;
         let mut contact = vec![0.0; u.len()];
         self.eq.asm.add_residuals(&mut contact, &contribs);
+        let dofs = self.eq.dofs;
+        let mut contact_row_sums = vec![0.0; dofs.n_free];
+        for c in contribs.iter().filter(|c| !c.ke.is_empty()) {
+            let nd = c.codes.len();
+            for (a, &ca) in c.codes.iter().enumerate() {
+                for (p, wp) in dofs.entries(ca).filter(|&(p, _)| p < dofs.n_free) {
+                    for (b, &cb) in c.codes.iter().enumerate() {
+                        for (_, wq) in dofs.entries(cb) {
+                            contact_row_sums[p] += (wp * wq * c.ke[a * nd + b]).abs();
+                        }
+                    }
+                }
+            }
+        }
         self.eq.times.assembly += super::equations::since(t);
         self.history.converged = Some(states.clone());
-        Ok((ev, states, contact))
+        Ok(Committed {
+            ev,
+            states,
+            contact,
+            contact_row_sums,
+        })
     }
 
     /// Why a failed step may be the material's (see [`super::softening`]), at the state `u`.
@@ -669,6 +701,15 @@ impl<'a> NewtonContext<'a> {
             terms,
         )?;
         Ok(step.du)
+    }
+
+    /// Σ_j |K_ij| over the free equations of the bodies' tangent at `u` (no contact): with a
+    /// diagonal mass m, max_i of it over m_i bounds the squared highest frequency (the matrix
+    /// ∞-norm bounds the spectral radius of M⁻¹K).
+    pub fn tangent_row_sums(&mut self, u: &[f64]) -> Result<Vec<f64>> {
+        let ev = self.eq.structure(u, &super::terms::Statics)?;
+        let k = ev.k_values.expect("a tangent was asked for");
+        Ok(self.eq.asm.pattern.abs_row_sums(&k))
     }
 
     /// The contact (slave) nodes, one per contact point.

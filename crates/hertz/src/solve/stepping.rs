@@ -102,8 +102,13 @@ pub fn run_analysis_observed(
     observer: &dyn Observer,
     mut on_step: impl FnMut(&StepResult) -> Result<()>,
 ) -> Result<()> {
-    if model.analysis.dynamics.is_some() {
-        return super::dynamics::run(model, params, observer, on_step);
+    if let Some(d) = model.analysis.dynamics {
+        return match d.scheme {
+            crate::model::TimeScheme::CentralDifference { .. } => {
+                super::explicit::run(model, params, observer, on_step)
+            }
+            _ => super::dynamics::run(model, params, observer, on_step),
+        };
     }
     let contact = ContactSystem::new(model)?;
     let dofs = DofMap::new(model, &contact.extra_dofs())?;
@@ -141,7 +146,8 @@ pub fn run_analysis_observed(
             follower: &follower,
         };
         step_with_cutbacks(&mut ctx, &mut u, &goal, params, &mut info)?;
-        let (mut ev, contact_states, _) = ctx.commit_step(&u)?;
+        let committed = ctx.commit_step(&u)?;
+        let (mut ev, contact_states) = (committed.ev, committed.states);
         // The reactions balance the follower loads too.
         goal.terms(1.0, model, &dofs).add_forces(&u, &mut ev.f_int);
         applied = target;

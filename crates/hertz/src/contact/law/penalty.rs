@@ -12,18 +12,30 @@
 use super::{linearization, Laws, SlotKinematics};
 use crate::contact::slot::{BranchRule, Geometric, SlotLinearization};
 
-/// The factor of [`from_mesh`]: the penalty is this many times the stiffness of the softer body
-/// under a contact slot, overlaps of 10⁻³ of its strain.
+/// The factor of [`from_mesh`] in statics and implicit dynamics: the penalty is this many times
+/// the stiffness of the softer body under a contact slot, overlaps of 10⁻³ of its strain.
 pub const FROM_MESH_FACTOR: f64 = 1e3;
 
 /// The penalty a slot takes from the mesh where its condition gives none, one rule for every
-/// formulation: [`FROM_MESH_FACTOR`] times E·A/h, E the softer of the slave's modulus at the
+/// formulation: `factor` ([`mesh_factor`]) times E·A/h, E the softer of the slave's modulus at the
 /// slot (`slave`, the stiffest element there) and the master's (`master`, infinite for a rigid
 /// one), h the distance to the slot's neighbours on its surface (the size of its facets) and A
 /// its tributary area for a force per penetration (node-to-segment), 1 for a pressure
 /// (mortar): `area_per_h` = A/h.
-pub fn from_mesh(slave: f64, master: f64, area_per_h: f64) -> f64 {
-    FROM_MESH_FACTOR * softer(slave, master) * area_per_h
+pub fn from_mesh(slave: f64, master: f64, area_per_h: f64, factor: f64) -> f64 {
+    factor * softer(slave, master) * area_per_h
+}
+
+/// The factor of [`from_mesh`] in `model`: [`FROM_MESH_FACTOR`], or 1 in explicit dynamics
+/// (`NlDEIDynamic`): there a penalty stiffer than the elements shortens the stable time step by
+/// its square root and makes the contact nodes bounce on it, each bounce making energy (a rod
+/// dropped on a floor left with 3 times its energy at 1e3, kept it within 0.5 % at 1; explicit
+/// codes take soft penalties for the same reason).
+pub fn mesh_factor(model: &crate::model::Model) -> f64 {
+    match model.analysis.kind {
+        crate::model::AnalysisKind::NlDEIDynamic => 1.0,
+        _ => FROM_MESH_FACTOR,
+    }
 }
 
 /// The softer of the slave's and the master's modulus (`master` infinite for a rigid one, 0 when

@@ -194,7 +194,10 @@ impl MortarLaw {
             _ => f64::INFINITY,
         };
         let mesh_penalty: Vec<f64> = (0..slots.len())
-            .map(|j| law::penalty::from_mesh(slave[j], master, 1.0 / size(j)))
+            .map(|j| {
+                let factor = law::penalty::mesh_factor(model);
+                law::penalty::from_mesh(slave[j], master, 1.0 / size(j), factor)
+            })
             .collect();
         let laws: Vec<SlotLaw> = mesh_penalty
             .iter()

@@ -37,8 +37,8 @@ use super::geometry::bodies::{self, BodiesAt, Inside, MasterBodies};
 use super::geometry::edges::EdgeSurface;
 use super::geometry::faces::{FaceSurface, NodalNormal};
 use super::geometry::scalar::Scalar;
-use super::law::SlotFriction;
 use super::law::{SlipKinematics, SlotKinematics};
+use super::law::{SlotFriction, SlotLaw};
 use super::search::broad::BroadPhase;
 use super::search::{self, Candidate};
 use super::slot::SlotLinearization;
@@ -500,6 +500,14 @@ impl Formulation for NodeToSegment {
 
     fn penalties(&self) -> Option<(usize, f64, f64)> {
         crate::contact::formulation::penalty_range(self.number, self.slots.iter().map(|s| s.law))
+    }
+
+    fn set_mesh_penalties(&mut self, stiffness: &[f64]) {
+        if self.enforcement == Enforcement::Penalty(crate::model::PenaltySource::FromMesh) {
+            for s in &mut self.slots {
+                s.law = SlotLaw::Penalty(stiffness[s.node]);
+            }
+        }
     }
 
     fn symmetric(&self) -> bool {

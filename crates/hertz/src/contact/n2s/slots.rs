@@ -130,7 +130,8 @@ pub(super) fn slots(
             let e = young.get(&node).copied().unwrap_or(stiffest);
             let per_modulus = crate::contact::formulation::law_area(t.measure, model) / h;
             let weight = c.node_weights.as_ref().map_or(1.0, |w| w[k]);
-            let mesh = super::super::law::penalty::from_mesh(e, master, per_modulus);
+            use super::super::law::penalty;
+            let mesh = penalty::from_mesh(e, master, per_modulus, penalty::mesh_factor(model));
             let law = SlotLaw::resolve(c.enforcement, mesh, weight);
             let stiffness = crate::contact::formulation::friction_modulus(e, master) * per_modulus;
             Slot {
