@@ -52,6 +52,9 @@ pub(super) struct Equations<'a> {
     /// The solver holds the factorization of a constant tangent (a linear problem's), valid
     /// for the iterations to come.
     pub factor_kept: bool,
+    /// The bodies' tangent changed though the structure is constant (a time integrator's new
+    /// step size, a failed attempt): the condensed contact step factorizes it afresh.
+    pub structure_stale: bool,
 }
 
 impl<'a> Equations<'a> {

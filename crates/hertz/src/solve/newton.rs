@@ -171,6 +171,7 @@ impl<'a> NewtonContext<'a> {
                 ranks,
                 constant_structure,
                 factor_kept: false,
+                structure_stale: false,
             },
             stepper,
             step: 0,
@@ -252,6 +253,7 @@ impl<'a> NewtonContext<'a> {
     /// An attempt at a step failed: factorize afresh in the next.
     pub fn attempt_failed(&mut self) {
         self.eq.factor_kept = false;
+        self.eq.structure_stale = true;
     }
 
     /// A substep converged at `u`: commit the materials' state.
@@ -473,7 +475,7 @@ impl<'a> NewtonContext<'a> {
         a: &Analysis,
         terms: &dyn StepTerms,
     ) -> Result<(Evaluation, bool)> {
-        let constant = self.eq.constant_structure;
+        let constant = self.eq.constant_structure && !self.eq.structure_stale;
         let want_k = match &self.stepper {
             Some(s) => s.needs_structure(constant),
             None => {
@@ -503,6 +505,10 @@ impl<'a> NewtonContext<'a> {
             let t = std::time::Instant::now();
             self.eq.asm.add_residuals(&mut ev.f_int, &contribs);
             self.eq.times.assembly += super::equations::since(t);
+            if want_k {
+                // The condensed step factorizes this tangent.
+                self.eq.structure_stale = false;
+            }
         }
         Ok((ev, want_k))
     }
@@ -684,8 +690,12 @@ impl<'a> NewtonContext<'a> {
         }
         // The structural tangent of the condensed solve is the element part only.
         let stepper = self.stepper.as_mut().expect("a contact problem");
-        let ks = match stepper.needs_structure(self.eq.constant_structure) {
-            true => Some(self.eq.structure(u, terms)?),
+        let constant = self.eq.constant_structure && !self.eq.structure_stale;
+        let ks = match stepper.needs_structure(constant) {
+            true => {
+                self.eq.structure_stale = false;
+                Some(self.eq.structure(u, terms)?)
+            }
             false => None,
         };
         let before = self.history.converged.as_deref().unwrap_or(&[]);
