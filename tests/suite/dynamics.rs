@@ -557,3 +557,19 @@ fn a_slower_ball_on_a_finer_mesh_comes_closer_to_hertz_impact() {
     );
     assert!((energy - 1.0).abs() < 1e-3, "energy {energy}");
 }
+
+/// A short step on a slow oscillation: the inertia M·c₀u and its history nearly cancel, and
+/// the residual is measured against them (as OOFEM's against its load with the inertia
+/// history), so Newton stops at round-off in one iteration (it stalled above rtolf 1e-12 when
+/// the reference was the forces at the solution alone).
+#[test]
+fn a_short_step_converges_at_round_off_of_the_inertia() {
+    let omega = 200f64.sqrt();
+    let dt = 2.0 * std::f64::consts::PI / omega / 2000.0;
+    let model = crate::common::model_from_text(&spring("ddtScheme 2", 5, dt)).unwrap();
+    run_analysis(&model, &crate::common::quiet(), |r| {
+        assert!(r.info.iterations <= 2, "{:?}", r.info.residual_history);
+        Ok(())
+    })
+    .unwrap();
+}

@@ -46,6 +46,21 @@ impl StepTerms for Inertia<'_> {
         self.mass.add_to_tangent(self.c0, self.n_free, pattern, k);
     }
 
+    /// The squares of the two inertia forces summed into the residual, M·c₀u and M·base, per
+    /// DOF id: OOFEM measures the residual against the load with the inertia history in it
+    /// (M·base); their difference, the inertia at the solution, can be far smaller than each
+    /// (a slow oscillation at a short step), and the residual's round-off is theirs.
+    fn add_force_norms(&self, u: &[f64], dofs: &DofMap, ebe: &mut [f64; 4]) {
+        let scaled: Vec<f64> = u.iter().map(|u| self.c0 * u).collect();
+        for x in [&scaled, &self.base] {
+            let mut f = vec![0.0; u.len()];
+            self.mass.apply_add(1.0, x, &mut f);
+            for (i, fi) in f.iter().enumerate().take(dofs.n_free - dofs.n_lambda) {
+                ebe[dofs.primary_dof_id[i] as usize] += fi * fi;
+            }
+        }
+    }
+
     /// Constant within a step; the driver asks for a new factorization when c₀ changes.
     fn constant_tangent(&self) -> bool {
         true

@@ -99,6 +99,7 @@ impl<'a> Equations<'a> {
     fn add_terms(&self, u: &[f64], ev: &mut Evaluation, terms: &dyn StepTerms) {
         if self.ranks.is_none_or(|r| r.rank == 0) {
             terms.add_forces(u, &mut ev.f_int);
+            terms.add_force_norms(u, self.dofs, &mut ev.ebe);
             if let Some(k) = ev.k_values.as_mut() {
                 terms.add_tangent(u, &self.asm.pattern, k);
             }

@@ -22,6 +22,11 @@ pub trait StepTerms {
     fn constant_tangent(&self) -> bool {
         true
     }
+
+    /// Add the squares of the terms' forces at `u` to `ebe`, per DOF id, as the elements'
+    /// are: the scale the convergence test measures the residual against and the round-off
+    /// it expects (inertia can be most of a step's forces).
+    fn add_force_norms(&self, _u: &[f64], _dofs: &DofMap, _ebe: &mut [f64; 4]) {}
 }
 
 /// No terms: statics.
@@ -47,6 +52,10 @@ impl StepTerms for Both<'_> {
     }
     fn constant_tangent(&self) -> bool {
         self.0.constant_tangent() && self.1.constant_tangent()
+    }
+    fn add_force_norms(&self, u: &[f64], dofs: &DofMap, ebe: &mut [f64; 4]) {
+        self.0.add_force_norms(u, dofs, ebe);
+        self.1.add_force_norms(u, dofs, ebe);
     }
 }
 
