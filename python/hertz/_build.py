@@ -11,6 +11,36 @@ from ._hertz import read_string
 
 _DOMAINS = {"2dPlaneStress", "PlaneStrain", "3d", "2dTruss", "1dTruss"}
 
+# The coordinates each domain's nodes need (a truss's may carry more, in its plane).
+_COORDS = {
+    "2dPlaneStress": (2, 3),
+    "PlaneStrain": (2, 3),
+    "3d": (3,),
+    "2dTruss": (2, 3),
+    "1dTruss": (1, 2, 3),
+}
+
+
+def _labels(values, what):
+    """Node, element or set labels as int64: integers, or floats that are integers (what
+    np.loadtxt returns); anything else (5.9, 1e30, a string) is an error naming `what`."""
+    a = np.asarray(values)
+    if a.dtype.kind in "iu":
+        if a.dtype.kind == "u" and a.size and a.max() > np.iinfo(np.int64).max:
+            raise ValueError(f"{what}: label {a.max()} is too large")
+        return a.astype(np.int64)
+    flat = a.ravel()
+    out = np.empty(flat.shape, dtype=np.int64)
+    for k, v in enumerate(flat):
+        if isinstance(v, (bool, np.bool_)) or not isinstance(v, numbers.Real):
+            raise ValueError(f"{what}: labels are integers, not {v!r}")
+        if v != v or v in (float("inf"), float("-inf")) or int(v) != v:
+            raise ValueError(f"{what}: labels are integers, not {v!r}")
+        if not -(2**63) <= int(v) < 2**63:
+            raise ValueError(f"{what}: label {int(v)} is too large")
+        out[k] = int(v)
+    return out.reshape(a.shape)
+
 
 def _value(v):
     """One parameter value as OOFEM text: numbers as themselves (floats round-trip exactly),
@@ -22,6 +52,8 @@ def _value(v):
     if isinstance(v, numbers.Real):
         return repr(float(v))
     if isinstance(v, str):
+        if any(c in v for c in "\n\r") or not v.isprintable():
+            raise ValueError(f"{v!r}: a parameter is one line of printable text")
         return v
     a = np.asarray(v).ravel()
     return " ".join([str(a.size)] + [_value(x.item()) for x in a])
@@ -70,6 +102,7 @@ def input_from_arrays(
     cross_sections=(("SimpleCS", {}),),
     sets=None,
     conditions=(),
+    initial_conditions=(),
     functions=(("ConstantFunction", {"f(t)": 1.0}),),
     segments=(),
     analysis=("StaticStructural", {"nsteps": 1}),
@@ -87,7 +120,9 @@ def input_from_arrays(
         "crossSect", "nlgeo"; default 1, 1, 0). Elements are numbered in that order from 1.
     domain: OOFEM's domain type ("3d", "2dPlaneStress", "PlaneStrain", "2dTruss", "1dTruss").
     materials, cross_sections, conditions (boundary conditions, loads and contact conditions,
-        numbered together), functions (time functions), segments (contact segments):
+        numbered together), initial_conditions (a dynamic analysis's `InitialCondition`s, e.g.
+        ("InitialCondition", {"conditions": "1 v -0.1", "set": 2, "dofs": [2]})), functions
+        (time functions), segments (contact segments):
         lists of (keyword, parameters), numbered from 1 in order, e.g.
         ("IsoLE", {"d": 0, "E": 1000.0, "n": 0.3, "tAlpha": 0}) or
         ("BoundaryCondition", {"loadTimeFunction": 1, "dofs": [1, 2], "values": [0, 0], "set": 2}).
@@ -103,7 +138,12 @@ def input_from_arrays(
         raise ValueError(f"nodes must be an (n, 1|2|3) array, not of shape {nodes.shape}")
     if domain not in _DOMAINS:
         raise ValueError(f"domain must be one of {sorted(_DOMAINS)}, not {domain!r}")
-    lines = [f"{name}.out", description]
+    if nodes.shape[1] not in _COORDS[domain]:
+        want = " or ".join(str(c) for c in _COORDS[domain])
+        raise ValueError(
+            f"domain {domain!r} needs nodes with {want} coordinates, not {nodes.shape[1]}"
+        )
+    lines = [f"{_value(str(name))}.out", _value(str(description))]
     kind, aparams = _pairs([analysis], "analysis")[0]
     lines.append(_record(kind, None, aparams))
     lines.append(f"domain {domain}")
@@ -117,7 +157,7 @@ def input_from_arrays(
             params.update(spec)
         else:
             conn = spec
-        conn = np.asarray(conn)
+        conn = _labels(conn, f"{etype} connectivity")
         if conn.ndim != 2:
             raise ValueError(f"{etype}: connectivity must be an (m, k) array")
         for row in conn:
@@ -126,6 +166,7 @@ def input_from_arrays(
     materials = _pairs(materials, "material")
     cross_sections = _pairs(cross_sections, "cross section")
     conditions = _pairs(conditions, "condition")
+    initial = _pairs(initial_conditions, "initial condition")
     functions = _pairs(functions, "function")
     segments = _pairs(segments, "segment")
     sets = dict(sets or {})
@@ -133,7 +174,7 @@ def input_from_arrays(
         raise ValueError(f"sets must be numbered 1..{len(sets)}, not {sorted(sets)}")
     counts = (
         f"ndofman {len(nodes)} nelem {len(element_lines)} ncrosssect {len(cross_sections)} "
-        f"nmat {len(materials)} nbc {len(conditions)} nic 0 nltf {len(functions)} "
+        f"nmat {len(materials)} nbc {len(conditions)} nic {len(initial)} nltf {len(functions)} "
         f"nset {len(sets)}"
     )
     if segments:
@@ -144,13 +185,13 @@ def input_from_arrays(
     lines.extend(element_lines)
     for k, (kw, p) in enumerate(segments):
         lines.append(_record(kw, k + 1, p))
-    for group in (cross_sections, materials, conditions, functions):
+    for group in (cross_sections, materials, conditions, initial, functions):
         for k, (kw, p) in enumerate(group):
             lines.append(_record(kw, k + 1, p))
     for number in sorted(sets):
         spec = {}
         for key, v in sets[number].items():
             key = "elementboundaries" if key == "boundaries" else key
-            spec[key] = np.asarray(v, dtype=np.int64)
+            spec[key] = _labels(v, f"set {number} {key}")
         lines.append(_record("Set", number, spec))
     return "\n".join(lines) + "\n"

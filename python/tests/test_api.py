@@ -379,3 +379,60 @@ def test_a_dynamic_step_carries_velocities_and_energies():
     assert last.velocity[2:, 1].mean() == pytest.approx(0.1, rel=0.02)
     statics = hertz.read(EXAMPLES / "cantilever.in").solve().steps[-1]
     assert statics.velocity is None and statics.energy is None
+
+
+def _bar(**changes):
+    """The arguments of a two-bar truss model (nodes 1 and 3 held, node 2 pulled by 1)."""
+    args = dict(
+        nodes=[[0.0], [1.0], [2.0]],
+        elements={"Truss1d": [[1, 2], [2, 3]]},
+        domain="1dTruss",
+        materials=[("IsoLE", {"d": 1.0, "E": 1.0, "n": 0.3, "tAlpha": 0})],
+        cross_sections=[("SimpleCS", {"area": 1.0})],
+        conditions=[
+            ("BoundaryCondition", {"loadTimeFunction": 1, "dofs": [1], "values": [0], "set": 1}),
+            ("NodalLoad", {"loadTimeFunction": 1, "dofs": [1], "components": [1.0], "set": 2}),
+        ],
+        sets={1: {"nodes": [1, 3]}, 2: {"nodes": [2]}},
+        name="bar",
+    )
+    args.update(changes)
+    return args
+
+
+def test_from_arrays_takes_integral_labels_and_refuses_the_rest():
+    """Connectivity and set labels as floats that are integers (np.loadtxt's) are the integers;
+    5.9, a label beyond 64 bits, a 2-column 3D node array and a newline in a parameter are
+    errors that say what is wrong (they were truncated, an AttributeError, "degenerate
+    geometry", and an injected record)."""
+    u = hertz.from_arrays(**_bar()).solve().steps[-1].displacement
+    assert u[1, 0] == pytest.approx(0.5, abs=1e-12)
+    floats = _bar(elements={"Truss1d": np.array([[1.0, 2.0], [2.0, 3.0]])})
+    floats["sets"] = {1: {"nodes": np.array([1.0, 3.0])}, 2: {"nodes": [2.0]}}
+    assert np.array_equal(hertz.from_arrays(**floats).solve().steps[-1].displacement, u)
+    for changes, message in [
+        ({"sets": {1: {"nodes": [1, 3]}, 2: {"nodes": [5.9]}}}, "labels are integers"),
+        ({"elements": {"Truss1d": [[1, 2], [2, 10**30]]}}, "too large"),
+        ({"nodes": [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]], "domain": "3d"}, "needs nodes with 3"),
+        ({"name": "bar\nnode 99 coords 1 0"}, "one line"),
+    ]:
+        with pytest.raises(ValueError, match=message):
+            args = _bar(**changes)
+            if "name" in changes:
+                args["description"] = args.pop("name")
+            hertz.from_arrays(**args)
+
+
+def test_a_dynamic_model_from_arrays_takes_initial_conditions():
+    """The two-bar truss started at velocity 0.1 on its middle node (NonLinearDynamic, Newmark):
+    the node oscillates with ω = √(2EA/L / (ρAL)) = √2 about rest, its speed at the start 0.1."""
+    args = _bar(
+        analysis=("NonLinearDynamic", {"nsteps": 4, "deltat": 0.01, "ddtScheme": 2, "rtolf": 1e-12}),
+        conditions=[("BoundaryCondition", {"loadTimeFunction": 1, "dofs": [1], "values": [0], "set": 1})],
+        initial_conditions=[("InitialCondition", {"conditions": "1 v 0.1", "set": 2, "dofs": [1]})],
+    )
+    steps = hertz.from_arrays(**args).solve().steps
+    omega = math.sqrt(2.0)
+    for s in steps:
+        assert s.displacement[1, 0] == pytest.approx(0.1 / omega * math.sin(omega * s.time), rel=1e-4)
+    assert steps[0].energy["balance"] == pytest.approx(0.0, abs=1e-15)
