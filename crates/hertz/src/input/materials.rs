@@ -38,9 +38,16 @@ pub(super) fn read_material(r: &Record) -> Result<Material> {
     let density = r.float("d")?;
     let talpha = r.opt_float("talpha")?.unwrap_or(0.0);
     r.opt_float("referencetemperature")?;
+    // A modulus below the smallest normal double (a subnormal, 1e-320) loses its digits in
+    // every product: the stiffness underflows and the solver would report a mechanism.
     let positive = |key: &str, v: f64| -> Result<f64> {
-        if v > 0.0 {
+        if v >= f64::MIN_POSITIVE {
             Ok(v)
+        } else if v > 0.0 {
+            Err(r.error(format!(
+                "`{key}` {v:e} is below the smallest normal double (2.2e-308): the stiffness \
+                 would underflow; give the moduli in other units"
+            )))
         } else {
             Err(r.error(format!("`{key}` must be positive, found {v}")))
         }
@@ -53,6 +60,7 @@ pub(super) fn read_material(r: &Record) -> Result<Material> {
             if !(young > 0.0) {
                 return Err(r.error(format!("Young's modulus E must be positive, found {young}")));
             }
+            positive("E", young)?;
             if !(poisson > -1.0 && poisson < 0.5) {
                 return Err(r.error(format!(
                     "Poisson's ratio n must lie in (-1, 0.5), found {poisson}"
