@@ -573,3 +573,86 @@ fn a_short_step_converges_at_round_off_of_the_inertia() {
     })
     .unwrap();
 }
+
+/// A block (1 × 0.25, ρ = 1, E = 1000) under gravity 10 on a rigid floor with Coulomb friction
+/// μ = 0.3 (multipliers), started sliding at 1: it stops after V/(μg) = 1/3 having slid
+/// V²/(2μg) = 1/6 (within 2 %: the block rings elastically as it brakes), and the friction's
+/// work (the contact's) takes the kinetic energy, the balance closing to 1e-10.
+#[test]
+fn a_block_sliding_on_a_floor_stops_where_coulomb_friction_says() {
+    let (nx, ny) = (8, 2);
+    let id = |i: usize, j: usize| j * (nx + 1) + i + 1;
+    let mut nodes = Vec::new();
+    for j in 0..=ny {
+        for i in 0..=nx {
+            nodes.push(format!(
+                "node {} coords 2 {} {}",
+                id(i, j),
+                i as f64 / nx as f64,
+                0.25 * j as f64 / ny as f64
+            ));
+        }
+    }
+    let mut elements = Vec::new();
+    for j in 0..ny {
+        for i in 0..nx {
+            let n = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)];
+            elements.push(format!(
+                "PlaneStress2d {} nodes 4 {} {} {} {} crossSect 1 mat 1",
+                elements.len() + 1,
+                n[0],
+                n[1],
+                n[2],
+                n[3]
+            ));
+        }
+    }
+    let bottom: Vec<String> = (0..=nx).map(|i| id(i, 0).to_string()).collect();
+    let all: Vec<String> = (1..=nodes.len()).map(|k| k.to_string()).collect();
+    let text = format!(
+        "slide.out\nsliding block\nNonLinearDynamic nsteps 50 deltat 0.01 ddtScheme 2 rtolf 1e-9 \
+         manrmsteps 1 maxiter 60\ndomain 2dPlaneStress\nOutputManager\n\
+         ndofman {} nelem {} ncrosssect 1 nmat 1 nbc 2 nic 1 nltf 1 nset 3 ncontactseg 1\n{}\n{}\n\
+         planecontactsegment 1 point 2 0 0 normal 2 0 1\nSimpleCS 1 thick 1 material 1 set 1\n\
+         IsoLE 1 d 1 E 1000 n 0.3 tAlpha 0\nDeadWeight 1 loadTimeFunction 1 components 2 0 -10 set 1\n\
+         n2slagrangianmultipliercontact 2 loadTimeFunction 1 friction 0.3 slaveset 2 segmentset 1 1\n\
+         InitialCondition 1 conditions 1 v 1.0 set 3 dofs 1 1\nConstantFunction 1 f(t) 1\n\
+         Set 1 allelements\nSet 2 nodes {} {}\nSet 3 nodes {} {}\n",
+        nodes.len(),
+        elements.len(),
+        nodes.join("\n"),
+        elements.join("\n"),
+        bottom.len(),
+        bottom.join(" "),
+        all.len(),
+        all.join(" ")
+    );
+    let model = crate::common::model_from_text(&text).unwrap();
+    let (mut slid, mut stopped, mut energy) = (0.0, f64::NAN, Energy::default());
+    run_analysis(&model, &crate::common::quiet(), |r| {
+        let n = model.nodes.len();
+        let mean = |x: &[f64]| {
+            (0..n)
+                .map(|k| r.dofs.code(k, 1).map_or(0.0, |c| r.dofs.value(x, c)))
+                .sum::<f64>()
+                / n as f64
+        };
+        let m = r.motion.unwrap();
+        slid = mean(r.u);
+        if stopped.is_nan() && mean(m.velocity) < 0.0 {
+            stopped = r.time;
+        }
+        energy = m.energy;
+        Ok(())
+    })
+    .unwrap();
+    assert!((slid * 6.0 - 1.0).abs() < 0.02, "slid {slid}");
+    assert!((stopped - 1.0 / 3.0).abs() <= 0.02, "stopped at {stopped}");
+    // The friction took the kinetic energy (what is left rings in the block).
+    let initial = 0.5 * 0.25;
+    assert!(
+        energy.contact > 0.95 * initial && energy.contact < initial,
+        "{energy:?}"
+    );
+    assert!(energy.balance().abs() < 1e-10, "{energy:?}");
+}
