@@ -191,17 +191,16 @@ fn deformation(h: &[[f64; 3]; 3], nlgeo: bool) -> ([[f64; 3]; 3], [[f64; 3]; 3])
     (f, e)
 }
 
-/// ∫ N_a dV for each node of an element (for body forces): `thick` in 2D, or with None per
-/// radian of an axisymmetric element (dV = r dA).
-pub fn integrate_shape(
+/// The shape functions and the volume element dV (with the thickness `thick`, or per radian the
+/// radius where it is None) at every point of `rule` on the reference element, handed to `f`.
+fn for_each_point(
     shape: Shape,
     rule: &[QuadPoint],
     thick: Option<f64>,
     x_ref: &[[f64; 3]],
-    out: &mut [f64],
+    mut f: impl FnMut(&[f64], f64),
 ) -> Result<(), KernelError> {
     let nn = shape.n_nodes();
-    out[..nn].fill(0.0);
     let mut n = [0.0; MAX_NODES];
     let mut dn = [[0.0; 3]; MAX_NODES];
     let mut dndx = [[0.0; 3]; MAX_NODES];
@@ -213,11 +212,27 @@ pub fn integrate_shape(
                 msg: "degenerate element geometry (det J = 0)".into(),
             })?;
         let weight = thick.unwrap_or_else(|| (0..nn).map(|a| n[a] * x_ref[a][0]).sum());
-        for a in 0..nn {
-            out[a] += n[a] * det.abs() * qp.weight * weight;
-        }
+        f(&n[..nn], det.abs() * qp.weight * weight);
     }
     Ok(())
+}
+
+/// ∫ N_a dV for each node of an element (for body forces): `thick` in 2D, or with None per
+/// radian of an axisymmetric element (dV = r dA).
+pub fn integrate_shape(
+    shape: Shape,
+    rule: &[QuadPoint],
+    thick: Option<f64>,
+    x_ref: &[[f64; 3]],
+    out: &mut [f64],
+) -> Result<(), KernelError> {
+    let nn = shape.n_nodes();
+    out[..nn].fill(0.0);
+    for_each_point(shape, rule, thick, x_ref, |n, dv| {
+        for a in 0..nn {
+            out[a] += n[a] * dv;
+        }
+    })
 }
 
 /// ∫ N_a N_b dV over the reference element (row-major, nodes × nodes), as
@@ -230,24 +245,13 @@ pub fn integrate_shape_products(
 ) -> Result<Vec<f64>, KernelError> {
     let nn = shape.n_nodes();
     let mut out = vec![0.0; nn * nn];
-    let mut n = [0.0; MAX_NODES];
-    let mut dn = [[0.0; 3]; MAX_NODES];
-    let mut dndx = [[0.0; 3]; MAX_NODES];
-    for (g, qp) in rule.iter().enumerate() {
-        shape.eval(qp.xi, &mut n, &mut dn);
-        let det =
-            map_derivatives(shape.dim(), nn, x_ref, &dn, &mut dndx).ok_or_else(|| KernelError {
-                gp: g + 1,
-                msg: "degenerate element geometry (det J = 0)".into(),
-            })?;
-        let weight = thick.unwrap_or_else(|| (0..nn).map(|a| n[a] * x_ref[a][0]).sum());
-        let dv = det.abs() * qp.weight * weight;
+    for_each_point(shape, rule, thick, x_ref, |n, dv| {
         for a in 0..nn {
             for b in 0..nn {
                 out[a * nn + b] += n[a] * n[b] * dv;
             }
         }
-    }
+    })?;
     Ok(out)
 }
 

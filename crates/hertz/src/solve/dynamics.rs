@@ -8,12 +8,15 @@
 //! acceleration is in equilibrium, M·a₀ = F_ext(0) − F_int(u₀) − η·M·v₀, where no initial
 //! condition gives one (OOFEM takes 0, QUIRK); the reactions are the support forces, inertia
 //! and damping included (OOFEM's omit them, QUIRK); a step that does not converge is cut in
-//! time (the scheme's constants follow the substep).
+//! time (the scheme's constants follow the substep); the contact nodes' mass is moved into
+//! their elements ([`crate::assembly::mass::redistribute`]; OOFEM keeps it, and its contact
+//! chatters and makes energy at an impact) unless the analysis says `keepcontactmass`.
 
+use super::load_history::LoadHistory;
 use super::newton::NewtonContext;
 use super::params::SolveParams;
 use super::report::{Observer, Phase, StepInfo, StepReport};
-use super::stepping::{Energy, LoadHistory, Motion, StepResult};
+use super::step_result::{Energy, Motion, StepResult};
 use super::terms::{Both, FollowerTerms, StepTerms};
 use crate::assembly::{DofMap, MassMatrix, Pattern};
 use crate::contact::{ContactSystem, SlotState};
@@ -153,17 +156,7 @@ pub fn run(
             run.step_with_cutbacks(&mut ctx, &mut state, (t - dt, t), params, &mut info)?;
         info.wall_seconds = clock.elapsed().as_secs_f64();
         ctx.finish_step_info(&mut info);
-        observer.step(&StepReport {
-            step,
-            n_steps: times.len(),
-            time: t,
-            iterations: info.iterations,
-            residual: info.residual_history.last().copied().unwrap_or(0.0),
-            substeps: info.substeps,
-            wall_seconds: info.wall_seconds,
-            times: info.times,
-            krylov_iterations: info.solver.krylov_iterations,
-        });
+        observer.step(&StepReport::of(step, times.len(), t, &info));
         on_step(&StepResult {
             step,
             time: t,

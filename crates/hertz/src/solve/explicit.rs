@@ -14,10 +14,11 @@
 //! stiffness as its penalty (see [`node_stiffness`]). hertz starts with v_½ = v₀ + (h/2) a₀, a₀ from equilibrium (second
 //! order; OOFEM starts first order and puts u₀ at t = Δt, QUIRK).
 
+use super::load_history::LoadHistory;
 use super::newton::NewtonContext;
 use super::params::SolveParams;
 use super::report::{Observer, Phase, StepInfo, StepReport};
-use super::stepping::{Energy, LoadHistory, Motion, StepResult};
+use super::step_result::{Energy, Motion, StepResult};
 use crate::assembly::{DofMap, MassMatrix};
 use crate::contact::ContactSystem;
 use crate::error::{Error, Result};
@@ -177,17 +178,7 @@ pub fn run(
         info.substeps = substeps;
         info.wall_seconds = clock.elapsed().as_secs_f64();
         ctx.finish_step_info(&mut info);
-        observer.step(&StepReport {
-            step,
-            n_steps: times.len(),
-            time: t_end,
-            iterations: 0,
-            residual: 0.0,
-            substeps,
-            wall_seconds: info.wall_seconds,
-            times: info.times,
-            krylov_iterations: 0,
-        });
+        observer.step(&StepReport::of(step, times.len(), t_end, &info));
         let reactions = state.reactions(&a);
         on_step(&StepResult {
             step,

@@ -10,20 +10,24 @@ mod equations;
 pub mod explicit;
 pub mod krylov;
 pub mod linear;
+pub mod load_history;
 pub mod multipliers;
 pub mod newton;
 pub mod ordering;
 pub mod params;
 pub mod partition;
 pub mod report;
+pub mod run;
 pub mod softening;
+pub mod step_result;
 pub mod stepping;
 pub mod terms;
 mod watch;
 
 pub use params::{SolveParams, SolverChoice, SolverFactory};
 pub use report::{IterationReport, Observer, Phase, PhaseTimes, Silent, StepInfo, StepReport};
-pub use stepping::{run_analysis, run_analysis_observed, Energy, Motion, StepResult};
+pub use run::{run_analysis, run_analysis_observed};
+pub use step_result::{Energy, Motion, StepResult};
 pub use terms::{Statics, StepTerms};
 
 use crate::assembly::DofMap;

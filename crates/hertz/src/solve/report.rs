@@ -71,6 +71,23 @@ pub struct StepReport {
     pub krylov_iterations: usize,
 }
 
+impl StepReport {
+    /// The report of step `step` of `n_steps`, converged at `time`, from its `info`.
+    pub fn of(step: usize, n_steps: usize, time: f64, info: &StepInfo) -> StepReport {
+        StepReport {
+            step,
+            n_steps,
+            time,
+            iterations: info.iterations,
+            residual: info.residual_history.last().copied().unwrap_or(0.0),
+            substeps: info.substeps,
+            wall_seconds: info.wall_seconds,
+            times: info.times,
+            krylov_iterations: info.solver.krylov_iterations,
+        }
+    }
+}
+
 /// Receives a run's reports. Every method has an empty default: implement what you show.
 /// Methods take `&self` (an observer keeps its own state in cells): the driver holds it shared.
 pub trait Observer {

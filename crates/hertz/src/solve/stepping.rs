@@ -7,109 +7,27 @@
 //! A step that does not converge is restarted in 2, 4, … substeps (loads and prescribed values
 //! interpolated linearly); after `max_cutbacks` halvings the run stops with an error.
 
+use super::load_history::LoadHistory;
 use super::newton::NewtonContext;
 use super::params::SolveParams;
-use super::report::{Observer, Phase, Silent, StepInfo, StepReport};
+use super::report::{Observer, Phase, StepInfo, StepReport};
+use super::step_result::StepResult;
 use super::terms::{FollowerTerms, StepTerms};
 use crate::assembly::DofMap;
-use crate::contact::{ContactSystem, SlotState};
+use crate::contact::ContactSystem;
 use crate::error::{Error, Result};
-use crate::model::{AnalysisKind, Model};
+use crate::model::Model;
 use crate::solid::follower::FollowerLoads;
-use crate::solid::loads::reference_contributions;
-use crate::solid::GpState;
 use std::time::Instant;
 
-/// The converged state after a step.
-pub struct StepResult<'a> {
-    pub step: usize,
-    pub time: f64,
-    pub dofs: &'a DofMap,
-    /// Primary displacement vector (free, then prescribed).
-    pub u: &'a [f64],
-    /// Reaction per prescribed DOF (same order as `dofs.prescribed`).
-    pub reactions: &'a [f64],
-    pub states: &'a [Vec<GpState>],
-    /// Contact state of every contact node.
-    pub contact: &'a [SlotState],
-    pub info: &'a StepInfo,
-    /// A dynamic analysis's velocities, accelerations and energies.
-    pub motion: Option<Motion<'a>>,
-}
-
-/// The motion of a dynamic step: velocity and acceleration of every primary DOF (as `u`) and the
-/// energies so far.
-#[derive(Clone, Copy)]
-pub struct Motion<'a> {
-    pub velocity: &'a [f64],
-    pub acceleration: &'a [f64],
-    pub energy: Energy,
-}
-
-/// Energies of a dynamic analysis at a step: the kinetic energy and the work done since the
-/// start (each integrated by the trapezoidal rule over every step's increment).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Energy {
-    pub kinetic: f64,
-    /// Work of the elements' internal forces (the strain energy of elastic bodies).
-    pub internal: f64,
-    /// Work of the contact forces on the bodies (the penalty's stored energy, friction's
-    /// dissipation).
-    pub contact: f64,
-    /// Work of the damping forces (energy dissipated by Rayleigh damping).
-    pub damping: f64,
-    /// Work of the external loads.
-    pub external: f64,
-    /// Work of the support forces on prescribed motion.
-    pub supports: f64,
-    /// The kinetic energy at the start.
-    pub initial: f64,
-}
-
-impl Energy {
-    /// What the scheme created (> 0) or lost (< 0): kinetic + internal + contact + damping −
-    /// external − supports − initial; zero for the trapezoidal rule on linear elastic bodies.
-    pub fn balance(&self) -> f64 {
-        self.kinetic + self.internal + self.contact + self.damping
-            - self.external
-            - self.supports
-            - self.initial
-    }
-}
-
-impl StepResult<'_> {
-    /// Total displacement of DOF `d` of node `n`, if the node has it.
-    pub fn displacement(&self, n: usize, d: u8) -> Option<f64> {
-        self.dofs.code(n, d).map(|c| self.dofs.value(self.u, c))
-    }
-}
-
-/// Run every step of the analysis, calling `on_step` after each converged step; nothing is
-/// reported on the way (see [`run_analysis_observed`]).
-pub fn run_analysis(
-    model: &Model,
-    params: &SolveParams,
-    on_step: impl FnMut(&StepResult) -> Result<()>,
-) -> Result<()> {
-    run_analysis_observed(model, params, &Silent, on_step)
-}
-
-/// [`run_analysis`], telling `observer` of each phase, Newton iteration, step, cut-back and
-/// warning as they come.
-pub fn run_analysis_observed(
+/// Run a static analysis, telling `observer` of each phase, Newton iteration, step, cut-back
+/// and warning as they come, and calling `on_step` after each converged step.
+pub fn run(
     model: &Model,
     params: &SolveParams,
     observer: &dyn Observer,
     mut on_step: impl FnMut(&StepResult) -> Result<()>,
 ) -> Result<()> {
-    if let Some(d) = model.analysis.dynamics {
-        return match d.scheme {
-            crate::model::TimeScheme::CentralDifference { .. } => {
-                super::explicit::run(model, params, observer, on_step)
-            }
-            _ => super::dynamics::run(model, params, observer, on_step),
-        };
-    }
     let contact = ContactSystem::new(model)?;
     let dofs = DofMap::new(model, &contact.extra_dofs())?;
     observer.phase(&Phase::SetUp {
@@ -157,17 +75,7 @@ pub fn run_analysis_observed(
             .collect();
         info.wall_seconds = clock.elapsed().as_secs_f64();
         ctx.finish_step_info(&mut info);
-        observer.step(&StepReport {
-            step,
-            n_steps: times.len(),
-            time: t,
-            iterations: info.iterations,
-            residual: info.residual_history.last().copied().unwrap_or(0.0),
-            substeps: info.substeps,
-            wall_seconds: info.wall_seconds,
-            times: info.times,
-            krylov_iterations: info.solver.krylov_iterations,
-        });
+        observer.step(&StepReport::of(step, times.len(), t, &info));
         let states = ev.states.unwrap_or_default();
         on_step(&StepResult {
             step,
@@ -182,91 +90,6 @@ pub fn run_analysis_observed(
         })?;
     }
     Ok(())
-}
-
-/// The loads and prescribed values of a model over time.
-pub(super) struct LoadHistory<'a> {
-    model: &'a Model,
-    dofs: &'a DofMap,
-    /// Per time function, the load vector it scales.
-    reference: Vec<(usize, Vec<f64>)>,
-}
-
-impl<'a> LoadHistory<'a> {
-    pub(super) fn new(model: &'a Model, dofs: &'a DofMap) -> Result<LoadHistory<'a>> {
-        Ok(LoadHistory {
-            model,
-            dofs,
-            reference: reference_load_vectors(model, dofs)?,
-        })
-    }
-
-    /// Σ scale(f)·(load vector of f).
-    fn external(&self, scale: &dyn Fn(usize) -> f64) -> Vec<f64> {
-        let mut f = vec![0.0; self.dofs.n_primary()];
-        for (func, v) in &self.reference {
-            let s = scale(*func);
-            if s != 0.0 {
-                for (a, b) in f.iter_mut().zip(v) {
-                    *a += s * b;
-                }
-            }
-        }
-        f
-    }
-
-    /// The external forces at time `t`, `applied` those of the last step (NonLinearStatic
-    /// `refloadmode 1` adds the increment to them).
-    pub(super) fn external_at(&self, t: f64, applied: &[f64]) -> Vec<f64> {
-        let (model, a) = (self.model, &self.model.analysis);
-        match a.kind {
-            AnalysisKind::NonLinearStatic => {
-                let r = self.external(&|f| {
-                    let func = &model.functions[f];
-                    if a.refloadmode == 1 {
-                        func.eval(t) - func.eval(t - a.deltat)
-                    } else {
-                        func.eval(t)
-                    }
-                });
-                applied.iter().zip(&r).map(|(x, y)| x + y).collect()
-            }
-            _ => self.external(&|f| model.functions[f].eval(t)),
-        }
-    }
-
-    /// The factor of every load at time `t` (`applied` those of the last step): what its time
-    /// function scales it by, as [`Self::external_at`] sums them.
-    pub(super) fn factors_at(&self, t: f64, applied: &[f64]) -> Vec<f64> {
-        let (model, a) = (self.model, &self.model.analysis);
-        model
-            .loads
-            .iter()
-            .zip(applied)
-            .map(|(load, &before)| {
-                let func = &model.functions[load.function - 1];
-                match a.kind {
-                    AnalysisKind::NonLinearStatic if a.refloadmode == 1 => {
-                        before + func.eval(t) - func.eval(t - a.deltat)
-                    }
-                    AnalysisKind::NonLinearStatic => before + func.eval(t),
-                    _ => func.eval(t),
-                }
-            })
-            .collect()
-    }
-
-    /// The prescribed values at time `t`.
-    pub(super) fn prescribed_at(&self, t: f64) -> Vec<f64> {
-        self.dofs
-            .prescribed
-            .iter()
-            .map(|&(_, d, bi)| {
-                let bc = &self.model.dirichlet[bi];
-                bc.value_for(d) * self.model.functions[bc.function - 1].eval(t)
-            })
-            .collect()
-    }
 }
 
 /// What a load step goes to: step number and time, external forces from and to, the prescribed
@@ -420,23 +243,4 @@ fn step_with_cutbacks(
             "step {step} (t = {t}): {msg}, even after {halvings} step halvings{earlier}{softening}"
         ),
     }))
-}
-
-/// Reference load vector of every load (components at f = 1) in primary numbering, with the
-/// index of its time function.
-pub fn reference_load_vectors(model: &Model, dofs: &DofMap) -> Result<Vec<(usize, Vec<f64>)>> {
-    let np = dofs.n_primary();
-    let mut out = Vec::with_capacity(model.loads.len());
-    for load in &model.loads {
-        let mut v = vec![0.0; np];
-        for (node, d, val) in reference_contributions(model, load)? {
-            if let Some(code) = dofs.code(node, d) {
-                for (p, w) in dofs.entries(code) {
-                    v[p] += w * val;
-                }
-            }
-        }
-        out.push((load.function - 1, v));
-    }
-    Ok(out)
 }
