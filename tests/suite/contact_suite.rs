@@ -445,3 +445,60 @@ fn mortar_converges_with_both_bodies_on_the_symmetry_planes() {
         assert!((a / b - 1.0).abs() < 1e-3, "{law:?}: force {a} against {b}");
     }
 }
+
+/// Contact nodes listed without their neighbours on the surface (every other top node of
+/// examples/hertz_rigid_circle.in) stand for no length of it: the active ones' pressure is
+/// undefined, and the run says so once, naming them (it was NaN without a word); the full
+/// list gives no such warning.
+#[test]
+fn active_nodes_without_area_are_named_once() {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/hertz_rigid_circle.in");
+    let full = std::fs::read_to_string(path).unwrap();
+    let sparse: Vec<String> = full
+        .lines()
+        .map(|l| {
+            if !l.starts_with("n2spenaltycontact 4") {
+                return l.to_string();
+            }
+            let w: Vec<&str> = l.split_whitespace().collect();
+            let i = w.iter().position(|t| *t == "nodeset").unwrap();
+            let n: usize = w[i + 1].parse().unwrap();
+            let keep: Vec<&str> = w[i + 2..i + 2 + n].iter().step_by(2).copied().collect();
+            let mut out: Vec<String> = w[..i].iter().map(|s| s.to_string()).collect();
+            out.push(format!("nodeset {}", keep.len()));
+            out.extend(keep.iter().map(|s| s.to_string()));
+            out.extend(w[i + 2 + n..].iter().map(|s| s.to_string()));
+            out.join(" ")
+        })
+        .collect();
+    for (text, expected) in [(sparse.join("\n"), true), (full, false)] {
+        let model = crate::common::model_from_text(&text).unwrap();
+        let mut warned = Vec::new();
+        hertz::solve::run_analysis(&model, &crate::common::quiet(), |r| {
+            let nan = r
+                .contact
+                .iter()
+                .filter(|c| c.active && c.pressure.is_nan())
+                .count();
+            assert_eq!(nan > 0, expected);
+            warned.extend(
+                r.info
+                    .warnings
+                    .iter()
+                    .filter(|w| w.contains("stand for no length"))
+                    .cloned(),
+            );
+            Ok(())
+        })
+        .unwrap();
+        assert_eq!(warned.len(), usize::from(expected), "{warned:?}");
+        if expected {
+            assert!(
+                warned[0].contains("contact node(s) 51, 153"),
+                "{}",
+                warned[0]
+            );
+        }
+    }
+}

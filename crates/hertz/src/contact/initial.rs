@@ -126,3 +126,31 @@ fn rigid_distance(model: &Model, g: usize, x: [f64; 3]) -> Option<f64> {
         _ => return None,
     })
 }
+
+/// A warning for the active contact nodes that carry a force but stand for no length or area
+/// on their surface (a mid-side node whose tributary edges are all excluded, a node of faces
+/// left out): their pressure is undefined, NaN in the CSV and 0 in the VTU files, while their
+/// force is in the reactions.
+pub fn pressure_warning(model: &Model, states: &[SlotState]) -> Option<String> {
+    let nodes: Vec<usize> = states
+        .iter()
+        .filter(|s| s.active && s.force != 0.0 && s.pressure.is_nan())
+        .map(|s| model.nodes[s.node].label)
+        .collect();
+    let (first, more) = (nodes.iter().take(6), nodes.len().saturating_sub(6));
+    (!nodes.is_empty()).then(|| {
+        let list: Vec<String> = first.map(|n| n.to_string()).collect();
+        let more = if more > 0 {
+            format!(" and {more} more")
+        } else {
+            String::new()
+        };
+        format!(
+            "contact node(s) {}{more} carry a contact force but stand for no length or area of \
+             their surface (their tributary edges or faces are excluded): their pressure is \
+             undefined (NaN in the contact CSV, 0 in the VTU files); their force is in the \
+             reactions",
+            list.join(", ")
+        )
+    })
+}

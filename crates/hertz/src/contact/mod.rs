@@ -50,6 +50,6 @@ mod initial;
 pub mod system;
 
 pub use formulation::{interface_weights, Anchor, Formulation, Partner, Search, SlotState};
-pub use initial::initial_warnings;
+pub use initial::{initial_warnings, pressure_warning};
 pub use slot::{BranchRule, SlotLinearization};
 pub use system::{crossing_message, ContactSystem};
