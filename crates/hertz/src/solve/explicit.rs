@@ -179,7 +179,7 @@ pub fn run(
         info.wall_seconds = clock.elapsed().as_secs_f64();
         ctx.finish_step_info(&mut info);
         observer.step(&StepReport::of(step, times.len(), t_end, &info));
-        let reactions = state.reactions(&a);
+        let reactions = state.reactions();
         on_step(&StepResult {
             step,
             time: t_end,
@@ -408,7 +408,7 @@ impl Explicit<'_> {
 
     /// The support forces at the prescribed DOFs: F_int + F_c − F_ext (the prescribed DOFs'
     /// inertia is not tracked in the explicit scheme).
-    fn reactions(&self, _a: &[f64]) -> Vec<f64> {
+    fn reactions(&self) -> Vec<f64> {
         let f = &self.forces;
         (self.dofs.n_free..self.u.len())
             .map(|p| f.internal[p] + f.contact[p] - f.external[p])
