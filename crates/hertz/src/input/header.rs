@@ -273,6 +273,23 @@ fn read_dynamics(r: &Record) -> Result<Dynamics> {
     let scheme = match r.opt_int("ddtscheme")?.unwrap_or(0) {
         0 => TimeScheme::ThreePointBackward,
         1 => TimeScheme::BackwardEuler,
+        2 if r.opt_float("rhoinf")?.is_some() => {
+            let rho = r.float("rhoinf")?;
+            if !(0.5..=1.0).contains(&rho) {
+                return Err(r.error(format!(
+                    "`rhoinf` (HHT's spectral radius at high frequency) must be in [0.5, 1], \
+                     found {rho}"
+                )));
+            }
+            if r.opt_float("gamma")?.is_some() || r.opt_float("beta")?.is_some() {
+                return Err(r.error(
+                    "`rhoinf` sets HHT's gamma and beta: give `rhoinf` or `gamma` and `beta`",
+                ));
+            }
+            TimeScheme::Hht {
+                alpha: (rho - 1.0) / (rho + 1.0),
+            }
+        }
         2 => {
             let gamma = r.opt_float("gamma")?.unwrap_or(0.5);
             let beta = r.opt_float("beta")?.unwrap_or(0.25);

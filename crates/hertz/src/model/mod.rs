@@ -74,6 +74,10 @@ pub enum TimeScheme {
     BackwardEuler,
     /// `ddtScheme 2`: Newmark's family; γ = ½, β = ¼ is the trapezoidal rule (no dissipation).
     Newmark { gamma: f64, beta: f64 },
+    /// hertz's `rhoinf ρ∞` on `ddtScheme 2`: Hilber–Hughes–Taylor, α = (ρ∞ − 1)/(ρ∞ + 1) ∈
+    /// [−⅓, 0], γ = ½ − α, β = (1 − α)²/4: the forces of a step taken (1 + α) at its end and −α at
+    /// its start, high frequencies damped to the spectral radius ρ∞, second order.
+    Hht { alpha: f64 },
     /// `NlDEIDynamic`'s explicit central differences; the time step at most `reduct` times the
     /// stable one.
     CentralDifference { reduct: f64 },
@@ -84,6 +88,11 @@ impl TimeScheme {
     /// three-point scheme's first step is backward Euler).
     pub fn constants(self, dt: f64, first: bool) -> [f64; 7] {
         match self {
+            TimeScheme::Hht { alpha } => TimeScheme::Newmark {
+                gamma: 0.5 - alpha,
+                beta: 0.25 * (1.0 - alpha) * (1.0 - alpha),
+            }
+            .constants(dt, first),
             TimeScheme::Newmark { gamma, beta } => [
                 1.0 / (beta * dt * dt),
                 gamma / (beta * dt),
@@ -97,6 +106,17 @@ impl TimeScheme {
                 [2.0 / (dt * dt), 1.5 / dt, 2.0 / dt, 0.0, 0.0, 0.0, 0.5 / dt]
             }
             _ => [1.0 / (dt * dt), 1.0 / dt, 1.0 / dt, 0.0, 0.0, 0.0, 0.0],
+        }
+    }
+}
+
+impl TimeScheme {
+    /// HHT's α (0 for the other schemes): the step's equation is taken (1 + α) at its end and
+    /// −α at its start.
+    pub fn alpha(self) -> f64 {
+        match self {
+            TimeScheme::Hht { alpha } => alpha,
+            _ => 0.0,
         }
     }
 }

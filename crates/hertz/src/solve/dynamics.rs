@@ -26,12 +26,14 @@ use crate::solid::follower::FollowerLoads;
 use crate::solid::GpState;
 use std::time::Instant;
 
-/// The inertia and damping of a step: M·(c₀·u + base) with c₀ = a0 + η·a1 and base the
-/// history's part (a(u) + η·v(u) = c₀·u + base), tangent c₀·M.
+/// The inertia and damping of a step: M·(c₀·u + base) with c₀ = w·a0 + η·a1 and base the
+/// history's part (w·a(u) + η·v(u) = c₀·u + base), tangent c₀·M; with HHT (w = 1/(1 + α)) the
+/// step's start forces −α·w·(C·v + F_int + F_c − F_ext)ₙ too (`start`, constant).
 struct Inertia<'a> {
     mass: &'a MassMatrix,
     c0: f64,
     base: Vec<f64>,
+    start: Option<Vec<f64>>,
     n_free: usize,
 }
 
@@ -43,6 +45,11 @@ impl StepTerms for Inertia<'_> {
             .map(|(u, b)| self.c0 * u + b)
             .collect();
         self.mass.apply_add(1.0, &x, f_int);
+        if let Some(start) = &self.start {
+            for (f, s) in f_int.iter_mut().zip(start) {
+                *f += s;
+            }
+        }
     }
 
     fn add_tangent(&self, _u: &[f64], pattern: &Pattern, k: &mut [f64]) {
@@ -55,10 +62,16 @@ impl StepTerms for Inertia<'_> {
     /// (a slow oscillation at a short step), and the residual's round-off is theirs.
     fn add_force_norms(&self, u: &[f64], dofs: &DofMap, ebe: &mut [f64; 4]) {
         let scaled: Vec<f64> = u.iter().map(|u| self.c0 * u).collect();
+        let n = dofs.n_free - dofs.n_lambda;
         for x in [&scaled, &self.base] {
             let mut f = vec![0.0; u.len()];
             self.mass.apply_add(1.0, x, &mut f);
-            for (i, fi) in f.iter().enumerate().take(dofs.n_free - dofs.n_lambda) {
+            for (i, fi) in f.iter().enumerate().take(n) {
+                ebe[dofs.primary_dof_id[i] as usize] += fi * fi;
+            }
+        }
+        if let Some(start) = &self.start {
+            for (i, fi) in start.iter().enumerate().take(n) {
                 ebe[dofs.primary_dof_id[i] as usize] += fi * fi;
             }
         }
@@ -418,18 +431,27 @@ impl Run<'_> {
         let (np, nf) = (self.dofs.n_primary(), self.dofs.n_free);
         let eta = self.dynamics.eta;
         let k = self.dynamics.scheme.constants(h, state.du.is_none());
-        let c0 = k[0] + eta * k[1];
+        // HHT divides its step's equation by 1 + α: the inertia by it, the start's forces by −α.
+        let alpha = self.dynamics.scheme.alpha();
+        let w = 1.0 / (1.0 + alpha);
+        let c0 = w * k[0] + eta * k[1];
         let zero = vec![0.0; np];
         let du_prev = state.du.as_deref().unwrap_or(&zero);
-        // a(u) + η v(u) = c0 (u − u_n) + h_n.
+        // w a(u) + η v(u) = c0 (u − u_n) + h_n.
         let base: Vec<f64> = (0..np)
             .map(|i| {
                 -c0 * state.u[i]
-                    - (k[2] + eta * k[4]) * state.v[i]
-                    - (k[3] + eta * k[5]) * state.a[i]
+                    - (w * k[2] + eta * k[4]) * state.v[i]
+                    - (w * k[3] + eta * k[5]) * state.a[i]
                     - eta * k[6] * du_prev[i]
             })
             .collect();
+        let f = &state.forces;
+        let start = (alpha != 0.0).then(|| {
+            (0..np)
+                .map(|i| -alpha * w * (f.damping[i] + f.internal[i] + f.contact[i] - f.external[i]))
+                .collect()
+        });
         if self.last_c0 != Some(c0) {
             // The tangent's mass part changed: factorize afresh.
             ctx.attempt_failed();
@@ -439,6 +461,7 @@ impl Run<'_> {
             mass: &self.mass,
             c0,
             base,
+            start,
             n_free: nf,
         };
         let follower = self.follower_terms(t);
