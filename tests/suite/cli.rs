@@ -647,3 +647,44 @@ fn unknown_condition_lists_every_supported_record() {
     assert!(!err.contains("ConstantPressureLoad"), "{err}");
     assert!(err.starts_with("unknown_load.in:21:"), "{err}");
 }
+
+/// The VTU files follow the output manager's step selection where it makes one (`tstep_step 26`
+/// on the dropped rod's 104 steps: steps 26, 52, 78 and 104, and the PVD lists those), and are
+/// written at every step where it makes none.
+#[test]
+fn vtu_files_are_written_at_the_selected_steps() {
+    let scratch = common::scratch("vtu-steps");
+    let dir: &Path = scratch.as_ref();
+    std::fs::create_dir_all(dir).unwrap();
+    let text = std::fs::read_to_string(root().join("examples/rod_impact.in")).unwrap();
+    for (manager, expected) in [("OutputManager tstep_step 26", 4), ("OutputManager", 104)] {
+        let input = dir.join("rod.in");
+        std::fs::write(&input, text.replace("OutputManager tstep_all", manager)).unwrap();
+        let out = dir.join(format!("out{expected}"));
+        hertz_ok(&[
+            "run",
+            "-q",
+            input.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        let vtus = std::fs::read_dir(&out)
+            .unwrap()
+            .filter(|e| {
+                e.as_ref()
+                    .unwrap()
+                    .path()
+                    .extension()
+                    .is_some_and(|x| x == "vtu")
+            })
+            .count();
+        assert_eq!(vtus, expected, "{manager}");
+        let pvd = std::fs::read_to_string(out.join("rod_impact.pvd")).unwrap();
+        assert_eq!(pvd.matches("<DataSet").count(), expected, "{manager}");
+        if expected == 4 {
+            assert!(
+                out.join("rod_impact.26.vtu").is_file() && out.join("rod_impact.104.vtu").is_file()
+            );
+        }
+    }
+}

@@ -61,15 +61,19 @@ impl<'m> RunWriter<'m> {
     pub fn step(&mut self, res: &StepResult) -> Result<()> {
         let start = Instant::now();
         let model = self.model;
+        // The VTU files at the steps the output manager selects, at every step where it selects
+        // none (thousands of dynamic steps need not make thousands of files).
+        let o = &model.output;
+        let selects = o.tstep_all || o.tstep_step.is_some() || !o.tsteps_out.is_empty();
+        let vtu_now = !selects || o.step(res.step);
         // The .out block and the .vtu file side by side (each in parallel chunks too).
         let (block, name) = rayon::join(
+            || o.step(res.step).then(|| outfile::step_block(model, res)),
             || {
-                model
-                    .output
-                    .step(res.step)
-                    .then(|| outfile::step_block(model, res))
+                vtu_now
+                    .then(|| vtu::write_step(model, res, &self.dir, &self.names.stem, self.format))
+                    .transpose()
             },
-            || vtu::write_step(model, res, &self.dir, &self.names.stem, self.format),
         );
         self.out_parts.extend(block.into_iter().flatten());
         self.contact_csv
@@ -80,9 +84,10 @@ impl<'m> RunWriter<'m> {
         self.history_csv.push_str(&outfile::history_csv_row(res));
         self.newton_csv.push_str(&outfile::newton_csv_rows(res));
         self.energy_csv.push_str(&outfile::energy_csv_row(res));
-        let name = name?;
-        self.written.push(self.dir.join(&name));
-        self.vtus.push((res.time, name));
+        if let Some(name) = name? {
+            self.written.push(self.dir.join(&name));
+            self.vtus.push((res.time, name));
+        }
         self.clock += start.elapsed();
         Ok(())
     }
