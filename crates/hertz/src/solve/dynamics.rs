@@ -13,7 +13,7 @@
 //! chatters and makes energy at an impact) unless the analysis says `keepcontactmass`.
 
 use super::load_history::LoadHistory;
-use super::newton::NewtonContext;
+use super::newton::{Committed, NewtonContext};
 use super::params::SolveParams;
 use super::report::{Observer, Phase, StepInfo, StepReport};
 use super::step_result::{Energy, Motion, StepResult};
@@ -103,12 +103,80 @@ struct State {
 /// A converged (sub)step's contact states and material point states.
 type Converged = (Vec<SlotState>, Vec<Vec<GpState>>);
 
+/// Forces at a state, primary numbering: the elements', the contact's, the damping's (empty
+/// where the scheme keeps its own account of them) and the external loads' (follower ones
+/// included).
 #[derive(Clone, Default)]
-struct Forces {
-    internal: Vec<f64>,
-    contact: Vec<f64>,
-    damping: Vec<f64>,
-    external: Vec<f64>,
+pub(super) struct Forces {
+    pub internal: Vec<f64>,
+    pub contact: Vec<f64>,
+    pub damping: Vec<f64>,
+    pub external: Vec<f64>,
+}
+
+impl Forces {
+    /// The forces of a `committed` state, whose internal forces hold the elements' and the
+    /// contact's, with `damping` and `external`.
+    pub(super) fn of(committed: &Committed, damping: Vec<f64>, external: Vec<f64>) -> Forces {
+        let contact = &committed.contact;
+        Forces {
+            internal: committed
+                .ev
+                .f_int
+                .iter()
+                .zip(contact)
+                .map(|(f, c)| f - c)
+                .collect(),
+            contact: contact.clone(),
+            damping,
+            external,
+        }
+    }
+
+    /// Add each force's work over the increment `du` from the state of `old` to this one, by
+    /// the trapezoidal rule, to `energy` (the damping's where both states track it).
+    pub(super) fn add_work(&self, old: &Forces, du: &[f64], energy: &mut Energy) {
+        let work = |o: &[f64], n: &[f64]| -> f64 {
+            du.iter()
+                .enumerate()
+                .map(|(i, d)| 0.5 * (o[i] + n[i]) * d)
+                .sum()
+        };
+        energy.internal += work(&old.internal, &self.internal);
+        energy.contact += work(&old.contact, &self.contact);
+        energy.external += work(&old.external, &self.external);
+        if !self.damping.is_empty() && !old.damping.is_empty() {
+            energy.damping += work(&old.damping, &self.damping);
+        }
+    }
+}
+
+/// The initial displacements, velocities and accelerations of the free DOFs from the model's
+/// `InitialCondition`s (0 where none is given; the prescribed DOFs follow their conditions),
+/// and whether any gives an acceleration.
+pub(super) fn initial_values(model: &Model, dofs: &DofMap) -> ([Vec<f64>; 3], bool) {
+    let (np, nf) = (dofs.n_primary(), dofs.n_free);
+    let mut values = [vec![0.0; np], vec![0.0; np], vec![0.0; np]];
+    let mut given_a = false;
+    for ic in &model.initial_conditions {
+        for &n in &model.sets[ic.set - 1].nodes {
+            for &d in &ic.dofs {
+                let Some(code) = dofs.code(n, d).filter(|&c| c < nf) else {
+                    continue;
+                };
+                for (value, target) in [ic.displacement, ic.velocity, ic.acceleration]
+                    .into_iter()
+                    .zip(values.iter_mut())
+                {
+                    if let Some(x) = value {
+                        target[code] = x;
+                    }
+                }
+                given_a |= ic.acceleration.is_some();
+            }
+        }
+    }
+    (values, given_a)
 }
 
 /// What stays fixed over the run.
@@ -216,52 +284,23 @@ impl Run<'_> {
     fn initial_state(&self, ctx: &mut NewtonContext) -> Result<State> {
         let (model, dofs) = (self.model, self.dofs);
         let (np, nf) = (dofs.n_primary(), dofs.n_free);
-        let mut u = vec![0.0; np];
-        let mut v = vec![0.0; np];
-        let mut a = vec![0.0; np];
-        let mut given_a = false;
-        for ic in &model.initial_conditions {
-            for &n in &model.sets[ic.set - 1].nodes {
-                for &d in &ic.dofs {
-                    let Some(code) = dofs.code(n, d).filter(|&c| c < nf) else {
-                        continue;
-                    };
-                    for (value, target) in [
-                        (ic.displacement, &mut u),
-                        (ic.velocity, &mut v),
-                        (ic.acceleration, &mut a),
-                    ] {
-                        if let Some(x) = value {
-                            target[code] = x;
-                        }
-                    }
-                    given_a |= ic.acceleration.is_some();
-                }
-            }
-        }
+        let ([mut u, v, mut a], given_a) = initial_values(model, dofs);
         u[nf..].copy_from_slice(&self.history.prescribed_at(0.0));
         let committed = ctx.commit_step(&u)?;
-        let (ev, contact) = (committed.ev, committed.contact);
-        let external = self.external_forces(0.0, &u);
         let mut damping = vec![0.0; np];
         self.mass.apply_add(self.dynamics.eta, &v, &mut damping);
-        let internal: Vec<f64> = ev.f_int.iter().zip(&contact).map(|(f, c)| f - c).collect();
+        let forces = Forces::of(&committed, damping, self.external_forces(0.0, &u));
         if !given_a {
             // M_ff a_f = F_ext − F_int − F_c − C v over the displacement equations.
             let n_disp = nf - dofs.n_lambda;
+            let f = &forces;
             let rhs: Vec<f64> = (0..n_disp)
-                .map(|i| external[i] - ev.f_int[i] - damping[i])
+                .map(|i| f.external[i] - f.internal[i] - f.contact[i] - f.damping[i])
                 .collect();
             let af = self.solve_mass(&rhs);
             a[..n_disp].copy_from_slice(&af);
         }
         let kinetic = self.mass.half_norm(&v);
-        let forces = Forces {
-            internal,
-            contact,
-            damping,
-            external,
-        };
         Ok(State {
             reactions: self.support_forces(&forces, &a),
             u,
@@ -481,24 +520,11 @@ impl Run<'_> {
             .map(|i| k[1] * du[i] - k[4] * state.v[i] - k[5] * state.a[i] - k[6] * du_prev[i])
             .collect();
         let committed = ctx.commit_step(&u)?;
-        let (ev, states, contact) = (committed.ev, committed.states, committed.contact);
         let mut damping = vec![0.0; np];
         self.mass.apply_add(eta, &v, &mut damping);
-        let forces = Forces {
-            internal: ev.f_int.iter().zip(&contact).map(|(f, c)| f - c).collect(),
-            contact,
-            damping,
-            external: self.external_forces(t, &u),
-        };
-        let work = |old: &[f64], new: &[f64]| -> f64 {
-            (0..np).map(|i| 0.5 * (old[i] + new[i]) * du[i]).sum()
-        };
-        let old = &state.forces;
+        let forces = Forces::of(&committed, damping, self.external_forces(t, &u));
         let mut energy = state.energy;
-        energy.internal += work(&old.internal, &forces.internal);
-        energy.contact += work(&old.contact, &forces.contact);
-        energy.damping += work(&old.damping, &forces.damping);
-        energy.external += work(&old.external, &forces.external);
+        forces.add_work(&state.forces, &du, &mut energy);
         // The supports' forces at both ends, on the prescribed DOFs' increments.
         let reactions = self.support_forces(&forces, &a);
         energy.supports += (0..np - nf)
@@ -514,6 +540,9 @@ impl Run<'_> {
             reactions,
             energy,
         };
-        Ok(Some((states, ev.states.unwrap_or_default())))
+        Ok(Some((
+            committed.states,
+            committed.ev.states.unwrap_or_default(),
+        )))
     }
 }

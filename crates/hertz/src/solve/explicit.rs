@@ -14,6 +14,7 @@
 //! stiffness as its penalty (see [`node_stiffness`]). hertz starts with v_½ = v₀ + (h/2) a₀, a₀ from equilibrium (second
 //! order; OOFEM starts first order and puts u₀ at t = Δt, QUIRK).
 
+use super::dynamics::{initial_values, Forces};
 use super::load_history::LoadHistory;
 use super::newton::NewtonContext;
 use super::params::SolveParams;
@@ -47,13 +48,6 @@ struct Explicit<'a> {
     energy: Energy,
     /// The largest stable step at the last state.
     stable: f64,
-}
-
-/// Forces at a state, primary numbering: the elements', the contact's, the external loads'.
-struct Forces {
-    internal: Vec<f64>,
-    contact: Vec<f64>,
-    external: Vec<f64>,
 }
 
 /// Run an `NlDEIDynamic` analysis (see the module's doc), calling `on_step` after each step.
@@ -117,11 +111,7 @@ pub fn run(
         v_ahead: vec![0.0; np],
         h: 0.0,
         a_last: vec![0.0; np],
-        forces: Forces {
-            internal: Vec::new(),
-            contact: Vec::new(),
-            external: Vec::new(),
-        },
+        forces: Forces::default(),
         energy: Energy::default(),
         stable: f64::INFINITY,
     };
@@ -231,30 +221,16 @@ type Substep = (
 );
 
 impl Explicit<'_> {
-    /// The start: u₀ and v₀ from the initial conditions, a₀ from equilibrium. Returns v₀ and a₀
-    /// (the run sets v_½ = v₀ + (h/2) a₀ once it knows the first step h).
+    /// The start: u₀, v₀ and a₀ from the initial conditions, a₀ from equilibrium where none
+    /// gives one (as the implicit schemes). Returns v₀ and a₀ (the run sets v_½ = v₀ + (h/2) a₀
+    /// once it knows the first step h).
     fn start(&mut self, ctx: &mut NewtonContext) -> Result<(Vec<f64>, Vec<f64>)> {
-        let (model, dofs) = (self.model, self.dofs);
-        let nf = dofs.n_free;
-        let mut v = vec![0.0; self.u.len()];
-        for ic in &model.initial_conditions {
-            for &n in &model.sets[ic.set - 1].nodes {
-                for &d in &ic.dofs {
-                    let Some(code) = dofs.code(n, d).filter(|&c| c < nf) else {
-                        continue;
-                    };
-                    if let Some(x) = ic.displacement {
-                        self.u[code] = x;
-                    }
-                    if let Some(x) = ic.velocity {
-                        v[code] = x;
-                    }
-                }
-            }
-        }
+        let nf = self.dofs.n_free;
+        let ([u, v, a], given_a) = initial_values(self.model, self.dofs);
+        self.u = u;
         self.u[nf..].copy_from_slice(&self.history.prescribed_at(0.0));
         self.evaluate(ctx, 0.0)?;
-        let a = self.acceleration(&v);
+        let a = if given_a { a } else { self.acceleration(&v) };
         self.energy.kinetic = self.kinetic(&v);
         self.energy.initial = self.energy.kinetic;
         Ok((v, a))
@@ -288,17 +264,8 @@ impl Explicit<'_> {
             f64::INFINITY
         };
         self.stable = self.stable.min(stable);
-        self.forces = Forces {
-            internal: committed
-                .ev
-                .f_int
-                .iter()
-                .zip(&committed.contact)
-                .map(|(f, c)| f - c)
-                .collect(),
-            contact: committed.contact.clone(),
-            external: self.history.external_at(t, &vec![0.0; self.u.len()]),
-        };
+        let external = self.history.external_at(t, &vec![0.0; self.u.len()]);
+        self.forces = Forces::of(&committed, Vec::new(), external);
         Ok(committed)
     }
 
@@ -340,14 +307,7 @@ impl Explicit<'_> {
             self.u[i] += h * self.v_ahead[i];
         }
         self.u[nf..].copy_from_slice(&self.history.prescribed_at(t));
-        let old = std::mem::replace(
-            &mut self.forces,
-            Forces {
-                internal: Vec::new(),
-                contact: Vec::new(),
-                external: Vec::new(),
-            },
-        );
+        let old = std::mem::take(&mut self.forces);
         let committed = self.evaluate(ctx, t)?;
         if self.stable < h * (1.0 - 1e-9) {
             self.u = before;
@@ -385,12 +345,8 @@ impl Explicit<'_> {
             v[i] = du[i] / h;
             a[i] = 0.0;
         }
-        let work =
-            |o: &[f64], n: &[f64]| -> f64 { (0..np).map(|i| 0.5 * (o[i] + n[i]) * du[i]).sum() };
-        let f = &self.forces;
-        self.energy.internal += work(&old.internal, &f.internal);
-        self.energy.contact += work(&old.contact, &f.contact);
-        self.energy.external += work(&old.external, &f.external);
+        // The damping's work on the velocity it acted with, v_{k−½}, over the step.
+        self.forces.add_work(&old, &du, &mut self.energy);
         let damping: f64 = (0..nf)
             .map(|i| self.damping * self.mass[i] * behind[i] * behind[i] * h)
             .sum();
