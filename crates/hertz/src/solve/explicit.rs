@@ -81,17 +81,16 @@ pub fn run(
             ),
         });
     }
-    let mut contact = ContactSystem::new(model)?;
+    let contact = ContactSystem::new(model)?;
     let dofs = DofMap::new(model, &contact.extra_dofs())?;
     let (np, nf) = (dofs.n_primary(), dofs.n_free);
-    if !contact.is_empty() {
-        contact.set_mesh_penalties(&node_stiffness(model, &dofs)?);
-    }
     observer.phase(&Phase::SetUp {
         unknowns: nf,
         steps: model.step_times().len(),
     });
     let (mut ctx, mut warnings) = NewtonContext::new(model, &dofs, contact, params, observer)?;
+    let stiffness = ctx.tangent_row_sums(&vec![0.0; np])?;
+    ctx.set_mesh_penalties(&node_stiffness(&dofs, &stiffness));
     let mass = MassMatrix::new(model, &dofs, true, &vec![false; model.nodes.len()])?.diagonal(np);
     if let Some(i) = (0..nf).find(|&i| !(mass[i] > 0.0)) {
         return Err(Error::Solve(format!(
@@ -103,7 +102,7 @@ pub fn run(
         model,
         dofs: &dofs,
         history: LoadHistory::new(model, &dofs)?,
-        stiffness: ctx.tangent_row_sums(&vec![0.0; np])?,
+        stiffness,
         mass,
         damping: dynamics.eta,
         reduct,
@@ -189,19 +188,13 @@ pub fn run(
     Ok(())
 }
 
-/// Each node's stiffness in the reference state: the largest Σ_j |K_ij| of its free DOFs' rows
-/// (0 where it has none). As a contact node's penalty it at most doubles the node's squared
-/// frequency: the stable step shortens by √2 at most, and the node does not bounce on the
-/// contact (a penalty 10 to 1000 times stiffer made a dropped rod's bottom nodes chatter and the
-/// rod leave with 3 times its energy).
-fn node_stiffness(model: &Model, dofs: &DofMap) -> Result<Vec<f64>> {
-    let asm = crate::assembly::Assembler::new(model, dofs)?;
-    let ev = asm.evaluate(&vec![0.0; dofs.n_primary()], true, false, None, &[])?;
-    let sums = asm
-        .pattern
-        .abs_row_sums(ev.k_values.as_deref().expect("a tangent was asked for"));
-    Ok(dofs
-        .node_dofs
+/// Each node's stiffness in the reference state: the largest row sum Σ_j |K_ij| (`sums`, free
+/// equations) of its free DOFs (0 where it has none). As a contact node's penalty it at most
+/// doubles the node's squared frequency: the stable step shortens by √2 at most, and the node
+/// does not bounce on the contact (a penalty 10 to 1000 times stiffer made a dropped rod's
+/// bottom nodes chatter and the rod leave with 3 times its energy).
+fn node_stiffness(dofs: &DofMap, sums: &[f64]) -> Vec<f64> {
+    dofs.node_dofs
         .iter()
         .map(|list| {
             list.iter()
@@ -209,7 +202,7 @@ fn node_stiffness(model: &Model, dofs: &DofMap) -> Result<Vec<f64>> {
                 .map(|&(_, c)| sums[c])
                 .fold(0.0, f64::max)
         })
-        .collect())
+        .collect()
 }
 
 /// A converged substep: velocities and accelerations at its end, contact and material states.

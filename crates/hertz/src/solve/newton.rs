@@ -722,6 +722,12 @@ impl<'a> NewtonContext<'a> {
         Ok(self.eq.asm.pattern.abs_row_sums(&k))
     }
 
+    /// Each contact node's penalty from the mesh as `stiffness[node]` where its condition gives
+    /// none (see [`crate::contact::ContactSystem::set_mesh_penalties`]).
+    pub fn set_mesh_penalties(&mut self, stiffness: &[f64]) {
+        self.eq.contact.set_mesh_penalties(stiffness);
+    }
+
     /// The contact (slave) nodes, one per contact point.
     pub fn contact_nodes(&self) -> &[usize] {
         &self.watch.slot_nodes
