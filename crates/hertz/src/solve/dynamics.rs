@@ -225,8 +225,6 @@ pub fn run(
     let mut state = run.initial_state(&mut ctx)?;
     let times = model.step_times();
     let dt = model.analysis.deltat;
-    // The active nodes without area are told of once.
-    let mut pressure_warned = false;
     for (k, &t) in times.iter().enumerate() {
         let clock = Instant::now();
         let step = k + 1;
@@ -237,15 +235,8 @@ pub fn run(
         };
         let (contact_states, states) =
             run.step_with_cutbacks(&mut ctx, &mut state, (t - dt, t), params, &mut info)?;
-        if !pressure_warned {
-            if let Some(w) = crate::contact::pressure_warning(model, &contact_states) {
-                observer.warning(&w);
-                info.warnings.push(w);
-                pressure_warned = true;
-            }
-        }
         info.wall_seconds = clock.elapsed().as_secs_f64();
-        ctx.finish_step_info(&mut info);
+        ctx.finish_step_info(&mut info, &contact_states);
         observer.step(&StepReport::of(step, times.len(), t, &info));
         on_step(&StepResult {
             step,

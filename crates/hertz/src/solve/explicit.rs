@@ -166,7 +166,7 @@ pub fn run(
         }
         info.substeps = substeps;
         info.wall_seconds = clock.elapsed().as_secs_f64();
-        ctx.finish_step_info(&mut info);
+        ctx.finish_step_info(&mut info, &states.0);
         observer.step(&StepReport::of(step, times.len(), t_end, &info));
         let reactions = state.reactions();
         on_step(&StepResult {

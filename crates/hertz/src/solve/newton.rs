@@ -185,6 +185,7 @@ impl<'a> NewtonContext<'a> {
                 slot_nodes,
                 floor_dominated: None,
                 floor_warned: false,
+                arealess_warned: false,
             },
         };
         if let Some(s) = ctx.stepper.as_mut().filter(|s| s.full_tangents()) {
@@ -194,8 +195,16 @@ impl<'a> NewtonContext<'a> {
     }
 
     /// Fill a converged step's `info` with what the solvers did: the multipliers eliminated,
-    /// the linear solver's statistics and the phase times.
-    pub fn finish_step_info(&mut self, info: &mut StepInfo) {
+    /// the linear solver's statistics and the phase times; and, the first time its `contact`
+    /// states show them, warn of active contact nodes that stand for no area.
+    pub fn finish_step_info(&mut self, info: &mut StepInfo, contact: &[SlotState]) {
+        if !self.watch.arealess_warned {
+            if let Some(w) = crate::contact::pressure_warning(self.eq.model(), contact) {
+                self.eq.observer.warning(&w);
+                info.warnings.push(w);
+                self.watch.arealess_warned = true;
+            }
+        }
         match self.stepper.as_ref().and_then(|s| s.elimination()) {
             Some((counts, stats)) => {
                 info.multipliers_eliminated = counts;

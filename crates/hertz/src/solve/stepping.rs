@@ -37,8 +37,6 @@ pub fn run(
     let history = LoadHistory::new(model, &dofs)?;
     let follower = FollowerLoads::new(model, &dofs)?;
     let mut applied_factors = vec![0.0; model.loads.len()];
-    // The active nodes without area are told of once.
-    let mut pressure_warned = false;
     let (mut ctx, mut initial_warnings) =
         NewtonContext::new(model, &dofs, contact, params, observer)?;
     let np = dofs.n_primary();
@@ -68,13 +66,6 @@ pub fn run(
         step_with_cutbacks(&mut ctx, &mut u, &goal, params, &mut info)?;
         let committed = ctx.commit_step(&u)?;
         let (mut ev, contact_states) = (committed.ev, committed.states);
-        if !pressure_warned {
-            if let Some(w) = crate::contact::pressure_warning(model, &contact_states) {
-                observer.warning(&w);
-                info.warnings.push(w);
-                pressure_warned = true;
-            }
-        }
         // The reactions balance the follower loads too.
         goal.terms(1.0, model, &dofs).add_forces(&u, &mut ev.f_int);
         applied = target;
@@ -83,7 +74,7 @@ pub fn run(
             .map(|i| ev.f_int[nf + i] - applied[nf + i])
             .collect();
         info.wall_seconds = clock.elapsed().as_secs_f64();
-        ctx.finish_step_info(&mut info);
+        ctx.finish_step_info(&mut info, &contact_states);
         observer.step(&StepReport::of(step, times.len(), t, &info));
         let states = ev.states.unwrap_or_default();
         on_step(&StepResult {

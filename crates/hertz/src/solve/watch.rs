@@ -18,6 +18,8 @@ pub(super) struct Watch {
     pub floor_dominated: Option<f64>,
     /// The round-off floor warning was given.
     pub floor_warned: bool,
+    /// The warning of active contact nodes without area was given.
+    pub arealess_warned: bool,
 }
 
 impl Watch {
