@@ -15,11 +15,11 @@
 use super::load_history::LoadHistory;
 use super::newton::{Committed, NewtonContext};
 use super::params::SolveParams;
-use super::report::{Observer, Phase, StepInfo, StepReport};
+use super::report::{Observer, StepInfo, StepReport};
 use super::step_result::{Energy, Motion, StepResult};
 use super::terms::{Both, FollowerTerms, StepTerms};
 use crate::assembly::{DofMap, MassMatrix, Pattern};
-use crate::contact::{ContactSystem, SlotState};
+use crate::contact::SlotState;
 use crate::error::{Error, Result};
 use crate::model::{Dynamics, Model};
 use crate::solid::follower::FollowerLoads;
@@ -199,12 +199,7 @@ pub fn run(
     mut on_step: impl FnMut(&StepResult) -> Result<()>,
 ) -> Result<()> {
     let dynamics = model.analysis.dynamics.expect("a dynamic analysis");
-    let contact = ContactSystem::new(model)?;
-    let dofs = DofMap::new(model, &contact.extra_dofs())?;
-    observer.phase(&Phase::SetUp {
-        unknowns: dofs.n_free,
-        steps: model.step_times().len(),
-    });
+    let (contact, dofs) = super::newton::set_up(model, observer)?;
     let (mut ctx, mut initial_warnings) =
         NewtonContext::new(model, &dofs, contact, params, observer)?;
     let mut massless = vec![false; model.nodes.len()];

@@ -18,10 +18,9 @@ use super::dynamics::{initial_values, Forces};
 use super::load_history::LoadHistory;
 use super::newton::NewtonContext;
 use super::params::SolveParams;
-use super::report::{Observer, Phase, StepInfo, StepReport};
+use super::report::{Observer, StepInfo, StepReport};
 use super::step_result::{Energy, Motion, StepResult};
 use crate::assembly::{DofMap, MassMatrix};
-use crate::contact::ContactSystem;
 use crate::error::{Error, Result};
 use crate::model::{Enforcement, Model, TimeScheme};
 use std::time::Instant;
@@ -81,13 +80,8 @@ pub fn run(
             ),
         });
     }
-    let contact = ContactSystem::new(model)?;
-    let dofs = DofMap::new(model, &contact.extra_dofs())?;
+    let (contact, dofs) = super::newton::set_up(model, observer)?;
     let (np, nf) = (dofs.n_primary(), dofs.n_free);
-    observer.phase(&Phase::SetUp {
-        unknowns: nf,
-        steps: model.step_times().len(),
-    });
     let (mut ctx, mut warnings) = NewtonContext::new(model, &dofs, contact, params, observer)?;
     let stiffness = ctx.tangent_row_sums(&vec![0.0; np])?;
     ctx.set_mesh_penalties(&node_stiffness(&dofs, &stiffness));

@@ -21,7 +21,7 @@ use super::equations::Equations;
 use super::multipliers::MultiplierElimination;
 use super::params::SolveParams;
 use super::partition::Ranks;
-use super::report::{IterationReport, Observer, PhaseTimes, StepInfo};
+use super::report::{IterationReport, Observer, Phase, PhaseTimes, StepInfo};
 use super::terms::StepTerms;
 use super::watch::Watch;
 use crate::assembly::{Assembler, Contribution, DofMap, Evaluation, NodalState};
@@ -64,6 +64,18 @@ impl ContactHistory {
             None => (&self.initial, None),
         }
     }
+}
+
+/// A model's contact system and DOF map (its multipliers numbered after the displacements),
+/// told to `observer` as the set-up phase: what every driver starts from.
+pub(super) fn set_up(model: &Model, observer: &dyn Observer) -> Result<(ContactSystem, DofMap)> {
+    let contact = ContactSystem::new(model)?;
+    let dofs = DofMap::new(model, &contact.extra_dofs())?;
+    observer.phase(&Phase::SetUp {
+        unknowns: dofs.n_free,
+        steps: model.step_times().len(),
+    });
+    Ok((contact, dofs))
 }
 
 /// A converged state's evaluation ([`NewtonContext::commit_step`]).

@@ -10,11 +10,10 @@
 use super::load_history::LoadHistory;
 use super::newton::NewtonContext;
 use super::params::SolveParams;
-use super::report::{Observer, Phase, StepInfo, StepReport};
+use super::report::{Observer, StepInfo, StepReport};
 use super::step_result::StepResult;
 use super::terms::{FollowerTerms, StepTerms};
 use crate::assembly::DofMap;
-use crate::contact::ContactSystem;
 use crate::error::{Error, Result};
 use crate::model::Model;
 use crate::solid::follower::FollowerLoads;
@@ -28,12 +27,7 @@ pub fn run(
     observer: &dyn Observer,
     mut on_step: impl FnMut(&StepResult) -> Result<()>,
 ) -> Result<()> {
-    let contact = ContactSystem::new(model)?;
-    let dofs = DofMap::new(model, &contact.extra_dofs())?;
-    observer.phase(&Phase::SetUp {
-        unknowns: dofs.n_free,
-        steps: model.step_times().len(),
-    });
+    let (contact, dofs) = super::newton::set_up(model, observer)?;
     let history = LoadHistory::new(model, &dofs)?;
     let follower = FollowerLoads::new(model, &dofs)?;
     let mut applied_factors = vec![0.0; model.loads.len()];
