@@ -25,6 +25,20 @@ fn hertz_ok(args: &[&str]) -> Output {
     out
 }
 
+/// How many files in `dir` end in `.ext`.
+fn count_files(dir: &Path, ext: &str) -> usize {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .filter(|e| {
+            e.as_ref()
+                .unwrap()
+                .path()
+                .extension()
+                .is_some_and(|x| x == ext)
+        })
+        .count()
+}
+
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
@@ -113,16 +127,7 @@ fn malformed_inputs_give_their_message_line_and_exit_2() {
     }
     assert!(n >= 20, "only {n} malformed inputs");
     // Every file in the folder is in the table.
-    let files = std::fs::read_dir(&bad)
-        .unwrap()
-        .filter(|e| {
-            e.as_ref()
-                .unwrap()
-                .path()
-                .extension()
-                .is_some_and(|x| x == "in")
-        })
-        .count();
+    let files = count_files(&bad, "in");
     assert_eq!(files, n, "every tests/data/bad/*.in has an expectation");
 }
 
@@ -668,16 +673,7 @@ fn vtu_files_are_written_at_the_selected_steps() {
             "-o",
             out.to_str().unwrap(),
         ]);
-        let vtus = std::fs::read_dir(&out)
-            .unwrap()
-            .filter(|e| {
-                e.as_ref()
-                    .unwrap()
-                    .path()
-                    .extension()
-                    .is_some_and(|x| x == "vtu")
-            })
-            .count();
+        let vtus = count_files(&out, "vtu");
         assert_eq!(vtus, expected, "{manager}");
         let pvd = std::fs::read_to_string(out.join("rod_impact.pvd")).unwrap();
         assert_eq!(pvd.matches("<DataSet").count(), expected, "{manager}");
