@@ -26,25 +26,24 @@ use crate::solid::follower::FollowerLoads;
 use crate::solid::GpState;
 use std::time::Instant;
 
-/// The inertia and damping of a step: M·(c₀·u + base) with c₀ = w·a0 + η·a1 and base the
-/// history's part (w·a(u) + η·v(u) = c₀·u + base), tangent c₀·M; with HHT (w = 1/(1 + α)) the
-/// step's start forces −α·w·(C·v + F_int + F_c − F_ext)ₙ too (`start`, constant).
+/// The inertia and damping of a step: c₀·M·u + M·base with c₀ = w·a0 + η·a1 and base the
+/// history's part (w·a(u) + η·v(u) = c₀·u + base; M·base is `history`, formed once a step),
+/// tangent c₀·M; with HHT (w = 1/(1 + α)) the step's start forces −α·w·(C·v + F_int + F_c −
+/// F_ext)ₙ too (`start`, constant).
 struct Inertia<'a> {
     mass: &'a MassMatrix,
     c0: f64,
-    base: Vec<f64>,
+    history: Vec<f64>,
     start: Option<Vec<f64>>,
     n_free: usize,
 }
 
 impl StepTerms for Inertia<'_> {
     fn add_forces(&self, u: &[f64], f_int: &mut [f64]) {
-        let x: Vec<f64> = u
-            .iter()
-            .zip(&self.base)
-            .map(|(u, b)| self.c0 * u + b)
-            .collect();
-        self.mass.apply_add(1.0, &x, f_int);
+        self.mass.apply_add(self.c0, u, f_int);
+        for (f, h) in f_int.iter_mut().zip(&self.history) {
+            *f += h;
+        }
         if let Some(start) = &self.start {
             for (f, s) in f_int.iter_mut().zip(start) {
                 *f += s;
@@ -61,17 +60,14 @@ impl StepTerms for Inertia<'_> {
     /// (M·base); their difference, the inertia at the solution, can be far smaller than each
     /// (a slow oscillation at a short step), and the residual's round-off is theirs.
     fn add_force_norms(&self, u: &[f64], dofs: &DofMap, ebe: &mut [f64; 4]) {
-        let scaled: Vec<f64> = u.iter().map(|u| self.c0 * u).collect();
+        let mut scaled = vec![0.0; u.len()];
+        self.mass.apply_add(self.c0, u, &mut scaled);
         let n = dofs.n_free - dofs.n_lambda;
-        for x in [&scaled, &self.base] {
-            let mut f = vec![0.0; u.len()];
-            self.mass.apply_add(1.0, x, &mut f);
+        for f in [Some(&scaled), Some(&self.history), self.start.as_ref()]
+            .into_iter()
+            .flatten()
+        {
             for (i, fi) in f.iter().enumerate().take(n) {
-                ebe[dofs.primary_dof_id[i] as usize] += fi * fi;
-            }
-        }
-        if let Some(start) = &self.start {
-            for (i, fi) in start.iter().enumerate().take(n) {
                 ebe[dofs.primary_dof_id[i] as usize] += fi * fi;
             }
         }
@@ -482,10 +478,12 @@ impl Run<'_> {
             ctx.attempt_failed();
             self.last_c0 = Some(c0);
         }
+        let mut history = vec![0.0; np];
+        self.mass.apply_add(1.0, &base, &mut history);
         let inertia = Inertia {
             mass: &self.mass,
             c0,
-            base,
+            history,
             start,
             n_free: nf,
         };
