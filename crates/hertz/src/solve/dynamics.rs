@@ -353,7 +353,7 @@ impl Run<'_> {
     /// The external forces at time `t` and state `u`: the loads and the follower loads.
     fn external_forces(&self, t: f64, u: &[f64]) -> Vec<f64> {
         let np = self.dofs.n_primary();
-        let mut f = self.history.external_at(t, &vec![0.0; np]);
+        let mut f = self.history.total_at(t);
         let terms = self.follower_terms(t);
         // The follower terms add −F to the internal side.
         let mut neg = vec![0.0; np];
@@ -369,9 +369,7 @@ impl Run<'_> {
             loads: &self.follower,
             model: self.model,
             dofs: self.dofs,
-            scale: self
-                .history
-                .factors_at(t, &vec![0.0; self.model.loads.len()]),
+            scale: self.history.total_factors_at(t),
         }
     }
 
@@ -489,7 +487,7 @@ impl Run<'_> {
         };
         let follower = self.follower_terms(t);
         let terms = Both(&inertia, &follower);
-        let f_ext = self.history.external_at(t, &zero);
+        let f_ext = self.history.total_at(t);
         let up = self.history.prescribed_at(t);
         let mut u = state.u.clone();
         if !ctx.newton(&mut u, (&f_ext, &up), &self.model.analysis, info, &terms)? {

@@ -251,7 +251,7 @@ impl Explicit<'_> {
             f64::INFINITY
         };
         self.stable = self.stable.min(stable);
-        let external = self.history.external_at(t, &vec![0.0; self.u.len()]);
+        let external = self.history.total_at(t);
         self.forces = Forces::of(&committed, Vec::new(), external);
         Ok(committed)
     }

@@ -53,8 +53,14 @@ impl<'a> LoadHistory<'a> {
                 });
                 applied.iter().zip(&r).map(|(x, y)| x + y).collect()
             }
-            _ => self.external(&|f| model.functions[f].eval(t)),
+            _ => self.total_at(t),
         }
+    }
+
+    /// The external forces at time `t` when loads are total (f(t) times each load, as in
+    /// dynamics), not accumulated over steps.
+    pub(super) fn total_at(&self, t: f64) -> Vec<f64> {
+        self.external(&|f| self.model.functions[f].eval(t))
     }
 
     /// The factor of every load at time `t` (`applied` those of the last step): what its time
@@ -75,6 +81,16 @@ impl<'a> LoadHistory<'a> {
                     _ => func.eval(t),
                 }
             })
+            .collect()
+    }
+
+    /// Every load's factor at time `t` when loads are total: its time function's value.
+    pub(super) fn total_factors_at(&self, t: f64) -> Vec<f64> {
+        let model = self.model;
+        model
+            .loads
+            .iter()
+            .map(|load| model.functions[load.function - 1].eval(t))
             .collect()
     }
 
