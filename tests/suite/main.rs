@@ -29,4 +29,5 @@ mod plasticity;
 mod plot;
 mod pressure;
 mod robustness;
+mod self_contact;
 mod upstream;

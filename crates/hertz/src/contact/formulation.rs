@@ -119,6 +119,15 @@ impl<'a> Search<'a> {
         }
     }
 
+    /// Whether slot k's constraint was merged into another's at the previous state (see
+    /// `contact::n2s::pairs`).
+    pub fn repeated(&self, k: usize) -> bool {
+        match self {
+            Search::Fresh => false,
+            Search::Hint(s) | Search::Frozen(s) => s.get(k).is_some_and(|s| s.repeated),
+        }
+    }
+
     /// Previous partner and parameter of slot k, and whether it must be kept.
     pub fn previous(&self, k: usize) -> Option<(Partner, [f64; 2], bool)> {
         match self {
@@ -195,6 +204,31 @@ impl Local {
     /// Number of local displacement unknowns.
     pub fn m(&self) -> usize {
         self.vals.len()
+    }
+
+    /// This set with `other`'s nodes added, and where each of `other`'s unknowns lands in it.
+    pub fn union(&self, other: &Local) -> (Local, Vec<usize>) {
+        let mut out = Local {
+            nodes: self.nodes.clone(),
+            codes: self.codes.clone(),
+            vals: self.vals.clone(),
+            dim: self.dim,
+        };
+        let mut map = Vec::with_capacity(other.m());
+        for (k, &n) in other.nodes.iter().enumerate() {
+            let at = match out.nodes.iter().position(|&m| m == n) {
+                Some(at) => at,
+                None => {
+                    let range = k * self.dim..(k + 1) * self.dim;
+                    out.nodes.push(n);
+                    out.codes.extend_from_slice(&other.codes[range.clone()]);
+                    out.vals.extend_from_slice(&other.vals[range]);
+                    out.nodes.len() - 1
+                }
+            };
+            map.extend((0..self.dim).map(|i| at * self.dim + i));
+        }
+        (out, map)
     }
 
     /// The node positions as dual vectors (each coordinate an unknown).

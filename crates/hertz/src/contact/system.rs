@@ -256,8 +256,8 @@ impl ContactSystem {
     /// previous state: a band, so that a pair at the limit does not alternate). The one dropped
     /// is the one past an open end of its partner (a node beside a corner, whose constraint is
     /// the extension of the surface) when the other lies on its partner (the corner on the
-    /// surface); else the one of the condition listed later, or the one dropped before. Pairs
-    /// are formed closest first, each node in one pair at most.
+    /// surface); else the one of the condition (or, in self-contact, the slot) listed later, or
+    /// the one dropped before. Pairs are formed closest first, each node in one pair at most.
     fn drop_repeated_constraints(
         &self,
         points: &mut [SlotLinearization],
@@ -284,7 +284,7 @@ impl ContactSystem {
             ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
         };
         let was_repeated = |k: usize| previous.and_then(|p| p.get(k)).is_some_and(|p| p.repeated);
-        // Candidate pairs (distance, i, j), i of the earlier condition.
+        // Candidate pairs (distance, i, j), i of the earlier condition or slot.
         let mut pairs = Vec::new();
         for (i, &fi) in owner.iter().enumerate() {
             if states[i].partner == Partner::None || !points[i].can_close() {
@@ -295,7 +295,8 @@ impl ContactSystem {
                 for &j in by_node.get(&b).into_iter().flatten() {
                     let fj = owner[j];
                     let back = self.formulations[fj].partner_nodes(states[j].partner);
-                    if fj <= fi || !back.contains(&states[i].node) {
+                    // Each pair once; in self-contact both slots are of one condition.
+                    if (fj, j) <= (fi, i) || !back.contains(&states[i].node) {
                         continue;
                     }
                     // b's nearest neighbour on its own surface (a's partner nodes other than b,

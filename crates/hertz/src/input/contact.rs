@@ -300,7 +300,10 @@ pub fn read_condition(
         }
         if c.segments.contains(&(g - 1)) {
             return Err(r.error(format!(
-                "segment {g} is both the slave segment and a master segment"
+                "segment {g} is both the slave segment and a master segment: mortar \
+                 self-contact is not supported; a node-to-segment condition (`n2s...`) whose \
+                 `slaveset` holds the segment's nodes and whose `segmentset` names it is \
+                 self-contact"
             )));
         }
     } else {

@@ -25,16 +25,18 @@
 
 mod edges;
 mod faces;
+mod pairs;
 mod rigid;
 mod slots;
 
-use slots::Slot;
+use slots::{OwnSurface, Slot};
 
 use super::dual::{DVec, Dual, Jet};
 use super::formulation::Anchor;
 use super::formulation::{apply_law, Ctx, Formulation, Local, Partner, Search, SlotState};
 use super::geometry::bodies::{self, BodiesAt, Inside, MasterBodies};
-use super::geometry::edges::EdgeSurface;
+use super::geometry::edges::{edge_normal, EdgeSurface};
+use super::geometry::faces as faces_geom;
 use super::geometry::faces::{FaceSurface, NodalNormal};
 use super::geometry::scalar::Scalar;
 use super::law::{SlipKinematics, SlotKinematics};
@@ -232,9 +234,9 @@ impl NodeToSegment {
         };
         let edges = EdgeSurface::new(model, segments);
         let faces = FaceSurface::new(model, segments);
-        slots::check_nodes(model, c, nodes, &edges, &faces)?;
+        slots::check_nodes(model, c, nodes)?;
         edges::check_support(model, &edges)?;
-        let slots = slots::slots(model, c, nodes, segments);
+        let slots = slots::slots(model, c, nodes, segments, (&edges, &faces));
         let (rigid, rigid_nodes) = rigid_segments(model, segments);
         let mut items_of: HashMap<usize, Vec<Partner>> = HashMap::new();
         for (k, e) in edges.edges.iter().enumerate() {
@@ -323,8 +325,17 @@ impl NodeToSegment {
         let mut out = Vec::new();
         // The previous partner is a candidate wherever the walk stops.
         let mut seen = false;
+        let own_normal = slot
+            .own
+            .as_ref()
+            .map(|own| self.own_normal(slot.node, own, cur));
+        let mut inside = None;
+        let mut admits = |c: &Candidate| match (&slot.own, own_normal) {
+            (Some(own), Some(n)) => self.admits(ctx, slot, own, n, xs, cur, c, &mut inside),
+            _ => true,
+        };
         let mut keep = |c: Option<Candidate>, out: &mut Vec<Candidate>| {
-            let c = c?;
+            let c = c.filter(&mut admits)?;
             seen |= Some(c.partner) == previous;
             out.push(c);
             c.inside.then_some(c.gap.abs())
@@ -342,15 +353,12 @@ impl NodeToSegment {
             |k| faces[k].open.iter().any(|&o| o),
             |k| keep(self.face_candidate(model, slot, xs, cur, k), &mut out),
         );
-        match previous {
-            Some(Partner::Edge(k)) if !seen => {
-                out.extend(self.edge_candidate(model, slot, xs, cur, k))
-            }
-            Some(Partner::Face(k)) if !seen => {
-                out.extend(self.face_candidate(model, slot, xs, cur, k))
-            }
-            _ => {}
-        }
+        let previous = match previous {
+            Some(Partner::Edge(k)) if !seen => self.edge_candidate(model, slot, xs, cur, k),
+            Some(Partner::Face(k)) if !seen => self.face_candidate(model, slot, xs, cur, k),
+            _ => None,
+        };
+        out.extend(previous.filter(&mut admits));
         self.rigid_candidates(ctx, xs, &mut out)?;
         Ok(out)
     }
@@ -414,6 +422,15 @@ impl NodeToSegment {
                 Partner::Face(k) => self.face_candidate(ctx.model, slot, xs, cur, k),
                 _ => None,
             });
+        let own_normal = slot
+            .own
+            .as_ref()
+            .map(|own| self.own_normal(slot.node, own, cur));
+        let mut crossed = Some(true);
+        let own = own.filter(|c| match (&slot.own, own_normal) {
+            (Some(o), Some(n)) => self.admits(ctx, slot, o, n, xs, cur, c, &mut crossed),
+            _ => true,
+        });
         cands
             .iter()
             .copied()
@@ -421,6 +438,90 @@ impl NodeToSegment {
             .filter(|c| c.inside && c.gap < 0.0)
             .min_by(|a, b| a.gap.abs().total_cmp(&b.gap.abs()))
             .or(best)
+    }
+
+    /// The current outward normal of self-contact node `node`: the mean of its own edges' or faces'
+    /// unit normals there (a direction to tell facing parts of the surface, not differentiated).
+    fn own_normal(&self, node: usize, own: &OwnSurface, cur: &Current) -> [f64; 3] {
+        let at = |n: &usize| cur.x[n];
+        let node_of = |nodes: &[usize]| nodes.iter().position(|&n| n == node);
+        let mut sum = [0.0; 3];
+        for &item in &own.items {
+            let n = match item {
+                Partner::Edge(k) => {
+                    let e = &self.edges.edges[k];
+                    let x: Vec<[f64; 2]> = e.nodes.iter().map(|n| [at(n)[0], at(n)[1]]).collect();
+                    let s = [0.0, 1.0, 0.5][node_of(&e.nodes).unwrap_or(2)];
+                    let n = edge_normal(&x, e.side, s);
+                    [n[0], n[1], 0.0]
+                }
+                Partner::Face(k) => {
+                    let f = &self.faces.faces[k];
+                    let x: Vec<[f64; 3]> = f.nodes.iter().map(at).collect();
+                    let (xi, eta) = node_of(&f.nodes).map_or(faces_geom::centre(f.kind), |i| {
+                        faces_geom::node_param(f.kind, i)
+                    });
+                    faces_geom::face_normal(f.kind, &x, f.side, xi, eta)
+                }
+                _ => continue,
+            };
+            for i in 0..3 {
+                sum[i] += n[i];
+            }
+        }
+        let len = sum.iter().map(|v| v * v).sum::<f64>().sqrt();
+        sum.map(|v| v / len)
+    }
+
+    /// Whether a self-contact node at `xs` (normal `normal` on its own surface `own`) can meet
+    /// candidate `c`: never an edge or face of its own neighbourhood, never a part of the
+    /// surface facing the same way as its own (n·n_s ≥ 0), and behind a part facing it (a
+    /// negative gap) only within `own.tolerance` or where it lies inside the master's body (a
+    /// node on a convex bulge lies far behind the tangent planes of the opposite side, which it
+    /// has not crossed). `inside` caches whether the node lies inside the master's body.
+    #[allow(clippy::too_many_arguments)]
+    fn admits(
+        &self,
+        ctx: &Ctx,
+        slot: &Slot,
+        own: &OwnSurface,
+        normal: [f64; 3],
+        xs: [f64; 3],
+        cur: &Current,
+        c: &Candidate,
+        inside: &mut Option<bool>,
+    ) -> bool {
+        if own.excluded.contains(&c.partner) {
+            return false;
+        }
+        let n = match c.partner {
+            Partner::Edge(k) => {
+                let (_, n) = self.edge_geometry_f64(k, cur).gap([xs[0], xs[1]], c.xi[0]);
+                [n[0], n[1], 0.0]
+            }
+            Partner::Face(k) => self.face_geometry_f64(k, cur).gap(&xs, c.xi[0], c.xi[1]).1,
+            _ => return true,
+        };
+        if (0..3).map(|i| n[i] * normal[i]).sum::<f64>() >= 0.0 {
+            return false;
+        }
+        c.gap >= -own.tolerance
+            || *inside.get_or_insert_with(|| self.inside_body(ctx, slot, xs, cur).is_some())
+    }
+
+    /// The local unknowns and kinematics of a slot without a partner: no force; a multiplier is
+    /// held at zero.
+    fn no_partner(&self, ctx: &Ctx, slot: &Slot) -> Result<(Local, SlotKinematics)> {
+        let mut local = Local::new(self.dim);
+        local.add(ctx, slot.node)?;
+        let m = local.m();
+        let kin = SlotKinematics::from_duals(
+            Dual::constant(f64::NAN, m),
+            Dual::constant(0.0, m),
+            &vec![Dual::constant(0.0, m); m],
+            0.0,
+        );
+        Ok((local, kin))
     }
 
     /// The contact point of a kept partner, recomputed at the current state.
@@ -551,6 +652,7 @@ impl Formulation for NodeToSegment {
         let searching = start.elapsed().as_secs_f64();
         let areas = self.areas.at(|n| Ok(ctx.position(n)?.0))?;
         let first_state = states.len();
+        let mut prepared = Vec::with_capacity(self.slots.len());
         for (k, (slot, chosen)) in self.slots.iter().zip(chosen).enumerate() {
             let per = self.multipliers_per_node();
             let lambda_eqs = self
@@ -584,34 +686,53 @@ impl Formulation for NodeToSegment {
                         _ => unreachable!("node-to-segment partners are edges, faces or rigid"),
                     };
                     state.anchor = next;
+                    state.gap = kin.gap.v;
+                    state.weight = kin.weight.v;
                     (local, kin)
                 }
-                None => {
-                    // No partner: no force; a multiplier is held at zero.
-                    let mut local = Local::new(self.dim);
-                    local.add(ctx, slot.node)?;
-                    let m = local.m();
-                    let kin = SlotKinematics::from_duals(
-                        Dual::constant(f64::NAN, m),
-                        Dual::constant(0.0, m),
-                        &vec![Dual::constant(0.0, m); m],
-                        0.0,
-                    );
-                    (local, kin)
-                }
+                None => self.no_partner(ctx, slot)?,
             };
-            if chosen.is_some() {
-                state.gap = kin.gap.v;
-                state.weight = kin.weight.v;
-            }
+            prepared.push((lambda_eqs, local, kin, state));
+        }
+        // Self-contact: pairs that repeat one contact hold it by one constraint (see `pairs`).
+        let pairs = {
+            let states: Vec<SlotState> = prepared.iter().map(|p| p.3.clone()).collect();
+            self.repeated_pairs(&states, &search, |k| {
+                pairs::mergeable(&self.slots[k], states[k].partner, &prepared[k].2)
+            })
+        };
+        for &(i, j) in &pairs {
+            let merged = pairs::merge(
+                (&prepared[i].1, &prepared[i].2),
+                (&prepared[j].1, &prepared[j].2),
+            );
+            (prepared[i].1, prepared[i].2) = merged;
+            (prepared[j].1, prepared[j].2) = self.no_partner(ctx, &self.slots[j])?;
+            prepared[j].3.repeated = true;
+        }
+        for (k, (slot, (lambda_eqs, local, kin, mut state))) in
+            self.slots.iter().zip(prepared).enumerate()
+        {
             let point = apply_law(
                 ctx, slot.law, lambda_eqs, &local, &kin, areas[k], &mut state,
             );
-            if !state.active {
-                state.crossed = self.inside_body(ctx, slot, state.x, &cur);
+            if !state.active && !state.repeated {
+                // Within the gap tolerance of the master the node touches it (the tip of a fold
+                // lying on the wall beside it, to round-off).
+                state.crossed = (self.inside_body(ctx, slot, state.x, &cur))
+                    .filter(|i| i.depth > ctx.laws.gap_tol);
             }
             points.push(point);
             states.push(state);
+        }
+        let mine = &mut states[first_state..];
+        for (i, j) in pairs {
+            let half = 0.5 * mine[i].force;
+            for (k, s) in [(i, mine[i].active), (j, mine[i].active)] {
+                mine[k].force = half;
+                mine[k].active = s;
+                mine[k].pressure = half / areas[k];
+            }
         }
         if self.areas.has_curved() {
             let mine = &mut states[first_state..];

@@ -2,6 +2,7 @@
 //! one carries (its tributary area and neighbours, its law and friction, the stiffness of the
 //! elements under it).
 
+use crate::contact::formulation::Partner;
 use crate::contact::geometry::edges::EdgeSurface;
 use crate::contact::geometry::faces::FaceSurface;
 use crate::contact::law::{SlotFriction, SlotLaw};
@@ -28,20 +29,81 @@ pub(super) struct Slot {
     /// modulus, see [`crate::contact::friction_modulus`]; A its tributary area, h the distance to its
     /// neighbours): c_T of the friction multipliers.
     pub(super) stiffness: f64,
+    /// Self-contact: the node lies on its condition's own master surface.
+    pub(super) own: Option<OwnSurface>,
 }
 
-/// Every contact node of condition `c` once, none on its own master, none the node of an 8-node
+/// Where a self-contact node sits on its own master surface (see `NodeToSegment::admits`).
+pub(super) struct OwnSurface {
+    /// The master's edges or faces the node belongs to: its current normal averages theirs.
+    pub(super) items: Vec<Partner>,
+    /// Those and their immediate neighbours (the items sharing a node with them): never the
+    /// node's partners, however the surface folds.
+    pub(super) excluded: Vec<Partner>,
+    /// How far behind a facing part of its surface the node still meets it without lying
+    /// inside the body behind it (round-off, a Newton iterate's overshoot): a quarter of its
+    /// mean distance to its neighbours.
+    pub(super) tolerance: f64,
+}
+
+/// The master's edges and faces at each of their nodes (corners and mid-sides).
+fn items_at_nodes(
+    edges: &EdgeSurface,
+    faces: &FaceSurface,
+) -> std::collections::HashMap<usize, Vec<Partner>> {
+    let mut at: std::collections::HashMap<usize, Vec<Partner>> = Default::default();
+    for (k, e) in edges.edges.iter().enumerate() {
+        for &n in &e.nodes {
+            at.entry(n).or_default().push(Partner::Edge(k));
+        }
+    }
+    for (k, f) in faces.faces.iter().enumerate() {
+        for &n in &f.nodes {
+            at.entry(n).or_default().push(Partner::Face(k));
+        }
+    }
+    at
+}
+
+/// The node's own surface if it lies on the master (`at`: the items at each node, `h` its
+/// mean distance to its neighbours).
+fn own_surface(
+    node: usize,
+    at: &std::collections::HashMap<usize, Vec<Partner>>,
+    edges: &EdgeSurface,
+    faces: &FaceSurface,
+    h: f64,
+) -> Option<OwnSurface> {
+    let items = at.get(&node)?.clone();
+    let mut excluded = items.clone();
+    for &item in &items {
+        let nodes = match item {
+            Partner::Edge(k) => &edges.edges[k].nodes,
+            Partner::Face(k) => &faces.faces[k].nodes,
+            _ => continue,
+        };
+        for n in nodes {
+            for &other in &at[n] {
+                if !excluded.contains(&other) {
+                    excluded.push(other);
+                }
+            }
+        }
+    }
+    Some(OwnSurface {
+        items,
+        excluded,
+        tolerance: 0.25 * h,
+    })
+}
+
+/// Every contact node of condition `c` once (a node on the condition's own master is in
+/// self-contact, see [`OwnSurface`]), none the node of an 8-node
 /// face (QSpace): under a uniform pressure an 8-node face's consistent nodal forces pull on its
 /// corners (−1/12 of its area each), so a corner held to the master by a node-to-face
 /// constraint would need tension: it opens and sinks in (a Hertz contact's every corner node
 /// inside the contact zone opened).
-pub(super) fn check_nodes(
-    model: &Model,
-    c: &ContactCondition,
-    nodes: &[usize],
-    edges: &EdgeSurface,
-    faces: &FaceSurface,
-) -> Result<()> {
+pub(super) fn check_nodes(model: &Model, c: &ContactCondition, nodes: &[usize]) -> Result<()> {
     let err = |msg: String| Error::Input {
         span: c.span.clone(),
         msg,
@@ -51,25 +113,6 @@ pub(super) fn check_nodes(
         let label = model.nodes[n].label;
         if !seen.insert(n) {
             return Err(err(format!("node {label} is listed twice in `nodeset`")));
-        }
-        let own = edges
-            .edges
-            .iter()
-            .find(|e| e.nodes.contains(&n))
-            .map(|e| ("an edge", e.segment, e.element))
-            .or_else(|| {
-                faces
-                    .faces
-                    .iter()
-                    .find(|f| f.nodes.contains(&n))
-                    .map(|f| ("a face", f.segment, f.element))
-            });
-        if let Some((what, seg, el)) = own {
-            return Err(err(format!(
-                "node {label} of `nodeset` belongs to {what} of contact segment {} (element {}): \
-                 a node cannot be in contact with its own surface",
-                model.segments[seg].number, model.elements[el].label
-            )));
         }
     }
     if let Some(f) = super::super::tributary::facets(model, nodes)
@@ -97,7 +140,9 @@ pub(super) fn slots(
     c: &ContactCondition,
     nodes: &[usize],
     segments: &[usize],
+    (edges, faces): (&EdgeSurface, &FaceSurface),
 ) -> Vec<Slot> {
+    let at = items_at_nodes(edges, faces);
     let tribs = super::super::tributary::tributaries(model, nodes);
     let young = stiffest_young(model);
     let stiffest = young.values().copied().fold(0.0, f64::max);
@@ -142,6 +187,7 @@ pub(super) fn slots(
                 law,
                 friction: c.friction.map(|f| law.friction(f, weight)),
                 stiffness,
+                own: own_surface(node, &at, edges, faces, h),
             }
         })
         .collect()

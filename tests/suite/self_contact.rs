@@ -1,0 +1,442 @@
+//! Self-contact: a surface that is both slave and master of one node-to-segment condition.
+//! Symmetry makes the exact check: a ring crushed between two rigid plates until its bore closes,
+//! as a whole model whose bore is in self-contact, equals its upper half whose bore meets a
+//! rigid plane on the symmetry line, step by step (plane strain and a 3D slab of bricks,
+//! neo-Hookean, large deformation, multipliers). A block whose whole boundary is a self-contact
+//! surface (sharp corners, opposite faces facing each other through the body) is compressed as
+//! without it. The merged constraint of a repeated pair has the Jacobian of its residual as
+//! tangent.
+
+use crate::common;
+
+use hertz::assembly::NodalState;
+use hertz::contact::{ContactSystem, Search};
+
+/// A ring (bore `ri`, outside `ro`; `nt` elements round, `nr` through the wall) crushed by two
+/// rigid plates that each travel `crush`·ro over `steps` steps, neo-Hookean (E = 1000, ν = 0.3),
+/// `nlgeo 1`. Whole (`full`): the bore a self-contact condition (`nodeset` of its own edges'
+/// nodes), x held at the top and bottom of the outside. Half: the upper half, u_y = 0 on the
+/// cut, the bore against a rigid plane at y = 0. 3D (`tz` > 0): one layer of bricks `tz` thick,
+/// u_z = 0 on the face z = 0. Node labels: layer i (0 the bore), angle j, then the next z layer.
+fn ring(full: bool, tz: f64, nt: usize, nr: usize, crush: f64, steps: usize) -> String {
+    let (ri, ro) = (0.6, 1.0);
+    let d3 = tz > 0.0;
+    let jn = if full { nt } else { nt / 2 + 1 };
+    let ne = if full { nt } else { nt / 2 };
+    let per_layer = (nr + 1) * jn;
+    let id =
+        |i: usize, j: usize, z: usize| 1 + i * jn + if full { j % nt } else { j } + z * per_layer;
+    let layers = if d3 { 2 } else { 1 };
+    let nn = per_layer * layers;
+    let (p, q) = (nn + 1, nn + 2);
+    let mut nodes = String::new();
+    for z in 0..layers {
+        for i in 0..=nr {
+            let r = ri + (ro - ri) * i as f64 / nr as f64;
+            for j in 0..jn {
+                let th = 2.0 * std::f64::consts::PI * j as f64 / nt as f64;
+                let c = [r * th.cos(), r * th.sin(), tz * z as f64];
+                nodes += &if d3 {
+                    format!("node {} coords 3 {} {} {}\n", id(i, j, z), c[0], c[1], c[2])
+                } else {
+                    format!("node {} coords 2 {} {}\n", id(i, j, z), c[0], c[1])
+                };
+            }
+        }
+    }
+    let xyz = |x: f64, y: f64| {
+        if d3 {
+            format!("3 {x} {y} 0")
+        } else {
+            format!("2 {x} {y}")
+        }
+    };
+    nodes += &format!(
+        "node {p} coords {}\nnode {q} coords {}\n",
+        xyz(0.0, ro),
+        xyz(0.0, -ro)
+    );
+    let mut elements = String::new();
+    for i in 0..nr {
+        for j in 0..ne {
+            let quad = |z| {
+                [
+                    id(i, j, z),
+                    id(i + 1, j, z),
+                    id(i + 1, j + 1, z),
+                    id(i, j + 1, z),
+                ]
+            };
+            let k = 1 + i * ne + j;
+            elements += &if d3 {
+                let n: Vec<String> = quad(0)
+                    .iter()
+                    .chain(&quad(1))
+                    .map(|n| n.to_string())
+                    .collect();
+                format!(
+                    "LSpace {k} nodes 8 {} crossSect 1 mat 1 nlgeo 1\n",
+                    n.join(" ")
+                )
+            } else {
+                let n: Vec<String> = quad(0).iter().map(|n| n.to_string()).collect();
+                format!(
+                    "Quad1PlaneStrain {k} nodes 4 {} crossSect 1 mat 1 nlgeo 1\n",
+                    n.join(" ")
+                )
+            };
+        }
+    }
+    let list = |v: &[usize]| {
+        format!(
+            "{} {}",
+            v.len(),
+            v.iter()
+                .map(|n| n.to_string())
+                .collect::<Vec<_>>()
+                .join(" ")
+        )
+    };
+    let all_z = |f: &dyn Fn(usize) -> Vec<usize>| (0..layers).flat_map(f).collect::<Vec<_>>();
+    let bore_faces: Vec<usize> = (1..=ne).flat_map(|k| [k, if d3 { 6 } else { 4 }]).collect();
+    let outer = all_z(&|z| (0..jn).map(|j| id(nr, j, z)).collect());
+    let bore = all_z(&|z| {
+        let js: Vec<usize> = if full {
+            (0..jn).collect()
+        } else {
+            (1..jn - 1).collect()
+        };
+        js.into_iter().map(|j| id(0, j, z)).collect()
+    });
+    let d = crush * ro;
+    let dofs = |v: f64| {
+        if d3 {
+            format!("dofs 3 1 2 3 values 3 0 {v} 0")
+        } else {
+            format!("dofs 2 1 2 values 2 0 {v}")
+        }
+    };
+    let mut records = vec![
+        format!("BoundaryCondition 1 loadTimeFunction 2 {} set 2", dofs(-d)),
+        "BoundaryCondition 2 loadTimeFunction 1 dofs 1 1 values 1 0 set 4".to_string(),
+    ];
+    let (plates, self_segments, sets) = if full {
+        records.push(format!(
+            "BoundaryCondition 3 loadTimeFunction 2 {} set 3",
+            dofs(d)
+        ));
+        let held = all_z(&|z| vec![id(nr, nt / 4, z), id(nr, 3 * nt / 4, z)]);
+        (
+            "2 2 3",
+            "1 1",
+            format!("Set 3 nodes 1 {q}\nSet 4 nodes {}\n", list(&held)),
+        )
+    } else {
+        let cut = all_z(&|z| {
+            (0..=nr)
+                .flat_map(|i| [id(i, 0, z), id(i, jn - 1, z)])
+                .collect()
+        });
+        records
+            .push("BoundaryCondition 3 loadTimeFunction 1 dofs 1 2 values 1 0 set 3".to_string());
+        let held = all_z(&|z| vec![id(nr, nt / 4, z)]);
+        (
+            "1 2",
+            "1 3",
+            format!("Set 3 nodes {}\nSet 4 nodes {}\n", list(&cut), list(&held)),
+        )
+    };
+    records.push(format!(
+        "n2slagrangianmultipliercontact 4 loadTimeFunction 1 slaveset 5 segmentset {plates}"
+    ));
+    records.push(format!(
+        "n2slagrangianmultipliercontact 5 loadTimeFunction 1 slaveset 6 segmentset {self_segments}"
+    ));
+    let mut sets = format!(
+        "Set 1 elementboundaries {}\nSet 2 nodes 1 {p}\n{sets}Set 5 nodes {}\nSet 6 nodes {}\n",
+        list(&bore_faces),
+        list(&outer),
+        list(&bore)
+    );
+    if d3 {
+        records.push("BoundaryCondition 6 loadTimeFunction 1 dofs 1 3 values 1 0 set 7".into());
+        sets += &format!(
+            "Set 7 nodes {}\n",
+            list(&(1..=per_layer).collect::<Vec<_>>())
+        );
+    }
+    let segments = if full {
+        format!(
+            "planecontactsegment 2 point {} normal {} node {p}\nplanecontactsegment 3 point {} normal {} node {q}\n",
+            xyz(0.0, ro), xyz(0.0, -1.0), xyz(0.0, -ro), xyz(0.0, 1.0)
+        )
+    } else {
+        format!(
+            "planecontactsegment 2 point {} normal {} node {p}\nplanecontactsegment 3 point {} normal {}\n",
+            xyz(0.0, ro), xyz(0.0, -1.0), xyz(0.0, 0.0), xyz(0.0, 1.0)
+        )
+    };
+    let (e, nu) = (1000.0, 0.3);
+    let (g, k) = (e / (2.0 * (1.0 + nu)), e / (3.0 * (1.0 - 2.0 * nu)));
+    format!(
+        "ring.out\nring\nNonLinearStatic nsteps {steps} controlmode 1 rtolf 1e-10 maxiter 30\n\
+         domain {}\nOutputManager\n\
+         ndofman {} nelem {} ncrosssect 1 nmat 1 nbc {} nic 0 nltf 2 nset {} ncontactseg 3\n\
+         {nodes}{elements}linear{}contactsegment 1 edgeset 1\n{segments}SimpleCS 1 thick 1.0\n\
+         mooneyrivlincompressiblemat 1 d 0 c1 {} c2 0 k {k}\n{}\n\
+         ConstantFunction 1 f(t) 1.0\nPiecewiseLinFunction 2 npoints 2 t 2 0 {steps} f(t) 2 0 1\n{sets}",
+        if d3 { "3d" } else { "PlaneStrain" },
+        nn + 2,
+        nr * ne,
+        records.len(),
+        if d3 { 7 } else { 6 },
+        if d3 { "3delementsurface" } else { "2delementedge" },
+        g / 2.0,
+        records.join("\n"),
+    )
+}
+
+/// Per step: the top plate's force, the Newton iterations, the smallest gap of the bore's
+/// contact nodes (condition 5) and how many of them are active.
+fn crush(text: &str) -> Vec<(f64, usize, f64, usize)> {
+    let model = common::model_from_text(text).unwrap();
+    let top = model.nodes.len() - 2;
+    let mut out = Vec::new();
+    hertz::solve::run_analysis(&model, &common::quiet(), |r| {
+        let force = (r.dofs.prescribed.iter().zip(r.reactions))
+            .filter(|((n, d, _), _)| *n == top && *d == 2)
+            .map(|(_, f)| f)
+            .sum();
+        let bore = r.contact.iter().filter(|s| s.condition == 5);
+        let gap = bore
+            .clone()
+            .map(|s| s.gap)
+            .filter(|g| g.is_finite())
+            .fold(f64::INFINITY, f64::min);
+        let active = bore.filter(|s| s.active).count();
+        out.push((force, r.info.iterations, gap, active));
+        Ok(())
+    })
+    .unwrap();
+    out
+}
+
+/// The whole ring with its bore in self-contact against its half on the symmetry plane: the
+/// plate force equal to round-off at every step (the bore closes over the last third), no bore
+/// node ever inside the opposite wall, no more Newton iterations than the half model's.
+fn check_against_half(tz: f64, nt: usize, nr: usize, crush_by: f64, steps: usize) {
+    let whole = crush(&ring(true, tz, nt, nr, crush_by, steps));
+    let half = crush(&ring(false, tz, nt, nr, crush_by, steps));
+    assert_eq!(whole.len(), half.len());
+    let size = 1.0;
+    for (k, (w, h)) in whole.iter().zip(&half).enumerate() {
+        assert!(
+            (w.0 - h.0).abs() <= 1e-9 * h.0.abs().max(1e-9),
+            "tz {tz}, step {k}: plate force {} whole, {} half",
+            w.0,
+            h.0
+        );
+        assert!(
+            w.2 > -1e-12 * size,
+            "tz {tz}, step {k}: a bore node {} inside the other wall",
+            w.2
+        );
+        assert!(
+            w.1 <= h.1.max(5),
+            "tz {tz}, step {k}: {} iterations (half: {})",
+            w.1,
+            h.1
+        );
+    }
+    let last = whole.last().unwrap();
+    let closed = half.last().unwrap().3;
+    assert!(
+        closed > 4,
+        "the bore closes: {closed} nodes on the symmetry plane"
+    );
+    // Each node of the half model's closed bore meets its mirror image in the whole one.
+    assert_eq!(last.3, 2 * closed, "active bore nodes, whole model");
+}
+
+#[test]
+fn a_crushed_ring_with_its_bore_in_self_contact_equals_its_half_model() {
+    check_against_half(0.0, 32, 2, 0.8, 24);
+}
+
+#[test]
+fn a_crushed_tube_of_bricks_with_its_bore_in_self_contact_equals_its_half_model() {
+    check_against_half(0.2, 24, 2, 0.8, 20);
+}
+
+/// A flat block (1 × 0.2, 5 × 1 elements), its whole boundary one self-contact surface,
+/// compressed by 10 % between its bottom (held in y) and top (moved down; x held at one node):
+/// top and bottom face each other through the body (a top node lies 0.2 behind the bottom face,
+/// facing it, within the search's reach), and beside each corner the neighbouring face is the
+/// surface's next. No node may pair: the uniform compression is exact (σ_y = E/(1 − ν²)·ε_y in
+/// plane strain with σ_x = 0).
+#[test]
+fn a_block_whose_boundary_is_one_self_contact_surface_is_compressed_without_contact() {
+    let (nx, ny, height) = (5, 1, 0.2);
+    let id = |i: usize, j: usize| 1 + j * (nx + 1) + i;
+    let mut text = String::new();
+    let mut nodes = String::new();
+    for j in 0..=ny {
+        for i in 0..=nx {
+            let (x, y) = (i as f64 / nx as f64, height * j as f64 / ny as f64);
+            nodes += &format!("node {} coords 2 {x} {y}\n", id(i, j));
+        }
+    }
+    let mut elements = String::new();
+    let mut boundary = Vec::new();
+    for j in 0..ny {
+        for i in 0..nx {
+            let k = 1 + j * nx + i;
+            elements += &format!(
+                "Quad1PlaneStrain {k} nodes 4 {} {} {} {} crossSect 1 mat 1\n",
+                id(i, j),
+                id(i + 1, j),
+                id(i + 1, j + 1),
+                id(i, j + 1)
+            );
+            for (side, on) in [(1, j == 0), (2, i == nx - 1), (3, j == ny - 1), (4, i == 0)] {
+                if on {
+                    boundary.push(format!("{k} {side}"));
+                }
+            }
+        }
+    }
+    let ring: Vec<usize> = (0..=nx)
+        .flat_map(|i| (0..=ny).map(move |j| (i, j)))
+        .filter(|&(i, j)| i == 0 || j == 0 || i == nx || j == ny)
+        .map(|(i, j)| id(i, j))
+        .collect();
+    let list = |v: &[usize]| {
+        v.iter()
+            .map(|n| n.to_string())
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    let bottom: Vec<usize> = (0..=nx).map(|i| id(i, 0)).collect();
+    let top: Vec<usize> = (0..=nx).map(|i| id(i, ny)).collect();
+    text += &format!(
+        "block.out\nblock\nNonLinearStatic nsteps 1 controlmode 1 rtolf 1e-10\ndomain PlaneStrain\n\
+         OutputManager\nndofman {} nelem {} ncrosssect 1 nmat 1 nbc 4 nic 0 nltf 1 nset 5 ncontactseg 1\n\
+         {nodes}{elements}linear2delementedgecontactsegment 1 edgeset 1\nSimpleCS 1 thick 1.0\n\
+         IsoLE 1 d 0 E 1000 n 0.3 tAlpha 0\n\
+         BoundaryCondition 1 loadTimeFunction 1 dofs 1 2 values 1 0 set 2\n\
+         BoundaryCondition 2 loadTimeFunction 1 dofs 1 2 values 1 {} set 3\n\
+         BoundaryCondition 3 loadTimeFunction 1 dofs 1 1 values 1 0 set 4\n\
+         n2slagrangianmultipliercontact 4 loadTimeFunction 1 slaveset 5 segmentset 1 1\n\
+         ConstantFunction 1 f(t) 1.0\n\
+         Set 1 elementboundaries {} {}\nSet 2 nodes {} {}\nSet 3 nodes {} {}\nSet 4 nodes 1 {}\n\
+         Set 5 nodes {} {}\n",
+        (nx + 1) * (ny + 1),
+        nx * ny,
+        -0.1 * height,
+        2 * boundary.len(),
+        boundary.join(" "),
+        bottom.len(),
+        list(&bottom),
+        top.len(),
+        list(&top),
+        id(0, 0),
+        ring.len(),
+        list(&ring),
+    );
+    let model = common::model_from_text(&text).unwrap();
+    let mut checked = false;
+    hertz::solve::run_analysis(&model, &common::quiet(), |r| {
+        assert!(
+            r.contact.iter().all(|s| !s.active && s.force == 0.0),
+            "{:?}",
+            r.contact
+        );
+        let force: f64 = (r.dofs.prescribed.iter().zip(r.reactions))
+            .filter(|((node, d, _), _)| *d == 2 && model.nodes[*node].coords[1] == height)
+            .map(|(_, f)| f)
+            .sum();
+        let exact = -1000.0 / (1.0 - 0.09) * 0.1;
+        assert!(
+            (force - exact).abs() < 1e-9 * exact.abs(),
+            "force {force}, exact {exact}"
+        );
+        checked = true;
+        Ok(())
+    })
+    .unwrap();
+    assert!(checked);
+}
+
+/// The merged constraint of a repeated pair (the two walls of a ring's bore pressed onto each
+/// other, node onto mirror node, offsets of 1 % of a spacing along and across the walls) has the
+/// Jacobian of its residual as tangent, over the displacements and the multiplier, in 2D and 3D.
+#[test]
+fn a_repeated_self_contact_pair_has_the_jacobian_of_its_residual_as_tangent() {
+    for tz in [0.0, 0.2] {
+        let model = common::model_from_text(&ring(true, tz, 16, 1, 0.5, 1)).unwrap();
+        let mut contact = ContactSystem::new(&model).unwrap();
+        let dofs = hertz::solve::number_dofs(&model).unwrap();
+        contact.set_pressure_limit(f64::INFINITY);
+        let mut u = vec![0.0; dofs.n_primary()];
+        // Flatten the bore onto y = 0 where |x| < 0.4, the upper wall a hair below its mirror
+        // image and shifted along it.
+        for (n, node) in model.nodes.iter().enumerate() {
+            let [x, y, _] = node.coords;
+            if x.abs() < 0.4 && (x * x + y * y).sqrt() < 0.61 {
+                let shift = if y > 0.0 {
+                    [0.0015, -y - 0.0008]
+                } else {
+                    [0.0, -y]
+                };
+                for (k, v) in shift.iter().enumerate() {
+                    if let Some(c) = dofs.code(n, k as u8 + 1) {
+                        u[c] = *v;
+                    }
+                }
+            }
+        }
+        for v in &mut u[dofs.n_free - dofs.n_lambda..dofs.n_free] {
+            *v = 50.0;
+        }
+        let (points, states) = contact
+            .evaluate(&NodalState::new(&model, &dofs, &u), Search::Fresh)
+            .unwrap();
+        let merged = states.iter().filter(|s| s.repeated).count();
+        assert!(merged >= 2, "tz {tz}: {merged} merged pairs");
+        let at = |u: &[f64]| {
+            let p = contact
+                .evaluate(&NodalState::new(&model, &dofs, u), Search::Frozen(&states))
+                .unwrap()
+                .0;
+            p.iter().map(|p| p.contribution().fe).collect::<Vec<_>>()
+        };
+        let h = 1e-7;
+        let mut worst = 0.0f64;
+        let mut checked = 0;
+        for (k, p) in points.iter().enumerate() {
+            let c = p.contribution();
+            if c.fe.is_empty() || !states[k].active {
+                continue;
+            }
+            checked += 1;
+            let m = c.codes.len();
+            let scale = c.ke.iter().fold(1e-12f64, |a, v| a.max(v.abs()));
+            for j in 0..m {
+                if c.codes[j] >= dofs.n_free {
+                    continue;
+                }
+                let mut up = u.clone();
+                let mut um = u.clone();
+                up[c.codes[j]] += h;
+                um[c.codes[j]] -= h;
+                let (fp, fm) = (at(&up), at(&um));
+                for i in 0..m {
+                    let fd = (fp[k][i] - fm[k][i]) / (2.0 * h);
+                    worst = worst.max((fd - c.ke[i * m + j]).abs() / scale);
+                }
+            }
+        }
+        assert!(checked >= 2, "tz {tz}: {checked} active points checked");
+        assert!(worst < 1e-6, "tz {tz}: tangent off by {worst:e}");
+    }
+}
