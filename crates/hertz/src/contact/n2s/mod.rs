@@ -22,6 +22,10 @@
 //! at the ramp's end, e = d − a = 0, with g < 0: the state a penalty force ε·w·(−g) tends to as
 //! ε grows (w → 0 there while the force stays finite). The constraint is max(g, e) = 0, see
 //! [`crate::contact::law::multiplier`].
+//!
+//! Self-contact: a node on the condition's own master surface ([`slots::OwnSurface`]) meets only
+//! the parts of it that face it, outside its own neighbourhood (`NodeToSegment::admits`); two
+//! such nodes that meet each other's walls at one place hold one constraint ([`pairs`]).
 
 mod edges;
 mod faces;
