@@ -17,8 +17,17 @@ use hertz::contact::{ContactSystem, Search};
 /// `nlgeo 1`. Whole (`full`): the bore a self-contact condition (`nodeset` of its own edges'
 /// nodes), x held at the top and bottom of the outside. Half: the upper half, u_y = 0 on the
 /// cut, the bore against a rigid plane at y = 0. 3D (`tz` > 0): one layer of bricks `tz` thick,
-/// u_z = 0 on the face z = 0. Node labels: layer i (0 the bore), angle j, then the next z layer.
-fn ring(full: bool, tz: f64, nt: usize, nr: usize, crush: f64, steps: usize) -> String {
+/// u_z = 0 on the face z = 0. Nearly incompressible with `kg` = K/G (on barred quadrilaterals).
+/// Node labels: layer i (0 the bore), angle j, then the next z layer.
+fn ring(
+    full: bool,
+    tz: f64,
+    nt: usize,
+    nr: usize,
+    crush: f64,
+    steps: usize,
+    kg: Option<f64>,
+) -> String {
     let (ri, ro) = (0.6, 1.0);
     let d3 = tz > 0.0;
     let jn = if full { nt } else { nt / 2 + 1 };
@@ -81,7 +90,8 @@ fn ring(full: bool, tz: f64, nt: usize, nr: usize, crush: f64, steps: usize) -> 
             } else {
                 let n: Vec<String> = quad(0).iter().map(|n| n.to_string()).collect();
                 format!(
-                    "Quad1PlaneStrain {k} nodes 4 {} crossSect 1 mat 1 nlgeo 1\n",
+                    "Quad1PlaneStrain{} {k} nodes 4 {} crossSect 1 mat 1 nlgeo 1\n",
+                    if kg.is_some() { "BB" } else { "" },
                     n.join(" ")
                 )
             };
@@ -177,7 +187,8 @@ fn ring(full: bool, tz: f64, nt: usize, nr: usize, crush: f64, steps: usize) -> 
         )
     };
     let (e, nu) = (1000.0, 0.3);
-    let (g, k) = (e / (2.0 * (1.0 + nu)), e / (3.0 * (1.0 - 2.0 * nu)));
+    let g = e / (2.0 * (1.0 + nu));
+    let k = kg.map_or(e / (3.0 * (1.0 - 2.0 * nu)), |r| r * g);
     format!(
         "ring.out\nring\nNonLinearStatic nsteps {steps} controlmode 1 rtolf 1e-10 maxiter 30\n\
          domain {}\nOutputManager\n\
@@ -224,15 +235,21 @@ fn crush(text: &str) -> Vec<(f64, usize, f64, usize)> {
 /// The whole ring with its bore in self-contact against its half on the symmetry plane: the
 /// plate force equal to round-off at every step (the bore closes over the last third), no bore
 /// node ever inside the opposite wall, no more Newton iterations than the half model's.
-fn check_against_half(tz: f64, nt: usize, nr: usize, crush_by: f64, steps: usize) {
-    let whole = crush(&ring(true, tz, nt, nr, crush_by, steps));
-    let half = crush(&ring(false, tz, nt, nr, crush_by, steps));
+fn check_against_half(
+    tz: f64,
+    (nt, nr): (usize, usize),
+    crush_by: f64,
+    steps: usize,
+    kg: Option<f64>,
+) {
+    let whole = crush(&ring(true, tz, nt, nr, crush_by, steps, kg));
+    let half = crush(&ring(false, tz, nt, nr, crush_by, steps, kg));
     assert_eq!(whole.len(), half.len());
     let size = 1.0;
     for (k, (w, h)) in whole.iter().zip(&half).enumerate() {
         assert!(
             (w.0 - h.0).abs() <= 1e-9 * h.0.abs().max(1e-9),
-            "tz {tz}, step {k}: plate force {} whole, {} half",
+            "tz {tz}, K/G {kg:?}, step {k}: plate force {} whole, {} half",
             w.0,
             h.0
         );
@@ -260,12 +277,19 @@ fn check_against_half(tz: f64, nt: usize, nr: usize, crush_by: f64, steps: usize
 
 #[test]
 fn a_crushed_ring_with_its_bore_in_self_contact_equals_its_half_model() {
-    check_against_half(0.0, 32, 2, 0.8, 24);
+    check_against_half(0.0, (32, 2), 0.8, 24, None);
+}
+
+/// Nearly incompressible rubber (K = 1000 G, barred quadrilaterals) crushed to 80 %: the crease
+/// at each side of the bore folds shut, the nodes beside its tip meeting the edge across it.
+#[test]
+fn a_nearly_incompressible_ring_crushed_shut_equals_its_half_model() {
+    check_against_half(0.0, (48, 3), 0.8, 40, Some(1000.0));
 }
 
 #[test]
 fn a_crushed_tube_of_bricks_with_its_bore_in_self_contact_equals_its_half_model() {
-    check_against_half(0.2, 24, 2, 0.8, 20);
+    check_against_half(0.2, (24, 2), 0.8, 20, None);
 }
 
 /// A flat block (1 × 0.2, 5 × 1 elements), its whole boundary one self-contact surface,
@@ -373,7 +397,7 @@ fn a_block_whose_boundary_is_one_self_contact_surface_is_compressed_without_cont
 #[test]
 fn a_repeated_self_contact_pair_has_the_jacobian_of_its_residual_as_tangent() {
     for tz in [0.0, 0.2] {
-        let model = common::model_from_text(&ring(true, tz, 16, 1, 0.5, 1)).unwrap();
+        let model = common::model_from_text(&ring(true, tz, 16, 1, 0.5, 1, None)).unwrap();
         let mut contact = ContactSystem::new(&model).unwrap();
         let dofs = hertz::solve::number_dofs(&model).unwrap();
         contact.set_pressure_limit(f64::INFINITY);
@@ -439,4 +463,134 @@ fn a_repeated_self_contact_pair_has_the_jacobian_of_its_residual_as_tangent() {
         assert!(checked >= 2, "tz {tz}: {checked} active points checked");
         assert!(worst < 1e-6, "tz {tz}: tangent off by {worst:e}");
     }
+}
+
+/// A wedge of half-angle 15° (triangles), its slanted faces one self-contact surface, clamped at
+/// its base and bent by its tip (large deformation). Beside the tip the next face faces a node
+/// at 150° from behind (the node lies behind its plane): a sharp convex fold, where no node may
+/// pair with its own neighbourhood or with the far face behind it. The tip's reaction equals
+/// the run without the condition to the Newton tolerance, and no node is ever in contact.
+#[test]
+fn a_node_on_a_sharp_convex_fold_pairs_with_nothing_of_its_own_surface() {
+    let (length, n) = (1.0, 8);
+    let half = (15.0f64).to_radians().tan() * length;
+    let id = |i: usize, k: usize| if i == n { 3 * n + 1 } else { 1 + 3 * i + k };
+    let mut nodes = String::new();
+    for i in 0..n {
+        let x = length * i as f64 / n as f64;
+        let w = half * (1.0 - i as f64 / n as f64);
+        for (k, y) in [-w, 0.0, w].into_iter().enumerate() {
+            nodes += &format!("node {} coords 2 {x} {y}\n", id(i, k));
+        }
+    }
+    nodes += &format!("node {} coords 2 {length} 0\n", id(n, 0));
+    let mut tri = Vec::new();
+    for i in 0..n - 1 {
+        for k in 0..2 {
+            tri.push([id(i, k), id(i + 1, k), id(i + 1, k + 1)]);
+            tri.push([id(i, k), id(i + 1, k + 1), id(i, k + 1)]);
+        }
+    }
+    tri.push([id(n - 1, 0), id(n, 0), id(n - 1, 1)]);
+    tri.push([id(n - 1, 1), id(n, 0), id(n - 1, 2)]);
+    let elements: String = (tri.iter().enumerate())
+        .map(|(e, t)| {
+            format!(
+                "TrPlaneStrain {} nodes 3 {} {} {} crossSect 1 mat 1 nlgeo 1\n",
+                e + 1,
+                t[0],
+                t[1],
+                t[2]
+            )
+        })
+        .collect();
+    // The slanted faces: the bottom edges (first side of the lower triangles) and the top ones.
+    let mut edges = Vec::new();
+    for (e, t) in tri.iter().enumerate() {
+        for (side, (a, b)) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])]
+            .into_iter()
+            .enumerate()
+        {
+            let on = |m: usize, k: usize| (m == id(n, 0)) || (m - 1) % 3 == k && m != id(0, k);
+            let bottom = (on(a, 0) || a == id(0, 0)) && (on(b, 0) || b == id(0, 0));
+            let top = (on(a, 2) || a == id(0, 2)) && (on(b, 2) || b == id(0, 2));
+            if (bottom || top) && a != b {
+                edges.push(format!("{} {}", e + 1, side + 1));
+            }
+        }
+    }
+    let surface: Vec<usize> = (1..n)
+        .flat_map(|i| [id(i, 0), id(i, 2)])
+        .chain([id(n, 0)])
+        .collect();
+    let list = |v: &[usize]| {
+        v.iter()
+            .map(|n| n.to_string())
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    let base = [id(0, 0), id(0, 1), id(0, 2)];
+    let input = |with_contact: bool| {
+        format!(
+            "wedge.out\nwedge\nNonLinearStatic nsteps 4 controlmode 1 rtolf 1e-10\n\
+             domain PlaneStrain\nOutputManager\n\
+             ndofman {} nelem {} ncrosssect 1 nmat 1 nbc {} nic 0 nltf 2 nset 3 ncontactseg 1\n\
+             {nodes}{elements}linear2delementedgecontactsegment 1 edgeset 1\nSimpleCS 1 thick 1\n\
+             mooneyrivlincompressiblemat 1 d 0 c1 192.3 c2 0 k 833.3\n\
+             BoundaryCondition 1 loadTimeFunction 1 dofs 2 1 2 values 2 0 0 set 2\n\
+             BoundaryCondition 2 loadTimeFunction 2 dofs 1 2 values 1 -0.4 set 3\n{}\
+             ConstantFunction 1 f(t) 1.0\nPiecewiseLinFunction 2 npoints 2 t 2 0 4 f(t) 2 0 1\n\
+             Set 1 elementboundaries {} {}\nSet 2 nodes 3 {}\nSet 3 nodes 1 {}\n",
+            3 * n + 1,
+            tri.len(),
+            if with_contact { 3 } else { 2 },
+            if with_contact {
+                format!(
+                    "n2slagrangianmultipliercontact 3 loadTimeFunction 1 nodeset {} {} \
+                     segmentset 1 1\n",
+                    surface.len(),
+                    list(&surface)
+                )
+            } else {
+                String::new()
+            },
+            2 * edges.len(),
+            edges.join(" "),
+            list(&base),
+            id(n, 0)
+        )
+    };
+    let run = |with_contact: bool| {
+        let model = common::model_from_text(&input(with_contact)).unwrap();
+        let tip = model
+            .nodes
+            .iter()
+            .position(|x| x.label == id(n, 0))
+            .unwrap();
+        let mut forces = Vec::new();
+        hertz::solve::run_analysis(&model, &common::quiet(), |r| {
+            assert!(r.contact.iter().all(|s| !s.active), "{:?}", r.contact);
+            forces.extend(
+                (r.dofs.prescribed.iter().zip(r.reactions))
+                    .filter(|((m, d, _), _)| *m == tip && *d == 2)
+                    .map(|(_, f)| *f),
+            );
+            Ok(())
+        })
+        .unwrap();
+        forces
+    };
+    let (with, without) = (run(true), run(false));
+    assert_eq!(with.len(), 4);
+    assert!(edges.len() == 2 * n, "{} slanted edges", edges.len());
+    for (a, b) in with.iter().zip(&without) {
+        assert!(
+            (a - b).abs() <= 1e-8 * b.abs().max(1e-12),
+            "tip force {a} with, {b} without"
+        );
+    }
+    assert!(
+        without.last().unwrap().abs() > 1.0,
+        "the tip is bent: {without:?}"
+    );
 }

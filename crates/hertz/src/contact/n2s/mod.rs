@@ -65,6 +65,14 @@ const HYSTERESIS_BAND: f64 = 1e-6;
 /// Ramp length at an open boundary for a node without neighbours, as a fraction of the
 /// boundary's edge length.
 const ISOLATED_RAMP: f64 = 0.01;
+/// How far behind an immediate neighbour on its own surface a self-contact node still meets
+/// it, as a fraction of its tolerance against the rest (round-off; farther, only inside the
+/// body behind it).
+const ROUND_OFF: f64 = 1e-6;
+/// An immediate neighbour faces a self-contact node when their normals make more than 120°
+/// (n·n_s < −1/2): across a closing crease they are opposed, while the tip of a crease sees
+/// the walls beside it at about 90°, from its side, and must not be held by them.
+const NEIGHBOUR_FACING: f64 = -0.5;
 
 pub struct NodeToSegment {
     number: usize,
@@ -478,11 +486,15 @@ impl NodeToSegment {
     }
 
     /// Whether a self-contact node at `xs` (normal `normal` on its own surface `own`) can meet
-    /// candidate `c`: never an edge or face of its own neighbourhood, never a part of the
-    /// surface facing the same way as its own (n·n_s ≥ 0), and behind a part facing it (a
-    /// negative gap) only within `own.tolerance` or where it lies inside the master's body (a
-    /// node on a convex bulge lies far behind the tangent planes of the opposite side, which it
-    /// has not crossed). `inside` caches whether the node lies inside the master's body.
+    /// candidate `c`: never an edge or face it belongs to, never a part of the surface facing
+    /// the same way as its own (n·n_s ≥ 0), and behind a part facing it (a negative gap) only
+    /// within `own.tolerance` or where it lies inside the master's body (a node on a convex
+    /// bulge lies far behind the tangent planes of the opposite side, which it has not
+    /// crossed). Its immediate neighbours it meets only facing it squarely
+    /// ([`NEIGHBOUR_FACING`]) and from in front (to round-off, or inside the body behind them):
+    /// the two sides of a crease that closes, where a node meets the edge across the crease; on
+    /// a sharp convex fold the next face faces the node from behind and never holds it.
+    /// `inside` caches whether the node lies inside the master's body.
     #[allow(clippy::too_many_arguments)]
     fn admits(
         &self,
@@ -495,7 +507,7 @@ impl NodeToSegment {
         c: &Candidate,
         inside: &mut Option<bool>,
     ) -> bool {
-        if own.excluded.contains(&c.partner) {
+        if own.items.contains(&c.partner) {
             return false;
         }
         let n = match c.partner {
@@ -506,10 +518,17 @@ impl NodeToSegment {
             Partner::Face(k) => self.face_geometry_f64(k, cur).gap(&xs, c.xi[0], c.xi[1]).1,
             _ => return true,
         };
-        if (0..3).map(|i| n[i] * normal[i]).sum::<f64>() >= 0.0 {
+        let neighbour = own.neighbours.contains(&c.partner);
+        let facing = if neighbour { NEIGHBOUR_FACING } else { 0.0 };
+        if (0..3).map(|i| n[i] * normal[i]).sum::<f64>() >= facing {
             return false;
         }
-        c.gap >= -own.tolerance
+        let tolerance = if neighbour {
+            ROUND_OFF * own.tolerance
+        } else {
+            own.tolerance
+        };
+        c.gap >= -tolerance
             || *inside.get_or_insert_with(|| self.inside_body(ctx, slot, xs, cur).is_some())
     }
 

@@ -36,10 +36,11 @@ pub(super) struct Slot {
 /// Where a self-contact node sits on its own master surface (see `NodeToSegment::admits`).
 pub(super) struct OwnSurface {
     /// The master's edges or faces the node belongs to: its current normal averages theirs.
+    /// Never the node's partners.
     pub(super) items: Vec<Partner>,
-    /// Those and their immediate neighbours (the items sharing a node with them): never the
-    /// node's partners, however the surface folds.
-    pub(super) excluded: Vec<Partner>,
+    /// Their immediate neighbours (the other items sharing a node with them): the node's
+    /// partners only from in front, where the surface folds onto itself (a crease closing).
+    pub(super) neighbours: Vec<Partner>,
     /// How far behind a facing part of its surface the node still meets it without lying
     /// inside the body behind it (round-off, a Newton iterate's overshoot): a quarter of its
     /// mean distance to its neighbours.
@@ -75,7 +76,7 @@ fn own_surface(
     h: f64,
 ) -> Option<OwnSurface> {
     let items = at.get(&node)?.clone();
-    let mut excluded = items.clone();
+    let mut neighbours = Vec::new();
     for &item in &items {
         let nodes = match item {
             Partner::Edge(k) => &edges.edges[k].nodes,
@@ -84,15 +85,15 @@ fn own_surface(
         };
         for n in nodes {
             for &other in &at[n] {
-                if !excluded.contains(&other) {
-                    excluded.push(other);
+                if !items.contains(&other) && !neighbours.contains(&other) {
+                    neighbours.push(other);
                 }
             }
         }
     }
     Some(OwnSurface {
         items,
-        excluded,
+        neighbours,
         tolerance: 0.25 * h,
     })
 }
