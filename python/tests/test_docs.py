@@ -74,3 +74,22 @@ def test_the_plastic_zone_lies_below_the_imprint_and_is_drawn(tmp_path):
     assert abs(imprint - 0.0945) < 5e-4
     assert kappa > 0.02 and 0 <= x < 1.48 and -1.48 < y < 0
     assert png.stat().st_size > 10_000
+
+
+def test_the_crushed_tube_closes_its_bore_and_is_drawn(tmp_path):
+    """examples/python/crushed_tube.py: the two plates carry equal and opposite forces at every
+    step; no bore node touches until the plates have moved 0.6 (the bore, 1.2 across, closes
+    with the walls' thickening), and at the end every bore node but the three at each crease
+    does (42 of 48); a figure."""
+    pytest.importorskip("matplotlib")
+    spec = importlib.util.spec_from_file_location("tube", EXAMPLES / "python" / "crushed_tube.py")
+    tube = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(tube)
+    png = tmp_path / "tube.png"
+    with contextlib.redirect_stdout(io.StringIO()):
+        travel, force, below, touching = tube.main(png)
+    assert abs(force - below).max() < 1e-8 * abs(force).max()
+    assert all(t == 0 for d, t in zip(travel, touching) if d < 0.55)
+    assert touching[-1] == 42
+    assert force[-1] > 10 * force[len(force) // 2]
+    assert png.stat().st_size > 10_000
