@@ -1,35 +1,58 @@
 //! Self-contact: a surface that is both slave and master of one node-to-segment condition.
 //! Symmetry makes the exact check: a ring crushed between two rigid plates until its bore closes,
 //! as a whole model whose bore is in self-contact, equals its upper half whose bore meets a
-//! rigid plane on the symmetry line, step by step (plane strain and a 3D slab of bricks,
-//! neo-Hookean, large deformation, multipliers). A block whose whole boundary is a self-contact
-//! surface (sharp corners, opposite faces facing each other through the body) is compressed as
-//! without it. The merged constraint of a repeated pair has the Jacobian of its residual as
-//! tangent.
+//! rigid plane on the symmetry line, step by step (plane strain, a hollow torus in axisymmetry
+//! and a 3D slab of bricks; neo-Hookean, also nearly incompressible; large deformation,
+//! multipliers). A block whose whole boundary is a self-contact surface (sharp corners, opposite
+//! faces facing each other through the body) is compressed as without it, and a wedge's sharp
+//! convex tip pairs with nothing of its own surface. The merged constraint of a repeated pair has
+//! the Jacobian of its residual as tangent.
 
 use crate::common;
 
 use hertz::assembly::NodalState;
 use hertz::contact::{ContactSystem, Search};
 
-/// A ring (bore `ri`, outside `ro`; `nt` elements round, `nr` through the wall) crushed by two
-/// rigid plates that each travel `crush`·ro over `steps` steps, neo-Hookean (E = 1000, ν = 0.3),
-/// `nlgeo 1`. Whole (`full`): the bore a self-contact condition (`nodeset` of its own edges'
-/// nodes), x held at the top and bottom of the outside. Half: the upper half, u_y = 0 on the
-/// cut, the bore against a rigid plane at y = 0. 3D (`tz` > 0): one layer of bricks `tz` thick,
-/// u_z = 0 on the face z = 0. Nearly incompressible with `kg` = K/G (on barred quadrilaterals).
-/// Node labels: layer i (0 the bore), angle j, then the next z layer.
-fn ring(
-    full: bool,
+/// A ring (bore 0.6, outside 1.0; `nt` elements round, `nr` through the wall) crushed by two
+/// rigid plates that each travel `crush` over `steps` steps, neo-Hookean (E = 1000, ν = 0.3),
+/// `nlgeo 1`, plane strain. 3D (`tz` > 0): one layer of bricks `tz` thick, u_z = 0 on the face
+/// z = 0. Nearly incompressible with `kg` = K/G (on barred quadrilaterals). Axisymmetric
+/// (`axis`): the ring's section centred at x = `axis` (a hollow torus, `L4Axisymm`).
+#[derive(Clone, Copy, Default)]
+struct Ring {
     tz: f64,
     nt: usize,
     nr: usize,
     crush: f64,
     steps: usize,
     kg: Option<f64>,
-) -> String {
+    axis: Option<f64>,
+}
+
+impl Ring {
+    /// Whole (`full`): the bore a self-contact condition (`slaveset` of its own edges' nodes),
+    /// x held at the top and bottom of the outside. Half: the upper half, u_y = 0 on the cut,
+    /// the bore against a rigid plane at y = 0. Node labels: layer i (0 the bore), angle j, then
+    /// the next z layer; the plates' nodes last.
+    fn text(&self, full: bool) -> String {
+        ring(full, *self)
+    }
+}
+
+fn ring(full: bool, r: Ring) -> String {
+    let Ring {
+        tz,
+        nt,
+        nr,
+        crush,
+        steps,
+        kg,
+        axis,
+    } = r;
+    let x0 = axis.unwrap_or(0.0);
     let (ri, ro) = (0.6, 1.0);
     let d3 = tz > 0.0;
+    let axisymmetric = axis.is_some();
     let jn = if full { nt } else { nt / 2 + 1 };
     let ne = if full { nt } else { nt / 2 };
     let per_layer = (nr + 1) * jn;
@@ -44,7 +67,7 @@ fn ring(
             let r = ri + (ro - ri) * i as f64 / nr as f64;
             for j in 0..jn {
                 let th = 2.0 * std::f64::consts::PI * j as f64 / nt as f64;
-                let c = [r * th.cos(), r * th.sin(), tz * z as f64];
+                let c = [x0 + r * th.cos(), r * th.sin(), tz * z as f64];
                 nodes += &if d3 {
                     format!("node {} coords 3 {} {} {}\n", id(i, j, z), c[0], c[1], c[2])
                 } else {
@@ -62,8 +85,8 @@ fn ring(
     };
     nodes += &format!(
         "node {p} coords {}\nnode {q} coords {}\n",
-        xyz(0.0, ro),
-        xyz(0.0, -ro)
+        xyz(x0, ro),
+        xyz(x0, -ro)
     );
     let mut elements = String::new();
     for i in 0..nr {
@@ -90,8 +113,12 @@ fn ring(
             } else {
                 let n: Vec<String> = quad(0).iter().map(|n| n.to_string()).collect();
                 format!(
-                    "Quad1PlaneStrain{} {k} nodes 4 {} crossSect 1 mat 1 nlgeo 1\n",
-                    if kg.is_some() { "BB" } else { "" },
+                    "{} {k} nodes 4 {} crossSect 1 mat 1 nlgeo 1\n",
+                    match (axisymmetric, kg) {
+                        (true, _) => "L4Axisymm",
+                        (false, Some(_)) => "Quad1PlaneStrainBB",
+                        (false, None) => "Quad1PlaneStrain",
+                    },
                     n.join(" ")
                 )
             };
@@ -178,12 +205,12 @@ fn ring(
     let segments = if full {
         format!(
             "planecontactsegment 2 point {} normal {} node {p}\nplanecontactsegment 3 point {} normal {} node {q}\n",
-            xyz(0.0, ro), xyz(0.0, -1.0), xyz(0.0, -ro), xyz(0.0, 1.0)
+            xyz(x0, ro), xyz(0.0, -1.0), xyz(x0, -ro), xyz(0.0, 1.0)
         )
     } else {
         format!(
             "planecontactsegment 2 point {} normal {} node {p}\nplanecontactsegment 3 point {} normal {}\n",
-            xyz(0.0, ro), xyz(0.0, -1.0), xyz(0.0, 0.0), xyz(0.0, 1.0)
+            xyz(x0, ro), xyz(0.0, -1.0), xyz(x0, 0.0), xyz(0.0, 1.0)
         )
     };
     let (e, nu) = (1000.0, 0.3);
@@ -196,7 +223,11 @@ fn ring(
          {nodes}{elements}linear{}contactsegment 1 edgeset 1\n{segments}SimpleCS 1 thick 1.0\n\
          mooneyrivlincompressiblemat 1 d 0 c1 {} c2 0 k {k}\n{}\n\
          ConstantFunction 1 f(t) 1.0\nPiecewiseLinFunction 2 npoints 2 t 2 0 {steps} f(t) 2 0 1\n{sets}",
-        if d3 { "3d" } else { "PlaneStrain" },
+        match (d3, axisymmetric) {
+            (true, _) => "3d",
+            (false, true) => "2dPlaneStress",
+            (false, false) => "PlaneStrain",
+        },
         nn + 2,
         nr * ne,
         records.len(),
@@ -235,32 +266,26 @@ fn crush(text: &str) -> Vec<(f64, usize, f64, usize)> {
 /// The whole ring with its bore in self-contact against its half on the symmetry plane: the
 /// plate force equal to round-off at every step (the bore closes over the last third), no bore
 /// node ever inside the opposite wall, no more Newton iterations than the half model's.
-fn check_against_half(
-    tz: f64,
-    (nt, nr): (usize, usize),
-    crush_by: f64,
-    steps: usize,
-    kg: Option<f64>,
-) {
-    let whole = crush(&ring(true, tz, nt, nr, crush_by, steps, kg));
-    let half = crush(&ring(false, tz, nt, nr, crush_by, steps, kg));
+fn check_against_half(ring: Ring) {
+    let whole = crush(&ring.text(true));
+    let half = crush(&ring.text(false));
     assert_eq!(whole.len(), half.len());
     let size = 1.0;
     for (k, (w, h)) in whole.iter().zip(&half).enumerate() {
         assert!(
             (w.0 - h.0).abs() <= 1e-9 * h.0.abs().max(1e-9),
-            "tz {tz}, K/G {kg:?}, step {k}: plate force {} whole, {} half",
+            "step {k}: plate force {} whole, {} half",
             w.0,
             h.0
         );
         assert!(
             w.2 > -1e-12 * size,
-            "tz {tz}, step {k}: a bore node {} inside the other wall",
+            "step {k}: a bore node {} inside the other wall",
             w.2
         );
         assert!(
             w.1 <= h.1.max(5),
-            "tz {tz}, step {k}: {} iterations (half: {})",
+            "step {k}: {} iterations (half: {})",
             w.1,
             h.1
         );
@@ -276,20 +301,46 @@ fn check_against_half(
 }
 
 #[test]
-fn a_crushed_ring_with_its_bore_in_self_contact_equals_its_half_model() {
-    check_against_half(0.0, (32, 2), 0.8, 24, None);
+fn a_crushed_ring_and_torus_with_their_bore_in_self_contact_equal_their_half_models() {
+    let plane = Ring {
+        nt: 32,
+        nr: 2,
+        crush: 0.8,
+        steps: 24,
+        ..Ring::default()
+    };
+    check_against_half(plane);
+    // The same section as a hollow torus about an axis 3 away.
+    check_against_half(Ring {
+        axis: Some(3.0),
+        ..plane
+    });
 }
 
 /// Nearly incompressible rubber (K = 1000 G, barred quadrilaterals) crushed to 80 %: the crease
 /// at each side of the bore folds shut, the nodes beside its tip meeting the edge across it.
 #[test]
 fn a_nearly_incompressible_ring_crushed_shut_equals_its_half_model() {
-    check_against_half(0.0, (48, 3), 0.8, 40, Some(1000.0));
+    check_against_half(Ring {
+        nt: 48,
+        nr: 3,
+        crush: 0.8,
+        steps: 40,
+        kg: Some(1000.0),
+        ..Ring::default()
+    });
 }
 
 #[test]
 fn a_crushed_tube_of_bricks_with_its_bore_in_self_contact_equals_its_half_model() {
-    check_against_half(0.2, (24, 2), 0.8, 20, None);
+    check_against_half(Ring {
+        tz: 0.2,
+        nt: 24,
+        nr: 2,
+        crush: 0.8,
+        steps: 20,
+        ..Ring::default()
+    });
 }
 
 /// A flat block (1 × 0.2, 5 × 1 elements), its whole boundary one self-contact surface,
@@ -397,7 +448,18 @@ fn a_block_whose_boundary_is_one_self_contact_surface_is_compressed_without_cont
 #[test]
 fn a_repeated_self_contact_pair_has_the_jacobian_of_its_residual_as_tangent() {
     for tz in [0.0, 0.2] {
-        let model = common::model_from_text(&ring(true, tz, 16, 1, 0.5, 1, None)).unwrap();
+        let model = common::model_from_text(
+            &Ring {
+                tz,
+                nt: 16,
+                nr: 1,
+                crush: 0.5,
+                steps: 1,
+                ..Ring::default()
+            }
+            .text(true),
+        )
+        .unwrap();
         let mut contact = ContactSystem::new(&model).unwrap();
         let dofs = hertz::solve::number_dofs(&model).unwrap();
         contact.set_pressure_limit(f64::INFINITY);
