@@ -65,10 +65,13 @@ const HYSTERESIS_BAND: f64 = 1e-6;
 /// Ramp length at an open boundary for a node without neighbours, as a fraction of the
 /// boundary's edge length.
 const ISOLATED_RAMP: f64 = 0.01;
-/// How far behind an immediate neighbour on its own surface a self-contact node still meets
-/// it, as a fraction of its tolerance against the rest (round-off; farther, only inside the
-/// body behind it).
-const ROUND_OFF: f64 = 1e-6;
+/// How far behind a facing part of its own surface a self-contact node still meets it without
+/// lying in the element behind it (a Newton iterate's overshoot): this fraction of its spacing
+/// to its neighbours or of that element's depth behind the part, the smaller (a wall thinner
+/// than the spacing is not taken for a crossing).
+const DEPTH: f64 = 0.25;
+/// How far outside an element a point still lies in it, in the element's coordinates.
+const ROUND_OFF: f64 = 1e-9;
 /// An immediate neighbour faces a self-contact node when their normals make more than 120°
 /// (n·n_s < −1/2): across a closing crease they are opposed, while the tip of a crease sees
 /// the walls beside it at about 90°, from its side, and must not be held by them.
@@ -341,13 +344,12 @@ impl NodeToSegment {
             .own
             .as_ref()
             .map(|own| self.own_normal(slot.node, own, cur));
-        let mut inside = None;
-        let mut admits = |c: &Candidate| match (&slot.own, own_normal) {
-            (Some(own), Some(n)) => self.admits(ctx, slot, own, n, xs, cur, c, &mut inside),
+        let admits = |c: &Candidate| match (&slot.own, own_normal) {
+            (Some(own), Some(n)) => self.admits(ctx, slot, own, n, xs, cur, c),
             _ => true,
         };
         let mut keep = |c: Option<Candidate>, out: &mut Vec<Candidate>| {
-            let c = c.filter(&mut admits)?;
+            let c = c.filter(admits)?;
             seen |= Some(c.partner) == previous;
             out.push(c);
             c.inside.then_some(c.gap.abs())
@@ -370,7 +372,7 @@ impl NodeToSegment {
             Some(Partner::Face(k)) if !seen => self.face_candidate(model, slot, xs, cur, k),
             _ => None,
         };
-        out.extend(previous.filter(&mut admits));
+        out.extend(previous.filter(admits));
         self.rigid_candidates(ctx, xs, &mut out)?;
         Ok(out)
     }
@@ -438,9 +440,8 @@ impl NodeToSegment {
             .own
             .as_ref()
             .map(|own| self.own_normal(slot.node, own, cur));
-        let mut crossed = Some(true);
         let own = own.filter(|c| match (&slot.own, own_normal) {
-            (Some(o), Some(n)) => self.admits(ctx, slot, o, n, xs, cur, c, &mut crossed),
+            (Some(o), Some(n)) => self.admits(ctx, slot, o, n, xs, cur, c),
             _ => true,
         });
         cands
@@ -487,14 +488,15 @@ impl NodeToSegment {
 
     /// Whether a self-contact node at `xs` (normal `normal` on its own surface `own`) can meet
     /// candidate `c`: never an edge or face it belongs to, never a part of the surface facing
-    /// the same way as its own (n·n_s ≥ 0), and behind a part facing it (a negative gap) only
-    /// within `own.tolerance` or where it lies inside the master's body (a node on a convex
-    /// bulge lies far behind the tangent planes of the opposite side, which it has not
-    /// crossed). Its immediate neighbours it meets only facing it squarely
-    /// ([`NEIGHBOUR_FACING`]) and from in front (to round-off, or inside the body behind them):
-    /// the two sides of a crease that closes, where a node meets the edge across the crease; on
-    /// a sharp convex fold the next face faces the node from behind and never holds it.
-    /// `inside` caches whether the node lies inside the master's body.
+    /// the same way as its own (n·n_s ≥ 0; an immediate neighbour only facing it squarely,
+    /// [`NEIGHBOUR_FACING`]: across a closing crease, where a node meets the edge across it,
+    /// while the tip of a crease sees the walls beside it at about 90°), and behind a part
+    /// facing it (a negative gap) only within [`DEPTH`] or where it lies in the element behind
+    /// that part, its boundary included: it has crossed the surface there. A node on a convex
+    /// bulge lies far behind the tangent planes of the opposite side, a node of a thin wall
+    /// behind its other face, and neither has crossed anything; a node on a body's flat free
+    /// face (a slab's end) that crossed lies on the boundary of the element it entered, not
+    /// strictly inside. Never a face of the node's own elements.
     #[allow(clippy::too_many_arguments)]
     fn admits(
         &self,
@@ -505,31 +507,49 @@ impl NodeToSegment {
         xs: [f64; 3],
         cur: &Current,
         c: &Candidate,
-        inside: &mut Option<bool>,
     ) -> bool {
         if own.items.contains(&c.partner) {
             return false;
         }
-        let n = match c.partner {
+        let (n, element) = match c.partner {
             Partner::Edge(k) => {
                 let (_, n) = self.edge_geometry_f64(k, cur).gap([xs[0], xs[1]], c.xi[0]);
-                [n[0], n[1], 0.0]
+                ([n[0], n[1], 0.0], self.edges.edges[k].element)
             }
-            Partner::Face(k) => self.face_geometry_f64(k, cur).gap(&xs, c.xi[0], c.xi[1]).1,
+            Partner::Face(k) => (
+                self.face_geometry_f64(k, cur).gap(&xs, c.xi[0], c.xi[1]).1,
+                self.faces.faces[k].element,
+            ),
             _ => return true,
         };
-        let neighbour = own.neighbours.contains(&c.partner);
-        let facing = if neighbour { NEIGHBOUR_FACING } else { 0.0 };
-        if (0..3).map(|i| n[i] * normal[i]).sum::<f64>() >= facing {
+        let facing = match own.neighbours.contains(&c.partner) {
+            true => NEIGHBOUR_FACING,
+            false => 0.0,
+        };
+        let el = &ctx.model.elements[element];
+        if (0..3).map(|i| n[i] * normal[i]).sum::<f64>() >= facing || el.nodes.contains(&slot.node)
+        {
             return false;
         }
-        let tolerance = if neighbour {
-            ROUND_OFF * own.tolerance
-        } else {
-            own.tolerance
+        if c.gap >= 0.0 {
+            return true;
+        }
+        let Ok(x) = (el.nodes.iter())
+            .map(|&m| ctx.position(m).map(|p| p.0))
+            .collect::<Result<Vec<_>>>()
+        else {
+            return false;
         };
-        c.gap >= -tolerance
-            || *inside.get_or_insert_with(|| self.inside_body(ctx, slot, xs, cur).is_some())
+        // The element's depth behind the partner: how far its nodes lie behind the contact
+        // point along the normal.
+        let point: [f64; 3] = std::array::from_fn(|i| xs[i] - c.gap * n[i]);
+        let depth = (x.iter())
+            .map(|y| -(0..3).map(|i| (y[i] - point[i]) * n[i]).sum::<f64>())
+            .fold(0.0, f64::max);
+        let shape = el.etype.shape();
+        -c.gap <= DEPTH * own.spacing.min(depth)
+            || crate::fem::geometry::locate(shape, &x, xs)
+                .is_some_and(|xi| shape.inside_margin(xi) > -ROUND_OFF)
     }
 
     /// The local unknowns and kinematics of a slot without a partner: no force; a multiplier is

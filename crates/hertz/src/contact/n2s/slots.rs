@@ -41,10 +41,8 @@ pub(super) struct OwnSurface {
     /// Their immediate neighbours (the other items sharing a node with them): the node's
     /// partners only from in front, where the surface folds onto itself (a crease closing).
     pub(super) neighbours: Vec<Partner>,
-    /// How far behind a facing part of its surface the node still meets it without lying
-    /// inside the body behind it (round-off, a Newton iterate's overshoot): a quarter of its
-    /// mean distance to its neighbours.
-    pub(super) tolerance: f64,
+    /// Its mean distance to its neighbours.
+    pub(super) spacing: f64,
 }
 
 /// The master's edges and faces at each of their nodes (corners and mid-sides).
@@ -94,7 +92,7 @@ fn own_surface(
     Some(OwnSurface {
         items,
         neighbours,
-        tolerance: 0.25 * h,
+        spacing: h,
     })
 }
 
