@@ -18,6 +18,16 @@ def doc_blocks():
     return re.findall(r"```(\w*)\n(.*?)```", text, re.S)
 
 
+def run_example(name, png):
+    """Load examples/python/NAME.py and run its main(png) quietly; its return value."""
+    pytest.importorskip("matplotlib")
+    spec = importlib.util.spec_from_file_location(name, EXAMPLES / "python" / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    with contextlib.redirect_stdout(io.StringIO()):
+        return module, module.main(png)
+
+
 def test_every_python_block_of_the_guide_prints_what_it_shows():
     blocks = doc_blocks()
     ran = 0
@@ -39,13 +49,8 @@ def test_every_python_block_of_the_guide_prints_what_it_shows():
 
 
 def test_the_penalty_study_converges_to_hertz_and_plots(tmp_path):
-    pytest.importorskip("matplotlib")
-    spec = importlib.util.spec_from_file_location("study", EXAMPLES / "python" / "penalty_study.py")
-    study = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(study)
     png = tmp_path / "study.png"
-    with contextlib.redirect_stdout(io.StringIO()):
-        model, rows = study.main(png)
+    study, (model, rows) = run_example("penalty_study", png)
     forces = [r[1] for r in rows]
     # The penalty's error in the force falls about tenfold per decade of penalty.
     steps = [abs(b - a) for a, b in zip(forces, forces[1:])]
@@ -64,13 +69,8 @@ def test_the_plastic_zone_lies_below_the_imprint_and_is_drawn(tmp_path):
     """examples/python/plastic_zone.py: the imprint the command's test measures (0.0945), the
     largest plastic strain under the contact (within its half-width, 1.48, and no deeper than
     it) and kept after lift-off, and a figure."""
-    pytest.importorskip("matplotlib")
-    spec = importlib.util.spec_from_file_location("zone", EXAMPLES / "python" / "plastic_zone.py")
-    zone = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(zone)
     png = tmp_path / "zone.png"
-    with contextlib.redirect_stdout(io.StringIO()):
-        imprint, kappa, (x, y) = zone.main(png)
+    _, (imprint, kappa, (x, y)) = run_example("plastic_zone", png)
     assert abs(imprint - 0.0945) < 5e-4
     assert kappa > 0.02 and 0 <= x < 1.48 and -1.48 < y < 0
     assert png.stat().st_size > 10_000
@@ -81,13 +81,8 @@ def test_the_crushed_tube_closes_its_bore_and_is_drawn(tmp_path):
     step; no bore node touches until the plates have moved 0.6 (the bore, 1.2 across, closes
     with the walls' thickening), and at the end every bore node but the three at each crease
     does (42 of 48); a figure."""
-    pytest.importorskip("matplotlib")
-    spec = importlib.util.spec_from_file_location("tube", EXAMPLES / "python" / "crushed_tube.py")
-    tube = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(tube)
     png = tmp_path / "tube.png"
-    with contextlib.redirect_stdout(io.StringIO()):
-        travel, force, below, touching = tube.main(png)
+    _, (travel, force, below, touching) = run_example("crushed_tube", png)
     assert abs(force - below).max() < 1e-8 * abs(force).max()
     assert all(t == 0 for d, t in zip(travel, touching) if d < 0.55)
     assert touching[-1] == 42

@@ -124,16 +124,7 @@ fn ring(full: bool, r: Ring) -> String {
             };
         }
     }
-    let list = |v: &[usize]| {
-        format!(
-            "{} {}",
-            v.len(),
-            v.iter()
-                .map(|n| n.to_string())
-                .collect::<Vec<_>>()
-                .join(" ")
-        )
-    };
+    let list = |v: &[usize]| format!("{} {}", v.len(), labels(v));
     let all_z = |f: &dyn Fn(usize) -> Vec<usize>| (0..layers).flat_map(f).collect::<Vec<_>>();
     let bore_faces: Vec<usize> = (1..=ne).flat_map(|k| [k, if d3 { 6 } else { 4 }]).collect();
     let outer = all_z(&|z| (0..jn).map(|j| id(nr, j, z)).collect());
@@ -236,6 +227,14 @@ fn ring(full: bool, r: Ring) -> String {
         g / 2.0,
         records.join("\n"),
     )
+}
+
+/// Node labels separated by spaces.
+fn labels(v: &[usize]) -> String {
+    v.iter()
+        .map(|n| n.to_string())
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
 /// Per step: the top plate's force, the Newton iterations, the smallest gap of the bore's
@@ -385,12 +384,6 @@ fn a_block_whose_boundary_is_one_self_contact_surface_is_compressed_without_cont
         .filter(|&(i, j)| i == 0 || j == 0 || i == nx || j == ny)
         .map(|(i, j)| id(i, j))
         .collect();
-    let list = |v: &[usize]| {
-        v.iter()
-            .map(|n| n.to_string())
-            .collect::<Vec<_>>()
-            .join(" ")
-    };
     let bottom: Vec<usize> = (0..=nx).map(|i| id(i, 0)).collect();
     let top: Vec<usize> = (0..=nx).map(|i| id(i, ny)).collect();
     text += &format!(
@@ -411,12 +404,12 @@ fn a_block_whose_boundary_is_one_self_contact_surface_is_compressed_without_cont
         2 * boundary.len(),
         boundary.join(" "),
         bottom.len(),
-        list(&bottom),
+        labels(&bottom),
         top.len(),
-        list(&top),
+        labels(&top),
         id(0, 0),
         ring.len(),
-        list(&ring),
+        labels(&ring),
     );
     let model = common::model_from_text(&text).unwrap();
     let mut checked = false;
@@ -585,12 +578,6 @@ fn a_node_on_a_sharp_convex_fold_pairs_with_nothing_of_its_own_surface() {
         .flat_map(|i| [id(i, 0), id(i, 2)])
         .chain([id(n, 0)])
         .collect();
-    let list = |v: &[usize]| {
-        v.iter()
-            .map(|n| n.to_string())
-            .collect::<Vec<_>>()
-            .join(" ")
-    };
     let base = [id(0, 0), id(0, 1), id(0, 2)];
     let input = |with_contact: bool| {
         format!(
@@ -611,14 +598,14 @@ fn a_node_on_a_sharp_convex_fold_pairs_with_nothing_of_its_own_surface() {
                     "n2slagrangianmultipliercontact 3 loadTimeFunction 1 nodeset {} {} \
                      segmentset 1 1\n",
                     surface.len(),
-                    list(&surface)
+                    labels(&surface)
                 )
             } else {
                 String::new()
             },
             2 * edges.len(),
             edges.join(" "),
-            list(&base),
+            labels(&base),
             id(n, 0)
         )
     };
