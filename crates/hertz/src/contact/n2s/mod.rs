@@ -110,6 +110,15 @@ pub struct NodeToSegment {
     items_of: HashMap<usize, Vec<Partner>>,
 }
 
+/// A slot's contact point before its law: its multiplier equations, local unknowns and
+/// kinematics, and its state so far.
+struct Prepared {
+    lambda_eqs: Option<std::ops::Range<usize>>,
+    local: Local,
+    kin: SlotKinematics,
+    state: SlotState,
+}
+
 /// The master surface at the current state: positions of its nodes, the broad phases of its
 /// edges and faces and, for faces in large deformation, their current nodal normals with
 /// derivatives.
@@ -340,16 +349,9 @@ impl NodeToSegment {
         let mut out = Vec::new();
         // The previous partner is a candidate wherever the walk stops.
         let mut seen = false;
-        let own_normal = slot
-            .own
-            .as_ref()
-            .map(|own| self.own_normal(slot.node, own, cur));
-        let admits = |c: &Candidate| match (&slot.own, own_normal) {
-            (Some(own), Some(n)) => self.admits(ctx, slot, own, n, xs, cur, c),
-            _ => true,
-        };
+        let admits = self.admission(ctx, slot, xs, cur);
         let mut keep = |c: Option<Candidate>, out: &mut Vec<Candidate>| {
-            let c = c.filter(admits)?;
+            let c = c.filter(|c| admits(c))?;
             seen |= Some(c.partner) == previous;
             out.push(c);
             c.inside.then_some(c.gap.abs())
@@ -372,7 +374,7 @@ impl NodeToSegment {
             Some(Partner::Face(k)) if !seen => self.face_candidate(model, slot, xs, cur, k),
             _ => None,
         };
-        out.extend(previous.filter(admits));
+        out.extend(previous.filter(|c| admits(c)));
         self.rigid_candidates(ctx, xs, &mut out)?;
         Ok(out)
     }
@@ -436,14 +438,7 @@ impl NodeToSegment {
                 Partner::Face(k) => self.face_candidate(ctx.model, slot, xs, cur, k),
                 _ => None,
             });
-        let own_normal = slot
-            .own
-            .as_ref()
-            .map(|own| self.own_normal(slot.node, own, cur));
-        let own = own.filter(|c| match (&slot.own, own_normal) {
-            (Some(o), Some(n)) => self.admits(ctx, slot, o, n, xs, cur, c),
-            _ => true,
-        });
+        let own = own.filter(self.admission(ctx, slot, xs, cur));
         cands
             .iter()
             .copied()
@@ -451,6 +446,19 @@ impl NodeToSegment {
             .filter(|c| c.inside && c.gap < 0.0)
             .min_by(|a, b| a.gap.abs().total_cmp(&b.gap.abs()))
             .or(best)
+    }
+
+    /// Which candidates a node at `xs` can meet: any, unless it is in self-contact (then those
+    /// [`NodeToSegment::admits`] admits, against its current normal).
+    fn admission<'a>(
+        &'a self,
+        ctx: &'a Ctx,
+        slot: &'a Slot,
+        xs: [f64; 3],
+        cur: &'a Current,
+    ) -> impl Fn(&Candidate) -> bool + 'a {
+        let own = (slot.own.as_ref()).map(|own| (own, self.own_normal(slot.node, own, cur)));
+        move |c: &Candidate| own.is_none_or(|(own, n)| self.admits(ctx, slot, own, n, xs, cur, c))
     }
 
     /// The current outward normal of self-contact node `node`: the mean of its own edges' or faces'
@@ -735,27 +743,29 @@ impl Formulation for NodeToSegment {
                 }
                 None => self.no_partner(ctx, slot)?,
             };
-            prepared.push((lambda_eqs, local, kin, state));
+            prepared.push(Prepared {
+                lambda_eqs,
+                local,
+                kin,
+                state,
+            });
         }
         // Self-contact: pairs that repeat one contact hold it by one constraint (see `pairs`).
-        let pairs = {
-            let states: Vec<SlotState> = prepared.iter().map(|p| p.3.clone()).collect();
-            self.repeated_pairs(&states, &search, |k| {
-                pairs::mergeable(&self.slots[k], states[k].partner, &prepared[k].2)
-            })
-        };
+        let pairs = self.repeated_pairs(&prepared, &search);
         for &(i, j) in &pairs {
-            let merged = pairs::merge(
-                (&prepared[i].1, &prepared[i].2),
-                (&prepared[j].1, &prepared[j].2),
-            );
-            (prepared[i].1, prepared[i].2) = merged;
-            (prepared[j].1, prepared[j].2) = self.no_partner(ctx, &self.slots[j])?;
-            prepared[j].3.repeated = true;
+            let (a, b) = (&prepared[i], &prepared[j]);
+            (prepared[i].local, prepared[i].kin) =
+                pairs::merge((&a.local, &a.kin), (&b.local, &b.kin));
+            (prepared[j].local, prepared[j].kin) = self.no_partner(ctx, &self.slots[j])?;
+            prepared[j].state.repeated = true;
         }
-        for (k, (slot, (lambda_eqs, local, kin, mut state))) in
-            self.slots.iter().zip(prepared).enumerate()
-        {
+        for (k, (slot, p)) in self.slots.iter().zip(prepared).enumerate() {
+            let Prepared {
+                lambda_eqs,
+                local,
+                kin,
+                mut state,
+            } = p;
             let point = apply_law(
                 ctx, slot.law, lambda_eqs, &local, &kin, areas[k], &mut state,
             );
@@ -770,10 +780,10 @@ impl Formulation for NodeToSegment {
         }
         let mine = &mut states[first_state..];
         for (i, j) in pairs {
-            let half = 0.5 * mine[i].force;
-            for (k, s) in [(i, mine[i].active), (j, mine[i].active)] {
+            let (half, active) = (0.5 * mine[i].force, mine[i].active);
+            for k in [i, j] {
                 mine[k].force = half;
-                mine[k].active = s;
+                mine[k].active = active;
                 mine[k].pressure = half / areas[k];
             }
         }

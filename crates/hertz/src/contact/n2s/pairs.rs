@@ -10,9 +10,9 @@
 //! second order, alike. The force is reported half at each node. With friction (whose slips do
 //! not merge) or past the ramp of an open end the pair is left to the two-condition rule.
 
-use super::{NodeToSegment, Slot};
+use super::{NodeToSegment, Prepared, Slot};
 use crate::contact::dual::Jet;
-use crate::contact::formulation::{Formulation, Local, Partner, Search, SlotState};
+use crate::contact::formulation::{Formulation, Local, Partner, Search};
 use crate::contact::law::SlotKinematics;
 
 /// A pair closer than this fraction of the spacing of the nodes around it repeats one contact;
@@ -22,30 +22,33 @@ const KEEP: f64 = 1.0 / 3.0;
 
 impl NodeToSegment {
     /// The self-contact slots (i, j), i < j, whose constraints repeat each other, closest first
-    /// and each slot in one pair at most; `mergeable(k)`: slot k's kinematics can merge.
+    /// and each slot in one pair at most, among the slots `prepared` whose kinematics can merge.
     pub(super) fn repeated_pairs(
         &self,
-        states: &[SlotState],
+        prepared: &[Prepared],
         search: &Search,
-        mergeable: impl Fn(usize) -> bool,
     ) -> Vec<(usize, usize)> {
         let slot_of: std::collections::HashMap<usize, usize> = (self.slots.iter().enumerate())
-            .filter(|(k, s)| s.own.is_some() && mergeable(*k))
+            .filter(|&(k, s)| mergeable(s, prepared[k].state.partner, &prepared[k].kin))
             .map(|(k, s)| (s.node, k))
             .collect();
+        if slot_of.is_empty() {
+            return Vec::new();
+        }
+        let state = |k: usize| &prepared[k].state;
         let dist = |a: &[f64; 3], b: &[f64; 3]| (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>();
         let position: std::collections::HashMap<usize, [f64; 3]> =
-            states.iter().map(|s| (s.node, s.x)).collect();
+            prepared.iter().map(|p| (p.state.node, p.state.x)).collect();
         let mut pairs = Vec::new();
         for (&a, &i) in &slot_of {
-            let partner = self.partner_nodes(states[i].partner);
+            let partner = self.partner_nodes(state(i).partner);
             for b in partner {
                 let Some(&j) = slot_of.get(b) else { continue };
-                if j <= i || !self.partner_nodes(states[j].partner).contains(&a) {
+                if j <= i || !self.partner_nodes(state(j).partner).contains(&a) {
                     continue;
                 }
                 // b's nearest neighbour on a's partner.
-                let xb = states[j].x;
+                let xb = state(j).x;
                 let spacing = (partner.iter().filter(|&n| n != b))
                     .filter_map(|n| position.get(n).map(|x| dist(x, &xb)))
                     .fold(f64::INFINITY, f64::min)
@@ -55,7 +58,7 @@ impl NodeToSegment {
                 } else {
                     PAIR
                 };
-                let d = dist(&states[i].x, &xb).sqrt();
+                let d = dist(&state(i).x, &xb).sqrt();
                 if spacing.is_finite() && d < limit * spacing {
                     pairs.push((d, i, j));
                 }
@@ -79,7 +82,7 @@ impl NodeToSegment {
 /// open boundary of its surface, the free face of a slab, sits in its ramp) and short of any
 /// ramp's far end (the multipliers' max(g, e) is g), frictionless. The merged weight is the
 /// mean (a penalty's force is ε·w·⟨−g⟩; the multipliers' weight only switches).
-pub(super) fn mergeable(slot: &Slot, partner: Partner, kin: &SlotKinematics) -> bool {
+fn mergeable(slot: &Slot, partner: Partner, kin: &SlotKinematics) -> bool {
     slot.own.is_some()
         && matches!(partner, Partner::Edge(_) | Partner::Face(_))
         && kin.weight.v > 0.0
