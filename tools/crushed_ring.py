@@ -17,7 +17,6 @@ p.add_argument('--nt', type=int, default=48)
 p.add_argument('--crush', type=float, default=0.5)  # each plate's travel / ro
 p.add_argument('--steps', type=int, default=10)
 p.add_argument('--law', default='mult')
-p.add_argument('--form', default='n2s')
 p.add_argument('--model', default='full')
 p.add_argument('--el', default='q4')
 p.add_argument('--mat', default='nh')
@@ -59,44 +58,27 @@ for i in range(nr):
             elems.append((nid(i, j), nid(i + 1, j), nid(i + 1, j + 1), nid(i, j + 1)))
 P = len(nodes) + 1; Q = P + 1
 nodes.append((0.0, a.ro)); nodes.append((0.0, -a.ro))
-bore_el = [nr * 0 + j * 1 for j in range(nte)]
-bore_el = [i * nte + j + 1 for i in [0] for j in range(nte)]
+bore_el = [j + 1 for j in range(nte)]  # the bore's layer of elements
 bore_nodes = [nid(0, j) for j in range(J)] if full else [nid(0, j) for j in range(1, J - 1)]
 outer = [nid(q * nr, j) for j in range(J)]
 d = a.crush * a.ro
 kw = {'q4': 'Quad1PlaneStrain', 'q8': 'QPlaneStrain', 'bb': 'Quad1PlaneStrainBB'}[a.el]
 L = ['ring.out', f'ring {a.model}', f'NonLinearStatic nsteps {a.steps} controlmode 1 rtolf 1e-10 maxiter 30',
      'domain PlaneStrain', 'OutputManager tstep_all dofman_all']
-recs = []
-recs.append('linear2delementedgecontactsegment 1 edgeset 1')
-if full:
-    recs.append(f'planecontactsegment 2 point 2 0 {a.ro} normal 2 0 -1 node {P}')
-    recs.append(f'planecontactsegment 3 point 2 0 {-a.ro} normal 2 0 1 node {Q}')
-else:
-    recs.append(f'planecontactsegment 2 point 2 0 {a.ro} normal 2 0 -1 node {P}')
-    recs.append(f'planecontactsegment 3 point 2 0 0 normal 2 0 1')
+recs = ['linear2delementedgecontactsegment 1 edgeset 1',
+        f'planecontactsegment 2 point 2 0 {a.ro} normal 2 0 -1 node {P}',
+        f'planecontactsegment 3 point 2 0 {-a.ro} normal 2 0 1 node {Q}' if full
+        else 'planecontactsegment 3 point 2 0 0 normal 2 0 1']
 bcs = [f'BoundaryCondition 1 loadTimeFunction 2 dofs 2 1 2 values 2 0 {-d} set 2']
 if full:
     bcs.append(f'BoundaryCondition 2 loadTimeFunction 2 dofs 2 1 2 values 2 0 {d} set 3')
-    bcs.append('BoundaryCondition 3 loadTimeFunction 1 dofs 1 1 values 1 0 set 4')
 else:
     bcs.append('BoundaryCondition 2 loadTimeFunction 1 dofs 1 2 values 1 0 set 3')
-    bcs.append('BoundaryCondition 3 loadTimeFunction 1 dofs 1 1 values 1 0 set 4')
+bcs.append('BoundaryCondition 3 loadTimeFunction 1 dofs 1 1 values 1 0 set 4')
 kind = 'n2spenaltycontact' if a.law == 'penalty' else 'n2slagrangianmultipliercontact'
-skind = 's2spenaltycontact' if a.law == 'penalty' else 's2slagrangianmultipliercontact'
-bcs.append(f'{kind} 4 loadTimeFunction 1 slaveset 5 segmentset 1 2' + ('' if not full else ''))
-if full:
-    bcs[-1] = f'{kind} 4 loadTimeFunction 1 slaveset 5 segmentset 2 2 3'
-    if a.form == 'n2s':
-        bcs.append(f'{kind} 5 loadTimeFunction 1 slaveset 6 segmentset 1 1')
-    else:
-        bcs.append(f'{skind} 5 loadTimeFunction 1 slavesegment 1 segmentset 1 1')
-else:
-    bcs[-1] = f'{kind} 4 loadTimeFunction 1 slaveset 5 segmentset 1 2'
-    if a.form == 'n2s':
-        bcs.append(f'{kind} 5 loadTimeFunction 1 slaveset 6 segmentset 1 3')
-    else:
-        bcs.append(f'{skind} 5 loadTimeFunction 1 slavesegment 1 segmentset 1 3')
+# The plates against the outside; the bore against itself (full) or the symmetry plane (half).
+bcs.append(f'{kind} 4 loadTimeFunction 1 slaveset 5 segmentset ' + ('2 2 3' if full else '1 2'))
+bcs.append(f'{kind} 5 loadTimeFunction 1 slaveset 6 segmentset 1 ' + ('1' if full else '3'))
 L.append(f'ndofman {len(nodes)} nelem {len(elems)} ncrosssect 1 nmat 1 nbc {len(bcs)} nic 0 nltf 2 nset 6 ncontactseg 3')
 for k, (x, y) in enumerate(nodes):
     L.append(f'node {k+1} coords 2 {x:.15g} {y:.15g}')
@@ -150,7 +132,7 @@ if a.dim == 3:
                 out.append(f'node {lay(k, z)} coords 3 {x:.15g} {y:.15g} {a.tz * z / nz:.15g}')
             continue
         if l.startswith('Quad1PlaneStrain'):
-            e = list(map(int, w[4:8])); k = int(w[2 - 1])
+            e = list(map(int, w[4:8])); k = int(w[1])
             for z in range(nz):
                 out.append(f'LSpace {(k - 1) * nz + z + 1} nodes 8 ' + ' '.join(str(lay(v, z)) for v in e) + ' ' + ' '.join(str(lay(v, z + 1)) for v in e) + ' crossSect 1 mat 1 nlgeo 1')
             continue
