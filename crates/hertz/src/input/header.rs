@@ -214,12 +214,7 @@ pub(super) fn read_analysis(r: &Record) -> Result<(Analysis, usize, usize, usize
         v @ (0 | 1) => v as u8,
         v => return Err(r.error(format!("`refloadmode` must be 0 or 1, found {v}"))),
     };
-    let default_guess = if kind == AnalysisKind::StaticStructural {
-        1
-    } else {
-        0
-    };
-    let initialguess = r.opt_int("initialguess")?.unwrap_or(default_guess) != 0;
+    let initialguess = r.opt_int("initialguess")?.map(|v| v != 0);
     for k in [
         "renumber",
         "lstype",

@@ -32,11 +32,32 @@ pub struct Analysis {
     pub manrmsteps: Option<usize>,
     /// NonLinearStatic: 0 total reference loads accumulated, 1 incremental.
     pub refloadmode: u8,
-    /// Tangent predictor from prescribed-value increments.
-    pub initialguess: bool,
+    /// Tangent predictor from prescribed-value increments, as the input gives it (`initialguess`);
+    /// None: the analysis' default (see [`Analysis::predictor`]).
+    pub initialguess: Option<bool>,
     pub errorcheck: bool,
     /// The time integration of a dynamic analysis.
     pub dynamics: Option<Dynamics>,
+}
+
+impl Analysis {
+    /// Whether a step starts from the tangent predictor K Δu_f = −K_fp Δu_p of its prescribed
+    /// increments: as `initialguess` says; else StaticStructural's default (yes) and OOFEM's
+    /// NonLinearStatic and dynamic default (no: the increment is put on the prescribed DOFs
+    /// alone), except that hertz takes the predictor in a static analysis whose tangent varies
+    /// (`constant_structure` false: large deformation, a law with a state). There the boundary
+    /// elements take the whole increment at once, in large deformation a strain of Δu/h that can
+    /// invert them: a corrugated strip compressed by two element lengths a step needed 2–4
+    /// substeps and 20–80 iterations each step without the predictor, 3 iterations with it.
+    /// Where the tangent is constant both converge to the same solution; OOFEM's iterates are
+    /// kept there.
+    pub fn predictor(&self, constant_structure: bool) -> bool {
+        self.initialguess.unwrap_or(match self.kind {
+            AnalysisKind::StaticStructural => true,
+            AnalysisKind::NonLinearStatic => !constant_structure,
+            _ => false,
+        })
+    }
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -2,8 +2,8 @@
 //! (spec §1.3, in [`super::convergence`]): evaluate the residual, test it, solve for the step,
 //! report.
 //!
-//! Without contact: full or modified Newton as the input says (`manrmsteps`), the factorization of
-//! a linear problem reused. With contact every iteration solves the full Newton system, its
+//! Without contact: full or modified Newton as the input says (`manrmsteps`; unsaid, full Newton
+//! where the bodies' tangent varies), the factorization of a linear problem reused. With contact every iteration solves the full Newton system, its
 //! contact branches decided on the linearized problem ([`super::contact_step`]), which keeps
 //! Newton from cycling around the kink of the contact force. A driver adds its own terms to the
 //! bodies' equations through [`StepTerms`] (a time integrator's inertia).
@@ -391,7 +391,8 @@ impl<'a> NewtonContext<'a> {
         self.watch.flips.fill(0);
         self.watch.floor_dominated = None;
         let dup: Vec<f64> = (0..up.len()).map(|i| up[i] - u[nf + i]).collect();
-        if a.initialguess && dup.iter().any(|&d| d != 0.0) {
+        let predict = a.predictor(self.eq.constant_structure && terms.constant_tangent());
+        if predict && dup.iter().any(|&d| d != 0.0) {
             self.predict(u, &dup, terms)?;
         }
         u[nf..].copy_from_slice(up);
@@ -502,13 +503,14 @@ impl<'a> NewtonContext<'a> {
             None => {
                 let kept = self.eq.factor_kept && terms.constant_tangent();
                 // OOFEM keeps the step's first tangent where `manrmsteps` is absent (modified
-                // Newton). With a material that yields, the tangent changes within the step
-                // and modified Newton converges linearly (a plastic patch: 50 iterations
-                // without converging, against 4 with full Newton): hertz takes full Newton
-                // there unless `manrmsteps` says otherwise.
-                let every = a
-                    .manrmsteps
-                    .or(self.eq.asm.has_material_state().then_some(1));
+                // Newton). Where the tangent changes within the step (large deformation, a
+                // material that yields) modified Newton converges linearly at best (a plastic
+                // patch: 50 iterations without converging, against 4 with full Newton; a
+                // corrugated strip compressed in large deformation: 70-80 iterations and 4
+                // substeps a step, elements inverted by the second iterate, against 4-6
+                // iterations): hertz takes full Newton there unless `manrmsteps` says
+                // otherwise. A constant tangent is factorized once either way.
+                let every = a.manrmsteps.or((!self.eq.constant_structure).then_some(1));
                 !kept && (it == 0 || every.is_some_and(|k| it.is_multiple_of(k)))
             }
         };
