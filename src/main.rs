@@ -169,6 +169,19 @@ fn report(result: hertz::error::Result<()>) -> ExitCode {
     }
 }
 
+/// This process's rank and the number of processes when an MPI launcher (`mpirun`, `mpiexec`:
+/// Open MPI's or MPICH's environment) started more than one; None for a single process.
+fn launched_ranks() -> Option<(usize, usize)> {
+    let var = |names: &[&str]| {
+        names
+            .iter()
+            .find_map(|n| std::env::var(n).ok()?.trim().parse::<usize>().ok())
+    };
+    let size = var(&["OMPI_COMM_WORLD_SIZE", "PMI_SIZE"])?;
+    let rank = var(&["OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"]).unwrap_or(0);
+    (size > 1).then_some((rank, size))
+}
+
 /// `run` (with `output` = Some((directory, VTU format)): write the results) or `check`.
 fn run_or_check(
     file: PathBuf,
@@ -179,6 +192,17 @@ fn run_or_check(
     // PETSc for the whole run (finalized when `session` drops, after the analysis).
     if petsc.petsc_options.is_some() && !petsc.wanted() {
         eprintln!("error: --petsc-options is for PETSc: add --solver petsc");
+        return ExitCode::from(2);
+    }
+    if let Some((rank, size)) = launched_ranks().filter(|_| !petsc.wanted()) {
+        // Each process would solve the whole model and write the same files.
+        if rank == 0 {
+            eprintln!(
+                "error: hertz was started as {size} MPI processes without --solver petsc: each \
+                 would solve the whole model and write the same files; add --solver petsc (a \
+                 build with --features petsc) or run one process"
+            );
+        }
         return ExitCode::from(2);
     }
     let session = if petsc.wanted() {
@@ -212,6 +236,16 @@ fn run_or_check(
     let result = run_file_observed(&file, &opts, &observer);
     // The progress bar is cleared before anything more is printed.
     drop(observer);
+    if let Some(s) = session.as_ref().filter(|_| !quiet) {
+        let unused = s.unused_options();
+        if !unused.is_empty() {
+            eprintln!(
+                "warning: PETSc never read the options {} (misspelled, or for a method this \
+                 run did not take)",
+                unused.join(" ")
+            );
+        }
+    }
     if silent_rank {
         let code = match &result {
             Ok(r) => u8::from(r.n_failed() > 0),

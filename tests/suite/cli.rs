@@ -684,3 +684,43 @@ fn vtu_files_are_written_at_the_selected_steps() {
         }
     }
 }
+
+/// Started by an MPI launcher as several processes without `--solver petsc`, every process
+/// would solve the whole model and write the same files (issue 50 item 10): each refuses with
+/// exit code 2 and writes nothing, and only the first says why. Open MPI's and MPICH's variables.
+#[test]
+fn several_mpi_processes_without_petsc_are_refused() {
+    let scratch = temp_dir("mpi-without-petsc");
+    let dir: &Path = scratch.as_ref();
+    std::fs::create_dir_all(dir).unwrap();
+    let input = root().join("examples/cantilever.in");
+    for (size, rank) in [
+        ("OMPI_COMM_WORLD_SIZE", "OMPI_COMM_WORLD_RANK"),
+        ("PMI_SIZE", "PMI_RANK"),
+    ] {
+        for r in ["0", "1"] {
+            let out = Command::new(env!("CARGO_BIN_EXE_hertz"))
+                .args(["run", "-q", "-o"])
+                .arg(dir)
+                .arg(&input)
+                .env(size, "2")
+                .env(rank, r)
+                .output()
+                .unwrap();
+            let err = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(2), "{size} rank {r}: {err}");
+            assert_eq!(err.contains("without --solver petsc"), r == "0", "{err}");
+            assert_eq!(count_files(dir, "out"), 0);
+        }
+    }
+    // One process under a launcher runs as usual.
+    let out = Command::new(env!("CARGO_BIN_EXE_hertz"))
+        .args(["run", "-q", "-o"])
+        .arg(dir)
+        .arg(&input)
+        .env("OMPI_COMM_WORLD_SIZE", "1")
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    assert_eq!(count_files(dir, "out"), 1);
+}

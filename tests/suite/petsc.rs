@@ -177,6 +177,40 @@ fn bad_petsc_options_and_a_mechanism_are_clear_errors() {
     );
 }
 
+/// A PETSc option the run never read is named after it (misspelled: `-ksp_tyep`), one that was
+/// read is not (the cantilever's CG + GAMG reads `-pc_gamg_threshold`); the run itself succeeds.
+/// Under `mpirun -n 2`, a run without `--petsc` is refused: each process would solve the whole
+/// model and write the same files.
+#[test]
+fn unread_petsc_options_are_named_and_mpirun_needs_petsc() {
+    let dir = tmp("unread");
+    let out = run(
+        "examples/cantilever.in",
+        &dir,
+        &[
+            "-v",
+            "--petsc",
+            "--petsc-options",
+            "-ksp_tyep cg -pc_gamg_threshold 0.01",
+        ],
+        1,
+    );
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    let warning = err
+        .lines()
+        .find(|l| l.contains("never read"))
+        .unwrap_or_else(|| panic!("no warning: {err}"));
+    assert!(
+        warning.contains("-ksp_tyep") && !warning.contains("gamg"),
+        "{warning}"
+    );
+    let out = run("examples/cantilever.in", &dir, &[], 2);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert_eq!(err.matches("without --solver petsc").count(), 1, "{err}");
+}
+
 /// The 3D Hertz sphere (node-to-face multipliers) with `--solver petsc`, on one process and on
 /// two ranks (which sum their shares of the tangent for it): hertz eliminates the multipliers
 /// and PETSc's CG + GAMG solves the reduced system; both take hertz's own Newton iterations and

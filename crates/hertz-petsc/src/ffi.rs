@@ -88,6 +88,18 @@ extern "C" {
         name: *const c_char,
         set: *mut PetscBool,
     ) -> PetscErrorCode;
+    pub fn PetscOptionsLeftGet(
+        o: PetscOptions,
+        n: *mut PetscInt,
+        names: *mut *mut *mut c_char,
+        values: *mut *mut *mut c_char,
+    ) -> PetscErrorCode;
+    pub fn PetscOptionsLeftRestore(
+        o: PetscOptions,
+        n: *mut PetscInt,
+        names: *mut *mut *mut c_char,
+        values: *mut *mut *mut c_char,
+    ) -> PetscErrorCode;
     pub fn PetscOptionsSetValue(
         o: PetscOptions,
         name: *const c_char,

@@ -36,6 +36,9 @@ pub const AVAILABLE: bool = cfg!(feature = "petsc");
 pub struct Session {
     rank: usize,
     size: usize,
+    /// The options string given to [`Session::start`].
+    #[cfg_attr(not(feature = "petsc"), allow(dead_code))]
+    options: Option<String>,
 }
 
 impl Session {
@@ -65,6 +68,16 @@ impl Session {
     /// The number of MPI ranks.
     pub fn size(&self) -> usize {
         self.size
+    }
+
+    /// The options given (to [`Session::start`] or in `PETSC_OPTIONS`) that PETSc has not read:
+    /// misspelled, or for a method the run did not take (e.g. `-pc_gamg_threshold` where MUMPS
+    /// solved). Ask after the analysis.
+    pub fn unused_options(&self) -> Vec<String> {
+        #[cfg(feature = "petsc")]
+        return solver::unused(self.options.as_deref());
+        #[cfg(not(feature = "petsc"))]
+        Vec::new()
     }
 
     /// The solver choice that makes a [`PetscSolver`] for each analysis.

@@ -6,7 +6,7 @@ use hertz::assembly::Pattern;
 use hertz::error::{Error, Result};
 use hertz::solve::linear::{Capabilities, Distributed, LinearSolver, SolverStats};
 use std::ffi::CString;
-use std::os::raw::c_int;
+use std::os::raw::{c_char, c_int};
 use std::ptr::null_mut;
 use std::time::Instant;
 
@@ -81,8 +81,42 @@ pub(crate) fn start(options: Option<&str>) -> std::result::Result<Session, Strin
         Ok(Session {
             rank: rank as usize,
             size: size as usize,
+            options: options.map(str::to_string),
         })
     }
+}
+
+/// The names (with their `-`) of the options given in `options` or `PETSC_OPTIONS` that PETSc
+/// has not read so far: misspelled, or for a method the run did not take. Options hertz sets
+/// itself are not reported.
+pub(crate) fn unused(options: Option<&str>) -> Vec<String> {
+    let env = std::env::var("PETSC_OPTIONS").unwrap_or_default();
+    let given: Vec<&str> = options
+        .unwrap_or_default()
+        .split_whitespace()
+        .chain(env.split_whitespace())
+        .filter_map(|t| t.strip_prefix('-'))
+        .filter(|t| t.starts_with(|c: char| c.is_ascii_alphabetic()))
+        .collect();
+    let mut left = Vec::new();
+    let (mut n, mut names, mut values): (PetscInt, *mut *mut c_char, *mut *mut c_char) =
+        (0, null_mut(), null_mut());
+    // SAFETY: PETSc is initialized; the arrays PetscOptionsLeftGet allocates hold n C strings
+    // and are given back to PetscOptionsLeftRestore.
+    unsafe {
+        if PetscOptionsLeftGet(null_mut(), &mut n, &mut names, &mut values) != 0 {
+            return left;
+        }
+        for k in 0..n.max(0) as usize {
+            let name = std::ffi::CStr::from_ptr(*names.add(k)).to_string_lossy();
+            let name = name.trim_start_matches('-');
+            if given.contains(&name) {
+                left.push(format!("-{name}"));
+            }
+        }
+        PetscOptionsLeftRestore(null_mut(), &mut n, &mut names, &mut values);
+    }
+    left
 }
 
 pub(crate) fn finish() {
