@@ -21,6 +21,14 @@ pub struct NodeToNode {
     number: usize,
     /// Every pair's law (node-to-node conditions give their penalty: none from the mesh).
     law: SlotLaw,
+    /// The pairs' forces are unknowns of the Newton system: multipliers, and a penalty outside
+    /// explicit dynamics, solved with its compliance 1/ε in the rows (λ = −ε·g at the solution,
+    /// the penalty's own; see `contact::law::multiplier`). With the force −ε·g of the iterate
+    /// instead, a penalty far stiffer than the elements decided each pair's branch on gaps at the
+    /// round-off of the solve: two 4 × 4 × 4 brick blocks pressed together by 25 pairs with
+    /// ε = 1e12 (E = 1000) opened and closed a dozen pairs each iteration and failed after 3
+    /// halvings; in this form 2 iterations.
+    forces_unknown: bool,
     pairs: Vec<Pair>,
     /// The areas the slave nodes' pressures refer to.
     areas: PressureAreas,
@@ -70,9 +78,12 @@ impl NodeToNode {
                 area: trib.measure,
             });
         }
+        let law = SlotLaw::resolve(c.enforcement, f64::NAN, 1.0);
+        let explicit = model.analysis.kind == crate::model::AnalysisKind::NlDEIDynamic;
         Ok(NodeToNode {
             number: c.number,
-            law: SlotLaw::resolve(c.enforcement, f64::NAN, 1.0),
+            law,
+            forces_unknown: law.is_multipliers() || !explicit,
             pairs: out,
             areas: PressureAreas::new(model, &slaves),
         })
@@ -85,7 +96,7 @@ impl Formulation for NodeToNode {
     }
 
     fn n_multipliers(&self) -> usize {
-        if self.law.is_multipliers() {
+        if self.forces_unknown {
             self.pairs.len()
         } else {
             0
@@ -140,8 +151,7 @@ impl Formulation for NodeToNode {
                 formulation::law_area(p.area, ctx.model),
             );
             let lambda_eqs = self
-                .law
-                .is_multipliers()
+                .forces_unknown
                 .then_some(first_lambda + k..first_lambda + k + 1);
             let mut state = SlotState {
                 partner: Partner::Node(p.master),
