@@ -110,36 +110,66 @@ fn round_off_overlap_with_a_rigid_circle_changes_nothing() {
     }
 }
 
-/// A penalty of 1e12 with E = 1000 converges on the round-off floor of its forces, with a warning
-/// that suggests a penalty double precision resolves.
+/// A node-to-segment penalty of 1e12 with E = 1000 (10⁹ times the elements' stiffness E·A/h
+/// under a node) is solved with its forces as unknowns and the penalty's compliance
+/// (`contact::law::penalty::solved_as_multipliers`): one step, no round-off floor (it was
+/// accepted on the floor of its forces with a warning), and the multipliers' force to 1e-6 (its
+/// penetration is 1e-9 of the blocks' compression). A mortar penalty, a pressure per
+/// penetration, is still the iterate's −ε·g: 1e12 on two 2D blocks (E = 1000) converges on the
+/// round-off floor of its forces, with a warning that suggests a penalty double precision
+/// resolves.
 #[test]
-fn penalty_beyond_double_precision_is_accepted_on_its_floor_with_a_suggestion() {
+fn a_stiff_node_to_segment_penalty_is_solved_exactly_and_a_mortar_one_on_its_floor() {
     let s = setups()
         .into_iter()
         .find(|s| s.name == "penalty 1e12, force")
         .unwrap();
     let o = suite::run(&s.input(Law::Penalty(1e12))).unwrap();
+    let hard = suite::run(&s.input(Law::Multiplier)).unwrap();
     assert_eq!(o.substeps, vec![1]);
-    let w = o.warnings.join("\n");
+    assert!(o.iterations.iter().all(|&i| i <= 4), "{:?}", o.iterations);
+    assert!(o.warnings.is_empty(), "{:?}", o.warnings);
+    let (f, fh) = (o.force[0], hard.force[0]);
+    assert!((f - fh).abs() <= 1e-6 * fh.abs(), "{f} vs {fh}");
+    let text = common::mortar_blocks(
+        3,
+        4,
+        0,
+        "s2spenaltycontact 4 loadTimeFunction 1 penalty 1e12 slavesegment 1 segmentset 1 2",
+    );
+    let warnings = floor_run(&text, 20).unwrap();
+    let w = warnings.join("\n");
     assert!(
         w.contains("round-off floor") && w.contains("penalty 1e12, suggested at most"),
         "{w}"
     );
 }
 
+/// Run `text` (a `common::mortar_blocks` input) with at most `maxiter` iterations a step: its
+/// warnings, or the error.
+fn floor_run(text: &str, maxiter: usize) -> hertz::error::Result<Vec<String>> {
+    let model =
+        common::model_from_text(&text.replace("maxiter 20", &format!("maxiter {maxiter}")))?;
+    let mut warnings = Vec::new();
+    hertz::solve::run_analysis(&model, &common::quiet(), |r| {
+        warnings.extend(r.info.warnings.iter().cloned());
+        Ok(())
+    })?;
+    Ok(warnings)
+}
+
 /// A step that cannot converge says why: a penalty beyond double precision, or the contact nodes
 /// that went back and forth between states.
 #[test]
 fn failing_contact_steps_say_why() {
-    let s = setups()
-        .into_iter()
-        .find(|s| s.name == "penalty 1e12, force")
-        .unwrap();
-    let text = s
-        .input(Law::Penalty(1e12))
-        .replace("maxiter 25", "maxiter 3");
-    let msg = suite::run(&text)
-        .expect_err("3 iterations are too few")
+    let text = common::mortar_blocks(
+        3,
+        4,
+        0,
+        "s2spenaltycontact 4 loadTimeFunction 1 penalty 1e12 slavesegment 1 segmentset 1 2",
+    );
+    let msg = floor_run(&text, 2)
+        .expect_err("2 iterations are too few")
         .to_string();
     assert!(
         msg.contains("the penalty is beyond what double precision resolves"),

@@ -80,6 +80,10 @@ const NEIGHBOUR_FACING: f64 = -0.5;
 pub struct NodeToSegment {
     number: usize,
     enforcement: Enforcement,
+    /// The slots' forces are unknowns of the Newton system: multipliers, a penalty with
+    /// friction, or a penalty far stiffer than its elements (with its compliance: see
+    /// [`crate::contact::law::penalty::solved_as_multipliers`]).
+    forces_unknown: bool,
     /// Coulomb friction (edges and rigid segments).
     friction: Option<Friction>,
     /// Prescribed force direction (`normal`), instead of the segment normal.
@@ -275,7 +279,13 @@ impl NodeToSegment {
                 .or_default()
                 .push(Partner::Face(k));
         }
+        let stiff = !c.enforcement.forces_are_unknowns(c.friction)
+            && super::law::penalty::solved_as_multipliers(
+                model,
+                slots.iter().map(|s| (s.law.penalty(), s.stiffness)),
+            );
         Ok(NodeToSegment {
+            forces_unknown: c.enforcement.forces_are_unknowns(c.friction) || stiff,
             items_of,
             bodies: MasterBodies::new(
                 (edges.edges.iter().map(|e| e.element))
@@ -600,7 +610,7 @@ impl Formulation for NodeToSegment {
     }
 
     fn n_multipliers(&self) -> usize {
-        if self.enforcement.forces_are_unknowns(self.friction) {
+        if self.forces_unknown {
             self.slots.len() * self.multipliers_per_node()
         } else {
             0
@@ -707,8 +717,7 @@ impl Formulation for NodeToSegment {
         for (k, (slot, chosen)) in self.slots.iter().zip(chosen).enumerate() {
             let per = self.multipliers_per_node();
             let lambda_eqs = self
-                .enforcement
-                .forces_are_unknowns(self.friction)
+                .forces_unknown
                 .then_some(first_lambda + per * k..first_lambda + per * (k + 1));
             // The friction force the iteration holds (its multipliers; see `point_friction`).
             let mut held = [0.0; 3];
