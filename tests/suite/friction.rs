@@ -1108,3 +1108,138 @@ fn mortar_friction_multipliers_on_full_tangents_converge() {
         );
     }
 }
+
+/// A block 4 × 1 of 32 × 5 plane-strain Q4 (E = 1000, ν = 0.3), its bottom held, and above it a
+/// die 3 wide, 16 × 1 Q4 ten times stiffer, whose bottom is a flat facet 1 wide touching the
+/// block and two facets rising 1 in 10 from its ends; the die's top moved down by 0.1 in one
+/// step. Node-to-segment contact with friction μ, the block's top nodes the slaves; `law` the
+/// condition record's head.
+fn faceted_die(law: &str, mu: f64) -> String {
+    let (nx, ny, nd) = (32usize, 5usize, 16usize);
+    let mut nodes: Vec<[f64; 2]> = Vec::new();
+    let mut cells: Vec<[usize; 5]> = Vec::new();
+    let block: Vec<Vec<usize>> = (0..=ny)
+        .map(|j| {
+            (0..=nx)
+                .map(|i| {
+                    nodes.push([-2.0 + 4.0 * i as f64 / nx as f64, j as f64 / ny as f64]);
+                    nodes.len()
+                })
+                .collect()
+        })
+        .collect();
+    for j in 0..ny {
+        for i in 0..nx {
+            cells.push([
+                block[j][i],
+                block[j][i + 1],
+                block[j + 1][i + 1],
+                block[j + 1][i],
+                1,
+            ]);
+        }
+    }
+    let bottom = |x: f64| 1.0 + 0.1 * (x.abs() - 0.5).max(0.0);
+    let (mut low, mut high) = (Vec::new(), Vec::new());
+    for k in 0..=nd {
+        let x = -1.5 + 3.0 * k as f64 / nd as f64;
+        nodes.push([x, bottom(x)]);
+        low.push(nodes.len());
+        nodes.push([x, 1.4]);
+        high.push(nodes.len());
+    }
+    for k in 0..nd {
+        cells.push([low[k], low[k + 1], high[k + 1], high[k], 2]);
+    }
+    let labels = |v: &[usize]| {
+        v.iter()
+            .map(|n| n.to_string())
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    let mut text = format!(
+        "die.out\nfaceted die\nStaticStructural nsteps 1 rtolf 1e-9 maxiter 30\ndomain PlaneStrain\n\
+         OutputManager\nndofman {} nelem {} ncrosssect 1 nmat 2 nbc 3 nic 0 nltf 1 nset 3 \
+         ncontactseg 1\n",
+        nodes.len(),
+        cells.len()
+    );
+    for (k, x) in nodes.iter().enumerate() {
+        text += &format!("node {} coords 2 {} {}\n", k + 1, x[0], x[1]);
+    }
+    for (e, c) in cells.iter().enumerate() {
+        text += &format!(
+            "Quad1PlaneStrain {} nodes 4 {} {} {} {} mat {} crossSect 1\n",
+            e + 1,
+            c[0],
+            c[1],
+            c[2],
+            c[3],
+            c[4]
+        );
+    }
+    let die_edges: Vec<String> = (0..nd).map(|k| format!("{} 1", nx * ny + k + 1)).collect();
+    text += &format!(
+        "linear2delementedgecontactsegment 1 edgeset 1\nSimpleCS 1 thick 1.0\n\
+         IsoLE 1 d 0 E 1000 n 0.3 tAlpha 0\nIsoLE 2 d 0 E 10000 n 0.3 tAlpha 0\n\
+         BoundaryCondition 1 loadTimeFunction 1 dofs 2 1 2 values 2 0 0 set 2\n\
+         BoundaryCondition 2 loadTimeFunction 1 dofs 2 1 2 values 2 0 -0.1 set 3\n\
+         {law} friction {mu} nodeset {} {} segmentset 1 1\nConstantFunction 1 f(t) 1.0\n\
+         Set 1 elementboundaries {} {}\nSet 2 nodes {} {}\nSet 3 nodes {} {}\n",
+        nx + 1,
+        labels(&block[ny]),
+        2 * nd,
+        die_edges.join(" "),
+        nx + 1,
+        labels(&block[0]),
+        high.len(),
+        labels(&high),
+    );
+    text
+}
+
+/// A faceted die pressed onto a block in one step (the flat facet touching at the start, nodes
+/// under the rising facets closing within the step; issue 50 item 8): semismooth Newton
+/// cycled there between two stick/slip states of closed nodes (a residual up and down for 30
+/// iterations) and the step was cut into 2 (41 iterations with multipliers at μ = 0.2). From
+/// such a cycle on, its steps are backtracked: 8 iterations with multipliers and with a
+/// penalty, no cut-back. Checked: the die's reaction balances the block's (1e-7), and every slipping node
+/// carries μ times its normal force (1e-8 of the die's force).
+#[test]
+fn a_faceted_die_pressed_in_one_step_converges_without_cut_back() {
+    for law in [
+        "n2slagrangianmultipliercontact 3 loadTimeFunction 1",
+        "n2spenaltycontact 3 loadTimeFunction 1 penalty 1e6 pt 1e6",
+    ] {
+        let mu = 0.2;
+        let model = common::model_from_text(&faceted_die(law, mu)).unwrap();
+        let mut slipping = 0;
+        run_analysis(&model, &common::quiet(), |r| {
+            println!(
+                "{law}: {} iterations, {} substeps",
+                r.info.iterations, r.info.substeps
+            );
+            assert_eq!(r.info.substeps, 1, "{law}: cut back");
+            assert!(
+                r.info.iterations <= 12,
+                "{law}: {} iterations",
+                r.info.iterations
+            );
+            let die = die_reaction_balanced(&model, r, 0.0);
+            for s in r.contact.iter().filter(|s| s.active) {
+                if let Some((false, f)) = s.friction {
+                    slipping += 1;
+                    assert!(
+                        (f - mu * s.force).abs() <= 1e-8 * die[1].abs(),
+                        "{law}: node {}: friction {f} for normal force {}",
+                        s.node,
+                        s.force
+                    );
+                }
+            }
+            Ok(())
+        })
+        .unwrap();
+        assert!(slipping > 0, "{law}: no node slips");
+    }
+}

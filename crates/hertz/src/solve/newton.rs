@@ -458,6 +458,19 @@ impl<'a> NewtonContext<'a> {
                     (check.floor_excess > 1.0).then_some(check.floor_excess);
                 break;
             }
+            // Semismooth Newton on Coulomb friction can cycle: closed nodes' stick or slip back
+            // to what it was two iterates before, the residual up and down. From such a cycle
+            // on, the steps are backtracked as a yielding material's are: a die pressed onto a
+            // block in one step cycled between two stick/slip states for 30 iterations and
+            // needed 4 substeps (81 iterations); with this, 8. Not from the start, nor on
+            // nodes opening and closing: the 2D ironing example's onset of sliding then failed.
+            if backtrack.is_none() && self.eq.contact.has_friction() {
+                if let (Some(p), Some(pp)) = (&prev, &prev2) {
+                    if super::watch::stick_slip_cycles(&states, p, pp) {
+                        backtrack = Some(Backtrack::default());
+                    }
+                }
+            }
             let start = backtrack.is_some().then(|| rhs.clone());
             let step = match self.stepper.is_some() {
                 true => {

@@ -58,3 +58,17 @@ impl Watch {
         })
     }
 }
+
+/// Whether a closed frictional contact point went back to the stick or slip it had two
+/// iterations before (`before`), from `last` to `states` (A → B → A), on the same partner.
+pub(super) fn stick_slip_cycles(
+    states: &[SlotState],
+    last: &[SlotState],
+    before: &[SlotState],
+) -> bool {
+    let stick = |s: &SlotState| s.friction.map(|f| f.0);
+    states.iter().zip(last).zip(before).any(|((s, l), b)| {
+        let held = [s, l, b].iter().all(|x| x.active && x.partner == s.partner);
+        held && stick(s).is_some() && stick(s) != stick(l) && stick(s) == stick(b)
+    })
+}
