@@ -606,19 +606,7 @@ fn ironing_converges_and_slides_on_the_coulomb_cone() {
         assert_eq!(r.info.substeps, 1, "step {}: cut back", r.step);
         // The die's ends (BCs 2 and 3) against the slab's bottom (BC 1).
         let die = die_reaction_balanced(&model, r, 0.0);
-        for s in r.contact.iter().filter(|s| s.active) {
-            if let Some((false, f)) = s.friction {
-                slipping += 1;
-                assert!(
-                    (f - MU * s.force).abs() <= 1e-8 * die[1].abs(),
-                    "step {}: node {}: friction {f} for normal force {} (relative {:e})",
-                    r.step,
-                    s.node,
-                    s.force,
-                    (f - MU * s.force) / s.force
-                );
-            }
-        }
+        slipping += slipping_on_the_cone(r, MU, 1e-8 * die[1].abs());
         if r.time > 2.0 + 1e-9 {
             ratio.push(die[0].abs() / die[1].abs());
         }
@@ -636,6 +624,26 @@ fn ironing_converges_and_slides_on_the_coulomb_cone() {
     assert!(2 * total <= 7 * iterations.len(), "{total} iterations");
     assert!(slipping > 0);
     assert!(ratio.iter().all(|&q| q > MU), "{ratio:?}");
+}
+
+/// The number of closed slipping contact nodes of step `r`, each asserted to carry `mu` times
+/// its normal force to `tol`.
+fn slipping_on_the_cone(r: &hertz::solve::StepResult, mu: f64, tol: f64) -> usize {
+    let mut slipping = 0;
+    for s in r.contact.iter().filter(|s| s.active) {
+        if let Some((false, f)) = s.friction {
+            slipping += 1;
+            assert!(
+                (f - mu * s.force).abs() <= tol,
+                "step {}: node {}: friction {f} for normal force {} (relative {:e})",
+                r.step,
+                s.node,
+                s.force,
+                (f - mu * s.force) / s.force
+            );
+        }
+    }
+    slipping
 }
 
 /// The summed reaction of a die driven by BCs other than 1, asserted to balance that of the
@@ -1226,17 +1234,7 @@ fn a_faceted_die_pressed_in_one_step_converges_without_cut_back() {
                 r.info.iterations
             );
             let die = die_reaction_balanced(&model, r, 0.0);
-            for s in r.contact.iter().filter(|s| s.active) {
-                if let Some((false, f)) = s.friction {
-                    slipping += 1;
-                    assert!(
-                        (f - mu * s.force).abs() <= 1e-8 * die[1].abs(),
-                        "{law}: node {}: friction {f} for normal force {}",
-                        s.node,
-                        s.force
-                    );
-                }
-            }
+            slipping += slipping_on_the_cone(r, mu, 1e-8 * die[1].abs());
             Ok(())
         })
         .unwrap();

@@ -3,8 +3,9 @@
 //! report.
 //!
 //! Without contact: full or modified Newton as the input says (`manrmsteps`; unsaid, full Newton
-//! where the bodies' tangent varies), the factorization of a linear problem reused. With contact every iteration solves the full Newton system, its
-//! contact branches decided on the linearized problem ([`super::contact_step`]), which keeps
+//! where the bodies' tangent varies), the factorization of a linear problem reused. With contact
+//! every iteration solves the full Newton system, its contact branches decided on the
+//! linearized problem ([`super::contact_step`]), which keeps
 //! Newton from cycling around the kink of the contact force. A driver adds its own terms to the
 //! bodies' equations through [`StepTerms`] (a time integrator's inertia).
 //!
@@ -520,9 +521,10 @@ impl<'a> NewtonContext<'a> {
                 // material that yields) modified Newton converges linearly at best (a plastic
                 // patch: 50 iterations without converging, against 4 with full Newton; a
                 // corrugated strip compressed in large deformation: 70-80 iterations and 4
-                // substeps a step, elements inverted by the second iterate, against 4-6
-                // iterations): hertz takes full Newton there unless `manrmsteps` says
-                // otherwise. A constant tangent is factorized once either way.
+                // substeps a step, 20-35 and 2 with full Newton, 3 and none with full Newton
+                // and the predictor, `Analysis::predictor`): hertz takes full Newton there
+                // unless `manrmsteps` says otherwise. A constant tangent is factorized once
+                // either way.
                 let every = a.manrmsteps.or((!self.eq.constant_structure).then_some(1));
                 !kept && (it == 0 || every.is_some_and(|k| it.is_multiple_of(k)))
             }

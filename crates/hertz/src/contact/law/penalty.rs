@@ -21,9 +21,9 @@ pub const FROM_MESH_FACTOR: f64 = 1e3;
 /// (see [`solved_as_multipliers`]).
 pub const STIFF_RATIO: f64 = 1e6;
 
-/// Whether a penalty condition of `model` whose slots have penalties `penalty` over the
-/// stiffnesses E·A/h `stiffness` of the elements under their nodes has its forces as unknowns
-/// with the penalty's compliance in their rows (`contact::law::multiplier`; the penalty's
+/// Whether a penalty condition of `model` whose slots have the (penalty, stiffness E·A/h of
+/// the elements under the node) pairs `penalty_and_stiffness` has its forces as unknowns with
+/// the penalty's compliance in their rows (`contact::law::multiplier`; the penalty's
 /// solution, λ = −ε·w·g): where one is more than [`STIFF_RATIO`] times stiffer than its
 /// elements, outside explicit dynamics (where the penalty sets the stable time step). With the
 /// iterate's force −ε·g such a penalty decides each node's branch on gaps at the round-off of
