@@ -123,7 +123,9 @@ impl Step {
 /// The integration points of one step, element by element: `element` (label), `gp` (from 1),
 /// `strain` and `stress` (n × 6, Voigt xx yy zz yz xz xy with engineering shears; the
 /// Green–Lagrange strain and second Piola–Kirchhoff stress with `nlgeo 1`), and where a
-/// material is plastic `plastic_strain` (n × 6), `kappa` and `damage` (0 at elastic points).
+/// material is plastic `plastic_strain` (n × 6), `kappa` and `damage` (0 at elastic points);
+/// and their nodal averages `nodal_strain` and `nodal_stress` (n_nodes × 6, rows in the order
+/// of `Model.node_labels`; see [`nodal_average`]).
 fn points_dict<'py>(
     py: Python<'py>,
     model: &HModel,
@@ -146,6 +148,11 @@ fn points_dict<'py>(
     let six = |f: &dyn Fn(&GpState) -> [f64; 6]| all().flat_map(|(_, _, p)| f(p)).collect();
     d.set_item("strain", array2(py, n, 6, six(&|p| p.strain)))?;
     d.set_item("stress", array2(py, n, 6, six(&|p| p.stress)))?;
+    let nn = model.nodes.len();
+    let strain = nodal_average(model, states, |p| p.strain);
+    let stress = nodal_average(model, states, |p| p.stress);
+    d.set_item("nodal_strain", array2(py, nn, 6, strain))?;
+    d.set_item("nodal_stress", array2(py, nn, 6, stress))?;
     if all().any(|(_, _, p)| p.plastic.is_some()) {
         let plastic = |p: &GpState| p.plastic.unwrap_or_default();
         d.set_item(
@@ -157,6 +164,41 @@ fn points_dict<'py>(
         d.set_item("damage", col(&|p| plastic(p).damage).into_pyarray(py))?;
     }
     Ok(d)
+}
+
+/// A point quantity `f` averaged at every node (n_nodes × 6): the mean over the elements
+/// around the node of each element's mean over its points (what the VTU's cell data hold),
+/// NaN at a node of no element with points (a rigid body's reference node).
+fn nodal_average(
+    model: &HModel,
+    states: &[Vec<GpState>],
+    f: impl Fn(&GpState) -> [f64; 6],
+) -> Vec<f64> {
+    let mut sum = vec![0.0; model.nodes.len() * 6];
+    let mut count = vec![0usize; model.nodes.len()];
+    for (e, pts) in states.iter().enumerate() {
+        if pts.is_empty() {
+            continue;
+        }
+        let mut mean = [0.0; 6];
+        for p in pts {
+            for (m, v) in mean.iter_mut().zip(f(p)) {
+                *m += v / pts.len() as f64;
+            }
+        }
+        for &n in &model.elements[e].nodes {
+            count[n] += 1;
+            for (k, m) in mean.iter().enumerate() {
+                sum[n * 6 + k] += m;
+            }
+        }
+    }
+    for (n, &c) in count.iter().enumerate() {
+        for v in &mut sum[n * 6..n * 6 + 6] {
+            *v = if c > 0 { *v / c as f64 } else { f64::NAN };
+        }
+    }
+    sum
 }
 
 /// The contact CSV's columns of one step.

@@ -436,3 +436,58 @@ def test_a_dynamic_model_from_arrays_takes_initial_conditions():
     for s in steps:
         assert s.displacement[1, 0] == pytest.approx(0.1 / omega * math.sin(omega * s.time), rel=1e-4)
     assert steps[0].energy["balance"] == pytest.approx(0.0, abs=1e-15)
+
+
+def test_points_are_averaged_at_the_nodes():
+    """A plate in uniform tension (plane stress, a 2 x 2 patch of bilinear quadrilaterals with a
+    skewed middle node) has the exact stress E*eps at every node; the cantilever's nodal average
+    at each node is the mean over its elements of each element's mean over its points."""
+    text = """plate.out
+uniform tension
+LinearStatic nsteps 1
+domain 2dPlaneStress
+OutputManager
+ndofman 9 nelem 4 ncrosssect 1 nmat 1 nbc 3 nic 0 nltf 1 nset 3
+node 1 coords 2 0 0
+node 2 coords 2 1 0
+node 3 coords 2 2 0
+node 4 coords 2 0 1
+node 5 coords 2 1.2 0.9
+node 6 coords 2 2 1
+node 7 coords 2 0 2
+node 8 coords 2 1 2
+node 9 coords 2 2 2
+PlaneStress2d 1 nodes 4 1 2 5 4 crossSect 1 mat 1
+PlaneStress2d 2 nodes 4 2 3 6 5 crossSect 1 mat 1
+PlaneStress2d 3 nodes 4 4 5 8 7 crossSect 1 mat 1
+PlaneStress2d 4 nodes 4 5 6 9 8 crossSect 1 mat 1
+SimpleCS 1 thick 1.0 material 1 set 1
+IsoLE 1 d 0 E 200 n 0.25 tAlpha 0
+BoundaryCondition 1 loadTimeFunction 1 dofs 1 1 values 1 0 set 2
+BoundaryCondition 2 loadTimeFunction 1 dofs 2 1 2 values 2 0 0 set 3
+BoundaryCondition 3 loadTimeFunction 1 dofs 1 1 values 1 0.02 set 4
+ConstantFunction 1 f(t) 1.0
+Set 1 allelements
+Set 2 nodes 2 4 7
+Set 3 nodes 1 1
+Set 4 nodes 3 3 6 9
+"""
+    text = text.replace("nset 3", "nset 4")
+    step = hertz.read_string(text).solve().steps[-1]
+    nodal = step.points["nodal_stress"]
+    assert nodal.shape == (9, 6)
+    exact = np.array([200 * 0.01, 0, 0, 0, 0, 0])
+    assert np.abs(nodal - exact).max() < 1e-10
+    assert np.abs(step.points["nodal_strain"][:, 1] + 0.25 * 0.01).max() < 1e-12
+
+    m = hertz.read(EXAMPLES / "cantilever.in")
+    p = m.solve().steps[-1].points
+    labels = m.node_labels.tolist()
+    around = {}
+    for kind in m.elements.values():
+        for e, conn in zip(kind["labels"], kind["connectivity"]):
+            for n in conn:
+                around.setdefault(int(n), []).append(int(e))
+    for n, elements in around.items():
+        means = [p["stress"][p["element"] == e].mean(axis=0) for e in elements]
+        assert np.allclose(p["nodal_stress"][labels.index(n)], np.mean(means, axis=0), rtol=1e-12, atol=1e-12)
