@@ -19,6 +19,48 @@ fn spring(scheme: &str, nsteps: usize, dt: f64) -> String {
     )
 }
 
+/// OOFEM's `DIIDynamic` runs on NonLinearDynamic's engine: on the (linear) spring each scheme
+/// gives NonLinearDynamic's steps (to 1e-15), the trapezoidal rule its exact discrete solution
+/// u₀ cos(ω̄ t) (1e-13), and the `.out` blocks are OOFEM's default ones (DIIDynamic writes no
+/// "Equilibrium reached" line), with d, v and a per DOF. Wilson-θ (`ddtScheme 3`) is refused at
+/// its line (tests/data/bad/dii_wilson.in).
+#[test]
+fn dii_dynamic_is_nonlinear_dynamics_on_a_linear_model() {
+    let omega = 200f64.sqrt();
+    let dt = 2.0 * std::f64::consts::PI / omega / 20.0;
+    for scheme in ["ddtScheme 0", "ddtScheme 1", "ddtScheme 2"] {
+        let text = spring(scheme, 30, dt);
+        let dii = text.replace("NonLinearDynamic", "DIIDynamic");
+        let (a, b) = (history(&text), history(&dii));
+        assert_eq!(a.len(), b.len());
+        for ((t, u, _), (s, v, _)) in a.iter().zip(&b) {
+            assert_eq!(t, s);
+            assert!((u - v).abs() <= 1e-15, "{scheme}: t {t}: {u} vs {v}");
+            if scheme == "ddtScheme 2" {
+                let discrete = 2.0 / dt * (omega * dt / 2.0).atan();
+                let exact = 0.01 * (discrete * t).cos();
+                assert!((v - exact).abs() < 1e-13, "t {t}: {v} vs {exact}");
+            }
+        }
+        let listed = dii.replace("OutputManager\n", "OutputManager tstep_all dofman_all\n");
+        let model = crate::common::model_from_text(&listed).unwrap();
+        let mut block = String::new();
+        run_analysis(&model, &crate::common::quiet(), |r| {
+            if r.step == 1 {
+                block = hertz::output::outfile::step_block(&model, r).concat();
+            }
+            Ok(())
+        })
+        .unwrap();
+        assert!(
+            block.contains("=====\nOutput for time 2.22144147e-02")
+                && !block.contains("Equilibrium"),
+            "{block}"
+        );
+        assert!(block.contains(" v ") && block.contains(" a "), "{block}");
+    }
+}
+
 /// The free end's displacement and the energies at every step.
 fn history(text: &str) -> Vec<(f64, f64, Energy)> {
     let model = crate::common::model_from_text(text).unwrap();

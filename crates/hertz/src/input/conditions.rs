@@ -263,7 +263,7 @@ pub(super) fn read_initial_conditions(
         }
         if analysis.dynamics.is_none() {
             return Err(r.error(
-                "initial conditions need a dynamic analysis (NonLinearDynamic); a static one \
+                "initial conditions need a dynamic analysis (NonLinearDynamic, DIIDynamic, NlDEIDynamic); a static one \
                  starts from rest",
             ));
         }

@@ -9,7 +9,7 @@ use crate::model::*;
 pub(super) const MAX_STEPS: usize = 10_000_000;
 
 pub(super) const SUPPORTED_ANALYSES: &str =
-    "LinearStatic, NonLinearStatic, StaticStructural, NonLinearDynamic, NlDEIDynamic";
+    "LinearStatic, NonLinearStatic, StaticStructural, NonLinearDynamic, DIIDynamic, NlDEIDynamic";
 
 /// The records before the counts: the engineering model (with its modules), the domain and the
 /// output manager.
@@ -156,6 +156,7 @@ pub(super) fn read_analysis(r: &Record) -> Result<(Analysis, usize, usize, usize
         "nonlinearstatic" => AnalysisKind::NonLinearStatic,
         "staticstructural" => AnalysisKind::StaticStructural,
         "nonlineardynamic" => AnalysisKind::NonLinearDynamic,
+        "diidynamic" => AnalysisKind::DIIDynamic,
         "nldeidynamic" => AnalysisKind::NlDEIDynamic,
         k => {
             return Err(r.error(format!(
@@ -198,6 +199,9 @@ pub(super) fn read_analysis(r: &Record) -> Result<(Analysis, usize, usize, usize
             return Err(r.error("`deltatfunction` is not supported"));
         }
     }
+    if kind == AnalysisKind::DIIDynamic && r.opt_float("deltat")?.is_none() {
+        return Err(r.error("DIIDynamic needs `deltat` (the time step)"));
+    }
     let deltat = r.opt_float("deltat")?.unwrap_or(1.0);
     if !(deltat > 0.0) {
         return Err(r.error("`deltat` must be positive"));
@@ -237,7 +241,7 @@ pub(super) fn read_analysis(r: &Record) -> Result<(Analysis, usize, usize, usize
         r.flag(k);
     }
     let dynamics = match kind {
-        AnalysisKind::NonLinearDynamic => Some(read_dynamics(r)?),
+        AnalysisKind::NonLinearDynamic | AnalysisKind::DIIDynamic => Some(read_dynamics(r)?),
         AnalysisKind::NlDEIDynamic => Some(read_explicit(r)?),
         _ => None,
     };
@@ -296,10 +300,21 @@ fn read_dynamics(r: &Record) -> Result<Dynamics> {
             }
             TimeScheme::Newmark { gamma, beta }
         }
+        3 if r.keyword() == "diidynamic" => {
+            return Err(r.error(
+                "`ddtScheme 3` (Wilson-θ) is not supported: 0 (three-point backward), 1 \
+                 (backward Euler) or 2 (Newmark, or HHT-α with `rhoinf`)",
+            ))
+        }
         v => {
             return Err(r.error(format!(
-                "`ddtScheme {v}` is not supported by NonLinearDynamic: 0 (three-point \
-                 backward), 1 (backward Euler) or 2 (Newmark)"
+                "`ddtScheme {v}` is not supported by {}: 0 (three-point backward), 1 \
+                 (backward Euler) or 2 (Newmark)",
+                if r.keyword() == "diidynamic" {
+                    "DIIDynamic"
+                } else {
+                    "NonLinearDynamic"
+                }
             )))
         }
     };

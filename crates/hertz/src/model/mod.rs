@@ -68,6 +68,11 @@ pub enum AnalysisKind {
     StaticStructural,
     /// Implicit dynamics, Newton in every time step (spec §1.2).
     NonLinearDynamic,
+    /// OOFEM's linear implicit dynamics (spec §1.3), solved by NonLinearDynamic's engine: the
+    /// same schemes and answers on a linear model, where OOFEM's total-displacement form and
+    /// hertz's incremental Newton (one iteration) coincide; with large deformation, plasticity
+    /// or contact the nonlinear problem is solved, not OOFEM's linearized one.
+    DIIDynamic,
     /// Explicit dynamics, central differences with lumped mass (spec §1.4).
     NlDEIDynamic,
 }
@@ -829,9 +834,9 @@ impl Model {
         match a.kind {
             AnalysisKind::LinearStatic => (1..=a.nsteps).map(|n| n as f64).collect(),
             AnalysisKind::NonLinearStatic => (0..a.nsteps).map(|n| n as f64 * a.deltat).collect(),
-            AnalysisKind::NonLinearDynamic | AnalysisKind::NlDEIDynamic => {
-                (1..=a.nsteps).map(|n| n as f64 * a.deltat).collect()
-            }
+            AnalysisKind::NonLinearDynamic
+            | AnalysisKind::DIIDynamic
+            | AnalysisKind::NlDEIDynamic => (1..=a.nsteps).map(|n| n as f64 * a.deltat).collect(),
             AnalysisKind::StaticStructural => match &a.prescribed_times {
                 Some(t) => t.clone(),
                 None => (1..=a.nsteps).map(|n| n as f64 * a.deltat).collect(),
