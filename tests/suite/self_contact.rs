@@ -262,21 +262,32 @@ fn crush(text: &str) -> Vec<(f64, usize, f64, usize)> {
     out
 }
 
+/// The plate force of `run` (named `what`) equals the half model's at every step, to 1e-9.
+fn same_plate_force(
+    what: &str,
+    run: &[(f64, usize, f64, usize)],
+    half: &[(f64, usize, f64, usize)],
+) {
+    assert_eq!(run.len(), half.len());
+    for (k, (w, h)) in run.iter().zip(half).enumerate() {
+        assert!(
+            (w.0 - h.0).abs() <= 1e-9 * h.0.abs().max(1e-9),
+            "step {k}: plate force {} {what}, {} half",
+            w.0,
+            h.0
+        );
+    }
+}
+
 /// The whole ring with its bore in self-contact against its half on the symmetry plane: the
 /// plate force equal to round-off at every step (the bore closes over the last third), no bore
 /// node ever inside the opposite wall, no more Newton iterations than the half model's.
 fn check_against_half(ring: Ring) {
     let whole = crush(&ring.text(true));
     let half = crush(&ring.text(false));
-    assert_eq!(whole.len(), half.len());
+    same_plate_force("whole", &whole, &half);
     let size = 1.0;
     for (k, (w, h)) in whole.iter().zip(&half).enumerate() {
-        assert!(
-            (w.0 - h.0).abs() <= 1e-9 * h.0.abs().max(1e-9),
-            "step {k}: plate force {} whole, {} half",
-            w.0,
-            h.0
-        );
         assert!(
             w.2 > -1e-12 * size,
             "step {k}: a bore node {} inside the other wall",
@@ -661,14 +672,6 @@ fn the_crushed_tube_example_equals_its_half_model() {
         }
         .text(false),
     );
-    assert_eq!(example.len(), half.len());
-    for (k, (w, h)) in example.iter().zip(&half).enumerate() {
-        assert!(
-            (w.0 - h.0).abs() <= 1e-9 * h.0.abs().max(1e-9),
-            "step {k}: plate force {} example, {} half",
-            w.0,
-            h.0
-        );
-    }
+    same_plate_force("example", &example, &half);
     assert!(half.last().unwrap().3 > 4, "the bore closes");
 }
