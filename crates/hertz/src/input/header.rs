@@ -241,7 +241,8 @@ pub(super) fn read_analysis(r: &Record) -> Result<(Analysis, usize, usize, usize
         r.flag(k);
     }
     let dynamics = match kind {
-        AnalysisKind::NonLinearDynamic | AnalysisKind::DIIDynamic => Some(read_dynamics(r)?),
+        AnalysisKind::NonLinearDynamic => Some(read_dynamics(r, "NonLinearDynamic")?),
+        AnalysisKind::DIIDynamic => Some(read_dynamics(r, "DIIDynamic")?),
         AnalysisKind::NlDEIDynamic => Some(read_explicit(r)?),
         _ => None,
     };
@@ -265,10 +266,10 @@ pub(super) fn read_analysis(r: &Record) -> Result<(Analysis, usize, usize, usize
     Ok((analysis, nmodules, ninit, nmonitors))
 }
 
-/// `NonLinearDynamic`'s time integration (spec §1.2): `ddtScheme` (0 three-point backward, the
-/// default; 1 backward Euler; 2 Newmark with `gamma`, `beta`), Rayleigh damping `eta`, and
-/// hertz's `lumpedmass`.
-fn read_dynamics(r: &Record) -> Result<Dynamics> {
+/// The time integration of `analysis` (`NonLinearDynamic` or `DIIDynamic`, spec §1.2–1.3):
+/// `ddtScheme` (0 three-point backward, the default; 1 backward Euler; 2 Newmark with `gamma`,
+/// `beta`), Rayleigh damping `eta`, and hertz's `lumpedmass`.
+fn read_dynamics(r: &Record, analysis: &str) -> Result<Dynamics> {
     let scheme = match r.opt_int("ddtscheme")?.unwrap_or(0) {
         0 => TimeScheme::ThreePointBackward,
         1 => TimeScheme::BackwardEuler,
@@ -300,7 +301,7 @@ fn read_dynamics(r: &Record) -> Result<Dynamics> {
             }
             TimeScheme::Newmark { gamma, beta }
         }
-        3 if r.keyword() == "diidynamic" => {
+        3 if analysis == "DIIDynamic" => {
             return Err(r.error(
                 "`ddtScheme 3` (Wilson-θ) is not supported: 0 (three-point backward), 1 \
                  (backward Euler) or 2 (Newmark, or HHT-α with `rhoinf`)",
@@ -308,13 +309,8 @@ fn read_dynamics(r: &Record) -> Result<Dynamics> {
         }
         v => {
             return Err(r.error(format!(
-                "`ddtScheme {v}` is not supported by {}: 0 (three-point backward), 1 \
-                 (backward Euler) or 2 (Newmark)",
-                if r.keyword() == "diidynamic" {
-                    "DIIDynamic"
-                } else {
-                    "NonLinearDynamic"
-                }
+                "`ddtScheme {v}` is not supported by {analysis}: 0 (three-point backward), 1 \
+                 (backward Euler) or 2 (Newmark)"
             )))
         }
     };

@@ -279,13 +279,13 @@ impl NodeToSegment {
                 .or_default()
                 .push(Partner::Face(k));
         }
-        let stiff = !c.enforcement.forces_are_unknowns(c.friction)
-            && super::law::penalty::solved_as_multipliers(
+        let forces_unknown = c.enforcement.forces_are_unknowns(c.friction)
+            || super::law::penalty::solved_as_multipliers(
                 model,
                 slots.iter().map(|s| (s.law.penalty(), s.stiffness)),
             );
         Ok(NodeToSegment {
-            forces_unknown: c.enforcement.forces_are_unknowns(c.friction) || stiff,
+            forces_unknown,
             items_of,
             bodies: MasterBodies::new(
                 (edges.edges.iter().map(|e| e.element))
