@@ -180,12 +180,7 @@ fn nodal_average(
         if pts.is_empty() {
             continue;
         }
-        let mut mean = [0.0; 6];
-        for p in pts {
-            for (m, v) in mean.iter_mut().zip(f(p)) {
-                *m += v / pts.len() as f64;
-            }
-        }
+        let mean = GpState::mean(pts, &f);
         for &n in &model.elements[e].nodes {
             count[n] += 1;
             for (k, m) in mean.iter().enumerate() {

@@ -10,6 +10,7 @@ use crate::fem::geometry::det_j_at_centre;
 use crate::fem::Shape;
 use crate::material::plasticity::PlasticState;
 use crate::model::Model;
+use crate::solid::GpState;
 use crate::solve::StepResult;
 use std::fmt::Write;
 use std::path::Path;
@@ -279,23 +280,13 @@ pub fn write_step(
         w.array("contact_active", 1, &active);
     }
     w.xml.push_str("</PointData>\n<CellData>\n");
-    for (name, pick) in [("strain", 0), ("stress", 1)] {
-        let vals: Vec<f64> = res
-            .states
-            .iter()
-            .flat_map(|st| {
-                let mut avg = [0.0; 6];
-                for g in st {
-                    let v = if pick == 0 { g.strain } else { g.stress };
-                    for i in 0..6 {
-                        avg[i] += v[i] / st.len().max(1) as f64;
-                    }
-                }
-                avg
-            })
-            .collect();
-        w.array(name, 6, &vals);
-    }
+    let means = |f: fn(&GpState) -> [f64; 6]| -> Vec<f64> {
+        (res.states.iter())
+            .flat_map(|st| GpState::mean(st, f))
+            .collect()
+    };
+    w.array("strain", 6, &means(|g| g.strain));
+    w.array("stress", 6, &means(|g| g.stress));
     if res.states.iter().flatten().any(|g| g.plastic.is_some()) {
         plastic_cells(res, &mut w);
     }

@@ -17,6 +17,20 @@ pub struct GpState {
     pub plastic: Option<crate::material::plasticity::PlasticState>,
 }
 
+impl GpState {
+    /// The mean of `f` over an element's points (zeros where it has none): the element's
+    /// value in the VTU's cell data and in the Python results' nodal averages.
+    pub fn mean(points: &[GpState], f: impl Fn(&GpState) -> [f64; 6]) -> [f64; 6] {
+        let mut mean = [0.0; 6];
+        for p in points {
+            for (m, v) in mean.iter_mut().zip(f(p)) {
+                *m += v / points.len() as f64;
+            }
+        }
+        mean
+    }
+}
+
 /// A failed evaluation: degenerate reference geometry or an inverted element.
 #[derive(Debug, Clone)]
 pub struct KernelError {
