@@ -6,6 +6,7 @@ pub mod assembler;
 pub mod dofs;
 pub mod mass;
 pub mod nodal;
+pub mod rigid;
 
 pub use assembler::{Assembler, Evaluation, Pattern, PatternValues};
 pub use dofs::{DofMap, ExtraDofs};

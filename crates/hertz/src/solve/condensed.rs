@@ -80,6 +80,8 @@ pub struct CondensedContact {
     /// The candidates are the nearest points' only: open points outside them stay open in the
     /// step (else any point outside them makes the caller set the solve up again).
     partial: bool,
+    /// The candidate displacements are shifted: a body is held by contact alone.
+    held: bool,
 }
 
 /// A point's local codes, each as the (candidate position, weight) pairs it stands for.
@@ -101,7 +103,9 @@ impl CondensedContact {
     /// equations `candidates` (displacements and multipliers among `lambdas`) last, by `base`
     /// (a solver with [`crate::solve::linear::Capabilities::schur_block`]). Ok(None) when they
     /// are more than `max` or the factor does not have them as a trailing block (the caller
-    /// then factorizes full tangents).
+    /// then factorizes full tangents). `held`: a body is known to be held by contact alone (an
+    /// earlier set-up found K_s singular), so the candidates are shifted from the start.
+    #[allow(clippy::too_many_arguments)]
     pub fn new(
         mut base: Box<dyn LinearSolver>,
         pattern: &Pattern,
@@ -109,6 +113,7 @@ impl CondensedContact {
         candidates: &[usize],
         lambdas: std::ops::Range<usize>,
         max: usize,
+        held: bool,
         describe: &dyn Fn(usize) -> String,
     ) -> Result<Option<Self>> {
         let cand: Vec<usize> = candidates.to_vec();
@@ -130,31 +135,56 @@ impl CondensedContact {
             shift,
             unit,
             partial: false,
+            held: false,
         };
+        if held {
+            return Ok(cc
+                .hold(pattern, values, lambdas.clone(), describe)?
+                .then_some(cc));
+        }
         match cc.factorize(pattern, values, describe) {
             Ok(true) => Ok(Some(cc)),
             Ok(false) => Ok(None),
-            Err(Error::Singular(_)) => {
-                // A body held by contact alone: shift every candidate displacement by the mean
-                // diagonal of the candidates (a stiffness of the right size).
-                let diag: Vec<f64> = cc
-                    .cand
-                    .iter()
-                    .map(|&e| values[pattern.position(e, e)].abs())
-                    .filter(|v| *v > 0.0)
-                    .collect();
-                let alpha =
-                    (diag.iter().sum::<f64>() / diag.len().max(1) as f64).max(f64::MIN_POSITIVE);
-                for (s, e) in cc.shift.iter_mut().zip(&cc.cand) {
-                    if !lambdas.contains(e) {
-                        *s = alpha;
-                    }
-                }
-                cc.base.reset();
-                Ok(cc.factorize(pattern, values, describe)?.then_some(cc))
-            }
+            Err(Error::Singular(_)) => Ok(cc
+                .hold(pattern, values, lambdas.clone(), describe)?
+                .then_some(cc)),
             Err(e) => Err(e),
         }
+    }
+
+    /// Whether the candidate displacements carry the shift of a body held by contact alone.
+    pub fn held(&self) -> bool {
+        self.held
+    }
+
+    /// A body held by contact alone: shift every candidate displacement (the equations outside
+    /// `lambdas`) by the mean diagonal of the candidates (a stiffness of the right size) and
+    /// factorize K_s' again. Whether a round-off pivot passes the singularity test depends on
+    /// the state and on the candidates' order, so once found, a body stays held: regrown
+    /// candidates and refactorizations take the shift from the start (the step is exact either
+    /// way). Ok(false) as [`Self::factorize`].
+    pub fn hold(
+        &mut self,
+        pattern: &Pattern,
+        values: &[f64],
+        lambdas: std::ops::Range<usize>,
+        describe: &dyn Fn(usize) -> String,
+    ) -> Result<bool> {
+        let diag: Vec<f64> = self
+            .cand
+            .iter()
+            .map(|&e| values[pattern.position(e, e)].abs())
+            .filter(|v| *v > 0.0)
+            .collect();
+        let alpha = (diag.iter().sum::<f64>() / diag.len().max(1) as f64).max(f64::MIN_POSITIVE);
+        for (s, e) in self.shift.iter_mut().zip(&self.cand) {
+            if !lambdas.contains(e) {
+                *s = alpha;
+            }
+        }
+        self.held = true;
+        self.base.reset();
+        self.factorize(pattern, values, describe)
     }
 
     /// Factorize K_s' for new K_s values on the same pattern (large deformation) and update M.

@@ -5,9 +5,11 @@
 //! slave nodes' rows where that is exact (see [`super::multipliers`]).
 //!
 //! The condensed step is set up at the first solve on the candidate equations; when contact
-//! reaches beyond them it is set up again with more (a regrowth), up to [`MAX_REGROWTHS`]
-//! times, after which (or when the structural tangent is indefinite) full tangents take over
-//! for the rest of the analysis.
+//! reaches beyond them it is set up again with more (a regrowth: one factorization, what one
+//! guess of a full-tangent step costs), up to [`MAX_REGROWTHS`] times in one solve, after which
+//! (or when the structural tangent is indefinite, or the closed points alone need more than
+//! the dense block holds) full tangents take over for the rest of the analysis. A contact zone
+//! that grows over many steps regrows as often as it needs.
 
 use super::branches::{BranchSearch, ContactStep, OnCycle};
 use super::condensed::{nearest_equations, CondensedContact};
@@ -22,8 +24,9 @@ use crate::contact::{BranchRule, SlotLinearization, SlotState};
 use crate::error::{Error, Result};
 use std::time::Instant;
 
-/// How often the condensed solve is set up again when contact reaches beyond its candidates
-/// (each time a symbolic analysis and a factorization), before full tangents take over.
+/// How often one solve sets the condensed step up again when contact reaches beyond its
+/// candidates (each time a symbolic analysis and a factorization), before full tangents take
+/// over.
 const MAX_REGROWTHS: usize = 4;
 
 /// Largest number of branch updates of a step solved with full tangents (each a factorization).
@@ -53,8 +56,11 @@ enum Condensed {
 /// The strategy of a contact problem's Newton steps and its state over the analysis.
 pub(super) struct ContactStepper {
     condensed: Condensed,
-    /// How often the condensed solve was set up again with more candidates.
+    /// How often the condensed solve was set up again with more candidates in this solve.
     regrowths: usize,
+    /// A body is held by contact alone (known from the model's supports, or found singular by a
+    /// set-up): every set-up shifts the candidates from the start.
+    held: bool,
     /// The most equations the condensed step holds densely (`SolveParams::max_condensed`).
     max_condensed: usize,
     /// Makes the structural factor's solver of a condensed step (one with a Schur block).
@@ -85,9 +91,11 @@ impl ContactStepper {
     /// The strategy of a model's contact: condensed from the first solve on the candidate
     /// equations `candidates` if `condense` (the caller knows the solver offers a Schur block
     /// and the caller allows it), `max_condensed` equations at most; the eliminations' reduced
-    /// systems solved by `eliminate`.
+    /// systems solved by `eliminate`. `held`: a body is held by contact alone
+    /// ([`crate::assembly::rigid`]), so the condensed step shifts its candidates from the start.
     pub fn new(
         condense: Option<Vec<usize>>,
+        held: bool,
         max_condensed: usize,
         make_solver: SolverMaker,
         eliminate: MultiplierElimination,
@@ -97,6 +105,7 @@ impl ContactStepper {
         ContactStepper {
             condensed: condense.map_or(Condensed::Off, Condensed::Pending),
             regrowths: 0,
+            held,
             max_condensed,
             make_solver,
             eliminate,
@@ -165,6 +174,7 @@ impl ContactStepper {
             let step = c.step(&rhs, points, guess, eq.dofs, cycle, &describe)?;
             eq.times.solve += since(t);
             if let Some(step) = step {
+                self.regrowths = 0;
                 return Ok(step);
             }
             // A point reaches beyond the candidates (a node slid on): set up again with the
@@ -221,11 +231,13 @@ impl ContactStepper {
                 &cands,
                 lambdas,
                 self.max_condensed,
+                self.held,
                 &describe,
             );
             eq.times.factor += since(t);
             self.condensed = match made {
                 Ok(Some(mut c)) => {
+                    self.held |= c.held();
                     if partial {
                         c.set_partial();
                     }
@@ -249,9 +261,19 @@ impl ContactStepper {
             let t = Instant::now();
             let ok = match c.factorize(&eq.asm.pattern, kv, &describe) {
                 Ok(ok) => ok,
+                // Found held by contact alone only now (see `CondensedContact::hold`).
+                Err(Error::Singular(_)) if !c.held() => {
+                    let lambdas = dofs.n_free - dofs.n_lambda..dofs.n_free;
+                    match c.hold(&eq.asm.pattern, kv, lambdas, &describe) {
+                        Ok(ok) => ok,
+                        Err(Error::Singular(_)) => false,
+                        Err(e) => return Err(e),
+                    }
+                }
                 Err(Error::Singular(_)) => false,
                 Err(e) => return Err(e),
             };
+            self.held |= c.held();
             eq.times.factor += since(t);
             if !ok {
                 self.condense_off(eq);
@@ -291,13 +313,20 @@ impl ContactStepper {
         cands.sort_unstable();
         cands.dedup();
         let next = if cands.len() + dofs.n_lambda > self.max_condensed {
-            let kept = c.candidates().to_vec();
-            let budget = (kept.len() + self.max_condensed / 4).min(self.max_condensed);
-            let mut near = nearest_equations(points, guess, dofs, budget);
-            near.extend(kept);
-            near.sort_unstable();
-            near.dedup();
-            Condensed::Near(near)
+            // The nearest points' up to three quarters of the limit, then as many of the
+            // equations set up before as fit: never more than the limit (more would leave
+            // the condensed step for good), unless the closed points alone need more.
+            let mut near: std::collections::BTreeSet<usize> =
+                nearest_equations(points, guess, dofs, 3 * self.max_condensed / 4)
+                    .into_iter()
+                    .collect();
+            for &e in c.candidates() {
+                if near.len() >= self.max_condensed {
+                    break;
+                }
+                near.insert(e);
+            }
+            Condensed::Near(near.into_iter().collect())
         } else {
             Condensed::Pending(cands)
         };

@@ -161,8 +161,17 @@ impl<'a> NewtonContext<'a> {
             } else {
                 None
             };
+            // A body held by contact alone: its structural tangent is singular in statics (in
+            // dynamics its inertia holds it).
+            use crate::model::AnalysisKind::{LinearStatic, NonLinearStatic, StaticStructural};
+            let statics = matches!(
+                model.analysis.kind,
+                LinearStatic | NonLinearStatic | StaticStructural
+            );
+            let held = statics && crate::assembly::rigid::free_rigid_motions(model, dofs) > 0;
             Some(ContactStepper::new(
                 candidates,
+                held,
                 params
                     .max_condensed
                     .unwrap_or_else(|| super::condensed::default_limit(dofs.n_free)),
