@@ -87,6 +87,25 @@ pub(super) fn local_change(dofs: &DofMap, p: &SlotLinearization, du: &[f64]) -> 
         .collect()
 }
 
+/// The step of a body held by springs (see [`ContactStepper::hold_contact_nodes`]) goes along
+/// its load, its length the springs': stretched by doubling until a point closes, so that the
+/// prediction sees the contact the motion makes (left as it is if none ever does).
+fn reach_first_contact(dofs: &DofMap, points: &[SlotLinearization], step: &mut [f64]) {
+    let closes = |s: &[f64]| {
+        points
+            .iter()
+            .any(|p| p.can_close() && p.predicts(&local_change(dofs, p, s)).closed)
+    };
+    let mut scaled = step.to_vec();
+    for _ in 0..200 {
+        if closes(&scaled) {
+            step.copy_from_slice(&scaled);
+            return;
+        }
+        scaled.iter_mut().for_each(|v| *v *= 2.0);
+    }
+}
+
 impl ContactStepper {
     /// The strategy of a model's contact: condensed from the first solve on the candidate
     /// equations `candidates` if `condense` (the caller knows the solver offers a Schur block
@@ -465,7 +484,15 @@ impl ContactStepper {
         let (mut loose_ok, mut resolving) = (eq.solver.capabilities().iterative, false);
         loop {
             let mut step = rhs.clone();
-            let kv = self.guess_tangent(eq, &k_structure, points, &closed, &mut step, summed);
+            let mut kv = self.guess_tangent(eq, &k_structure, points, &closed, &mut step, summed);
+            let none_closed = !points
+                .iter()
+                .zip(&closed)
+                .any(|(p, b)| b.closed && p.can_close());
+            let held = self.held && none_closed && (eq.ranks.is_none() || summed);
+            if held {
+                self.hold_contact_nodes(eq, &mut kv);
+            }
             let eliminated = !resolving
                 && !groups.is_empty()
                 && self
@@ -473,6 +500,9 @@ impl ContactStepper {
             let loose = !eliminated && loose_ok && !resolving;
             if !eliminated {
                 Self::full_solve(eq, kv, &mut step, summed, loose, resolving)?;
+            }
+            if held {
+                reach_first_contact(eq.dofs, points, &mut step);
             }
             let predicted: Vec<Branch> = points
                 .iter()
@@ -504,6 +534,33 @@ impl ContactStepper {
     /// The full tangent of a guess `closed` of the branches: the bodies' `k_structure` with
     /// every point's branch tangent; the residual change of the points whose branch differs
     /// from their current one into `step`.
+    /// A body held by contact alone, in a guess that closes no point, has no Newton step (its
+    /// tangent is singular): its contact nodes are held by springs of the size of their
+    /// diagonal, so the step moves it a bounded amount along its load and the prediction sees
+    /// the points that motion closes (as the condensed step's shift; the next guess, with
+    /// them closed, is the true tangent's).
+    fn hold_contact_nodes(&self, eq: &Equations, kv: &mut [f64]) {
+        let n_disp = eq.dofs.n_free - eq.dofs.n_lambda;
+        let pattern = &eq.asm.pattern;
+        let mut eqs: Vec<usize> = self
+            .slot_nodes
+            .iter()
+            .flat_map(|&n| eq.dofs.node_dofs[n].iter().map(|&(_, c)| c))
+            .flat_map(|c| eq.dofs.entries(c).map(|(e, _)| e).collect::<Vec<_>>())
+            .filter(|&e| e < n_disp)
+            .collect();
+        eqs.sort_unstable();
+        eqs.dedup();
+        let diag: Vec<f64> = eqs
+            .iter()
+            .map(|&e| kv[pattern.position(e, e)].abs())
+            .collect();
+        let alpha = diag.iter().sum::<f64>() / diag.len().max(1) as f64;
+        for &e in &eqs {
+            kv[pattern.position(e, e)] += alpha;
+        }
+    }
+
     fn guess_tangent(
         &self,
         eq: &Equations,
