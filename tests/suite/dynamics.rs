@@ -133,6 +133,140 @@ fn mass_proportional_damping_dissipates_what_the_balance_counts() {
     assert!((ratio - 1.0).abs() < 0.02, "t {t}: {ratio}");
 }
 
+/// Stiffness-proportional damping (`delta`) on the mass on a spring is mass-proportional
+/// damping of η = δ·ω² (δ·K = η·M there: K = 100, M = ½): every scheme, HHT included, gives the
+/// same steps to round-off, its velocity's history taking the forces' rate as it takes v (OOFEM's
+/// `DIIDynamic` puts Newmark's a6 there: a spurious δΔt(1−γ)·K·Δuₙ, its QUIRK). With the
+/// trapezoidal rule the energy balance counts the damping's work to round-off.
+#[test]
+fn stiffness_proportional_damping_is_mass_proportional_on_a_single_mode() {
+    let omega2: f64 = 200.0;
+    let dt = 2.0 * std::f64::consts::PI / omega2.sqrt() / 20.0;
+    let delta = 0.004;
+    for scheme in [
+        "ddtScheme 0",
+        "ddtScheme 1",
+        "ddtScheme 2",
+        "ddtScheme 2 gamma 0.6 beta 0.3025",
+        "ddtScheme 2 rhoinf 0.8",
+    ] {
+        for analysis in ["NonLinearDynamic", "DIIDynamic"] {
+            let by_k = spring(&format!("{scheme} delta {delta}"), 40, dt)
+                .replace("NonLinearDynamic", analysis);
+            let by_m = spring(&format!("{scheme} eta {}", delta * omega2), 40, dt)
+                .replace("NonLinearDynamic", analysis);
+            let (a, b) = (history(&by_k), history(&by_m));
+            for ((t, u, e), (_, v, f)) in a.iter().zip(&b) {
+                assert!(
+                    (u - v).abs() < 1e-15,
+                    "{scheme} {analysis} t {t}: {u} vs {v}"
+                );
+                assert!(
+                    (e.damping - f.damping).abs() < 1e-15,
+                    "{scheme} {analysis} t {t}: {e:?} vs {f:?}"
+                );
+                // (The trapezoidal rule keeps the energy; the others dissipate some of it.)
+                if scheme == "ddtScheme 2" {
+                    assert!(e.balance().abs() < 1e-15, "{scheme} t {t}: {e:?}");
+                }
+            }
+            let (_, _, last) = a.last().unwrap();
+            assert!(
+                last.damping > 0.01 * 0.5 * 100.0 * 1e-4,
+                "{scheme}: {last:?}"
+            );
+        }
+    }
+}
+
+/// Stiffness-proportional damping damps each mode of a bar by its own frequency, ζ = δω/2: a
+/// fixed-free bar of 8 elements (lumped mass) started at rest in its first or its second mode
+/// keeps the mode's shape (to 1e-12) and its modal energy ½(q̇² + ω²q²) follows the damped
+/// oscillator's, within 0.2 % of the start's over two periods (trapezoidal rule, 200 steps a
+/// period; the second mode, three times as fast, loses 9 times the first's energy a period).
+/// The balance counts the damping's work to round-off.
+#[test]
+fn stiffness_proportional_damping_damps_a_bar_mode_by_its_frequency() {
+    let n = 8;
+    let (e, rho, delta) = (100.0, 1.0, 2e-3);
+    let h = 1.0 / n as f64;
+    let nodes: String = (0..=n)
+        .map(|i| format!("node {} coords 1 {}\n", i + 1, h * i as f64))
+        .collect();
+    let elements: String = (0..n)
+        .map(|i| {
+            format!(
+                "Truss1d {} nodes 2 {} {} crossSect 1 mat 1\n",
+                i + 1,
+                i + 1,
+                i + 2
+            )
+        })
+        .collect();
+    for m in [1, 2] {
+        // The discrete mode u_j = sin(κj), κ = (2m−1)π/(2n), ω² = (4E/(ρh²)) sin²(κ/2).
+        let kappa = (2 * m - 1) as f64 * std::f64::consts::PI / (2.0 * n as f64);
+        let omega = (4.0 * e / (rho * h * h)).sqrt() * (kappa / 2.0).sin();
+        let dt = 2.0 * std::f64::consts::PI / omega / 200.0;
+        let (ics, sets): (String, String) = (1..=n)
+            .map(|j| {
+                (
+                    format!(
+                        "InitialCondition {j} conditions 1 u {} set {} dofs 1 1\n",
+                        0.001 * (kappa * j as f64).sin(),
+                        j + 2
+                    ),
+                    format!("Set {} nodes 1 {}\n", j + 2, j + 1),
+                )
+            })
+            .unzip();
+        let text = format!(
+            "bar.out\nbar\nNonLinearDynamic nsteps 400 deltat {dt} ddtScheme 2 delta {delta} \
+             lumpedmass rtolf 1e-12 manrmsteps 1\ndomain 1dTruss\nOutputManager\n\
+             ndofman {} nelem {n} ncrosssect 1 nmat 1 nbc 1 nic {n} nltf 1 nset {}\n\
+             {nodes}{elements}SimpleCS 1 area 1 material 1 set 1\n\
+             IsoLE 1 d {rho} E {e} n 0 tAlpha 0\n\
+             BoundaryCondition 1 loadTimeFunction 1 dofs 1 1 values 1 0 set 2\n{ics}\
+             ConstantFunction 1 f(t) 1\nSet 1 allelements\nSet 2 nodes 1 1\n{sets}",
+            n + 1,
+            n + 2
+        );
+        let model = crate::common::model_from_text(&text).unwrap();
+        let zeta = delta * omega / 2.0;
+        let wd = omega * (1.0 - zeta * zeta).sqrt();
+        let modal = |q: f64, qd: f64| 0.5 * (qd * qd + omega * omega * q * q);
+        let e0 = modal(0.001, 0.0);
+        let mut steps = 0;
+        run_analysis(&model, &crate::common::quiet(), |r| {
+            let motion = r.motion.unwrap();
+            let en = motion.energy;
+            assert!(en.balance().abs() < 1e-16, "mode {m} t {}: {en:?}", r.time);
+            // The free end's φ = sin(κn) = ±1.
+            let phi = (kappa * n as f64).sin();
+            let q = 0.001 * r.displacement(n, 1).unwrap() / (0.001 * phi);
+            let qd = motion.velocity[r.dofs.code(n, 1).unwrap()] / phi;
+            for j in 1..=n {
+                let u = r.displacement(j, 1).unwrap();
+                let expect = q * (kappa * j as f64).sin();
+                assert!((u - expect).abs() < 1e-12 * 0.001, "mode {m} node {j}: {u}");
+            }
+            let t = r.time;
+            let decay = (-zeta * omega * t).exp();
+            let q_exact = 0.001 * decay * ((wd * t).cos() + zeta * omega / wd * (wd * t).sin());
+            let qd_exact = -0.001 * omega * omega / wd * decay * (wd * t).sin();
+            let (num, exact) = (modal(q, qd), modal(q_exact, qd_exact));
+            assert!(
+                (num - exact).abs() < 2e-3 * e0,
+                "mode {m} t {t}: {num} vs {exact}"
+            );
+            steps += 1;
+            Ok(())
+        })
+        .unwrap();
+        assert_eq!(steps, 400);
+    }
+}
+
 /// A column of `n` square plane stress elements (width 0.1, length 1, E = 1, ρ = 1, ν = 0: wave
 /// speed 1) falling at V = 0.1 onto a rigid floor 0.01 below (`planecontactsegment`), its bottom
 /// nodes in contact by `law`; u_x held; `extra` on the analysis record; steps of `dt` until it

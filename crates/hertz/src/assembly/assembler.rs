@@ -132,6 +132,10 @@ pub struct Assembler<'m> {
     /// Per element, whether this process assembles it in [`Assembler::evaluate_share`] (a
     /// distributed solve, see [`crate::solve::partition`]); None: every element.
     share: Option<Vec<bool>>,
+    /// The factor on the elements' forces, tangent and K_fp·Δu_p (not on the `extra`
+    /// contributions): 1 but where a step adds stiffness-proportional damping
+    /// ([`Assembler::set_element_scale`]).
+    element_scale: f64,
 }
 
 const CHUNK: usize = 2048;
@@ -222,6 +226,7 @@ impl<'m> Assembler<'m> {
             couplings: Vec::new(),
             linear_k: std::sync::Mutex::new(None),
             share: None,
+            element_scale: 1.0,
             constant_stiffness,
             state_at,
             material_state,
@@ -296,6 +301,13 @@ impl<'m> Assembler<'m> {
     pub fn set_share(&mut self, share: Vec<bool>) {
         debug_assert_eq!(share.len(), self.elems.len());
         self.share = Some(share);
+    }
+
+    /// Scale the elements' forces and tangent by `scale` in the evaluations to come (1: as they
+    /// are): a time step's stiffness-proportional damping δ·Ḟ_int adds δ·c₁ times the
+    /// elements' own forces and tangent, where c₁ is the velocity's coefficient of u.
+    pub fn set_element_scale(&mut self, scale: f64) {
+        self.element_scale = scale;
     }
 
     /// Set the couplings of the contact pairs (location codes per pair); rebuilds the pattern and
@@ -517,6 +529,28 @@ impl<'m> Assembler<'m> {
         }
     }
 
+    /// The elements' tangent at `u` times `x` over every primary equation (prescribed rows
+    /// included): K(u)·x, the rate of the internal forces along a motion x.
+    pub fn tangent_product(&self, u: &[f64], x: &[f64]) -> Result<Vec<f64>> {
+        let mut y = vec![0.0; self.dofs.n_primary()];
+        let (mut fe, mut ke) = (vec![0.0; MAX_DOFS], vec![0.0; MAX_DOFS * MAX_DOFS]);
+        for (e, info) in self.elems.iter().enumerate() {
+            let nd = info.ndof;
+            fe[..nd].iter_mut().for_each(|v| *v = 0.0);
+            ke[..nd * nd].iter_mut().for_each(|v| *v = 0.0);
+            self.element(e, u, &mut fe[..nd], Some(&mut ke[..nd * nd]), None, None)?;
+            let loc = &self.locs[info.loc_start..info.loc_start + nd];
+            let xe: Vec<f64> = loc.iter().map(|&c| self.dofs.value(x, c)).collect();
+            for (a, &ca) in loc.iter().enumerate() {
+                let ya: f64 = (0..nd).map(|b| ke[a * nd + b] * xe[b]).sum();
+                for (p, wp) in self.dofs.entries(ca) {
+                    y[p] += wp * ya;
+                }
+            }
+        }
+        Ok(y)
+    }
+
     /// Add the residuals of `extra` contributions (their tangents left out) to `f_int`.
     pub fn add_residuals(&self, f_int: &mut [f64], extra: &[Contribution]) {
         for c in extra {
@@ -653,6 +687,18 @@ impl<'m> Assembler<'m> {
         if cacheable && !from_cache {
             *self.linear_k.lock().expect("not poisoned") = sink.k_values.clone();
         }
+        let scale = self.element_scale;
+        if scale != 1.0 {
+            let vectors = [
+                Some(&mut sink.f_int),
+                sink.k_values.as_mut(),
+                sink.k_fp_dup.as_mut(),
+            ];
+            for v in vectors.into_iter().flatten() {
+                v.iter_mut().for_each(|x| *x *= scale);
+            }
+            sink.ebe.iter_mut().for_each(|x| *x *= scale * scale);
+        }
         for c in extra {
             if !c.fe.is_empty() {
                 self.scatter(
@@ -671,5 +717,85 @@ impl<'m> Assembler<'m> {
             ebe: sink.ebe,
             states,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two distorted plane stress quadrilaterals in large deformation (St. Venant–Kirchhoff),
+    /// node 1 held.
+    fn two_quads() -> Model {
+        let text = "m.out\nquads\nNonLinearStatic nsteps 1 controlmode 1\n\
+                    domain 2dPlaneStress\nOutputManager\n\
+                    ndofman 6 nelem 2 ncrosssect 1 nmat 1 nbc 1 nic 0 nltf 1 nset 2\n\
+                    node 1 coords 2 0 0\nnode 2 coords 2 1 0\nnode 3 coords 2 2.1 0.1\n\
+                    node 4 coords 2 0 1\nnode 5 coords 2 1.1 1.2\nnode 6 coords 2 2 1\n\
+                    PlaneStress2d 1 nodes 4 1 2 5 4 crossSect 1 mat 1 nlgeo 1\n\
+                    PlaneStress2d 2 nodes 4 2 3 6 5 crossSect 1 mat 1 nlgeo 1\n\
+                    SimpleCS 1 thick 0.3 material 1 set 1\nIsoLE 1 d 2.5 E 7 n 0.3 tAlpha 0\n\
+                    BoundaryCondition 1 loadTimeFunction 1 dofs 2 1 2 values 2 0 0 set 2\n\
+                    ConstantFunction 1 f(t) 1\nSet 1 allelements\nSet 2 nodes 1 1\n";
+        crate::input::read_model_str(text, "m.in").unwrap().model
+    }
+
+    /// The elements' scale (stiffness-proportional damping) multiplies their forces and
+    /// tangent and leaves the extra (contact) contributions as they are.
+    #[test]
+    fn the_element_scale_leaves_the_extra_contributions_alone() {
+        let model = two_quads();
+        let dofs = DofMap::new(&model, &Default::default()).unwrap();
+        let mut asm = Assembler::new(&model, &dofs).unwrap();
+        let np = dofs.n_primary();
+        let u: Vec<f64> = (0..np).map(|i| 0.05 * (i as f64).cos()).collect();
+        let extra = [Contribution {
+            codes: vec![dofs.code(2, 1).unwrap(), dofs.code(2, 2).unwrap()],
+            fe: vec![1.0, 2.0],
+            ke: vec![3.0, 0.0, 0.0, 4.0],
+        }];
+        asm.set_couplings(&[extra[0].codes.clone()]);
+        let plain = asm.evaluate(&u, true, false, None, &[]).unwrap();
+        let with = asm.evaluate(&u, true, false, None, &extra).unwrap();
+        asm.set_element_scale(2.5);
+        let scaled = asm.evaluate(&u, true, false, None, &extra).unwrap();
+        for i in 0..np {
+            let expect = 2.5 * plain.f_int[i] + (with.f_int[i] - plain.f_int[i]);
+            assert!((scaled.f_int[i] - expect).abs() < 1e-12, "{i}");
+        }
+        let (kp, kw, ks) = (
+            plain.k_values.unwrap(),
+            with.k_values.unwrap(),
+            scaled.k_values.unwrap(),
+        );
+        for i in 0..kp.len() {
+            let expect = 2.5 * kp[i] + (kw[i] - kp[i]);
+            assert!((ks[i] - expect).abs() < 1e-12, "{i}");
+        }
+    }
+
+    /// K(u)·x is the derivative of the elements' forces along x (central differences), on
+    /// every primary equation, the held node's rows and columns included.
+    #[test]
+    fn the_tangent_product_is_the_derivative_of_the_forces_along_a_motion() {
+        let model = two_quads();
+        let dofs = DofMap::new(&model, &Default::default()).unwrap();
+        let asm = Assembler::new(&model, &dofs).unwrap();
+        let np = dofs.n_primary();
+        let u: Vec<f64> = (0..np).map(|i| 0.05 * (i as f64).cos()).collect();
+        let x: Vec<f64> = (0..np).map(|i| (0.7 * i as f64).sin()).collect();
+        let y = asm.tangent_product(&u, &x).unwrap();
+        let h = 1e-6;
+        let force = |s: f64| {
+            let v: Vec<f64> = u.iter().zip(&x).map(|(a, b)| a + s * b).collect();
+            asm.evaluate(&v, false, false, None, &[]).unwrap().f_int
+        };
+        let (plus, minus) = (force(h), force(-h));
+        let scale = y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for i in 0..np {
+            let fd = (plus[i] - minus[i]) / (2.0 * h);
+            assert!((fd - y[i]).abs() < 1e-7 * scale, "{i}: {} vs {fd}", y[i]);
+        }
+        assert!(scale > 0.1, "{scale}");
     }
 }

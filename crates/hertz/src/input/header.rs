@@ -320,15 +320,16 @@ fn read_dynamics(r: &Record, analysis: &str) -> Result<Dynamics> {
             "`eta` (mass-proportional damping) must not be negative, found {eta}"
         )));
     }
-    if r.opt_float("delta")?.is_some_and(|d| d != 0.0) {
-        return Err(r.error(
-            "stiffness-proportional damping (`delta`) is not supported yet; use `eta` \
-             (mass-proportional)",
-        ));
+    let delta = r.opt_float("delta")?.unwrap_or(0.0);
+    if delta < 0.0 {
+        return Err(r.error(format!(
+            "`delta` (stiffness-proportional damping) must not be negative, found {delta}"
+        )));
     }
     Ok(Dynamics {
         scheme,
         eta,
+        delta,
         lumped: r.flag("lumpedmass"),
         keep_contact_mass: r.flag("keepcontactmass"),
     })
@@ -358,6 +359,7 @@ fn read_explicit(r: &Record) -> Result<Dynamics> {
     Ok(Dynamics {
         scheme: TimeScheme::CentralDifference { reduct },
         eta,
+        delta: 0.0,
         lumped: true,
         keep_contact_mass: true,
     })

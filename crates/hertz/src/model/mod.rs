@@ -83,6 +83,9 @@ pub struct Dynamics {
     pub scheme: TimeScheme,
     /// Mass-proportional (Rayleigh) damping: C = eta·M.
     pub eta: f64,
+    /// Stiffness-proportional (Rayleigh) damping `delta`: the force δ·Ḟ_int, the rate of the
+    /// elements' internal forces by the scheme's velocity rule (δ·K·v on a linear model).
+    pub delta: f64,
     /// hertz's `lumpedmass`: the lumped (HRZ) mass instead of the consistent one.
     pub lumped: bool,
     /// hertz's `keepcontactmass`: keep the mass of the contact nodes (OOFEM's way, which

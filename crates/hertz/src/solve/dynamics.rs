@@ -1,11 +1,20 @@
 //! Implicit dynamics (`NonLinearDynamic`, spec §1.2): in every time step Newton solves
-//! M·a(u) + η·M·v(u) + F_int(u) + F_contact(u) = F_ext(t), with a and v of the step's
-//! displacement increment by OOFEM's `ddtScheme` ([`TimeScheme::constants`]); the inertia is a
-//! [`StepTerms`] of the same Newton iteration statics uses.
+//! M·a(u) + η·M·v(u) + δ·Ḟ_int(u) + F_int(u) + F_contact(u) = F_ext(t), with a and v of the
+//! step's displacement increment by OOFEM's `ddtScheme` ([`TimeScheme::constants`]); the inertia
+//! is a [`StepTerms`] of the same Newton iteration statics uses.
+//!
+//! Stiffness-proportional damping (`delta`) is δ times the rate of the elements' internal
+//! forces, Ḟ, taken from their history by the scheme's own velocity rule (as v from u): on a
+//! linear model δ·K·v exactly, in large deformation and plasticity the rate of the actual
+//! forces, whose tangent δ·c₁·K_T (c₁ the velocity's coefficient of u) is exact. OOFEM takes
+//! δ·K_T·v with K_T of the last iterate and of the step start (not the derivative of its
+//! force), damps the contact's tangent by (1 + δ·c₁) though not its force, and in `DIIDynamic`
+//! puts the Newmark a6 where the velocity's history belongs (its QUIRKs); hertz damps the
+//! bodies alone, with the velocity's own history.
 //!
 //! Where hertz differs from OOFEM, on purpose: the mass couples prescribed and free DOFs (OOFEM
 //! drops M_fp·a_p, QUIRK: base excitation is then wrong with consistent mass); the starting
-//! acceleration is in equilibrium, M·a₀ = F_ext(0) − F_int(u₀) − η·M·v₀, where no initial
+//! acceleration is in equilibrium, M·a₀ = F_ext(0) − F_int(u₀) − C·v₀, where no initial
 //! condition gives one (OOFEM takes 0, QUIRK); the reactions are the support forces, inertia
 //! and damping included (OOFEM's omit them, QUIRK); a step that does not converge is cut in
 //! time (the scheme's constants follow the substep); the contact nodes' mass is moved into
@@ -33,6 +42,9 @@ use std::time::Instant;
 struct Inertia<'a> {
     mass: &'a MassMatrix,
     c0: f64,
+    /// δ·c₁: the elements' forces and tangent are taken (1 + δ·c₁) times (`history` holds the
+    /// rest of δ·Ḟ).
+    element_scale: f64,
     history: Vec<f64>,
     start: Option<Vec<f64>>,
     n_free: usize,
@@ -77,6 +89,10 @@ impl StepTerms for Inertia<'_> {
     fn constant_tangent(&self) -> bool {
         true
     }
+
+    fn element_scale(&self) -> f64 {
+        self.element_scale
+    }
 }
 
 /// The state of the motion at the end of a (sub)step.
@@ -88,12 +104,50 @@ struct State {
     /// The last increment (the three-point scheme's history); None at the start and after a
     /// change of step size.
     du: Option<Vec<f64>>,
+    /// The elements' internal forces' rate and its rate (Ḟ, F̈, by the scheme's rules for v
+    /// and a) and their last increment: the history of stiffness-proportional damping (empty
+    /// without it).
+    rate: Rates,
     /// The forces at this state, for the energies' trapezoidal rule: the elements', the
     /// contact's, the damping's, the external loads' (follower ones included) and the supports'.
     forces: Forces,
     /// The support forces on the prescribed DOFs (inertia and damping included).
     reactions: Vec<f64>,
     energy: Energy,
+}
+
+/// The rates of the elements' internal forces F: Ḟ and F̈ (as v and a of u), and F's last
+/// increment (as `du`).
+#[derive(Clone, Default)]
+struct Rates {
+    first: Vec<f64>,
+    second: Vec<f64>,
+    last: Option<Vec<f64>>,
+}
+
+impl Rates {
+    /// The rates at the end of a step whose forces went from `old` to `new`, by the scheme's
+    /// constants `k` (those of the step's a and v).
+    fn advance(&self, new: &[f64], old: &[f64], k: &[f64; 7]) -> Rates {
+        let df: Vec<f64> = new.iter().zip(old).map(|(a, b)| a - b).collect();
+        let last = self.last.as_deref();
+        let first = (0..df.len())
+            .map(|i| {
+                k[1] * df[i]
+                    - k[4] * self.first[i]
+                    - k[5] * self.second[i]
+                    - k[6] * last.map_or(0.0, |l| l[i])
+            })
+            .collect();
+        let second = (0..df.len())
+            .map(|i| k[0] * df[i] - k[2] * self.first[i] - k[3] * self.second[i])
+            .collect();
+        Rates {
+            first,
+            second,
+            last: Some(df),
+        }
+    }
 }
 
 /// A converged (sub)step's contact states and material point states.
@@ -183,8 +237,8 @@ struct Run<'a> {
     mass: MassMatrix,
     history: LoadHistory<'a>,
     follower: FollowerLoads,
-    /// c₀ of the factorization the solver holds.
-    last_c0: Option<f64>,
+    /// c₀ and the elements' damping scale δ·c₁ of the factorization the solver holds.
+    last_c0: Option<(f64, f64)>,
 }
 
 /// Run a `NonLinearDynamic` analysis (see the module's doc), calling `on_step` after each step.
@@ -269,8 +323,17 @@ impl Run<'_> {
         let ([mut u, v, mut a], given_a) = initial_values(model, dofs);
         u[nf..].copy_from_slice(&self.history.prescribed_at(0.0));
         let committed = ctx.commit_step(&u)?;
+        let delta = self.dynamics.delta;
+        let mut rate = Rates::default();
         let mut damping = vec![0.0; np];
         self.mass.apply_add(self.dynamics.eta, &v, &mut damping);
+        if delta > 0.0 {
+            // Ḟ₀ = K(u₀)·v₀.
+            rate.first = ctx.tangent_product(&u, &v)?;
+            for (d, f) in damping.iter_mut().zip(&rate.first) {
+                *d += delta * f;
+            }
+        }
         let forces = Forces::of(&committed, damping, self.external_forces(0.0, &u));
         if !given_a {
             // M_ff a_f = F_ext − F_int − F_c − C v over the displacement equations.
@@ -282,6 +345,10 @@ impl Run<'_> {
             let af = self.solve_mass(&rhs);
             a[..n_disp].copy_from_slice(&af);
         }
+        if delta > 0.0 {
+            // F̈₀ = K(u₀)·a₀ (the term of v₀ along the tangent's change left out).
+            rate.second = ctx.tangent_product(&u, &a)?;
+        }
         let kinetic = self.mass.half_norm(&v);
         Ok(State {
             reactions: self.support_forces(&forces, &a),
@@ -289,6 +356,7 @@ impl Run<'_> {
             v,
             a,
             du: None,
+            rate,
             forces,
             energy: Energy {
                 kinetic,
@@ -393,6 +461,7 @@ impl Run<'_> {
             if level > 0 {
                 // A new step size: the three-point scheme restarts from backward Euler.
                 state.du = None;
+                state.rate.last = None;
             }
             let h = (span.1 - span.0) / nsub as f64;
             let mut contact = None;
@@ -465,22 +534,40 @@ impl Run<'_> {
                     - eta * k[6] * du_prev[i]
             })
             .collect();
+        // δ·Ḟ(u) = δ·(c₁·(F(u) − Fₙ) − a4·Ḟₙ − a5·F̈ₙ − a6·ΔFₙ): its δ·c₁·F(u) by the elements'
+        // scale, the rest constant.
+        let delta = self.dynamics.delta;
+        let element_scale = delta * k[1];
         let f = &state.forces;
+        let damping_history: Option<Vec<f64>> = (delta > 0.0).then(|| {
+            let r = &state.rate;
+            let last = r.last.as_deref().unwrap_or(&zero);
+            (0..np)
+                .map(|i| {
+                    -delta
+                        * (k[1] * f.internal[i]
+                            + k[4] * r.first[i]
+                            + k[5] * r.second[i]
+                            + k[6] * last[i])
+                })
+                .collect()
+        });
         let start = (alpha != 0.0).then(|| {
             (0..np)
                 .map(|i| -alpha * w * (f.damping[i] + f.internal[i] + f.contact[i] - f.external[i]))
                 .collect()
         });
-        if self.last_c0 != Some(c0) {
-            // The tangent's mass part changed: factorize afresh.
+        if self.last_c0 != Some((c0, element_scale)) {
+            // The tangent's mass part or the elements' damping changed: factorize afresh.
             ctx.attempt_failed();
-            self.last_c0 = Some(c0);
+            self.last_c0 = Some((c0, element_scale));
         }
-        let mut history = vec![0.0; np];
+        let mut history = damping_history.unwrap_or_else(|| vec![0.0; np]);
         self.mass.apply_add(1.0, &base, &mut history);
         let inertia = Inertia {
             mass: &self.mass,
             c0,
+            element_scale,
             history,
             start,
             n_free: nf,
@@ -504,7 +591,18 @@ impl Run<'_> {
         let committed = ctx.commit_step(&u)?;
         let mut damping = vec![0.0; np];
         self.mass.apply_add(eta, &v, &mut damping);
-        let forces = Forces::of(&committed, damping, self.external_forces(t, &u));
+        let mut forces = Forces::of(&committed, damping, self.external_forces(t, &u));
+        let rate = if delta > 0.0 {
+            let rate = state
+                .rate
+                .advance(&forces.internal, &state.forces.internal, &k);
+            for (d, f) in forces.damping.iter_mut().zip(&rate.first) {
+                *d += delta * f;
+            }
+            rate
+        } else {
+            Rates::default()
+        };
         let mut energy = state.energy;
         forces.add_work(&state.forces, &du, &mut energy);
         // The supports' forces at both ends, on the prescribed DOFs' increments.
@@ -518,6 +616,7 @@ impl Run<'_> {
             v,
             a,
             du: Some(du),
+            rate,
             forces,
             reactions,
             energy,
@@ -560,6 +659,7 @@ mod tests {
         let inertia = Inertia {
             mass: &mass,
             c0: 37.0,
+            element_scale: 0.0,
             history,
             start: Some((0..np).map(|i| 0.1 * (i as f64).sin()).collect()),
             n_free: nf,

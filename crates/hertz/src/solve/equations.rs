@@ -75,10 +75,13 @@ impl<'a> Equations<'a> {
         terms: &dyn StepTerms,
     ) -> Result<Evaluation> {
         let t = Instant::now();
-        let mut ev = match (self.ranks, self.solver.distributed()) {
-            (Some(ranks), Some(d)) => ranks.assemble(&self.asm, d, u, want_k, dup, extra)?,
-            _ => self.asm.evaluate(u, want_k, false, dup, extra)?,
+        self.asm.set_element_scale(1.0 + terms.element_scale());
+        let ev = match (self.ranks, self.solver.distributed()) {
+            (Some(ranks), Some(d)) => ranks.assemble(&self.asm, d, u, want_k, dup, extra),
+            _ => self.asm.evaluate(u, want_k, false, dup, extra),
         };
+        self.asm.set_element_scale(1.0);
+        let mut ev = ev?;
         self.add_terms(u, &mut ev, terms);
         self.times.assembly += since(t);
         Ok(ev)
@@ -88,7 +91,10 @@ impl<'a> Equations<'a> {
     /// structural factor of the condensed contact step.
     pub fn structure(&mut self, u: &[f64], terms: &dyn StepTerms) -> Result<Evaluation> {
         let t = Instant::now();
-        let mut ev = self.asm.evaluate(u, true, false, None, &[])?;
+        self.asm.set_element_scale(1.0 + terms.element_scale());
+        let ev = self.asm.evaluate(u, true, false, None, &[]);
+        self.asm.set_element_scale(1.0);
+        let mut ev = ev?;
         self.add_terms(u, &mut ev, terms);
         self.times.assembly += since(t);
         Ok(ev)

@@ -287,6 +287,12 @@ impl<'a> NewtonContext<'a> {
         self.eq.structure_stale = true;
     }
 
+    /// The elements' tangent at `u` times `x` over every primary equation (the rate of their
+    /// forces along the motion x).
+    pub fn tangent_product(&self, u: &[f64], x: &[f64]) -> Result<Vec<f64>> {
+        self.eq.asm.tangent_product(u, x)
+    }
+
     /// A substep converged at `u`: commit the materials' state.
     pub fn commit_substep(&mut self, u: &[f64]) -> Result<()> {
         if self.eq.asm.has_material_state() {

@@ -17,6 +17,12 @@ pub trait StepTerms {
     /// triangle if it is symmetric).
     fn add_tangent(&self, u: &[f64], pattern: &Pattern, k: &mut [f64]);
 
+    /// A factor s: the terms add s times the elements' own forces and tangent (not the
+    /// contact's): stiffness-proportional damping. 0 without.
+    fn element_scale(&self) -> f64 {
+        0.0
+    }
+
     /// Whether the tangent is the same at every state and in every step (then a linear
     /// problem's factorization is kept from one iteration and step to the next).
     fn constant_tangent(&self) -> bool {
@@ -52,6 +58,9 @@ impl StepTerms for Both<'_> {
     }
     fn constant_tangent(&self) -> bool {
         self.0.constant_tangent() && self.1.constant_tangent()
+    }
+    fn element_scale(&self) -> f64 {
+        self.0.element_scale() + self.1.element_scale()
     }
     fn add_force_norms(&self, u: &[f64], dofs: &DofMap, ebe: &mut [f64; 4]) {
         self.0.add_force_norms(u, dofs, ebe);
