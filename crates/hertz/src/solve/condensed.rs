@@ -82,6 +82,10 @@ pub struct CondensedContact {
     partial: bool,
     /// The candidate displacements are shifted: a body is held by contact alone.
     held: bool,
+    /// The last S_A = (M_AA)⁻¹ with its A: the guesses of a search often share A (a body held
+    /// by contact alone has every candidate in it), and the inverse costs three times the
+    /// guess's own solve.
+    schur_cache: std::cell::RefCell<Option<(Vec<usize>, Mat<f64>)>>,
 }
 
 /// A point's local codes, each as the (candidate position, weight) pairs it stands for.
@@ -136,6 +140,7 @@ impl CondensedContact {
             unit,
             partial: false,
             held: false,
+            schur_cache: Default::default(),
         };
         if held {
             return Ok(cc
@@ -202,6 +207,7 @@ impl CondensedContact {
         for &e in &self.unit {
             shifted[pattern.position(e, e)] += 1.0;
         }
+        self.schur_cache.replace(None);
         self.base.factorize(pattern, &shifted, true, describe)?;
         let Some((eqs, l22)) = self.base.trailing_factor_block() else {
             return Ok(false);
@@ -420,6 +426,20 @@ impl CondensedContact {
         Ok(w)
     }
 
+    /// S_A = (M_AA)⁻¹, the Schur complement of K_s' on the candidates `a` (positions in M).
+    fn schur(&self, a: &[usize]) -> Mat<f64> {
+        if let Some((cached, s)) = self.schur_cache.borrow().as_ref() {
+            if cached == a {
+                return s.clone();
+            }
+        }
+        let na = a.len();
+        let m_aa = Mat::<f64>::from_fn(na, na, |i, j| self.m[(a[i], a[j])]);
+        let s_a = m_aa.as_ref().partial_piv_lu().inverse();
+        self.schur_cache.replace(Some((a.to_vec(), s_a.clone())));
+        s_a
+    }
+
     /// Mark the candidates as the nearest points' only (see the module docs).
     pub fn set_partial(&mut self) {
         self.partial = true;
@@ -544,8 +564,7 @@ impl CondensedContact {
         let mut f_a = vec![0.0; na];
         let mut mechanism = None;
         if na > 0 {
-            let m_aa = Mat::<f64>::from_fn(na, na, |i, j| self.m[(a[i], a[j])]);
-            let s_a = m_aa.as_ref().partial_piv_lu().inverse();
+            let s_a = self.schur(a);
             let w_a = Mat::<f64>::from_fn(na, 1, |i, _| w_c[a[i]]);
             let mut x = &s_a * &w_a;
             let sys = &s_a + c;
