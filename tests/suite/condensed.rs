@@ -184,6 +184,14 @@ fn condensed_frictional_multiplier_step_equals_direct_factorization() {
     compare(true, true);
 }
 
+/// The contact conditions the tied blocks are tried with: mortar and node-to-segment
+/// multipliers, a mortar penalty.
+const TIED_CONDITIONS: [&str; 3] = [
+    "s2slagrangianmultipliercontact 3 loadTimeFunction 1 slavesegment 2 segmentset 1 1",
+    "n2slagrangianmultipliercontact 3 loadTimeFunction 1 slaveset 5 segmentset 1 1",
+    "s2spenaltycontact 3 loadTimeFunction 1 slavesegment 2 segmentset 1 1",
+];
+
 /// Two blocks, the lower held at its base, the upper held by contact alone: its top nodes are
 /// `SlaveNode`s of one master node that carries the load, held sideways (`sideways` false) or
 /// free and pushed sideways as well (true). Plane strain, non-matching meshes (`n` lower
@@ -298,36 +306,13 @@ fn tied_blocks(
 /// and is reported as one, at a DOF 1 (sideways).
 #[test]
 fn a_body_held_by_contact_alone_is_a_mechanism_only_where_its_load_drives_one() {
-    let conditions = [
-        "s2slagrangianmultipliercontact 3 loadTimeFunction 1 slavesegment 2 segmentset 1 1",
-        "n2slagrangianmultipliercontact 3 loadTimeFunction 1 slaveset 5 segmentset 1 1",
-        "s2spenaltycontact 3 loadTimeFunction 1 slavesegment 2 segmentset 1 1",
-    ];
     for young in [1.0, 1e6, 1e12] {
         for ratio in [1.0, 1e4] {
             for n in [4, 16] {
-                for condition in conditions {
+                for condition in TIED_CONDITIONS {
                     let case = format!("E {young} ratio {ratio} n {n}: {condition}");
                     let text = tied_blocks(young, ratio, n, condition, false, 0.0);
-                    let model = crate::common::model_from_text(&text).unwrap();
-                    let mut last = (0.0, 0);
-                    hertz::solve::run_analysis(&model, &crate::common::quiet(), |r| {
-                        let force: f64 = r.contact.iter().map(|s| s.force).sum();
-                        assert!(
-                            r.info.iterations <= 6,
-                            "{case}: {} iterations",
-                            r.info.iterations
-                        );
-                        last = (force, r.step);
-                        Ok(())
-                    })
-                    .unwrap_or_else(|e| panic!("{case}: {e}"));
-                    assert_eq!(last.1, 2, "{case}");
-                    assert!(
-                        (last.0 - 1.0).abs() < 1e-7,
-                        "{case}: contact force {}",
-                        last.0
-                    );
+                    carries_the_load(&text, &crate::common::quiet(), &case);
                     let text = tied_blocks(young, ratio, n, condition, true, 0.0);
                     let model = crate::common::model_from_text(&text).unwrap();
                     let err =
@@ -355,38 +340,39 @@ fn a_body_held_by_contact_alone_is_a_mechanism_only_where_its_load_drives_one() 
 /// a step.
 #[test]
 fn a_body_held_by_contact_alone_across_a_gap_is_solved_with_full_tangents_too() {
-    let conditions = [
-        "s2slagrangianmultipliercontact 3 loadTimeFunction 1 slavesegment 2 segmentset 1 1",
-        "n2slagrangianmultipliercontact 3 loadTimeFunction 1 slaveset 5 segmentset 1 1",
-        "s2spenaltycontact 3 loadTimeFunction 1 slavesegment 2 segmentset 1 1",
-    ];
-    for condition in conditions {
+    for condition in TIED_CONDITIONS {
         for condensed_contact in [true, false] {
             let case = format!("{condition}, condensed {condensed_contact}");
             let text = tied_blocks(1e3, 10.0, 8, condition, false, 0.01);
-            let model = crate::common::model_from_text(&text).unwrap();
             let params = hertz::solve::SolveParams {
                 condensed_contact,
                 max_cutbacks: 0,
                 ..crate::common::quiet()
             };
-            let mut last = (0.0, 0);
-            hertz::solve::run_analysis(&model, &params, |r| {
-                assert!(
-                    r.info.iterations <= 6,
-                    "{case}: {} iterations",
-                    r.info.iterations
-                );
-                last = (r.contact.iter().map(|s| s.force).sum(), r.step);
-                Ok(())
-            })
-            .unwrap_or_else(|e| panic!("{case}: {e}"));
-            assert_eq!(last.1, 2, "{case}");
-            assert!(
-                (last.0 - 1.0).abs() < 1e-7,
-                "{case}: contact force {}",
-                last.0
-            );
+            carries_the_load(&text, &params, &case);
         }
     }
+}
+
+/// Solve the tied blocks `text` with `params`: both steps converge in at most 6 iterations and
+/// the contact force carries the load of 1 (`case` names the run).
+fn carries_the_load(text: &str, params: &hertz::solve::SolveParams, case: &str) {
+    let model = crate::common::model_from_text(text).unwrap();
+    let mut last = (0.0, 0);
+    hertz::solve::run_analysis(&model, params, |r| {
+        assert!(
+            r.info.iterations <= 6,
+            "{case}: {} iterations",
+            r.info.iterations
+        );
+        last = (r.contact.iter().map(|s| s.force).sum(), r.step);
+        Ok(())
+    })
+    .unwrap_or_else(|e| panic!("{case}: {e}"));
+    assert_eq!(last.1, 2, "{case}");
+    assert!(
+        (last.0 - 1.0).abs() < 1e-7,
+        "{case}: contact force {}",
+        last.0
+    );
 }

@@ -133,6 +133,19 @@ impl hertz::solve::Observer for Factorizations {
     }
 }
 
+/// The contact's candidate equations at the start (displacements and multipliers): what the
+/// condensed step would hold with no limit.
+fn candidate_equations(model: &hertz::model::Model) -> usize {
+    let dofs = hertz::solve::number_dofs(model).unwrap();
+    let contact = hertz::contact::ContactSystem::new(model).unwrap();
+    let zero = vec![0.0; dofs.n_primary()];
+    contact
+        .candidate_equations(&hertz::assembly::NodalState::new(model, &dofs, &zero))
+        .unwrap()
+        .len()
+        + dofs.n_lambda
+}
+
 /// A contact surface with more candidate equations than the condensed step's dense block takes
 /// is condensed on the nearest points' equations instead of falling to a factorization of the
 /// full tangent (the whole of a sphere's meshed face as slave nodes cost 20 times the time and
@@ -177,14 +190,7 @@ fn a_contact_surface_beyond_the_dense_block_is_condensed_on_its_nearest_points()
             states
         };
         // Half the candidate equations: the nearest points' set, not all of them.
-        let dofs = hertz::solve::number_dofs(&model).unwrap();
-        let contact = hertz::contact::ContactSystem::new(&model).unwrap();
-        let zero = vec![0.0; dofs.n_primary()];
-        let every = contact
-            .candidate_equations(&hertz::assembly::NodalState::new(&model, &dofs, &zero))
-            .unwrap()
-            .len()
-            + dofs.n_lambda;
+        let every = candidate_equations(&model);
         let (all, near) = (run(3000), run(every / 2));
         let closed = all.iter().filter(|s| s.active).count();
         assert!(
@@ -896,14 +902,7 @@ fn a_growing_contact_zone_of_a_body_held_by_contact_alone_stays_condensed() {
         let (all, its, _) = run(3000);
         let closed = all.iter().filter(|s| s.active).count();
         assert!(closed > 10, "{law:?}: {closed} closed");
-        let dofs = hertz::solve::number_dofs(&model).unwrap();
-        let contact = hertz::contact::ContactSystem::new(&model).unwrap();
-        let zero = vec![0.0; dofs.n_primary()];
-        let every = contact
-            .candidate_equations(&hertz::assembly::NodalState::new(&model, &dofs, &zero))
-            .unwrap()
-            .len()
-            + dofs.n_lambda;
+        let every = candidate_equations(&model);
         // A fifth of the candidates: the nearest points' set up at the start, then again twice.
         let (near, its_near, set_ups) = run(every / 5);
         assert!(set_ups >= 3, "{law:?}: {set_ups} set-ups");
