@@ -531,9 +531,6 @@ impl ContactStepper {
         }
     }
 
-    /// The full tangent of a guess `closed` of the branches: the bodies' `k_structure` with
-    /// every point's branch tangent; the residual change of the points whose branch differs
-    /// from their current one into `step`.
     /// A body held by contact alone, in a guess that closes no point, has no Newton step (its
     /// tangent is singular): its contact nodes are held by springs of the size of their
     /// diagonal, so the step moves it a bounded amount along its load and the prediction sees
@@ -561,6 +558,9 @@ impl ContactStepper {
         }
     }
 
+    /// The full tangent of a guess `closed` of the branches: the bodies' `k_structure` with
+    /// every point's branch tangent; the residual change of the points whose branch differs
+    /// from their current one into `step`.
     fn guess_tangent(
         &self,
         eq: &Equations,
