@@ -49,8 +49,12 @@ pub const MAX_CANDIDATES: usize = 3000;
 /// 5 995 candidates were condensed in 147 s and 10 GB, where its full tangent's factorization
 /// ran out of 24 GB.
 pub fn default_limit(unknowns: usize) -> usize {
-    (unknowns / 64).clamp(MAX_CANDIDATES, 12_000)
+    (unknowns / 64).clamp(MAX_CANDIDATES, MAX_DENSE)
 }
+
+/// The largest dense block the default limit grows to (1.2 GB): with a model's unknowns, or
+/// where the closed points alone need more than the limit (see `solve::contact_step`).
+pub const MAX_DENSE: usize = 12_000;
 
 /// Compliance added to the rows of active multipliers in the dense system, relative to the
 /// structure's mean compliance on the contact equations (see [`CondensedContact::step`]).

@@ -8,7 +8,8 @@
 //! reaches beyond them it is set up again with more (a regrowth: one factorization, what one
 //! guess of a full-tangent step costs), up to [`MAX_REGROWTHS`] times in one solve, after which
 //! (or when the structural tangent is indefinite, or the closed points alone need more than
-//! the dense block holds) full tangents take over for the rest of the analysis. A contact zone
+//! the dense block's largest size, [`super::condensed::MAX_DENSE`]: below it the block grows to
+//! hold them) full tangents take over for the rest of the analysis. A contact zone
 //! that grows over many steps regrows as often as it needs.
 
 use super::branches::{BranchSearch, ContactStep, OnCycle};
@@ -61,7 +62,9 @@ pub(super) struct ContactStepper {
     /// A body is held by contact alone (known from the model's supports, or found singular by a
     /// set-up): every set-up shifts the candidates from the start.
     held: bool,
-    /// The most equations the condensed step holds densely (`SolveParams::max_condensed`).
+    /// The most equations the condensed step holds densely (`SolveParams::max_condensed`);
+    /// where the closed points alone need more, it grows (up to
+    /// [`super::condensed::MAX_DENSE`]) rather than leave the condensed step.
     max_condensed: usize,
     /// Makes the structural factor's solver of a condensed step (one with a Schur block).
     make_solver: SolverMaker,
@@ -339,6 +342,17 @@ impl ContactStepper {
                 nearest_equations(points, guess, dofs, 3 * self.max_condensed / 4)
                     .into_iter()
                     .collect();
+            if near.len() > self.max_condensed && near.len() <= super::condensed::MAX_DENSE {
+                // The closed points alone need more: a larger dense block costs less than a
+                // whole-tangent factorization for every guess of every step to come.
+                let grown = (near.len() + near.len() / 3)
+                    .clamp(self.max_condensed, super::condensed::MAX_DENSE);
+                eq.observer.detail(&format!(
+                    "the condensed block grows from {} to {grown} equations",
+                    self.max_condensed
+                ));
+                self.max_condensed = grown;
+            }
             for &e in c.candidates() {
                 if near.len() >= self.max_condensed {
                     break;

@@ -17,8 +17,10 @@ pub struct SolveParams {
     pub condensed_contact: bool,
     /// The most candidate equations the condensed step holds in its dense block (M is m × m,
     /// its inverse m³); beyond, the nearest points' equations, half as many (see
-    /// [`super::condensed`]). None (the default): [`super::condensed::default_limit`] of the
-    /// model's unknowns, [`super::condensed::MAX_CANDIDATES`] up to 192 000 of them.
+    /// [`super::condensed`]); where the closed points alone need more, the block grows to hold
+    /// them (up to [`super::condensed::MAX_DENSE`]). None (the default):
+    /// [`super::condensed::default_limit`] of the model's unknowns,
+    /// [`super::condensed::MAX_CANDIDATES`] up to 192 000 of them.
     pub max_condensed: Option<usize>,
     /// The linear solver of the full tangents.
     pub solver: SolverChoice,
