@@ -163,12 +163,8 @@ impl<'a> NewtonContext<'a> {
             };
             // A body held by contact alone: its structural tangent is singular in statics (in
             // dynamics its inertia holds it).
-            use crate::model::AnalysisKind::{LinearStatic, NonLinearStatic, StaticStructural};
-            let statics = matches!(
-                model.analysis.kind,
-                LinearStatic | NonLinearStatic | StaticStructural
-            );
-            let held = statics && crate::assembly::rigid::free_rigid_motions(model, dofs) > 0;
+            let held = model.analysis.dynamics.is_none()
+                && crate::assembly::rigid::free_rigid_motions(model, dofs) > 0;
             Some(ContactStepper::new(
                 candidates,
                 held,
