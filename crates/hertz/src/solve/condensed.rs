@@ -60,6 +60,17 @@ pub const MAX_DENSE: usize = 12_000;
 /// structure's mean compliance on the contact equations (see [`CondensedContact::step`]).
 pub const REDUNDANCY_COMPLIANCE: f64 = 1e-10;
 
+/// The mean of the nonzero |K_ee| over the equations `eqs` (at least the smallest positive
+/// float): the stiffness of the springs that hold a body held by contact alone.
+pub(super) fn mean_diagonal(pattern: &Pattern, values: &[f64], eqs: &[usize]) -> f64 {
+    let diag: Vec<f64> = eqs
+        .iter()
+        .map(|&e| values[pattern.position(e, e)].abs())
+        .filter(|v| *v > 0.0)
+        .collect();
+    (diag.iter().sum::<f64>() / diag.len().max(1) as f64).max(f64::MIN_POSITIVE)
+}
+
 /// Largest number of branch updates in one step.
 const MAX_BRANCH_UPDATES: usize = 60;
 
@@ -111,8 +122,9 @@ impl CondensedContact {
     /// equations `candidates` (displacements and multipliers among `lambdas`) last, by `base`
     /// (a solver with [`crate::solve::linear::Capabilities::schur_block`]). Ok(None) when they
     /// are more than `max` or the factor does not have them as a trailing block (the caller
-    /// then factorizes full tangents). `held`: a body is known to be held by contact alone (an
-    /// earlier set-up found K_s singular), so the candidates are shifted from the start.
+    /// then factorizes full tangents). `held`: a body is known to be held by contact alone (from
+    /// the model's supports, or an earlier set-up found K_s singular), so the candidates are
+    /// shifted from the start; else they are where K_s proves singular.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         mut base: Box<dyn LinearSolver>,
@@ -146,19 +158,15 @@ impl CondensedContact {
             held: false,
             schur_cache: Default::default(),
         };
-        if held {
-            return Ok(cc
-                .hold(pattern, values, lambdas.clone(), describe)?
-                .then_some(cc));
-        }
-        match cc.factorize(pattern, values, describe) {
-            Ok(true) => Ok(Some(cc)),
-            Ok(false) => Ok(None),
-            Err(Error::Singular(_)) => Ok(cc
-                .hold(pattern, values, lambdas.clone(), describe)?
-                .then_some(cc)),
-            Err(e) => Err(e),
-        }
+        let factorized = match held {
+            true => Err(Error::Singular(String::new())),
+            false => cc.factorize(pattern, values, describe),
+        };
+        let ok = match factorized {
+            Err(Error::Singular(_)) => cc.hold(pattern, values, lambdas, describe)?,
+            other => other?,
+        };
+        Ok(ok.then_some(cc))
     }
 
     /// Whether the candidate displacements carry the shift of a body held by contact alone.
@@ -179,13 +187,7 @@ impl CondensedContact {
         lambdas: std::ops::Range<usize>,
         describe: &dyn Fn(usize) -> String,
     ) -> Result<bool> {
-        let diag: Vec<f64> = self
-            .cand
-            .iter()
-            .map(|&e| values[pattern.position(e, e)].abs())
-            .filter(|v| *v > 0.0)
-            .collect();
-        let alpha = (diag.iter().sum::<f64>() / diag.len().max(1) as f64).max(f64::MIN_POSITIVE);
+        let alpha = mean_diagonal(pattern, values, &self.cand);
         for (s, e) in self.shift.iter_mut().zip(&self.cand) {
             if !lambdas.contains(e) {
                 *s = alpha;

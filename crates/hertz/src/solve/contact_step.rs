@@ -562,11 +562,7 @@ impl ContactStepper {
             .collect();
         eqs.sort_unstable();
         eqs.dedup();
-        let diag: Vec<f64> = eqs
-            .iter()
-            .map(|&e| kv[pattern.position(e, e)].abs())
-            .collect();
-        let alpha = diag.iter().sum::<f64>() / diag.len().max(1) as f64;
+        let alpha = super::condensed::mean_diagonal(pattern, kv, &eqs);
         for &e in &eqs {
             kv[pattern.position(e, e)] += alpha;
         }
