@@ -130,24 +130,33 @@ impl Rates {
     /// constants `k` (those of the step's a and v).
     fn advance(&self, new: &[f64], old: &[f64], k: &[f64; 7]) -> Rates {
         let df: Vec<f64> = new.iter().zip(old).map(|(a, b)| a - b).collect();
-        let last = self.last.as_deref();
-        let first = (0..df.len())
-            .map(|i| {
-                k[1] * df[i]
-                    - k[4] * self.first[i]
-                    - k[5] * self.second[i]
-                    - k[6] * last.map_or(0.0, |l| l[i])
-            })
-            .collect();
-        let second = (0..df.len())
-            .map(|i| k[0] * df[i] - k[2] * self.first[i] - k[3] * self.second[i])
-            .collect();
+        let zero = vec![0.0; df.len()];
+        let last = self.last.as_deref().unwrap_or(&zero);
+        let (first, second) = advance(k, &df, (&self.first, &self.second), last);
         Rates {
             first,
             second,
             last: Some(df),
         }
     }
+}
+
+/// The scheme's rule (constants `k`, spec §1.2) for the first and second rates of a quantity
+/// whose increment over the step is `d`, from their values at the step's start and the last
+/// step's increment `last`: v and a of u, and Ḟ and F̈ of the elements' forces.
+fn advance(
+    k: &[f64; 7],
+    d: &[f64],
+    (first, second): (&[f64], &[f64]),
+    last: &[f64],
+) -> (Vec<f64>, Vec<f64>) {
+    let rate = (0..d.len())
+        .map(|i| k[1] * d[i] - k[4] * first[i] - k[5] * second[i] - k[6] * last[i])
+        .collect();
+    let rate2 = (0..d.len())
+        .map(|i| k[0] * d[i] - k[2] * first[i] - k[3] * second[i])
+        .collect();
+    (rate, rate2)
 }
 
 /// A converged (sub)step's contact states and material point states.
@@ -582,12 +591,7 @@ impl Run<'_> {
         }
         ctx.commit_substep(&u)?;
         let du: Vec<f64> = u.iter().zip(&state.u).map(|(a, b)| a - b).collect();
-        let a: Vec<f64> = (0..np)
-            .map(|i| k[0] * du[i] - k[2] * state.v[i] - k[3] * state.a[i])
-            .collect();
-        let v: Vec<f64> = (0..np)
-            .map(|i| k[1] * du[i] - k[4] * state.v[i] - k[5] * state.a[i] - k[6] * du_prev[i])
-            .collect();
+        let (v, a) = advance(&k, &du, (&state.v, &state.a), du_prev);
         let committed = ctx.commit_step(&u)?;
         let mut damping = vec![0.0; np];
         self.mass.apply_add(eta, &v, &mut damping);
