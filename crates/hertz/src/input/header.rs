@@ -268,7 +268,7 @@ pub(super) fn read_analysis(r: &Record) -> Result<(Analysis, usize, usize, usize
 
 /// The time integration of `analysis` (`NonLinearDynamic` or `DIIDynamic`, spec §1.2–1.3):
 /// `ddtScheme` (0 three-point backward, the default; 1 backward Euler; 2 Newmark with `gamma`,
-/// `beta`), Rayleigh damping `eta`, and hertz's `lumpedmass`.
+/// `beta`), Rayleigh damping `eta` and `delta`, and hertz's `lumpedmass`.
 fn read_dynamics(r: &Record, analysis: &str) -> Result<Dynamics> {
     let scheme = match r.opt_int("ddtscheme")?.unwrap_or(0) {
         0 => TimeScheme::ThreePointBackward,

@@ -75,13 +75,10 @@ impl<'a> Equations<'a> {
         terms: &dyn StepTerms,
     ) -> Result<Evaluation> {
         let t = Instant::now();
-        self.asm.set_element_scale(1.0 + terms.element_scale());
-        let ev = match (self.ranks, self.solver.distributed()) {
-            (Some(ranks), Some(d)) => ranks.assemble(&self.asm, d, u, want_k, dup, extra),
-            _ => self.asm.evaluate(u, want_k, false, dup, extra),
-        };
-        self.asm.set_element_scale(1.0);
-        let mut ev = ev?;
+        let mut ev = self.scaled(terms, |eq| match (eq.ranks, eq.solver.distributed()) {
+            (Some(ranks), Some(d)) => ranks.assemble(&eq.asm, d, u, want_k, dup, extra),
+            _ => eq.asm.evaluate(u, want_k, false, dup, extra),
+        })?;
         self.add_terms(u, &mut ev, terms);
         self.times.assembly += since(t);
         Ok(ev)
@@ -91,13 +88,20 @@ impl<'a> Equations<'a> {
     /// structural factor of the condensed contact step.
     pub fn structure(&mut self, u: &[f64], terms: &dyn StepTerms) -> Result<Evaluation> {
         let t = Instant::now();
-        self.asm.set_element_scale(1.0 + terms.element_scale());
-        let ev = self.asm.evaluate(u, true, false, None, &[]);
-        self.asm.set_element_scale(1.0);
-        let mut ev = ev?;
+        let mut ev = self.scaled(terms, |eq| eq.asm.evaluate(u, true, false, None, &[]))?;
         self.add_terms(u, &mut ev, terms);
         self.times.assembly += since(t);
         Ok(ev)
+    }
+
+    /// `assemble` with the elements' forces and tangent taken (1 + s) times, s the `terms`'
+    /// stiffness-proportional damping ([`StepTerms::element_scale`]); other evaluations (the
+    /// committed state's) see them as they are.
+    fn scaled<T>(&mut self, terms: &dyn StepTerms, assemble: impl FnOnce(&Self) -> T) -> T {
+        self.asm.set_element_scale(1.0 + terms.element_scale());
+        let out = assemble(self);
+        self.asm.set_element_scale(1.0);
+        out
     }
 
     /// The step's terms into an evaluation: their forces once across processes (on the
