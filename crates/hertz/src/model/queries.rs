@@ -43,3 +43,36 @@ pub fn stiffest_young(model: &Model) -> std::collections::HashMap<usize, f64> {
     }
     young
 }
+
+/// The nodes of the deformable master surfaces of every contact condition (element edges and
+/// faces a condition's nodes meet, a mortar condition's slave surface too, node-to-node
+/// masters): with the slave nodes, the contact boundary of both bodies.
+pub fn master_surface_nodes(model: &Model) -> Vec<usize> {
+    let mut nodes = Vec::new();
+    for c in &model.contacts {
+        let segments: Vec<usize> = match &c.pairing {
+            super::Pairing::NodeToNode { pairs } => {
+                nodes.extend(pairs.iter().map(|&(m, _)| m));
+                continue;
+            }
+            super::Pairing::NodeToSegment { segments, .. } => segments.clone(),
+            super::Pairing::Mortar { slave, segments } => {
+                segments.iter().chain([slave]).copied().collect()
+            }
+        };
+        for g in segments {
+            if let SegmentKind::Edges { edges: sides } | SegmentKind::Faces { faces: sides } =
+                &model.segments[g].kind
+            {
+                for &(e, b) in sides {
+                    let el = &model.elements[e];
+                    let local = el.etype.shape().boundaries()[b - 1];
+                    nodes.extend(local.iter().map(|&a| el.nodes[a]));
+                }
+            }
+        }
+    }
+    nodes.sort_unstable();
+    nodes.dedup();
+    nodes
+}

@@ -17,9 +17,10 @@
 //! acceleration is in equilibrium, M·a₀ = F_ext(0) − F_int(u₀) − C·v₀, where no initial
 //! condition gives one (OOFEM takes 0, QUIRK); the reactions are the support forces, inertia
 //! and damping included (OOFEM's omit them, QUIRK); a step that does not converge is cut in
-//! time (the scheme's constants follow the substep); the contact nodes' mass is moved into
-//! their elements ([`crate::assembly::mass::redistribute`]; OOFEM keeps it, and its contact
-//! chatters and makes energy at an impact) unless the analysis says `keepcontactmass`.
+//! time (the scheme's constants follow the substep); the mass of the contact surfaces' nodes,
+//! slave and deformable master, is moved into their elements
+//! ([`crate::assembly::mass::redistribute`]; OOFEM keeps it, and its contact chatters and
+//! makes energy at an impact) unless the analysis says `keepcontactmass`.
 
 use super::load_history::LoadHistory;
 use super::newton::{Committed, NewtonContext};
@@ -263,7 +264,8 @@ pub fn run(
         NewtonContext::new(model, &dofs, contact, params, observer)?;
     let mut massless = vec![false; model.nodes.len()];
     if !dynamics.keep_contact_mass {
-        for &n in ctx.contact_nodes() {
+        let master = crate::model::queries::master_surface_nodes(model);
+        for &n in ctx.contact_nodes().iter().chain(&master) {
             massless[n] = true;
         }
     }
