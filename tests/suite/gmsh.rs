@@ -351,6 +351,29 @@ fn physical_groups_become_sets_of_element_boundaries() {
     assert!((length - 1.0).abs() < 1e-12, "top length {length}");
 }
 
+/// The sets `hertz import` and `@gmsh` write carry their physical groups' names (`name`), by
+/// which the model finds them: "top" is the set of the faces at z = 1, "body" the elements.
+#[test]
+fn physical_group_names_name_the_sets() {
+    let c = convert(&data("cube_tet.msh"), Plane::Stress).unwrap();
+    let records = c.records().join("\n");
+    let mesh = data("cube_tet.msh");
+    for text in [
+        patch_input(&c, &records),
+        patch_input(&c, &format!("@gmsh \"{}\"", mesh.display())),
+    ] {
+        let model = crate::common::model_from_text(&text).unwrap();
+        let top = model.set_named("top").unwrap();
+        assert_eq!(top, c.sets.iter().find(|s| s.name == "top").unwrap().number);
+        let nodes = &model.sets[top - 1].nodes;
+        assert!(!nodes.is_empty());
+        assert!(nodes.iter().all(|&n| model.nodes[n].coords[2] == 1.0));
+        let body = model.set_named("body").unwrap();
+        assert_eq!(model.sets[body - 1].elements.len(), model.elements.len());
+        assert_eq!(model.set_named("Top"), None);
+    }
+}
+
 /// Elements listed clockwise (a surface meshed with its normal along -z) are mirrored to a
 /// positive Jacobian, and the model still passes the patch test.
 #[test]

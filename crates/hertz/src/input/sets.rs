@@ -75,6 +75,7 @@ pub(super) fn member_nodes(
 
 pub(super) fn read_sets(c: &mut Cursor, nset: usize, refs: &Refs) -> Result<Vec<Set>> {
     let mut sets = Numbered::new("set", nset);
+    let mut names = HashMap::new();
     for i in 0..nset {
         let r = c.next_of(Block::Set, i, nset)?;
         if r.keyword() != "set" {
@@ -84,7 +85,15 @@ pub(super) fn read_sets(c: &mut Cursor, nset: usize, refs: &Refs) -> Result<Vec<
                 r.keyword()
             )));
         }
-        sets.put(&r, read_set(&r, refs)?)?;
+        let set = read_set(&r, refs)?;
+        if let Some(name) = &set.name {
+            if let Some(k) = names.insert(name.clone(), r.number()?) {
+                return Err(r.error(format!(
+                    "set name \"{name}\" is set {k}'s already: a name must name one set"
+                )));
+            }
+        }
+        sets.put(&r, set)?;
         refuse_stray_numbers(&r)?;
         c.finish(&r);
     }
@@ -215,7 +224,18 @@ fn read_set(r: &Record, refs: &Refs) -> Result<Set> {
     };
     elements.sort_unstable();
     elements.dedup();
+    let name = r.opt_string("name")?;
+    if name
+        .as_deref()
+        .is_some_and(|n| n.is_empty() || n.parse::<f64>().is_ok())
+    {
+        return Err(r.error(
+            "a set's `name` is text that is not a number (a set is addressed by its number \
+             or its name)",
+        ));
+    }
     Ok(Set {
+        name,
         nodes,
         elements,
         boundaries,

@@ -767,9 +767,22 @@ impl Converted {
                 let l: Vec<String> = s.nodes.iter().map(|n| (n + 1).to_string()).collect();
                 r += &format!(" nodes {} {}", l.len(), l.join(" "));
             }
+            if self.writes_name(s) {
+                r += &format!(" name \"{}\"", s.name);
+            }
             out.push(r);
         }
         out
+    }
+
+    /// Whether set `s`'s record names it (hertz's `name`): a physical group's name that no
+    /// other group has, that is not a number and holds no quote or control character.
+    fn writes_name(&self, s: &GroupSet) -> bool {
+        let n = &s.name;
+        !n.is_empty()
+            && n.parse::<f64>().is_err()
+            && !n.chars().any(|c| c == '"' || c.is_control())
+            && self.sets.iter().filter(|t| &t.name == n).count() == 1
     }
 
     /// One line per set: number, name, what it holds.

@@ -806,6 +806,9 @@ pub struct Set {
     /// Nodes its `nodes` and `noderanges` give more than once (a contact condition refuses them
     /// as it refuses a node listed twice in its own `nodeset`).
     pub repeated: Vec<usize>,
+    /// hertz's `name "text"` (a Gmsh physical group's name, written by `hertz import` and
+    /// `@gmsh`): unique among the model's sets.
+    pub name: Option<String>,
 }
 
 /// The whole problem.
@@ -831,6 +834,14 @@ pub struct Model {
 }
 
 impl Model {
+    /// The number (from 1) of the set named `name` (hertz's `name` on a set record).
+    pub fn set_named(&self, name: &str) -> Option<usize> {
+        self.sets
+            .iter()
+            .position(|s| s.name.as_deref() == Some(name))
+            .map(|i| i + 1)
+    }
+
     /// Times of steps 1..=n (spec §1.3).
     pub fn step_times(&self) -> Vec<f64> {
         let a = &self.analysis;
