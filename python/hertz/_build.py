@@ -87,6 +87,54 @@ def _pairs(items, what):
     return out
 
 
+# The parameters that refer to a set by its number.
+_SET_KEYS = {"set", "slaveset", "masterset", "edgeset", "boundaryset"}
+
+
+def _set_numbers(sets):
+    """Set name -> number of the sets given a "name" (text, unique, not a number)."""
+    numbers = {}
+    for number, spec in sets.items():
+        name = spec.get("name") if isinstance(spec, dict) else None
+        if name is None:
+            continue
+        if (
+            not isinstance(name, str)
+            or not name
+            or '"' in name
+            or not name.isprintable()
+            or _is_number(name)
+        ):
+            raise ValueError(
+                f"set {number}: a name is one line of text, without quotes and not a number, "
+                f"not {name!r}"
+            )
+        if name in numbers:
+            raise ValueError(f"set {number}: the name {name!r} is set {numbers[name]}'s already")
+        numbers[name] = number
+    return numbers
+
+
+def _is_number(text):
+    try:
+        float(text)
+        return True
+    except ValueError:
+        return False
+
+
+def _named_sets(keyword, params, numbers):
+    """`params` with each set given by name (a str under a set key) replaced by its number."""
+    out = dict(params)
+    for key, v in params.items():
+        if key in _SET_KEYS and isinstance(v, str):
+            if v not in numbers:
+                known = ", ".join(repr(n) for n in numbers) or "none"
+                raise KeyError(f"{keyword}: {key} {v!r} names no set (named: {known})")
+            out[key] = numbers[v]
+    return out
+
+
 def from_arrays(*args, **kwargs):
     """A `hertz.Model` from arrays: `input_from_arrays`'s text, read by the library's reader
     (named `name` in messages)."""
@@ -129,7 +177,9 @@ def input_from_arrays(
         A list or array value is written with its count first, as OOFEM's arrays are; True
         alone is a flag.
     sets: set number -> dict of "nodes" (labels), "elements" (labels), "elementboundaries"
-        or "boundaries" ((k, 2): element label, boundary number), "elementedges" ((k, 2)).
+        or "boundaries" ((k, 2): element label, boundary number), "elementedges" ((k, 2)),
+        and "name" (text, unique): a record's "set", "slaveset", "masterset", "edgeset" or
+        "boundaryset" may then give the set's name in place of its number.
     analysis: (analysis keyword, parameters), e.g. ("StaticStructural", {"nsteps": 2}).
     name: the model's name in messages; outputs are named after it.
     """
@@ -180,6 +230,11 @@ def input_from_arrays(
     if segments:
         counts += f" ncontactseg {len(segments)}"
     lines.append(counts)
+    numbers = _set_numbers(sets)
+    materials, cross_sections, conditions, initial, segments = (
+        [(kw, _named_sets(kw, p, numbers)) for kw, p in group]
+        for group in (materials, cross_sections, conditions, initial, segments)
+    )
     for i, x in enumerate(nodes):
         lines.append(_record("node", i + 1, {"coords": x}))
     lines.extend(element_lines)
@@ -189,9 +244,15 @@ def input_from_arrays(
         for k, (kw, p) in enumerate(group):
             lines.append(_record(kw, k + 1, p))
     for number in sorted(sets):
-        spec = {}
+        spec, name = {}, None
         for key, v in sets[number].items():
+            if key == "name":
+                name = v
+                continue
             key = "elementboundaries" if key == "boundaries" else key
             spec[key] = _labels(v, f"set {number} {key}")
-        lines.append(_record("Set", number, spec))
+        record = _record("Set", number, spec)
+        if name is not None:
+            record += f' name "{name}"'
+        lines.append(record)
     return "\n".join(lines) + "\n"

@@ -50,7 +50,79 @@ pub fn read_string(py: Python<'_>, text: &str, name: &str) -> PyResult<Model> {
     })
 }
 
+/// A record addressed by its number or by the name of the set it acts on.
+#[derive(FromPyObject)]
+pub enum RecordKey {
+    Number(usize),
+    Name(String),
+}
+
 impl Model {
+    /// The dict of set index `i` (see `sets`).
+    fn set_dict<'py>(&self, py: Python<'py>, i: usize) -> PyResult<Bound<'py, PyDict>> {
+        let s = &self.model.sets[i];
+        let d = PyDict::new(py);
+        d.set_item("nodes", self.label_array(py, &s.nodes))?;
+        let elements: Vec<i64> = s
+            .elements
+            .iter()
+            .map(|&e| self.model.elements[e].label as i64)
+            .collect();
+        d.set_item("elements", elements.into_pyarray(py))?;
+        let b: Vec<i64> = s
+            .boundaries
+            .iter()
+            .flat_map(|&(e, k)| [self.model.elements[e].label as i64, k as i64])
+            .collect();
+        d.set_item("boundaries", array2_i64(py, s.boundaries.len(), 2, b))?;
+        if let Some(name) = &s.name {
+            d.set_item("name", name)?;
+        }
+        Ok(d)
+    }
+
+    /// The number of the set named `name`, or a KeyError that lists the names there are.
+    fn set_number(&self, name: &str) -> PyResult<usize> {
+        self.model.set_named(name).ok_or_else(|| {
+            let names: Vec<String> = self
+                .model
+                .sets
+                .iter()
+                .filter_map(|s| s.name.as_ref().map(|n| format!("{n:?}")))
+                .collect();
+            PyKeyError::new_err(if names.is_empty() {
+                format!("no set is named {name:?}: the model's sets have no names")
+            } else {
+                format!("no set is named {name:?} (named: {})", names.join(", "))
+            })
+        })
+    }
+
+    /// The record number `key` gives: itself, or the one record of `records` ((number, set
+    /// number) pairs, `what` in messages) on the set named so.
+    fn record_number(
+        &self,
+        key: RecordKey,
+        what: &str,
+        records: impl Iterator<Item = (usize, usize)>,
+    ) -> PyResult<usize> {
+        let name = match key {
+            RecordKey::Number(n) => return Ok(n),
+            RecordKey::Name(name) => name,
+        };
+        let set = self.set_number(&name)?;
+        let on: Vec<usize> = records.filter(|&(_, s)| s == set).map(|(n, _)| n).collect();
+        match on[..] {
+            [n] => Ok(n),
+            [] => Err(PyKeyError::new_err(format!(
+                "no {what} acts on set {set} ({name:?})"
+            ))),
+            _ => Err(PyValueError::new_err(format!(
+                "{what}s {on:?} all act on set {set} ({name:?}): give the record number"
+            ))),
+        }
+    }
+
     fn label_array<'py>(&self, py: Python<'py>, nodes: &[usize]) -> Bound<'py, PyArray1<i64>> {
         nodes
             .iter()
@@ -121,29 +193,31 @@ impl Model {
         Ok(out)
     }
 
-    /// Set number → dict with `nodes` (node labels), `elements` (element labels) and
-    /// `boundaries` (k × 2: element label, boundary number of OOFEM's numbering).
+    /// Set number → dict with `nodes` (node labels), `elements` (element labels),
+    /// `boundaries` (k × 2: element label, boundary number of OOFEM's numbering) and `name`
+    /// (the set record's `name`, e.g. a Gmsh physical group's; only where it has one).
     #[getter]
     fn sets<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let out = PyDict::new(py);
-        for (i, s) in self.model.sets.iter().enumerate() {
-            let d = PyDict::new(py);
-            d.set_item("nodes", self.label_array(py, &s.nodes))?;
-            let elements: Vec<i64> = s
-                .elements
-                .iter()
-                .map(|&e| self.model.elements[e].label as i64)
-                .collect();
-            d.set_item("elements", elements.into_pyarray(py))?;
-            let b: Vec<i64> = s
-                .boundaries
-                .iter()
-                .flat_map(|&(e, k)| [self.model.elements[e].label as i64, k as i64])
-                .collect();
-            d.set_item("boundaries", array2_i64(py, s.boundaries.len(), 2, b))?;
-            out.set_item(i + 1, d)?;
+        for i in 0..self.model.sets.len() {
+            out.set_item(i + 1, self.set_dict(py, i)?)?;
         }
         Ok(out)
+    }
+
+    /// The set `key`: its number or its name, as a dict of `sets`.
+    fn set<'py>(&self, py: Python<'py>, key: RecordKey) -> PyResult<Bound<'py, PyDict>> {
+        let number = match key {
+            RecordKey::Number(n) if (1..=self.model.sets.len()).contains(&n) => n,
+            RecordKey::Number(n) => {
+                return Err(PyKeyError::new_err(format!(
+                    "no set {n} (1..={})",
+                    self.model.sets.len()
+                )))
+            }
+            RecordKey::Name(name) => self.set_number(&name)?,
+        };
+        self.set_dict(py, number - 1)
     }
 
     /// Material number → dict: `law` and, for `IsoLE` and `MisesMat`, `E` and `nu`.
@@ -311,9 +385,20 @@ impl Model {
         Ok(())
     }
 
-    /// Change boundary condition `number`'s prescribed values: one per DOF it prescribes, or
-    /// one number for all of them.
-    fn set_boundary_condition(&mut self, number: usize, values: &Bound<'_, PyAny>) -> PyResult<()> {
+    /// Change boundary condition `key`'s prescribed values (its record number, or the name of
+    /// the set it is the one boundary condition of): one per DOF it prescribes, or one number
+    /// for all of them.
+    fn set_boundary_condition(
+        &mut self,
+        key: RecordKey,
+        values: &Bound<'_, PyAny>,
+    ) -> PyResult<()> {
+        let records = self
+            .model
+            .dirichlet
+            .iter()
+            .filter_map(|b| b.set.map(|s| (b.number, s)));
+        let number = self.record_number(key, "boundary condition", records)?;
         let b = self
             .model
             .dirichlet
@@ -324,8 +409,11 @@ impl Model {
         Ok(())
     }
 
-    /// Change load `number`'s components: as many as the record has, or one number for all.
-    fn set_load(&mut self, number: usize, components: &Bound<'_, PyAny>) -> PyResult<()> {
+    /// Change load `key`'s components (its record number, or the name of the set it is the one
+    /// load of): as many as the record has, or one number for all.
+    fn set_load(&mut self, key: RecordKey, components: &Bound<'_, PyAny>) -> PyResult<()> {
+        let records = self.model.loads.iter().map(|l| (l.number, l.set));
+        let number = self.record_number(key, "load", records)?;
         let l = self
             .model
             .loads

@@ -491,3 +491,82 @@ Set 4 nodes 3 3 6 9
     for n, elements in around.items():
         means = [p["stress"][p["element"] == e].mean(axis=0) for e in elements]
         assert np.allclose(p["nodal_stress"][labels.index(n)], np.mean(means, axis=0), rtol=1e-12, atol=1e-12)
+
+
+def test_records_are_addressed_by_their_set_name():
+    # A Gmsh physical group's name names its set: the block's bottom is set 3, where boundary
+    # condition 2 pushes it up.
+    model = hertz.read(EXAMPLES / "gmsh" / "hertz_gmsh.in")
+    bottom = model.set("bottom")
+    assert bottom["name"] == "bottom"
+    assert np.array_equal(bottom["nodes"], model.sets[3]["nodes"])
+    assert model.boundary_conditions[2]["set"] == 3
+    by_number = hertz.read(EXAMPLES / "gmsh" / "hertz_gmsh.in")
+    model.set_boundary_condition("bottom", 0.03)
+    by_number.set_boundary_condition(2, 0.03)
+    assert model.boundary_conditions[2]["values"] == [0.03]
+    same_answer(model.solve(), by_number.solve())
+    with pytest.raises(KeyError, match='"top".*"bottom"'):
+        model.set("top")
+    with pytest.raises(KeyError, match="no load acts on set 3"):
+        model.set_load("bottom", 1.0)
+    # Built from arrays, a set's name stands for its number in the records that name a set.
+    text = hertz.read(EXAMPLES / "wedge_on_brick.in")
+    names = {2: "floor", 3: "axis", 4: "side", 5: "indenter"}
+    sets = {n: {k: v for k, v in s.items() if len(v)} for n, s in text.sets.items()}
+    for n, name in names.items():
+        sets[n]["name"] = name
+    conditions = [
+        ("BoundaryCondition", {"loadTimeFunction": 2, "dofs": [3], "values": [0], "set": "floor"}),
+        ("BoundaryCondition", {"loadTimeFunction": 2, "dofs": [1, 2], "values": [0, 0], "set": "axis"}),
+        ("BoundaryCondition", {"loadTimeFunction": 2, "dofs": [2], "values": [0], "set": "side"}),
+        (
+            "BoundaryCondition",
+            {"loadTimeFunction": 1, "dofs": [1, 2, 3], "values": [0, 0, -0.01], "set": "indenter"},
+        ),
+        (
+            "n2slagrangianmultipliercontact",
+            {"loadTimeFunction": 1, "nodeset": [9, 10, 11], "segmentset": [1]},
+        ),
+    ]
+    built = hertz.from_arrays(
+        text.nodes,
+        {
+            "LSpace": text.elements["LSpace"]["connectivity"],
+            "LWedge": text.elements["LWedge"]["connectivity"],
+        },
+        domain="3d",
+        analysis=("StaticStructural", {"nsteps": 1, "deltat": 1, "rtolf": 1e-8, "maxiter": 25}),
+        materials=[("IsoLE", {"d": 0, "E": 1000.0, "n": 0.3, "tAlpha": 0})],
+        segments=[("linear3delementsurfacecontactsegment", {"boundaryset": 1})],
+        conditions=conditions,
+        functions=[
+            ("PiecewiseLinFunction", {"npoints": 2, "t": [0, 1], "f(t)": [0, 1]}),
+            ("ConstantFunction", {"f(t)": 1.0}),
+        ],
+        sets=sets,
+        name="wedge_named",
+    )
+    assert [built.boundary_conditions[k]["set"] for k in (1, 2, 3, 4)] == [2, 3, 4, 5]
+    assert built.set("indenter")["name"] == "indenter"
+    built.set_boundary_condition("indenter", [0.0, 0.0, -0.005])
+    text.set_boundary_condition(4, [0.0, 0.0, -0.005])
+    same_answer(text.solve(), built.solve())
+    with pytest.raises(KeyError, match="'roof' names no set"):
+        hertz.from_arrays(
+            text.nodes,
+            {"LSpace": text.elements["LSpace"]["connectivity"]},
+            domain="3d",
+            materials=[("IsoLE", {"d": 0, "E": 1.0, "n": 0.3, "tAlpha": 0})],
+            conditions=[("BoundaryCondition", {"loadTimeFunction": 1, "dofs": [3], "values": [0], "set": "roof"})],
+            sets=sets,
+        )
+    sets[3]["name"] = "floor"
+    with pytest.raises(ValueError, match="'floor' is set 2's already"):
+        hertz.from_arrays(
+            text.nodes,
+            {"LSpace": text.elements["LSpace"]["connectivity"]},
+            domain="3d",
+            materials=[("IsoLE", {"d": 0, "E": 1.0, "n": 0.3, "tAlpha": 0})],
+            sets=sets,
+        )
