@@ -645,6 +645,182 @@ fn colliding_rods(n: usize, dt: f64, law: &str) -> String {
     )
 }
 
+/// An elastic ring (radii 0.6 and 1, 48 × 3 plane strain quadrilaterals) 0.01 above an elastic
+/// plate (4 × 0.5, 32 × 4, its base held), both E = 1, ν = 0.3, ρ = 1, the ring moving at 0.05
+/// towards it at 45°; the ring's lower outer surface meets the plate's top by `law` (its nodes
+/// for node-to-segment, its edges for an `s2s` law) with `friction`; 300 steps of 0.05.
+fn ring_on_a_plate(law: &str, friction: f64) -> String {
+    let (nt, nr, inner, outer, gap, speed) = (48, 3, 0.6, 1.0, 0.01, 0.05);
+    let (nx, ny, width, depth) = (32, 4, 4.0, 0.5);
+    let mut nodes: Vec<[f64; 2]> = Vec::new();
+    let mut elements: Vec<[usize; 4]> = Vec::new();
+    let plate = |i: usize, j: usize| j * (nx + 1) + i + 1;
+    for j in 0..=ny {
+        for i in 0..=nx {
+            let (x, y) = (i as f64 / nx as f64, j as f64 / ny as f64);
+            nodes.push([width * (x - 0.5), depth * (y - 1.0)]);
+        }
+    }
+    for j in 0..ny {
+        for i in 0..nx {
+            elements.push([
+                plate(i, j),
+                plate(i + 1, j),
+                plate(i + 1, j + 1),
+                plate(i, j + 1),
+            ]);
+        }
+    }
+    let (first, plate_elements) = (nodes.len() + 1, elements.len());
+    let ring = |k: usize, j: usize| first + k * nt + j % nt;
+    let angle = |j: f64| 2.0 * std::f64::consts::PI * j / nt as f64;
+    for k in 0..=nr {
+        let r = inner + (outer - inner) * k as f64 / nr as f64;
+        for j in 0..nt {
+            let t = angle(j as f64);
+            nodes.push([r * t.cos(), outer + gap + r * t.sin()]);
+        }
+    }
+    for k in 0..nr {
+        for j in 0..nt {
+            elements.push([
+                ring(k, j),
+                ring(k + 1, j),
+                ring(k + 1, j + 1),
+                ring(k, j + 1),
+            ]);
+        }
+    }
+    let list = |v: Vec<usize>| {
+        let s: Vec<String> = v.iter().map(|x| x.to_string()).collect();
+        format!("{} {}", s.len(), s.join(" "))
+    };
+    // The lower part of the ring's outer surface: its nodes, and its elements' edge 2.
+    let lower = |t: f64| angle(t).sin() < -0.3;
+    let slaves: Vec<usize> = (0..nt)
+        .filter(|&j| lower(j as f64))
+        .map(|j| ring(nr, j))
+        .collect();
+    let edges: Vec<String> = (0..nt)
+        .filter(|&j| lower(j as f64 + 0.5))
+        .map(|j| format!("{} 2", plate_elements + (nr - 1) * nt + j + 1))
+        .collect();
+    let top: Vec<String> = (0..nx)
+        .map(|i| format!("{} 3", (ny - 1) * nx + i + 1))
+        .collect();
+    let condition = if law.starts_with("s2s") {
+        format!("{law} slavesegment 2 segmentset 1 1")
+    } else {
+        format!("{law} slaveset 3 segmentset 1 1")
+    };
+    let friction = if friction > 0.0 {
+        format!(" friction {friction}")
+    } else {
+        String::new()
+    };
+    let v = speed * std::f64::consts::FRAC_1_SQRT_2;
+    format!(
+        "ring.out\nA ring hits a plate at an angle\n\
+         NonLinearDynamic nsteps 300 deltat 0.05 ddtScheme 2 rtolf 1e-9 manrmsteps 1 maxiter 40\n\
+         domain PlaneStrain\nOutputManager\n\
+         ndofman {} nelem {} ncrosssect 1 nmat 1 nbc 2 nic 2 nltf 1 nset 6 ncontactseg 2\n{}\n{}\n\
+         linear2delementedgecontactsegment 1 edgeset 5\n\
+         linear2delementedgecontactsegment 2 edgeset 6\nSimpleCS 1 thick 1 material 1 set 1\n\
+         IsoLE 1 d 1 E 1 n 0.3 tAlpha 0\n\
+         BoundaryCondition 1 loadTimeFunction 1 dofs 2 1 2 values 2 0 0 set 2\n\
+         {condition}{friction}\n\
+         InitialCondition 1 conditions 1 v {v} set 4 dofs 1 1\n\
+         InitialCondition 2 conditions 1 v {} set 4 dofs 1 2\nConstantFunction 1 f(t) 1\n\
+         Set 1 allelements\nSet 2 nodes {}\nSet 3 nodes {}\nSet 4 nodes {}\n\
+         Set 5 elementboundaries {} {}\nSet 6 elementboundaries {} {}\n",
+        nodes.len(),
+        elements.len(),
+        nodes
+            .iter()
+            .enumerate()
+            .map(|(k, x)| format!("node {} coords 2 {} {}", k + 1, x[0], x[1]))
+            .collect::<Vec<_>>()
+            .join("\n"),
+        elements
+            .iter()
+            .enumerate()
+            .map(|(k, n)| format!(
+                "Quad1PlaneStrain {} nodes 4 {} {} {} {} crossSect 1 mat 1",
+                k + 1,
+                n[0],
+                n[1],
+                n[2],
+                n[3]
+            ))
+            .collect::<Vec<_>>()
+            .join("\n"),
+        -v,
+        list((0..=nx).map(|i| plate(i, 0)).collect()),
+        list(slaves),
+        list((first..=nodes.len()).collect()),
+        2 * top.len(),
+        top.join(" "),
+        2 * edges.len(),
+        edges.join(" "),
+    )
+}
+
+/// An elastic ring hitting an elastic plate at 45°, node-to-segment and mortar, multipliers and
+/// penalty: with Coulomb friction (μ = 0.3) its energy never rises and what it loses is the
+/// contact's work, which friction does (to 1e-9 of the energy; a fifth of it here: measured
+/// 0.200 node-to-segment, 0.191 mortar); without friction it leaves with its energy within
+/// 1 % (measured: 0.26 % lost node-to-segment, whose energy rose 0.14 % on the way; mortar
+/// 0.013 %), in at most 4 iterations a step.
+#[test]
+fn a_ring_hitting_a_plate_at_an_angle_loses_to_friction_what_friction_works() {
+    let mech = |e: &Energy| e.kinetic + e.internal;
+    for law in [
+        "n2slagrangianmultipliercontact 2 loadTimeFunction 1",
+        "n2spenaltycontact 2 loadTimeFunction 1",
+        "s2slagrangianmultipliercontact 2 loadTimeFunction 1",
+        "s2spenaltycontact 2 loadTimeFunction 1",
+    ] {
+        for mu in [0.3, 0.0] {
+            let model = crate::common::model_from_text(&ring_on_a_plate(law, mu)).unwrap();
+            let (mut initial, mut highest, mut last_contact) = (f64::NAN, 0.0f64, 0);
+            let (mut energy, mut iterations) = (Energy::default(), 0);
+            run_analysis(&model, &crate::common::quiet(), |r| {
+                let m = r.motion.unwrap();
+                if initial.is_nan() {
+                    initial = mech(&m.energy);
+                }
+                highest = highest.max(mech(&m.energy));
+                if r.contact.iter().any(|c| c.force.abs() > 1e-9) {
+                    last_contact = r.step;
+                }
+                energy = m.energy;
+                iterations = iterations.max(r.info.iterations);
+                Ok(())
+            })
+            .unwrap();
+            let case = format!("{law} μ {mu}: {energy:?}");
+            assert!(
+                last_contact > 5 && last_contact < 280,
+                "{case}: {last_contact}"
+            );
+            let lost = 1.0 - mech(&energy) / initial;
+            assert!(energy.balance().abs() < 1e-9 * initial, "{case}");
+            if mu > 0.0 {
+                assert!(
+                    highest <= initial * (1.0 + 1e-9),
+                    "{case}: rose to {highest}"
+                );
+                assert!((lost - energy.contact / initial).abs() < 1e-9, "{case}");
+                assert!(lost > 0.1, "{case}: lost {lost}");
+            } else {
+                assert!(highest <= initial * 1.005, "{case}: rose to {highest}");
+                assert!(lost.abs() < 0.01, "{case}: lost {lost}");
+            }
+            assert!(iterations <= 4, "{case}: {iterations} iterations");
+        }
+    }
+}
+
 /// Two equal elastic rods colliding at ±V (1D wave theory: each meets the other as a rigid wall
 /// at the plane of symmetry, contact lasts 2L/c under ρcV and each rod leaves at ∓V with its
 /// energy), with node-to-segment and mortar contact, multipliers and penalty: the contact time
