@@ -648,8 +648,9 @@ fn colliding_rods(n: usize, dt: f64, law: &str) -> String {
 /// An elastic ring (radii 0.6 and 1, 48 × 3 plane strain quadrilaterals) 0.01 above an elastic
 /// plate (4 × 0.5, 32 × 4, its base held), both E = 1, ν = 0.3, ρ = 1, the ring moving at 0.05
 /// towards it at 45°; the ring's lower outer surface meets the plate's top by `law` (its nodes
-/// for node-to-segment, its edges for an `s2s` law) with `friction`; 300 steps of 0.05.
-fn ring_on_a_plate(law: &str, friction: f64) -> String {
+/// for node-to-segment, its edges for an `s2s` law) with `friction`; 300 steps of 0.05; with
+/// `nlgeo`, total Lagrangian elements.
+fn ring_on_a_plate(law: &str, friction: f64, nlgeo: bool) -> String {
     let (nt, nr, inner, outer, gap, speed) = (48, 3, 0.6, 1.0, 0.01, 0.05);
     let (nx, ny, width, depth) = (32, 4, 4.0, 0.5);
     let mut nodes: Vec<[f64; 2]> = Vec::new();
@@ -745,12 +746,13 @@ fn ring_on_a_plate(law: &str, friction: f64) -> String {
             .iter()
             .enumerate()
             .map(|(k, n)| format!(
-                "Quad1PlaneStrain {} nodes 4 {} {} {} {} crossSect 1 mat 1",
+                "Quad1PlaneStrain {} nodes 4 {} {} {} {} crossSect 1 mat 1 nlgeo {}",
                 k + 1,
                 n[0],
                 n[1],
                 n[2],
-                n[3]
+                n[3],
+                u8::from(nlgeo)
             ))
             .collect::<Vec<_>>()
             .join("\n"),
@@ -770,7 +772,8 @@ fn ring_on_a_plate(law: &str, friction: f64) -> String {
 /// contact's work, which friction does (to 1e-9 of the energy; a fifth of it here: measured
 /// 0.200 node-to-segment, 0.191 mortar); without friction it leaves with its energy within
 /// 1 % (measured: 0.26 % lost node-to-segment, whose energy rose 0.14 % on the way; mortar
-/// 0.013 %), in at most 4 iterations a step.
+/// 0.013 %), in at most 4 iterations a step; with friction in large deformation too
+/// (node-to-segment multipliers and mortar penalty).
 #[test]
 fn a_ring_hitting_a_plate_at_an_angle_loses_to_friction_what_friction_works() {
     let mech = |e: &Energy| e.kinetic + e.internal;
@@ -780,8 +783,14 @@ fn a_ring_hitting_a_plate_at_an_angle_loses_to_friction_what_friction_works() {
         "s2slagrangianmultipliercontact 2 loadTimeFunction 1",
         "s2spenaltycontact 2 loadTimeFunction 1",
     ] {
-        for mu in [0.3, 0.0] {
-            let model = crate::common::model_from_text(&ring_on_a_plate(law, mu)).unwrap();
+        // Large deformation with friction for one law of each formulation.
+        let large = law.contains("multiplier") == law.starts_with("n2s");
+        for (mu, nlgeo) in [(0.3, false), (0.0, false), (0.3, true)] {
+            if nlgeo && !large {
+                continue;
+            }
+            let text = ring_on_a_plate(law, mu, nlgeo);
+            let model = crate::common::model_from_text(&text).unwrap();
             let (mut initial, mut highest, mut last_contact) = (f64::NAN, 0.0f64, 0);
             let (mut energy, mut iterations) = (Energy::default(), 0);
             run_analysis(&model, &crate::common::quiet(), |r| {
@@ -798,7 +807,7 @@ fn a_ring_hitting_a_plate_at_an_angle_loses_to_friction_what_friction_works() {
                 Ok(())
             })
             .unwrap();
-            let case = format!("{law} μ {mu}: {energy:?}");
+            let case = format!("{law} μ {mu} nlgeo {nlgeo}: {energy:?}");
             assert!(
                 last_contact > 5 && last_contact < 280,
                 "{case}: {last_contact}"
