@@ -361,3 +361,66 @@ fn a_block_sliding_with_friction_matches_hertz_on_one_and_two_ranks() {
         );
     }
 }
+
+/// The rod dropped on a floor (`examples/rod_impact.in`: implicit dynamics, multipliers) by
+/// PETSc on one process and on two ranks: the same iterations and contact forces, and energies
+/// equal to hertz's own solver's to 1e-8. (Two ranks crashed before: the inertia's forces were
+/// added on the first rank only, and the second took other decisions.)
+#[test]
+fn an_impact_matches_hertz_on_one_and_two_ranks() {
+    let dir = tmp("impact");
+    let file = "examples/rod_impact.in";
+    let reference = dir.join("ref");
+    assert!(run(file, &reference, &[], 1).status.success());
+    for ranks in [1, 2] {
+        let out_dir = dir.join(format!("ranks{ranks}"));
+        let out = run(file, &out_dir, &["--solver", "petsc"], ranks);
+        assert!(out.status.success(), "{ranks} ranks: {out:?}");
+        let steps = |d: &Path| csv(&d.join("rod_impact.steps.csv"));
+        let its = |d: &Path| -> Vec<f64> { steps(d).iter().map(|r| r["iterations"]).collect() };
+        assert_eq!(its(&reference), its(&out_dir), "{ranks} ranks");
+        same_columns(
+            &reference.join("rod_impact.energy.csv"),
+            &out_dir.join("rod_impact.energy.csv"),
+            1e-8,
+            |k| ["kinetic", "internal", "contact"].contains(&k),
+        );
+        same_columns(
+            &reference.join("rod_impact.contact.csv"),
+            &out_dir.join("rod_impact.contact.csv"),
+            1e-8,
+            |k| k == "force",
+        );
+    }
+}
+
+/// The rubber tube inflated by a follower pressure (3D, `tests/suite/pressure.rs`): a load whose
+/// forces are a step's own terms, as the inertia is. On one process and on two ranks PETSc
+/// gives hertz's iterations and reactions to 1e-8 (two ranks waited on each other forever
+/// before: the load's forces were the first rank's alone).
+#[test]
+fn a_follower_pressure_matches_hertz_on_one_and_two_ranks() {
+    let dir = tmp("follower");
+    let (_, models) = crate::pressure::inflated_tube(true);
+    let text = &models[2].1;
+    let file = &written(&dir, "tube.in", text);
+    // Its output files are named after the input's first line.
+    let stem = text.lines().next().unwrap().trim_end_matches(".out");
+    let steps_csv = format!("{stem}.steps.csv");
+    let reference = dir.join("ref");
+    assert!(run(file, &reference, &[], 1).status.success());
+    for ranks in [1, 2] {
+        let out_dir = dir.join(format!("ranks{ranks}"));
+        let out = run(file, &out_dir, &["--solver", "petsc"], ranks);
+        assert!(out.status.success(), "{ranks} ranks: {out:?}");
+        let steps = |d: &Path| csv(&d.join(&steps_csv));
+        let its = |d: &Path| -> Vec<f64> { steps(d).iter().map(|r| r["iterations"]).collect() };
+        assert_eq!(its(&reference), its(&out_dir), "{ranks} ranks");
+        same_columns(
+            &reference.join(&steps_csv),
+            &out_dir.join(&steps_csv),
+            1e-8,
+            |k| k.starts_with("bc") && k.contains(".r"),
+        );
+    }
+}

@@ -358,19 +358,9 @@ fn tube_pressure(mu: f64, (a, b): (f64, f64), stretch: f64) -> f64 {
     0.5 * mu * ((la2 / lb2).ln() + 1.0 / lb2 - 1.0 / la2)
 }
 
-/// A follower pressure inflates a nearly incompressible neo-Hookean tube (Mooney–Rivlin with
-/// c₂ = 0, K = 2000 μ; radii 1 and 2) in plane strain to 1.6 times its bore in large
-/// deformation, modelled three ways: a quarter section of 8-node plane strain quadrilaterals,
-/// an axisymmetric slice with the axial displacement held (8-node), and a quarter of 20-node
-/// bricks with u_z held. Each bore stretch gives back the applied pressure through the
-/// closed form within 0.5 %, Newton converging quadratically (at most 6 iterations a step to
-/// rtolf 1e-10); the same pressure on the reference boundary (no `follower`) is far off (it
-/// pushes on the reference bore, shorter by the stretch). Measured: plane strain 3.0e-4,
-/// axisymmetric 2.4e-4, 3D −6.0e-4, 4–6 iterations a step (residuals 3e-2, 3e-4, 1e-9); without
-/// `follower` −26 % (stretch 1.35). The reactions of the plane x = 0 balance the pressure on the
-/// current bore.
-#[test]
-fn a_follower_pressure_inflates_a_rubber_tube_as_the_closed_form() {
+/// The inflated tube's inputs (plane strain, axisymmetric, 3D), its pressure a follower load or
+/// not, with the pressure `p` of the closed form at a bore stretch of 1.6.
+pub(crate) fn inflated_tube(follower: bool) -> (f64, [(&'static str, String); 3]) {
     let (a, b, mu) = (1.0, 2.0, 1.0);
     let p = tube_pressure(mu, (a, b), 1.6);
     let steps = 8;
@@ -395,39 +385,57 @@ fn a_follower_pressure_inflates_a_rubber_tube_as_the_closed_form() {
         let t = 0.5 * std::f64::consts::PI * xi[1];
         [r * t.cos(), r * t.sin()]
     };
+    let tail = if follower { " follower" } else { "" };
+    let edge = format!(
+        "ConstantEdgeLoad # loadTimeFunction 1 components 2 0 {} csType 1{tail}",
+        -p
+    );
+    let face = format!(
+        "ConstantSurfaceLoad 4 loadTimeFunction 1 components 3 0 0 {} csType 1{tail}",
+        -p
+    );
+    let models = [
+        (
+            "plane strain",
+            Quads::new("QPlaneStrain", quarter, [4, 4], |xi, d| {
+                (d == 0 && xi[1] == 1.0) || (d == 1 && xi[1] == 0.0)
+            })
+            .input(&setup, "PlaneStrain", &edge),
+        ),
+        (
+            "axisymmetric",
+            Quads::new(
+                "Q4Axisymm",
+                |xi| [a + (b - a) * xi[0], 0.25 * xi[1]],
+                [4, 1],
+                |_, d| d == 1,
+            )
+            .input(&setup, "2dPlaneStress", &edge),
+        ),
+        (
+            "3D",
+            Bricks::new(&cylinder_quarter(a, b), [3, 4, 1]).input(&setup, &face, a, true),
+        ),
+    ];
+    (p, models)
+}
+
+/// A follower pressure inflates a nearly incompressible neo-Hookean tube (Mooney–Rivlin with
+/// c₂ = 0, K = 2000 μ; radii 1 and 2) in plane strain to 1.6 times its bore in large
+/// deformation, modelled three ways: a quarter section of 8-node plane strain quadrilaterals,
+/// an axisymmetric slice with the axial displacement held (8-node), and a quarter of 20-node
+/// bricks with u_z held. Each bore stretch gives back the applied pressure through the
+/// closed form within 0.5 %, Newton converging quadratically (at most 6 iterations a step to
+/// rtolf 1e-10); the same pressure on the reference boundary (no `follower`) is far off (it
+/// pushes on the reference bore, shorter by the stretch). Measured: plane strain 3.0e-4,
+/// axisymmetric 2.4e-4, 3D −6.0e-4, 4–6 iterations a step (residuals 3e-2, 3e-4, 1e-9); without
+/// `follower` −26 % (stretch 1.35). The reactions of the plane x = 0 balance the pressure on the
+/// current bore.
+#[test]
+fn a_follower_pressure_inflates_a_rubber_tube_as_the_closed_form() {
+    let (a, b, mu) = (1.0, 2.0, 1.0);
     for follower in [true, false] {
-        let tail = if follower { " follower" } else { "" };
-        let edge = format!(
-            "ConstantEdgeLoad # loadTimeFunction 1 components 2 0 {} csType 1{tail}",
-            -p
-        );
-        let face = format!(
-            "ConstantSurfaceLoad 4 loadTimeFunction 1 components 3 0 0 {} csType 1{tail}",
-            -p
-        );
-        let models = [
-            (
-                "plane strain",
-                Quads::new("QPlaneStrain", quarter, [4, 4], |xi, d| {
-                    (d == 0 && xi[1] == 1.0) || (d == 1 && xi[1] == 0.0)
-                })
-                .input(&setup, "PlaneStrain", &edge),
-            ),
-            (
-                "axisymmetric",
-                Quads::new(
-                    "Q4Axisymm",
-                    |xi| [a + (b - a) * xi[0], 0.25 * xi[1]],
-                    [4, 1],
-                    |_, d| d == 1,
-                )
-                .input(&setup, "2dPlaneStress", &edge),
-            ),
-            (
-                "3D",
-                Bricks::new(&cylinder_quarter(a, b), [3, 4, 1]).input(&setup, &face, a, true),
-            ),
-        ];
+        let (p, models) = inflated_tube(follower);
         for (name, text) in models {
             let model = crate::common::model_from_text(&text).unwrap();
             let mut bore = 0.0;

@@ -79,7 +79,7 @@ impl<'a> Equations<'a> {
             (Some(ranks), Some(d)) => ranks.assemble(&eq.asm, d, u, want_k, dup, extra),
             _ => eq.asm.evaluate(u, want_k, false, dup, extra),
         })?;
-        self.add_terms(u, &mut ev, terms);
+        self.add_terms(u, &mut ev, terms, self.ranks.is_none_or(|r| r.rank == 0));
         self.times.assembly += since(t);
         Ok(ev)
     }
@@ -89,7 +89,7 @@ impl<'a> Equations<'a> {
     pub fn structure(&mut self, u: &[f64], terms: &dyn StepTerms) -> Result<Evaluation> {
         let t = Instant::now();
         let mut ev = self.scaled(terms, |eq| eq.asm.evaluate(u, true, false, None, &[]))?;
-        self.add_terms(u, &mut ev, terms);
+        self.add_terms(u, &mut ev, terms, true);
         self.times.assembly += since(t);
         Ok(ev)
     }
@@ -104,15 +104,17 @@ impl<'a> Equations<'a> {
         out
     }
 
-    /// The step's terms into an evaluation: their forces once across processes (on the
-    /// first), their tangent into this process's share.
-    fn add_terms(&self, u: &[f64], ev: &mut Evaluation, terms: &dyn StepTerms) {
-        if self.ranks.is_none_or(|r| r.rank == 0) {
-            terms.add_forces(u, &mut ev.f_int);
-            terms.add_force_norms(u, self.dofs, &mut ev.ebe);
-            if let Some(k) = ev.k_values.as_mut() {
-                terms.add_tangent(u, &self.asm.pattern, k);
-            }
+    /// The step's terms into an evaluation whose forces are the whole model's (on every
+    /// process: across processes they are summed before), and their tangent where `tangent`
+    /// (across processes into the first one's share only, the solver summing the shares; into
+    /// every process's whole structural tangent). Adding the forces on the first process
+    /// alone left the others' residual without the inertia: they took other decisions in a
+    /// dynamic step and the job ended in a crash.
+    fn add_terms(&self, u: &[f64], ev: &mut Evaluation, terms: &dyn StepTerms, tangent: bool) {
+        terms.add_forces(u, &mut ev.f_int);
+        terms.add_force_norms(u, self.dofs, &mut ev.ebe);
+        if let (true, Some(k)) = (tangent, ev.k_values.as_mut()) {
+            terms.add_tangent(u, &self.asm.pattern, k);
         }
     }
 
