@@ -662,14 +662,13 @@ fn ring_on_a_plate(law: &str, friction: f64, nlgeo: bool) -> String {
             nodes.push([width * (x - 0.5), depth * (y - 1.0)]);
         }
     }
+    // The quadrilateral of a grid `id` from (a, b) to (a + 1, b + 1), counterclockwise.
+    let quad = |id: &dyn Fn(usize, usize) -> usize, a: usize, b: usize| {
+        [id(a, b), id(a + 1, b), id(a + 1, b + 1), id(a, b + 1)]
+    };
     for j in 0..ny {
         for i in 0..nx {
-            elements.push([
-                plate(i, j),
-                plate(i + 1, j),
-                plate(i + 1, j + 1),
-                plate(i, j + 1),
-            ]);
+            elements.push(quad(&plate, i, j));
         }
     }
     let (first, plate_elements) = (nodes.len() + 1, elements.len());
@@ -684,12 +683,7 @@ fn ring_on_a_plate(law: &str, friction: f64, nlgeo: bool) -> String {
     }
     for k in 0..nr {
         for j in 0..nt {
-            elements.push([
-                ring(k, j),
-                ring(k + 1, j),
-                ring(k + 1, j + 1),
-                ring(k, j + 1),
-            ]);
+            elements.push(quad(&ring, k, j));
         }
     }
     let list = |v: Vec<usize>| {

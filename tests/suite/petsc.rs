@@ -93,6 +93,28 @@ fn same_columns(a: &Path, b: &Path, tol: f64, columns: fn(&str) -> bool) {
     }
 }
 
+/// Run `file` with hertz's own solver into `dir`/ref, then by PETSc on one process and on two
+/// ranks into `dir`/ranks1 and ranks2: each run succeeds with the reference's Newton iterations
+/// (its `stem`.steps.csv), and `check(reference, run)` compares what else it must.
+fn on_one_and_two_ranks(file: &str, dir: &Path, stem: &str, check: impl Fn(&Path, &Path)) {
+    let reference = dir.join("ref");
+    assert!(run(file, &reference, &[], 1).status.success());
+    let steps = format!("{stem}.steps.csv");
+    let its = |d: &Path| -> Vec<f64> {
+        csv(&d.join(&steps))
+            .iter()
+            .map(|r| r["iterations"])
+            .collect()
+    };
+    for ranks in [1, 2] {
+        let out_dir = dir.join(format!("ranks{ranks}"));
+        let out = run(file, &out_dir, &["--solver", "petsc"], ranks);
+        assert!(out.status.success(), "{ranks} ranks: {out:?}");
+        assert_eq!(its(&reference), its(&out_dir), "{ranks} ranks");
+        check(&reference, &out_dir);
+    }
+}
+
 /// The cantilever (beam theory check rules) by CG + GAMG on one process and on two ranks: its
 /// rules pass and its reactions and displacements equal the sparse Cholesky's to 1e-8.
 #[test]
@@ -344,22 +366,14 @@ fn a_block_sliding_with_friction_matches_hertz_on_one_and_two_ranks() {
             "n2slagrangianmultipliercontact 3 loadTimeFunction 1 friction 0.3",
         ),
     );
-    let reference = dir.join("ref");
-    assert!(run(file, &reference, &[], 1).status.success());
-    for ranks in [1, 2] {
-        let out_dir = dir.join(format!("ranks{ranks}"));
-        let out = run(file, &out_dir, &["--solver", "petsc"], ranks);
-        assert!(out.status.success(), "{ranks} ranks: {out:?}");
-        let steps = |d: &Path| csv(&d.join("pushed_block.steps.csv"));
-        let its = |d: &Path| -> Vec<f64> { steps(d).iter().map(|r| r["iterations"]).collect() };
-        assert_eq!(its(&reference), its(&out_dir), "{ranks} ranks");
+    on_one_and_two_ranks(file, &dir, "pushed_block", |reference, out| {
         same_columns(
             &reference.join("pushed_block.steps.csv"),
-            &out_dir.join("pushed_block.steps.csv"),
+            &out.join("pushed_block.steps.csv"),
             1e-10,
             |k| k.starts_with("bc") && k.contains(".r"),
-        );
-    }
+        )
+    });
 }
 
 /// The rod dropped on a floor (`examples/rod_impact.in`: implicit dynamics, multipliers) by
@@ -370,28 +384,20 @@ fn a_block_sliding_with_friction_matches_hertz_on_one_and_two_ranks() {
 fn an_impact_matches_hertz_on_one_and_two_ranks() {
     let dir = tmp("impact");
     let file = "examples/rod_impact.in";
-    let reference = dir.join("ref");
-    assert!(run(file, &reference, &[], 1).status.success());
-    for ranks in [1, 2] {
-        let out_dir = dir.join(format!("ranks{ranks}"));
-        let out = run(file, &out_dir, &["--solver", "petsc"], ranks);
-        assert!(out.status.success(), "{ranks} ranks: {out:?}");
-        let steps = |d: &Path| csv(&d.join("rod_impact.steps.csv"));
-        let its = |d: &Path| -> Vec<f64> { steps(d).iter().map(|r| r["iterations"]).collect() };
-        assert_eq!(its(&reference), its(&out_dir), "{ranks} ranks");
+    on_one_and_two_ranks(file, &dir, "rod_impact", |reference, out| {
         same_columns(
             &reference.join("rod_impact.energy.csv"),
-            &out_dir.join("rod_impact.energy.csv"),
+            &out.join("rod_impact.energy.csv"),
             1e-8,
             |k| ["kinetic", "internal", "contact"].contains(&k),
         );
         same_columns(
             &reference.join("rod_impact.contact.csv"),
-            &out_dir.join("rod_impact.contact.csv"),
+            &out.join("rod_impact.contact.csv"),
             1e-8,
             |k| k == "force",
         );
-    }
+    });
 }
 
 /// The rubber tube inflated by a follower pressure (3D, `tests/suite/pressure.rs`): a load whose
@@ -406,21 +412,10 @@ fn a_follower_pressure_matches_hertz_on_one_and_two_ranks() {
     let file = &written(&dir, "tube.in", text);
     // Its output files are named after the input's first line.
     let stem = text.lines().next().unwrap().trim_end_matches(".out");
-    let steps_csv = format!("{stem}.steps.csv");
-    let reference = dir.join("ref");
-    assert!(run(file, &reference, &[], 1).status.success());
-    for ranks in [1, 2] {
-        let out_dir = dir.join(format!("ranks{ranks}"));
-        let out = run(file, &out_dir, &["--solver", "petsc"], ranks);
-        assert!(out.status.success(), "{ranks} ranks: {out:?}");
-        let steps = |d: &Path| csv(&d.join(&steps_csv));
-        let its = |d: &Path| -> Vec<f64> { steps(d).iter().map(|r| r["iterations"]).collect() };
-        assert_eq!(its(&reference), its(&out_dir), "{ranks} ranks");
-        same_columns(
-            &reference.join(&steps_csv),
-            &out_dir.join(&steps_csv),
-            1e-8,
-            |k| k.starts_with("bc") && k.contains(".r"),
-        );
-    }
+    let steps = format!("{stem}.steps.csv");
+    on_one_and_two_ranks(file, &dir, stem, |reference, out| {
+        same_columns(&reference.join(&steps), &out.join(&steps), 1e-8, |k| {
+            k.starts_with("bc") && k.contains(".r")
+        })
+    });
 }
