@@ -30,6 +30,13 @@ use std::time::Instant;
 /// over.
 const MAX_REGROWTHS: usize = 4;
 
+/// How many Newton iterations running may each need the condensed step set up again with more
+/// candidates before full tangents take over for good: the candidates then chase a contact zone
+/// that does not settle within the dense block. A 3D tube crushed 75 % with its bore in
+/// self-contact (large deformation, the block grown to 4 149 equations) regrew at every
+/// iteration and never converged, where full tangents take 3 iterations.
+const MAX_REGROWN_ITERATIONS: usize = 3;
+
 /// Largest number of branch updates of a step solved with full tangents (each a factorization).
 const MAX_FULL_UPDATES: usize = 8;
 
@@ -59,6 +66,8 @@ pub(super) struct ContactStepper {
     condensed: Condensed,
     /// How often the condensed solve was set up again with more candidates in this solve.
     regrowths: usize,
+    /// How many solves (Newton iterations) running needed such a set-up.
+    regrown_iterations: usize,
     /// A body is held by contact alone (known from the model's supports, or found singular by a
     /// set-up): every set-up shifts the candidates from the start.
     held: bool,
@@ -127,6 +136,7 @@ impl ContactStepper {
         ContactStepper {
             condensed: condense.map_or(Condensed::Off, Condensed::Pending),
             regrowths: 0,
+            regrown_iterations: 0,
             held,
             max_condensed,
             make_solver,
@@ -196,7 +206,18 @@ impl ContactStepper {
             let step = c.step(&rhs, points, guess, eq.dofs, cycle, &describe)?;
             eq.times.solve += since(t);
             if let Some(step) = step {
+                self.regrown_iterations = match self.regrowths {
+                    0 => 0,
+                    _ => self.regrown_iterations + 1,
+                };
                 self.regrowths = 0;
+                if self.regrown_iterations >= MAX_REGROWN_ITERATIONS {
+                    eq.observer.detail(&format!(
+                        "the contact zone reached beyond the condensed equations in \
+                         {MAX_REGROWN_ITERATIONS} iterations running: full tangents from here"
+                    ));
+                    self.condense_off(eq);
+                }
                 return Ok(step);
             }
             // A point reaches beyond the candidates (a node slid on): set up again with the
