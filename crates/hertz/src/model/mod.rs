@@ -489,6 +489,13 @@ impl Element {
         }
     }
 
+    /// The nodes of its boundary `b` (OOFEM's number, from 1: an edge of a 2D element, a face
+    /// of a 3D one), in its shape's order.
+    pub fn boundary_nodes(&self, b: usize) -> Vec<usize> {
+        let local = self.etype.shape().boundaries()[b - 1];
+        local.iter().map(|&a| self.nodes[a]).collect()
+    }
+
     /// The DOF ids every node of this element carries, in element order.
     pub fn dof_ids(&self) -> &'static [DofId] {
         match self.etype {

@@ -44,18 +44,24 @@ pub fn stiffest_young(model: &Model) -> std::collections::HashMap<usize, f64> {
     young
 }
 
-/// The nodes of the deformable master surfaces of every contact condition (element edges and
-/// faces a condition's nodes meet, a mortar condition's slave surface too, node-to-node
-/// masters): with the slave nodes, the contact boundary of both bodies.
-pub fn master_surface_nodes(model: &Model) -> Vec<usize> {
+/// The nodes of every contact condition's surfaces, both sides: its slave nodes (a mortar
+/// condition's slave edges or faces), the deformable master edges and faces it meets, and a
+/// node-to-node condition's masters; sorted, once each.
+pub fn contact_surface_nodes(model: &Model) -> Vec<usize> {
     let mut nodes = Vec::new();
     for c in &model.contacts {
         let segments: Vec<usize> = match &c.pairing {
             super::Pairing::NodeToNode { pairs } => {
-                nodes.extend(pairs.iter().map(|&(m, _)| m));
+                nodes.extend(pairs.iter().flat_map(|&(m, s)| [m, s]));
                 continue;
             }
-            super::Pairing::NodeToSegment { segments, .. } => segments.clone(),
+            super::Pairing::NodeToSegment {
+                nodes: slaves,
+                segments,
+            } => {
+                nodes.extend(slaves);
+                segments.clone()
+            }
             super::Pairing::Mortar { slave, segments } => {
                 segments.iter().chain([slave]).copied().collect()
             }
@@ -65,9 +71,7 @@ pub fn master_surface_nodes(model: &Model) -> Vec<usize> {
                 &model.segments[g].kind
             {
                 for &(e, b) in sides {
-                    let el = &model.elements[e];
-                    let local = el.etype.shape().boundaries()[b - 1];
-                    nodes.extend(local.iter().map(|&a| el.nodes[a]));
+                    nodes.extend(model.elements[e].boundary_nodes(b));
                 }
             }
         }

@@ -264,8 +264,7 @@ pub fn run(
         NewtonContext::new(model, &dofs, contact, params, observer)?;
     let mut massless = vec![false; model.nodes.len()];
     if !dynamics.keep_contact_mass {
-        let master = crate::model::queries::master_surface_nodes(model);
-        for &n in ctx.contact_nodes().iter().chain(&master) {
+        for n in crate::model::queries::contact_surface_nodes(model) {
             massless[n] = true;
         }
     }

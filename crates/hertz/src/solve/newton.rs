@@ -777,11 +777,6 @@ impl<'a> NewtonContext<'a> {
         self.eq.contact.set_mesh_penalties(stiffness);
     }
 
-    /// The contact (slave) nodes, one per contact point.
-    pub fn contact_nodes(&self) -> &[usize] {
-        &self.watch.slot_nodes
-    }
-
     /// Why the last attempt did not converge, in words, if something specific shows.
     pub fn diagnosis(&self) -> Option<String> {
         let mut why = Vec::new();

@@ -213,8 +213,7 @@ impl EdgeSurface {
             };
             for &(e, b) in edges {
                 let el = &model.elements[e];
-                let local = el.etype.shape().boundaries()[b - 1];
-                let nodes: Vec<usize> = local.iter().map(|&a| el.nodes[a]).collect();
+                let nodes = el.boundary_nodes(b);
                 let k = surf.edges.len();
                 for &end in &nodes[..2] {
                     surf.at_node.entry(end).or_default().push(k);

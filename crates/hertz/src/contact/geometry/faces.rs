@@ -468,8 +468,7 @@ impl FaceSurface {
             };
             for &(e, b) in faces {
                 let el = &model.elements[e];
-                let local = el.etype.shape().boundaries()[b - 1];
-                let nodes: Vec<usize> = local.iter().map(|&a| el.nodes[a]).collect();
+                let nodes = el.boundary_nodes(b);
                 let kind = FaceKind::of(nodes.len());
                 let k = surf.faces.len();
                 for &a in &nodes {
