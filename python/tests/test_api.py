@@ -259,10 +259,28 @@ def test_a_penalty_set_from_python_converges_to_the_multipliers_answer():
         model.set_contact(5, penalty=1e3)
 
 
-def test_a_model_built_from_arrays_gives_the_text_inputs_answer():
-    text = hertz.read(EXAMPLES / "wedge_on_brick.in")
-    sets = {n: {k: v for k, v in s.items() if len(v)} for n, s in text.sets.items()}
-    built = hertz.from_arrays(
+def wedge_conditions(floor, axis, side, indenter):
+    """examples/wedge_on_brick.in's boundary and contact conditions, each on the set given (its
+    number or its name)."""
+    return [
+        ("BoundaryCondition", {"loadTimeFunction": 2, "dofs": [3], "values": [0], "set": floor}),
+        ("BoundaryCondition", {"loadTimeFunction": 2, "dofs": [1, 2], "values": [0, 0], "set": axis}),
+        ("BoundaryCondition", {"loadTimeFunction": 2, "dofs": [2], "values": [0], "set": side}),
+        (
+            "BoundaryCondition",
+            {"loadTimeFunction": 1, "dofs": [1, 2, 3], "values": [0, 0, -0.01], "set": indenter},
+        ),
+        (
+            "n2slagrangianmultipliercontact",
+            {"loadTimeFunction": 1, "nodeset": [9, 10, 11], "segmentset": [1]},
+        ),
+    ]
+
+
+def wedge_from_arrays(text, sets, conditions, name):
+    """examples/wedge_on_brick.in (read as `text`) built from its arrays, with `sets` and
+    `conditions`."""
+    return hertz.from_arrays(
         text.nodes,
         {
             "LSpace": text.elements["LSpace"]["connectivity"],
@@ -272,26 +290,20 @@ def test_a_model_built_from_arrays_gives_the_text_inputs_answer():
         analysis=("StaticStructural", {"nsteps": 1, "deltat": 1, "rtolf": 1e-8, "maxiter": 25}),
         materials=[("IsoLE", {"d": 0, "E": 1000.0, "n": 0.3, "tAlpha": 0})],
         segments=[("linear3delementsurfacecontactsegment", {"boundaryset": 1})],
-        conditions=[
-            ("BoundaryCondition", {"loadTimeFunction": 2, "dofs": [3], "values": [0], "set": 2}),
-            ("BoundaryCondition", {"loadTimeFunction": 2, "dofs": [1, 2], "values": [0, 0], "set": 3}),
-            ("BoundaryCondition", {"loadTimeFunction": 2, "dofs": [2], "values": [0], "set": 4}),
-            (
-                "BoundaryCondition",
-                {"loadTimeFunction": 1, "dofs": [1, 2, 3], "values": [0, 0, -0.01], "set": 5},
-            ),
-            (
-                "n2slagrangianmultipliercontact",
-                {"loadTimeFunction": 1, "nodeset": [9, 10, 11], "segmentset": [1]},
-            ),
-        ],
+        conditions=conditions,
         functions=[
             ("PiecewiseLinFunction", {"npoints": 2, "t": [0, 1], "f(t)": [0, 1]}),
             ("ConstantFunction", {"f(t)": 1.0}),
         ],
         sets=sets,
-        name="wedge_built",
+        name=name,
     )
+
+
+def test_a_model_built_from_arrays_gives_the_text_inputs_answer():
+    text = hertz.read(EXAMPLES / "wedge_on_brick.in")
+    sets = {n: {k: v for k, v in s.items() if len(v)} for n, s in text.sets.items()}
+    built = wedge_from_arrays(text, sets, wedge_conditions(2, 3, 4, 5), "wedge_built")
     a, b = text.solve().steps[-1], built.solve().steps[-1]
     assert np.array_equal(a.reaction, b.reaction)
     assert np.array_equal(a.displacement, b.displacement)
@@ -516,37 +528,8 @@ def test_records_are_addressed_by_their_set_name():
     sets = {n: {k: v for k, v in s.items() if len(v)} for n, s in text.sets.items()}
     for n, name in names.items():
         sets[n]["name"] = name
-    conditions = [
-        ("BoundaryCondition", {"loadTimeFunction": 2, "dofs": [3], "values": [0], "set": "floor"}),
-        ("BoundaryCondition", {"loadTimeFunction": 2, "dofs": [1, 2], "values": [0, 0], "set": "axis"}),
-        ("BoundaryCondition", {"loadTimeFunction": 2, "dofs": [2], "values": [0], "set": "side"}),
-        (
-            "BoundaryCondition",
-            {"loadTimeFunction": 1, "dofs": [1, 2, 3], "values": [0, 0, -0.01], "set": "indenter"},
-        ),
-        (
-            "n2slagrangianmultipliercontact",
-            {"loadTimeFunction": 1, "nodeset": [9, 10, 11], "segmentset": [1]},
-        ),
-    ]
-    built = hertz.from_arrays(
-        text.nodes,
-        {
-            "LSpace": text.elements["LSpace"]["connectivity"],
-            "LWedge": text.elements["LWedge"]["connectivity"],
-        },
-        domain="3d",
-        analysis=("StaticStructural", {"nsteps": 1, "deltat": 1, "rtolf": 1e-8, "maxiter": 25}),
-        materials=[("IsoLE", {"d": 0, "E": 1000.0, "n": 0.3, "tAlpha": 0})],
-        segments=[("linear3delementsurfacecontactsegment", {"boundaryset": 1})],
-        conditions=conditions,
-        functions=[
-            ("PiecewiseLinFunction", {"npoints": 2, "t": [0, 1], "f(t)": [0, 1]}),
-            ("ConstantFunction", {"f(t)": 1.0}),
-        ],
-        sets=sets,
-        name="wedge_named",
-    )
+    conditions = wedge_conditions("floor", "axis", "side", "indenter")
+    built = wedge_from_arrays(text, sets, conditions, "wedge_named")
     assert [built.boundary_conditions[k]["set"] for k in (1, 2, 3, 4)] == [2, 3, 4, 5]
     assert built.set("indenter")["name"] == "indenter"
     built.set_boundary_condition("indenter", [0.0, 0.0, -0.005])
