@@ -356,8 +356,9 @@ fn two_beams(tb: &TwoBeams, swap: bool) -> BeamsResult {
 /// and non-matching meshes:
 /// * the clamps' reactions balance the end forces to 1e-8 (global equilibrium);
 /// * master/slave symmetry: the model is point-symmetric and so is the answer (to round-off on
-///   the matching mesh: the corners move by opposite amounts), and listing the two conditions
-///   the other way round changes nothing (1e-8);
+///   the matching mesh: the corners move by opposite amounts, and the two passes report the
+///   same contact force), and listing the two conditions the other way round changes nothing
+///   (1e-8);
 /// * no locking: matching and non-matching meshes give the same clamp force within 0.2 %, and
 ///   the penalty gives the multipliers' force within 1e-4;
 /// * Newton takes at most 4 iterations per step (the first steps bend the beams freely);
@@ -405,6 +406,13 @@ fn two_beams_in_two_pass_contact() {
             };
             if nx_upper.is_none() {
                 assert!(asym(&r) < 1e-12, "{name}: tips {:?}", r.tips);
+                // Both sides carry the interface: the passes report the same contact force
+                // (the constraints dropped as repeated report the kept ones' pressure).
+                assert!(
+                    (r.force[0] - r.force[1]).abs() < 1e-8 * r.force[0],
+                    "{name}: contact forces of the passes {:?}",
+                    r.force
+                );
             }
             let swapped = two_beams(&tb, true);
             assert!(

@@ -532,3 +532,50 @@ fn active_nodes_without_area_are_named_once() {
         }
     }
 }
+
+/// Two-pass contact on matching meshes: the blocks of `common::mortar_blocks` (4 and 4 elements
+/// across, uniform pressure 10) pressed together, each block's face nodes a node-to-segment
+/// condition against the other's edges. Every pair repeats one contact and one constraint of
+/// it is dropped, yet both sides carry the interface: every node of both conditions reports
+/// the exact pressure 10 (the dropped side reported none), with multipliers (to 1e-8) and a
+/// penalty (to 1e-3: its corners, as ε·g over a tributary area, carry 1.5e-4 more).
+#[test]
+fn both_sides_of_two_pass_contact_report_the_interface_pressure() {
+    let n = 4;
+    let lower_top: Vec<String> = (2 * (n + 1) + 1..=3 * (n + 1))
+        .map(|k| k.to_string())
+        .collect();
+    for (kind, law, tol) in [
+        ("n2slagrangianmultipliercontact", "", 1e-8),
+        ("n2spenaltycontact", " penalty 1e6", 1e-3),
+    ] {
+        let conditions = format!(
+            "{kind} 4 loadTimeFunction 1{law} slaveset 4 segmentset 1 2\n\
+             {kind} 5 loadTimeFunction 1{law} nodeset {} {} segmentset 1 1",
+            lower_top.len(),
+            lower_top.join(" ")
+        );
+        let text = common::mortar_blocks(n, n, 0, &conditions).replace("nbc 4", "nbc 5");
+        let model = common::model_from_text(&text).unwrap();
+        let (states, _) = common::solve_model(&model);
+        let repeated = states.iter().filter(|s| s.repeated).count();
+        assert_eq!(
+            repeated,
+            n + 1,
+            "{kind}: one constraint of each pair dropped"
+        );
+        for c in [4, 5] {
+            let side: Vec<_> = states.iter().filter(|s| s.condition == c).collect();
+            assert_eq!(side.len(), n + 1);
+            for s in side {
+                assert!(
+                    s.active && (s.pressure - 10.0).abs() < tol * 10.0,
+                    "{kind}: condition {c}, node {}: pressure {} (active {})",
+                    s.node,
+                    s.pressure,
+                    s.active
+                );
+            }
+        }
+    }
+}

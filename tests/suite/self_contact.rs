@@ -237,14 +237,26 @@ fn labels(v: &[usize]) -> String {
         .join(" ")
 }
 
-/// Per step: the top plate's force, the Newton iterations, the smallest gap of the bore's
-/// contact nodes (condition 5) and how many of them are active.
-fn crush(text: &str) -> Vec<(f64, usize, f64, usize)> {
+/// What a crushed ring does in one step.
+#[derive(Debug, Clone, Copy)]
+struct Step {
+    /// The top plate's force.
+    plate: f64,
+    iterations: usize,
+    /// The smallest gap of the bore's contact nodes (condition 5), how many of them are active
+    /// and the sum of the contact forces they report.
+    gap: f64,
+    active: usize,
+    bore_force: f64,
+}
+
+/// Every step of the model `text`.
+fn crush(text: &str) -> Vec<Step> {
     let model = common::model_from_text(text).unwrap();
     let top = model.nodes.len() - 2;
     let mut out = Vec::new();
     hertz::solve::run_analysis(&model, &common::quiet(), |r| {
-        let force = (r.dofs.prescribed.iter().zip(r.reactions))
+        let plate = (r.dofs.prescribed.iter().zip(r.reactions))
             .filter(|((n, d, _), _)| *n == top && *d == 2)
             .map(|(_, f)| f)
             .sum();
@@ -254,8 +266,13 @@ fn crush(text: &str) -> Vec<(f64, usize, f64, usize)> {
             .map(|s| s.gap)
             .filter(|g| g.is_finite())
             .fold(f64::INFINITY, f64::min);
-        let active = bore.filter(|s| s.active).count();
-        out.push((force, r.info.iterations, gap, active));
+        out.push(Step {
+            plate,
+            iterations: r.info.iterations,
+            gap,
+            active: bore.clone().filter(|s| s.active).count(),
+            bore_force: bore.map(|s| s.force).sum(),
+        });
         Ok(())
     })
     .unwrap();
@@ -263,25 +280,22 @@ fn crush(text: &str) -> Vec<(f64, usize, f64, usize)> {
 }
 
 /// The plate force of `run` (named `what`) equals the half model's at every step, to 1e-9.
-fn same_plate_force(
-    what: &str,
-    run: &[(f64, usize, f64, usize)],
-    half: &[(f64, usize, f64, usize)],
-) {
+fn same_plate_force(what: &str, run: &[Step], half: &[Step]) {
     assert_eq!(run.len(), half.len());
     for (k, (w, h)) in run.iter().zip(half).enumerate() {
         assert!(
-            (w.0 - h.0).abs() <= 1e-9 * h.0.abs().max(1e-9),
+            (w.plate - h.plate).abs() <= 1e-9 * h.plate.abs().max(1e-9),
             "step {k}: plate force {} {what}, {} half",
-            w.0,
-            h.0
+            w.plate,
+            h.plate
         );
     }
 }
 
 /// The whole ring with its bore in self-contact against its half on the symmetry plane: the
-/// plate force equal to round-off at every step (the bore closes over the last third), no bore
-/// node ever inside the opposite wall, no more Newton iterations than the half model's.
+/// plate force and the bore's contact forces equal to round-off at every step (the bore closes
+/// over the last third), no bore node ever inside the opposite wall, no more Newton iterations
+/// than the half model's.
 fn check_against_half(ring: Ring) {
     let whole = crush(&ring.text(true));
     let half = crush(&ring.text(false));
@@ -289,25 +303,33 @@ fn check_against_half(ring: Ring) {
     let size = 1.0;
     for (k, (w, h)) in whole.iter().zip(&half).enumerate() {
         assert!(
-            w.2 > -1e-12 * size,
+            w.gap > -1e-12 * size,
             "step {k}: a bore node {} inside the other wall",
-            w.2
+            w.gap
         );
         assert!(
-            w.1 <= h.1.max(5),
+            w.iterations <= h.iterations.max(5),
             "step {k}: {} iterations (half: {})",
-            w.1,
-            h.1
+            w.iterations,
+            h.iterations
+        );
+        // Each wall carries what the half model's bore carries on its plane: the contact
+        // forces both walls report are twice the half's.
+        assert!(
+            (w.bore_force - 2.0 * h.bore_force).abs() <= 1e-9 * h.plate.abs().max(1e-9),
+            "step {k}: bore contact forces {} whole, {} half",
+            w.bore_force,
+            h.bore_force
         );
     }
     let last = whole.last().unwrap();
-    let closed = half.last().unwrap().3;
+    let closed = half.last().unwrap().active;
     assert!(
         closed > 4,
         "the bore closes: {closed} nodes on the symmetry plane"
     );
     // Each node of the half model's closed bore meets its mirror image in the whole one.
-    assert_eq!(last.3, 2 * closed, "active bore nodes, whole model");
+    assert_eq!(last.active, 2 * closed, "active bore nodes, whole model");
 }
 
 #[test]
@@ -673,5 +695,5 @@ fn the_crushed_tube_example_equals_its_half_model() {
         .text(false),
     );
     same_plate_force("example", &example, &half);
-    assert!(half.last().unwrap().3 > 4, "the bore closes");
+    assert!(half.last().unwrap().active > 4, "the bore closes");
 }

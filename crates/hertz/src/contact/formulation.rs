@@ -43,6 +43,9 @@ pub struct SlotState {
     /// Normal contact force on the node (≥ 0 in compression).
     pub force: f64,
     pub pressure: f64,
+    /// The area the force is spread over (the node's tributary area; mortar: its support D_j),
+    /// so that `pressure` is `force / area`; 0 where none is known.
+    pub area: f64,
     pub active: bool,
     /// Current node position.
     pub x: [f64; 3],
@@ -74,6 +77,7 @@ impl SlotState {
             gap: f64::NAN,
             force: 0.0,
             pressure: 0.0,
+            area: 0.0,
             active: false,
             x,
             weight: 1.0,
@@ -397,6 +401,7 @@ pub fn apply_law(
     }
     let penalty = if forces_known { law.penalty() } else { 0.0 };
     state.force = law::normal_force(&point, kin, penalty);
+    state.area = area;
     state.active = point.closed && (multipliers || kin.gap.v < 0.0);
     state.pressure = if area > 0.0 {
         state.force / area

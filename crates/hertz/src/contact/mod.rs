@@ -47,6 +47,7 @@ pub mod tributary;
 
 pub mod formulation;
 mod initial;
+mod repeated;
 pub mod system;
 
 pub use formulation::{interface_weights, Anchor, Formulation, Partner, Search, SlotState};

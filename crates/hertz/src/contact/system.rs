@@ -250,14 +250,16 @@ impl ContactSystem {
     /// Newton's active set chatters between them); a penalty would double its stiffness there,
     /// and in the limit of a large penalty over-constrain the surfaces as the multipliers would.
     /// So one of the two is dropped, for both laws alike (the penalty answer then tends to the
-    /// multipliers' one): it exerts no force (its multiplier is held at zero), and its node
-    /// penetrates the other surface by at most a second-order amount. "Nearly": a is closer to b than a quarter of the distance
-    /// from b to its nearest neighbour on its surface (a third, if the pair was one at the
-    /// previous state: a band, so that a pair at the limit does not alternate). The one dropped
-    /// is the one past an open end of its partner (a node beside a corner, whose constraint is
-    /// the extension of the surface) when the other lies on its partner (the corner on the
-    /// surface); else the one of the condition (or, in self-contact, the slot) listed later, or
-    /// the one dropped before. Pairs are formed closest first, each node in one pair at most.
+    /// multipliers' one): it exerts no force of its own (its multiplier is held at zero; its node
+    /// reports the kept one's pressure, which acts on it), and its node penetrates the other
+    /// surface by at most a second-order amount. "Nearly": a is closer to b than a quarter of
+    /// the distance from b to its nearest neighbour on its surface (a third, if the pair was one
+    /// at the previous state: a band, so that a pair at the limit does not alternate). The one
+    /// dropped is the one past an open end of its partner (a node beside a corner, whose
+    /// constraint is the extension of the surface) when the other lies on its partner (the
+    /// corner on the surface); else the one of the condition (or, in self-contact, the slot)
+    /// listed later, or the one dropped before. Pairs are formed closest first, each node in one
+    /// pair at most.
     fn drop_repeated_constraints(
         &self,
         points: &mut [SlotLinearization],
@@ -339,10 +341,15 @@ impl ContactSystem {
                 j
             };
             points[drop].disable();
+            // The node is held by the kept constraint, which presses on it through its master
+            // share: the interface's pressure is the kept one's on both sides (reporting none
+            // left the dropped side's field empty where it carries the contact).
+            let kept = if drop == i { j } else { i };
+            let (pressure, active) = (states[kept].pressure, states[kept].active);
             let s = &mut states[drop];
-            s.active = false;
-            s.force = 0.0;
-            s.pressure = 0.0;
+            s.active = active;
+            s.pressure = if active { pressure } else { 0.0 };
+            s.force = s.pressure * s.area;
             s.repeated = true;
             s.friction = None;
             // Held by the other's constraint (to a second-order overlap).

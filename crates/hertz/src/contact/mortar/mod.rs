@@ -447,6 +447,7 @@ impl MortarLaw {
             _ => w.area.v,
         };
         state.force = lambda * support;
+        state.area = support;
         state.active = point.closed && (self.laws[j].is_multipliers() || kin.gap.v < 0.0);
     }
 }

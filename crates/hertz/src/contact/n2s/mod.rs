@@ -45,6 +45,7 @@ use super::geometry::faces::{FaceSurface, NodalNormal};
 use super::geometry::scalar::Scalar;
 use super::law::{SlipKinematics, SlotKinematics};
 use super::law::{SlotFriction, SlotLaw};
+use super::repeated;
 use super::search::broad::BroadPhase;
 use super::search::{self, Candidate};
 use super::slot::SlotLinearization;
@@ -761,10 +762,16 @@ impl Formulation for NodeToSegment {
         }
         // Self-contact: pairs that repeat one contact hold it by one constraint (see `pairs`).
         let pairs = self.repeated_pairs(&prepared, &search);
+        // Per pair, the share of the merged force on each of its two nodes.
+        let mut shares = Vec::with_capacity(pairs.len());
         for &(i, j) in &pairs {
             let (a, b) = (&prepared[i], &prepared[j]);
-            (prepared[i].local, prepared[i].kin) =
-                pairs::merge((&a.local, &a.kin), (&b.local, &b.kin));
+            let (local, kin) = repeated::merge((&a.local, &a.kin), (&b.local, &b.kin));
+            shares.push([
+                repeated::share_at(&local, &kin, self.slots[i].node),
+                repeated::share_at(&local, &kin, self.slots[j].node),
+            ]);
+            (prepared[i].local, prepared[i].kin) = (local, kin);
             (prepared[j].local, prepared[j].kin) = self.no_partner(ctx, &self.slots[j])?;
             prepared[j].state.repeated = true;
         }
@@ -788,12 +795,13 @@ impl Formulation for NodeToSegment {
             states.push(state);
         }
         let mine = &mut states[first_state..];
-        for (i, j) in pairs {
-            let (half, active) = (0.5 * mine[i].force, mine[i].active);
-            for k in [i, j] {
-                mine[k].force = half;
+        for ((i, j), share) in pairs.into_iter().zip(shares) {
+            let (force, active) = (mine[i].force, mine[i].active);
+            for (k, share) in [i, j].into_iter().zip(share) {
+                mine[k].force = force * share;
                 mine[k].active = active;
-                mine[k].pressure = half / areas[k];
+                mine[k].area = areas[k];
+                mine[k].pressure = mine[k].force / areas[k];
             }
         }
         if self.areas.has_curved() {

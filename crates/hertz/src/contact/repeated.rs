@@ -1,0 +1,78 @@
+//! Self-contact's repeated pairs, shared by node-to-segment and mortar: where node a of a
+//! self-contact surface meets it at (nearly) the place of node b and b meets it near a — the
+//! two walls of a tube folded flat, matched node for node — the two constraints hold the same
+//! motion. Two multipliers cannot share it (the constraints are dependent or nearly so), and
+//! dropping one breaks the symmetry a fold has. So the two are merged into one constraint on
+//! the mean gap ḡ = (g_a + g_b)/2 = 0 whose force λ acts along the mean direction
+//! (B_a + B_b)/2: for a matched pair (g_a = g_b) it is either constraint, exactly; otherwise both
+//! nodes meet the other wall to second order, alike. Each node of the pair reports the force
+//! the merged constraint puts on it (λ times its share of the direction): the same as its
+//! mirror's on a symmetric fold, the half model's on its plane.
+
+use super::dual::Jet;
+use super::formulation::Local;
+use super::law::SlotKinematics;
+
+/// A pair closer than this fraction of the spacing of the nodes around it repeats one contact;
+/// a pair that was one at the previous state stays one up to `KEEP` (a band: no alternation).
+pub(crate) const PAIR: f64 = 0.25;
+pub(crate) const KEEP: f64 = 1.0 / 3.0;
+
+/// A jet over another local set's unknowns, placed by `map` among `m` unknowns.
+fn placed(x: &Jet, map: &[usize], m: usize) -> Jet {
+    let mut d = vec![0.0; m];
+    for (k, v) in x.d.iter().enumerate() {
+        d[map[k]] += v;
+    }
+    Jet { v: x.v, d }
+}
+
+/// (x + y)/2.
+fn mean(x: &Jet, y: &Jet) -> Jet {
+    Jet {
+        v: 0.5 * (x.v + y.v),
+        d: x.d.iter().zip(&y.d).map(|(p, q)| 0.5 * (p + q)).collect(),
+    }
+}
+
+/// The constraint on the mean gap of two kinematics over their local sets, over the union of
+/// the sets (the first's area; neither has friction or an open end's ramp).
+pub(crate) fn merge(
+    (la, ka): (&Local, &SlotKinematics),
+    (lb, kb): (&Local, &SlotKinematics),
+) -> (Local, SlotKinematics) {
+    let (local, map_b) = la.union(lb);
+    let m = local.m();
+    let map_a: Vec<usize> = (0..la.m()).collect();
+    let both = |x: &Jet, y: &Jet| mean(&placed(x, &map_a, m), &placed(y, &map_b, m));
+    let mut b = vec![Jet::constant(0.0, m); m];
+    for (side, map) in [(&ka.b, &map_a), (&kb.b, &map_b)] {
+        for (k, v) in side.iter().enumerate() {
+            let v = placed(v, map, m);
+            let t = &mut b[map[k]];
+            t.v += 0.5 * v.v;
+            for (p, q) in t.d.iter_mut().zip(&v.d) {
+                *p += 0.5 * q;
+            }
+        }
+    }
+    let kin = SlotKinematics {
+        gap: both(&ka.gap, &kb.gap),
+        weight: both(&ka.weight, &kb.weight),
+        b,
+        area: ka.area,
+        past_end: None,
+        slip: None,
+    };
+    (local, kin)
+}
+
+/// The size of the force a unit normal force of the kinematics `kin` (over `local`) puts on
+/// `node`: |B| over the node's unknowns.
+pub(crate) fn share_at(local: &Local, kin: &SlotKinematics, node: usize) -> f64 {
+    let (dim, k) = (local.dim, local.index(node));
+    (0..dim)
+        .map(|i| kin.b[dim * k + i].v.powi(2))
+        .sum::<f64>()
+        .sqrt()
+}
