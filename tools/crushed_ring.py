@@ -2,7 +2,8 @@
 the whole ring with its bore in self-contact (--model full), or its upper half, its bore
 against a rigid plane on the symmetry line (--model half). Plane strain (q4, q8, bb: barred
 quadrilaterals; --kg sets K/G), or --dim 3: --nz layers of LSpace bricks over a length --tz,
-u_z = 0 at z = 0. Neo-Hookean, nlgeo 1, multipliers (--law penalty for the penalty).
+u_z = 0 at z = 0. Neo-Hookean, nlgeo 1, multipliers (--law penalty for the penalty); the
+bore node-to-segment, or in 2D --bore mortar (its half model's plane then twice as stiff).
 Used for BENCHMARKS.md's self-contact section, e.g.
 
     python3 tools/crushed_ring.py --model full --dim 3 --nt 48 --nr 3 --nz 10 --tz 1.0 \
@@ -27,6 +28,7 @@ p.add_argument('--tz', type=float, default=0.2)
 p.add_argument('--nz', type=int, default=1)
 p.add_argument('--skew', type=float, default=0.0)
 p.add_argument('--holdall', type=int, default=0)
+p.add_argument('--bore', default='n2s')  # or mortar (2D)
 a = p.parse_args()
 nr, nt = a.nr, a.nt
 q = 2 if a.el == 'q8' else 1
@@ -78,7 +80,13 @@ bcs.append('BoundaryCondition 3 loadTimeFunction 1 dofs 1 1 values 1 0 set 4')
 kind = 'n2spenaltycontact' if a.law == 'penalty' else 'n2slagrangianmultipliercontact'
 # The plates against the outside; the bore against itself (full) or the symmetry plane (half).
 bcs.append(f'{kind} 4 loadTimeFunction 1 slaveset 5 segmentset ' + ('2 2 3' if full else '1 2'))
-bcs.append(f'{kind} 5 loadTimeFunction 1 slaveset 6 segmentset 1 ' + ('1' if full else '3'))
+if a.bore == 'mortar':
+    # The half model's gap to its plane is half the walls' overlap: twice the penalty.
+    law = '' if a.law != 'penalty' else f' penalty {1e5 if full else 2e5:g}'
+    s2s = 's2spenaltycontact' if a.law == 'penalty' else 's2slagrangianmultipliercontact'
+    bcs.append(f'{s2s} 5 loadTimeFunction 1{law} slavesegment 1 segmentset 1 ' + ('1' if full else '3'))
+else:
+    bcs.append(f'{kind} 5 loadTimeFunction 1 slaveset 6 segmentset 1 ' + ('1' if full else '3'))
 L.append(f'ndofman {len(nodes)} nelem {len(elems)} ncrosssect 1 nmat 1 nbc {len(bcs)} nic 0 nltf 2 nset 6 ncontactseg 3')
 for k, (x, y) in enumerate(nodes):
     L.append(f'node {k+1} coords 2 {x:.15g} {y:.15g}')

@@ -1,9 +1,9 @@
-//! Self-contact: a surface that is both slave and master of one node-to-segment condition.
-//! Symmetry makes the exact check: a ring crushed between two rigid plates until its bore closes,
-//! as a whole model whose bore is in self-contact, equals its upper half whose bore meets a
-//! rigid plane on the symmetry line, step by step (plane strain, a hollow torus in axisymmetry
-//! and a 3D slab of bricks; neo-Hookean, also nearly incompressible; large deformation,
-//! multipliers). A block whose whole boundary is a self-contact surface (sharp corners, opposite
+//! Self-contact: a surface that is both slave and master of one node-to-segment or (2D) mortar
+//! condition. Symmetry makes the exact check: a ring crushed between two rigid plates until its
+//! bore closes, as a whole model whose bore is in self-contact, equals its upper half whose bore
+//! meets a rigid plane on the symmetry line, step by step, plate force and contact forces
+//! (plane strain, a hollow torus in axisymmetry and a 3D slab of bricks; neo-Hookean, also
+//! nearly incompressible; large deformation, multipliers; mortar with a penalty too). A block whose whole boundary is a self-contact surface (sharp corners, opposite
 //! faces facing each other through the body) is compressed as without it, and a wedge's sharp
 //! convex tip pairs with nothing of its own surface. The merged constraint of a repeated pair has
 //! the Jacobian of its residual as tangent.
@@ -27,6 +27,10 @@ struct Ring {
     steps: usize,
     kg: Option<f64>,
     axis: Option<f64>,
+    /// The bore a mortar condition (multipliers; `penalty`: a penalty) rather than
+    /// node-to-segment.
+    mortar: bool,
+    penalty: Option<f64>,
 }
 
 impl Ring {
@@ -48,6 +52,8 @@ fn ring(full: bool, r: Ring) -> String {
         steps,
         kg,
         axis,
+        mortar,
+        penalty,
     } = r;
     let x0 = axis.unwrap_or(0.0);
     let (ri, ro) = (0.6, 1.0);
@@ -177,9 +183,27 @@ fn ring(full: bool, r: Ring) -> String {
     records.push(format!(
         "n2slagrangianmultipliercontact 4 loadTimeFunction 1 slaveset 5 segmentset {plates}"
     ));
-    records.push(format!(
-        "n2slagrangianmultipliercontact 5 loadTimeFunction 1 slaveset 6 segmentset {self_segments}"
-    ));
+    // The half model's gap to its plane is half the walls' overlap: twice the penalty.
+    let law = penalty.map_or(String::new(), |p| {
+        format!(" penalty {}", if full { p } else { 2.0 * p })
+    });
+    records.push(match (mortar, penalty) {
+        (false, None) => format!(
+            "n2slagrangianmultipliercontact 5 loadTimeFunction 1 slaveset 6 segmentset \
+             {self_segments}"
+        ),
+        (false, Some(_)) => format!(
+            "n2spenaltycontact 5 loadTimeFunction 1{law} slaveset 6 segmentset {self_segments}"
+        ),
+        (true, None) => format!(
+            "s2slagrangianmultipliercontact 5 loadTimeFunction 1 slavesegment 1 segmentset \
+             {self_segments}"
+        ),
+        (true, Some(_)) => format!(
+            "s2spenaltycontact 5 loadTimeFunction 1{law} slavesegment 1 segmentset \
+             {self_segments}"
+        ),
+    });
     let mut sets = format!(
         "Set 1 elementboundaries {}\nSet 2 nodes 1 {p}\n{sets}Set 5 nodes {}\nSet 6 nodes {}\n",
         list(&bore_faces),
@@ -243,8 +267,8 @@ struct Step {
     /// The top plate's force.
     plate: f64,
     iterations: usize,
-    /// The smallest gap of the bore's contact nodes (condition 5), how many of them are active
-    /// and the sum of the contact forces they report.
+    /// Of the bore's contact nodes (condition 5) not held in y (the half model's cut): the
+    /// smallest gap, how many are active and the sum of the contact forces they report.
     gap: f64,
     active: usize,
     bore_force: f64,
@@ -261,17 +285,21 @@ fn crush(text: &str) -> Vec<Step> {
             .map(|(_, f)| f)
             .sum();
         let bore = r.contact.iter().filter(|s| s.condition == 5);
+        let held = |n: usize| r.dofs.prescribed.iter().any(|p| p.0 == n && p.1 == 2);
         let gap = bore
             .clone()
+            .filter(|s| !held(s.node))
             .map(|s| s.gap)
             .filter(|g| g.is_finite())
             .fold(f64::INFINITY, f64::min);
+        // Not the half model's cut nodes (held on its plane by their u_y = 0, their contact
+        // force is its round-off).
         out.push(Step {
             plate,
             iterations: r.info.iterations,
             gap,
-            active: bore.clone().filter(|s| s.active).count(),
-            bore_force: bore.map(|s| s.force).sum(),
+            active: bore.clone().filter(|s| s.active && !held(s.node)).count(),
+            bore_force: bore.filter(|s| !held(s.node)).map(|s| s.force).sum(),
         });
         Ok(())
     })
@@ -302,10 +330,16 @@ fn check_against_half(ring: Ring) {
     same_plate_force("whole", &whole, &half);
     let size = 1.0;
     for (k, (w, h)) in whole.iter().zip(&half).enumerate() {
+        // A penalty's walls overlap by twice the half model's penetration of its plane.
+        let overlap = match ring.penalty {
+            Some(_) => 2.0 * h.gap.min(0.0),
+            None => 0.0,
+        };
         assert!(
-            w.gap > -1e-12 * size,
-            "step {k}: a bore node {} inside the other wall",
-            w.gap
+            w.gap > overlap * (1.0 + 1e-9) - 1e-12 * size,
+            "step {k}: a bore node {} inside the other wall (half: {})",
+            w.gap,
+            h.gap
         );
         assert!(
             w.iterations <= h.iterations.max(5),
@@ -349,6 +383,28 @@ fn a_crushed_ring_and_torus_with_their_bore_in_self_contact_equal_their_half_mod
     });
 }
 
+/// Mortar self-contact: the bore one `s2s...` condition whose slave segment is its own master.
+/// Each wall is a slave against the other, the rays bisecting the two walls' normals, and the
+/// matched pairs of the two walls hold one constraint: the whole ring equals its half model
+/// (mortar against the rigid plane) to round-off, in plane strain, with multipliers and a
+/// penalty (the half model's twice as stiff: its gap is half the overlap).
+#[test]
+fn a_ring_with_its_bore_in_mortar_self_contact_equals_its_half_model() {
+    let plane = Ring {
+        nt: 32,
+        nr: 2,
+        crush: 0.8,
+        steps: 24,
+        mortar: true,
+        ..Ring::default()
+    };
+    check_against_half(plane);
+    check_against_half(Ring {
+        penalty: Some(1e5),
+        ..plane
+    });
+}
+
 /// Nearly incompressible rubber (K = 1000 G, barred quadrilaterals) crushed to 80 %: the crease
 /// at each side of the bore folds shut, the nodes beside its tip meeting the edge across it.
 #[test]
@@ -375,8 +431,8 @@ fn a_crushed_tube_of_bricks_with_its_bore_in_self_contact_equals_its_half_model(
     });
 }
 
-/// A flat block (1 × 0.2, 5 × 1 elements), its whole boundary one self-contact surface,
-/// compressed by 10 % between its bottom (held in y) and top (moved down; x held at one node):
+/// A flat block (1 × 0.2, 5 × 1 elements), its whole boundary one self-contact surface (a
+/// node-to-segment condition, and a mortar one), compressed by 10 % between its bottom (held in y) and top (moved down; x held at one node):
 /// top and bottom face each other through the body (a top node lies 0.2 behind the bottom face,
 /// facing it, within the search's reach), and beside each corner the neighbouring face is the
 /// surface's next. No node may pair: the uniform compression is exact (σ_y = E/(1 − ν²)·ε_y in
@@ -385,7 +441,6 @@ fn a_crushed_tube_of_bricks_with_its_bore_in_self_contact_equals_its_half_model(
 fn a_block_whose_boundary_is_one_self_contact_surface_is_compressed_without_contact() {
     let (nx, ny, height) = (5, 1, 0.2);
     let id = |i: usize, j: usize| 1 + j * (nx + 1) + i;
-    let mut text = String::new();
     let mut nodes = String::new();
     for j in 0..=ny {
         for i in 0..=nx {
@@ -419,6 +474,7 @@ fn a_block_whose_boundary_is_one_self_contact_surface_is_compressed_without_cont
         .collect();
     let bottom: Vec<usize> = (0..=nx).map(|i| id(i, 0)).collect();
     let top: Vec<usize> = (0..=nx).map(|i| id(i, ny)).collect();
+    let mut text = String::new();
     text += &format!(
         "block.out\nblock\nNonLinearStatic nsteps 1 controlmode 1 rtolf 1e-10\ndomain PlaneStrain\n\
          OutputManager\nndofman {} nelem {} ncrosssect 1 nmat 1 nbc 4 nic 0 nltf 1 nset 5 ncontactseg 1\n\
@@ -427,7 +483,7 @@ fn a_block_whose_boundary_is_one_self_contact_surface_is_compressed_without_cont
          BoundaryCondition 1 loadTimeFunction 1 dofs 1 2 values 1 0 set 2\n\
          BoundaryCondition 2 loadTimeFunction 1 dofs 1 2 values 1 {} set 3\n\
          BoundaryCondition 3 loadTimeFunction 1 dofs 1 1 values 1 0 set 4\n\
-         n2slagrangianmultipliercontact 4 loadTimeFunction 1 slaveset 5 segmentset 1 1\n\
+         CONDITION\n\
          ConstantFunction 1 f(t) 1.0\n\
          Set 1 elementboundaries {} {}\nSet 2 nodes {} {}\nSet 3 nodes {} {}\nSet 4 nodes 1 {}\n\
          Set 5 nodes {} {}\n",
@@ -444,36 +500,42 @@ fn a_block_whose_boundary_is_one_self_contact_surface_is_compressed_without_cont
         ring.len(),
         labels(&ring),
     );
-    let model = common::model_from_text(&text).unwrap();
-    let mut checked = false;
-    hertz::solve::run_analysis(&model, &common::quiet(), |r| {
-        assert!(
-            r.contact.iter().all(|s| !s.active && s.force == 0.0),
-            "{:?}",
-            r.contact
-        );
-        let force: f64 = (r.dofs.prescribed.iter().zip(r.reactions))
-            .filter(|((node, d, _), _)| *d == 2 && model.nodes[*node].coords[1] == height)
-            .map(|(_, f)| f)
-            .sum();
-        let exact = -1000.0 / (1.0 - 0.09) * 0.1;
-        assert!(
-            (force - exact).abs() < 1e-9 * exact.abs(),
-            "force {force}, exact {exact}"
-        );
-        checked = true;
-        Ok(())
-    })
-    .unwrap();
-    assert!(checked);
+    for condition in [
+        "n2slagrangianmultipliercontact 4 loadTimeFunction 1 slaveset 5 segmentset 1 1",
+        "s2slagrangianmultipliercontact 4 loadTimeFunction 1 slavesegment 1 segmentset 1 1",
+    ] {
+        let model = common::model_from_text(&text.replace("CONDITION", condition)).unwrap();
+        let mut checked = false;
+        hertz::solve::run_analysis(&model, &common::quiet(), |r| {
+            assert!(
+                r.contact.iter().all(|s| !s.active && s.force == 0.0),
+                "{condition}: {:?}",
+                r.contact
+            );
+            let force: f64 = (r.dofs.prescribed.iter().zip(r.reactions))
+                .filter(|((node, d, _), _)| *d == 2 && model.nodes[*node].coords[1] == height)
+                .map(|(_, f)| f)
+                .sum();
+            let exact = -1000.0 / (1.0 - 0.09) * 0.1;
+            assert!(
+                (force - exact).abs() < 1e-9 * exact.abs(),
+                "{condition}: force {force}, exact {exact}"
+            );
+            checked = true;
+            Ok(())
+        })
+        .unwrap();
+        assert!(checked);
+    }
 }
 
 /// The merged constraint of a repeated pair (the two walls of a ring's bore pressed onto each
 /// other, node onto mirror node, offsets of 1 % of a spacing along and across the walls) has the
-/// Jacobian of its residual as tangent, over the displacements and the multiplier, in 2D and 3D.
+/// Jacobian of its residual as tangent, over the displacements and the multiplier, in 2D and 3D
+/// node-to-segment and 2D mortar.
 #[test]
 fn a_repeated_self_contact_pair_has_the_jacobian_of_its_residual_as_tangent() {
-    for tz in [0.0, 0.2] {
+    for (tz, mortar) in [(0.0, false), (0.2, false), (0.0, true)] {
         let model = common::model_from_text(
             &Ring {
                 tz,
@@ -481,6 +543,7 @@ fn a_repeated_self_contact_pair_has_the_jacobian_of_its_residual_as_tangent() {
                 nr: 1,
                 crush: 0.5,
                 steps: 1,
+                mortar,
                 ..Ring::default()
             }
             .text(true),
@@ -514,7 +577,10 @@ fn a_repeated_self_contact_pair_has_the_jacobian_of_its_residual_as_tangent() {
             .evaluate(&NodalState::new(&model, &dofs, &u), Search::Fresh)
             .unwrap();
         let merged = states.iter().filter(|s| s.repeated).count();
-        assert!(merged >= 2, "tz {tz}: {merged} merged pairs");
+        assert!(
+            merged >= 2,
+            "tz {tz} mortar {mortar}: {merged} merged pairs"
+        );
         let at = |u: &[f64]| {
             let p = contact
                 .evaluate(&NodalState::new(&model, &dofs, u), Search::Frozen(&states))
@@ -548,8 +614,15 @@ fn a_repeated_self_contact_pair_has_the_jacobian_of_its_residual_as_tangent() {
                 }
             }
         }
-        assert!(checked >= 2, "tz {tz}: {checked} active points checked");
-        assert!(worst < 1e-6, "tz {tz}: tangent off by {worst:e}");
+        assert!(
+            checked >= 2,
+            "tz {tz} mortar {mortar}: {checked} active points"
+        );
+        assert!(
+            worst < 1e-6,
+            "tz {tz} mortar {mortar}: tangent off by {worst:e}"
+        );
+        println!("tz {tz} mortar {mortar}: {checked} active points, tangent within {worst:.1e}");
     }
 }
 
@@ -612,7 +685,8 @@ fn a_node_on_a_sharp_convex_fold_pairs_with_nothing_of_its_own_surface() {
         .chain([id(n, 0)])
         .collect();
     let base = [id(0, 0), id(0, 1), id(0, 2)];
-    let input = |with_contact: bool| {
+    // The surface as a node-to-segment condition (true) or a mortar one, or none.
+    let input = |contact: Option<bool>| {
         format!(
             "wedge.out\nwedge\nNonLinearStatic nsteps 4 controlmode 1 rtolf 1e-10\n\
              domain PlaneStrain\nOutputManager\n\
@@ -625,16 +699,18 @@ fn a_node_on_a_sharp_convex_fold_pairs_with_nothing_of_its_own_surface() {
              Set 1 elementboundaries {} {}\nSet 2 nodes 3 {}\nSet 3 nodes 1 {}\n",
             3 * n + 1,
             tri.len(),
-            if with_contact { 3 } else { 2 },
-            if with_contact {
-                format!(
+            if contact.is_some() { 3 } else { 2 },
+            match contact {
+                Some(true) => format!(
                     "n2slagrangianmultipliercontact 3 loadTimeFunction 1 nodeset {} {} \
                      segmentset 1 1\n",
                     surface.len(),
                     labels(&surface)
-                )
-            } else {
-                String::new()
+                ),
+                Some(false) => "s2slagrangianmultipliercontact 3 loadTimeFunction 1 \
+                                slavesegment 1 segmentset 1 1\n"
+                    .to_string(),
+                None => String::new(),
             },
             2 * edges.len(),
             edges.join(" "),
@@ -642,8 +718,9 @@ fn a_node_on_a_sharp_convex_fold_pairs_with_nothing_of_its_own_surface() {
             id(n, 0)
         )
     };
-    let run = |with_contact: bool| {
-        let model = common::model_from_text(&input(with_contact)).unwrap();
+    let run = |contact: Option<bool>| {
+        std::fs::write(format!("/tmp/wedge_{contact:?}.in"), input(contact)).unwrap();
+        let model = common::model_from_text(&input(contact)).unwrap();
         let tip = model
             .nodes
             .iter()
@@ -662,14 +739,17 @@ fn a_node_on_a_sharp_convex_fold_pairs_with_nothing_of_its_own_surface() {
         .unwrap();
         forces
     };
-    let (with, without) = (run(true), run(false));
-    assert_eq!(with.len(), 4);
+    let without = run(None);
     assert!(edges.len() == 2 * n, "{} slanted edges", edges.len());
-    for (a, b) in with.iter().zip(&without) {
-        assert!(
-            (a - b).abs() <= 1e-8 * b.abs().max(1e-12),
-            "tip force {a} with, {b} without"
-        );
+    for n2s in [true, false] {
+        let with = run(Some(n2s));
+        assert_eq!(with.len(), 4);
+        for (a, b) in with.iter().zip(&without) {
+            assert!(
+                (a - b).abs() <= 1e-8 * b.abs().max(1e-12),
+                "node-to-segment {n2s}: tip force {a} with, {b} without"
+            );
+        }
     }
     assert!(
         without.last().unwrap().abs() > 1.0,

@@ -298,14 +298,6 @@ pub fn read_condition(
         if c.segments.is_empty() {
             return Err(r.error("`segmentset` must not be empty"));
         }
-        if c.segments.contains(&(g - 1)) {
-            return Err(r.error(format!(
-                "segment {g} is both the slave segment and a master segment: mortar \
-                 self-contact is not supported; a node-to-segment condition (`n2s...`) whose \
-                 `slaveset` holds the segment's nodes and whose `segmentset` names it is \
-                 self-contact"
-            )));
-        }
     } else {
         // OOFEM uses these numbers as raw node indices (spec §2.10 item 11); hertz maps labels.
         // hertz also takes `slaveset k` (the nodes of set k: meshes imported from Gmsh).

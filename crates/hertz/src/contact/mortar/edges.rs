@@ -17,8 +17,16 @@
 //! force along the blend of the slave's and the master's normals at the pair of points
 //! ([`interface_weights`]) rather than along ν alone; in large
 //! deformation all of it is evaluated at the current state and differentiated.
+//!
+//! Self-contact (the slave segment among the master segments, straight edges): each own edge
+//! meets the parts of the surface that face it squarely (`OWN_FACING`, `OWN_DEPTH`); where two
+//! walls are within an edge length the rays bisect their normals (`symmetric_ray`), so that
+//! each wall as a slave is the mirror image of the other; pairs of nodes that meet each other's
+//! walls at one place hold one constraint (`contact::repeated`).
 
-use super::{nearest_sheet, rigid_node, search_limit, Facing, MortarLaw, SlipForm, Weighted};
+use super::{
+    nearest_sheet, rigid_node, search_limit, Facing, MortarLaw, SlipForm, Weighted, SLIVER,
+};
 use crate::contact::dual::{self, Dual, Jet};
 use crate::contact::formulation::{
     interface_weights, Ctx, Formulation, Local, Partner, Search, SlotState,
@@ -26,6 +34,8 @@ use crate::contact::formulation::{
 use crate::contact::geometry::edges::{shape, EdgeSurface};
 use crate::contact::geometry::rigid;
 use crate::contact::geometry::scalar::Scalar;
+use crate::contact::law::SlotKinematics;
+use crate::contact::repeated::{self, KEEP, PAIR};
 use crate::contact::search::broad::BroadPhase;
 use crate::contact::slot::SlotLinearization;
 use crate::error::{Error, Result};
@@ -58,6 +68,9 @@ pub struct Mortar {
     dual: Vec<[[f64; 4]; 4]>,
     /// Axisymmetric slave elements: every integral per radian, its arc length weighted by r.
     axisymmetric: bool,
+    /// Self-contact (the slave segment is among the master segments): per master edge, the
+    /// slave edge it is, if it is one of the slave's own.
+    own: Vec<Option<usize>>,
 }
 
 impl Mortar {
@@ -70,6 +83,7 @@ impl Mortar {
             span: c.span.clone(),
             msg,
         };
+        let self_contact = segments.contains(slave);
         let slave = EdgeSurface::new(model, &[*slave]);
         let master = EdgeSurface::new(model, segments);
         if slave.edges.is_empty() {
@@ -86,12 +100,28 @@ impl Mortar {
         {
             return Err(err("mortar contact is 2D: no faces".into()));
         }
+        // Self-contact: the slave's own edges are master edges too.
+        let own: Vec<Option<usize>> = (master.edges.iter())
+            .map(|m| {
+                (slave.edges.iter())
+                    .position(|e| e.element == m.element && e.nodes == m.nodes)
+                    .filter(|_| self_contact)
+            })
+            .collect();
+        if self_contact && slave.edges.iter().any(|e| e.nodes.len() > 2) {
+            return Err(err(
+                "mortar self-contact takes straight (2-node) edges: a node-to-segment \
+                 condition (`n2s...`) whose `slaveset` holds the segment's nodes is \
+                 self-contact on quadratic ones"
+                    .into(),
+            ));
+        }
         let shared = slave
             .edges
             .iter()
             .flat_map(|e| &e.nodes)
             .any(|n| master.edges.iter().any(|m| m.nodes.contains(n)));
-        if shared {
+        if shared && !self_contact {
             return Err(err(
                 "the slave and master segments share nodes: a surface cannot contact itself".into(),
             ));
@@ -169,6 +199,7 @@ impl Mortar {
             })
             .collect();
         Ok(Mortar {
+            own,
             dual,
             axisymmetric,
             search_limit,
@@ -180,6 +211,37 @@ impl Mortar {
             rigid,
             slots,
         })
+    }
+
+    /// Self-contact: the outward normal of the own surface at node `node`, the mean of its edges'
+    /// (positions `x`); where they cancel (the tip of a crease folded flat) the normal of edge
+    /// `k` of the slave surface.
+    fn nodal_normal(&self, node: usize, k: usize, x: &dyn Fn(usize) -> [Dual; 2]) -> [Dual; 2] {
+        let normal = |e: usize| {
+            let e = &self.slave.edges[e];
+            edge_outward(x(e.nodes[0]), x(e.nodes[1]), e.side)
+        };
+        let edges = &self.slave.at_node[&node];
+        let mut sum = normal(edges[0]);
+        for &e in &edges[1..] {
+            let n = normal(e);
+            sum = [sum[0] + n[0], sum[1] + n[1]];
+        }
+        let len = (sum[0] * sum[0] + sum[1] * sum[1]).sqrt();
+        if len.v < 1e-3 {
+            return normal(k);
+        }
+        [sum[0] / len, sum[1] / len]
+    }
+
+    /// The nodal normals ([`Mortar::nodal_normal`]) of the two ends of own edge `k` (an index
+    /// into the slave surface's edges).
+    fn edge_normals(&self, k: usize, x: &dyn Fn(usize) -> [Dual; 2]) -> [[Dual; 2]; 2] {
+        let e = &self.slave.edges[k];
+        [
+            self.nodal_normal(e.nodes[0], k, x),
+            self.nodal_normal(e.nodes[1], k, x),
+        ]
     }
 
     /// Position of node `n`: current (`q`, a dual over the local unknowns) or, for the geometry
@@ -247,23 +309,58 @@ impl Mortar {
             let mut facing = Vec::new();
             for mi in boxes.intersecting(lo, hi) {
                 let me = &self.master.edges[mi];
-                let (ya, yb) = (pos(me.nodes[0])?, pos(me.nodes[1])?);
-                let xi = |y: [f64; 2]| ((y[0] - a[0]) * t[0] + (y[1] - a[1]) * t[1]) / l2;
-                let (lo, hi) = (xi(ya).min(xi(yb)).max(0.0), xi(ya).max(xi(yb)).min(1.0));
-                if hi - lo <= 1e-12 {
+                let own = self.own[mi].is_some();
+                // Self-contact: never the edge itself, any other part only facing it squarely
+                // (see `OWN_FACING`).
+                let shared = me.nodes.iter().filter(|m| e.nodes.contains(m)).count();
+                if own && shared == me.nodes.len().min(2) {
                     continue;
                 }
+                let (ya, yb) = (pos(me.nodes[0])?, pos(me.nodes[1])?);
                 // The master's outward normal must face the slave's.
                 let tm = [yb[0] - ya[0], yb[1] - ya[1]];
                 let lm = (tm[0] * tm[0] + tm[1] * tm[1]).sqrt();
                 let nm = [tm[1] * me.side / lm, -tm[0] * me.side / lm];
-                if nm[0] * n[0] + nm[1] * n[1] >= 0.0 {
+                let squarely = if own { OWN_FACING } else { 0.0 };
+                if nm[0] * n[0] + nm[1] * n[1] >= squarely {
+                    continue;
+                }
+                // The master's ends on the slave edge along its normal (in self-contact the
+                // parts are then cut along the mean of the two normals, [`symmetric_ray`]).
+                let xi = |y: [f64; 2]| ((y[0] - a[0]) * t[0] + (y[1] - a[1]) * t[1]) / l2;
+                let (lo, hi) = (xi(ya).min(xi(yb)).max(0.0), xi(ya).max(xi(yb)).min(1.0));
+                if !(hi - lo > 1e-12) {
                     continue;
                 }
                 let mid = [0.5 * (ya[0] + yb[0]), 0.5 * (ya[1] + yb[1])];
+                let dist = (mid[0] - a[0]) * n[0] + (mid[1] - a[1]) * n[1];
+                // An edge beside it (sharing a node) by its other end: in front across a
+                // closing crease, behind round a sharp convex tip.
+                let behind = match shared {
+                    0 => -dist,
+                    _ => {
+                        let far = if e.nodes.contains(&me.nodes[0]) {
+                            yb
+                        } else {
+                            ya
+                        };
+                        -((far[0] - a[0]) * n[0] + (far[1] - a[1]) * n[1])
+                    }
+                };
+                if own && behind > 0.0 {
+                    // Behind a facing part of its own surface only within a quarter of the
+                    // edges' size or of the depth of the element behind it (the far face of a
+                    // thin wall lies behind the node without having been crossed).
+                    let depth = (ctx.model.elements[me.element].nodes.iter())
+                        .map(|&k| pos(k).map(|y| (ya[0] - y[0]) * nm[0] + (ya[1] - y[1]) * nm[1]))
+                        .try_fold(0.0, |acc: f64, v| v.map(|v| acc.max(v)))?;
+                    if behind > OWN_DEPTH * l.min(lm).min(depth) {
+                        continue;
+                    }
+                }
                 facing.push(Facing {
                     index: mi,
-                    dist: (mid[0] - a[0]) * n[0] + (mid[1] - a[1]) * n[1],
+                    dist,
                     size: lm,
                 });
             }
@@ -271,6 +368,18 @@ impl Mortar {
         })
     }
 }
+
+/// Self-contact: a slave edge meets a facing part of its own surface behind it only within this
+/// fraction of the edges' size or of the depth of the element behind that part.
+const OWN_DEPTH: f64 = 0.25;
+
+/// Self-contact: a slave edge meets a part of its own surface only where their normals are more
+/// than 120° apart (cos = −0.5): walls closing on each other, the two edges at the tip of a
+/// closing crease, not the next edge round a bend, nor a wall seen askew, whose rays along the
+/// mean of the two normals ([`symmetric_ray`]) would skim both. A slave node's own constraint
+/// never takes a master edge through the node itself (its gap there is zero whatever the
+/// motion).
+const OWN_FACING: f64 = -0.5;
 
 /// The gap at a slave parameter ξ, with the master nodes and their shape values there, the force
 /// direction ν and ds/dξ.
@@ -324,6 +433,94 @@ fn solve(s0: f64, m: usize, linear: bool, f: impl Fn(Dual) -> (Dual, Dual)) -> D
     let c = Dual::constant(s, m);
     let (v, d) = f(c);
     c - v / d
+}
+
+/// Whether two straight edges (ends `x`, `y`) are within the first's length of each other:
+/// self-contact's walls close enough to meet along the mean of their normals
+/// ([`symmetric_ray`]). Farther apart the rays are along the slave's normal: on walls of one
+/// circle (an open bore) the mean of the normals joins every point to every other, and its
+/// parts and gaps are ill-posed; an open gap's value exerts no force, so the switch changes
+/// nothing a step converges to.
+fn close(x: [[f64; 2]; 2], y: [[f64; 2]; 2]) -> bool {
+    let to_segment = |p: [f64; 2], [a, b]: [[f64; 2]; 2]| {
+        let t = [b[0] - a[0], b[1] - a[1]];
+        let l2 = t[0] * t[0] + t[1] * t[1];
+        let s = (((p[0] - a[0]) * t[0] + (p[1] - a[1]) * t[1]) / l2).clamp(0.0, 1.0);
+        ((p[0] - a[0] - s * t[0]).powi(2) + (p[1] - a[1] - s * t[1]).powi(2)).sqrt()
+    };
+    let length = ((x[1][0] - x[0][0]).powi(2) + (x[1][1] - x[0][1]).powi(2)).sqrt();
+    let gap = [
+        to_segment(x[0], y),
+        to_segment(x[1], y),
+        to_segment(y[0], x),
+        to_segment(y[1], x),
+    ]
+    .into_iter()
+    .fold(f64::INFINITY, f64::min);
+    gap < length
+}
+
+/// [`close`] of two edges' (end) positions in duals.
+fn close_duals(x: &[[Dual; 2]], y: &[[Dual; 2]]) -> bool {
+    let v = |p: &[Dual; 2]| [p[0].v, p[1].v];
+    close([v(&x[0]), v(&x[1])], [v(&y[0]), v(&y[1])])
+}
+
+/// a × b in 2D.
+fn cross(a: [Dual; 2], b: [Dual; 2]) -> Dual {
+    a[0] * b[1] - a[1] * b[0]
+}
+
+/// The unit outward normal of a straight edge from `a` to `b` (`side` as [`EdgeSurface`] gives
+/// it).
+fn edge_outward(a: [Dual; 2], b: [Dual; 2], side: f64) -> [Dual; 2] {
+    let t = [b[0] - a[0], b[1] - a[1]];
+    let len = (t[0] * t[0] + t[1] * t[1]).sqrt();
+    [t[1] * side / len, -(t[0] * side) / len]
+}
+
+/// The unit normal interpolated at s ∈ [0, 1] between the nodal normals `n` of a straight edge,
+/// normalize((1 − s) n₀ + s n₁), and its derivative along s.
+fn interpolated(n: &[[Dual; 2]; 2], s: Dual) -> ([Dual; 2], [Dual; 2]) {
+    let v: [Dual; 2] = std::array::from_fn(|i| n[0][i] * (-s + 1.0) + n[1][i] * s);
+    let dv: [Dual; 2] = std::array::from_fn(|i| n[1][i] - n[0][i]);
+    let len = (v[0] * v[0] + v[1] * v[1]).sqrt();
+    let u = [v[0] / len, v[1] / len];
+    let along = u[0] * dv[0] + u[1] * dv[1];
+    (
+        u,
+        [(dv[0] - u[0] * along) / len, (dv[1] - u[1] * along) / len],
+    )
+}
+
+/// Self-contact's ray from the slave point `x` whose normal into the slave body is `nu`: the
+/// parameter η where the line through x along ν + n(η) crosses the straight master edge `yg`,
+/// n(η) the master's outward normal interpolated between its nodal normals `mn`, and that
+/// direction, unit. The line bisects the two walls' normals, so two walls that mirror each other
+/// meet at mirror points along the normal of their mirror plane, from either side: each wall's
+/// segmentation, gap and force as a slave are the mirror images of the other's (along ν alone
+/// they are not, and a folded tube came out off its half model by the projections' skew). The
+/// normals are the surface's nodal ones interpolated, continuous from edge to edge, so that the
+/// master edges' parts of a slave edge meet without overlap (the edges' own normals turn at
+/// each node, and two edges' rays there cross).
+fn symmetric_ray(
+    x: [Dual; 2],
+    nu: [Dual; 2],
+    yg: &[[Dual; 2]],
+    mn: &[[Dual; 2]; 2],
+    m: usize,
+) -> (Dual, [Dual; 2]) {
+    let eta = solve(0.5, m, false, |eta| {
+        let (y, ty, _) = curve(yg, eta);
+        let (n, dn) = interpolated(mn, eta);
+        let d = [nu[0] + n[0], nu[1] + n[1]];
+        let r = [y[0] - x[0], y[1] - x[1]];
+        (cross(r, d), cross(ty, d) + cross(r, dn))
+    });
+    let (n, _) = interpolated(mn, eta);
+    let d = [nu[0] + n[0], nu[1] + n[1]];
+    let len = (d[0] * d[0] + d[1] * d[1]).sqrt();
+    (eta, [d[0] / len, d[1] / len])
 }
 
 /// The dual basis of a slave edge (straight or quadratic) at reference positions `x`
@@ -488,7 +685,16 @@ impl Mortar {
             };
             // The overlaps [ξ_lo, ξ_hi] of the master edges (at `geo` positions) with the slave
             // edge.
-            let pieces = self.overlap_pieces(over, &xg, &geo, m);
+            // Self-contact: not through the slot's own node (see `OWN_FACING`).
+            let over: Vec<usize> = (over.iter().copied())
+                .filter(|&mi| {
+                    !(self.own[mi].is_some() && self.master.edges[mi].nodes.contains(node))
+                })
+                .collect();
+            // Self-contact's nodal normals of the slave edge (see [`symmetric_ray`]).
+            let sn =
+                (over.iter().any(|&mi| self.own[mi].is_some())).then(|| self.edge_normals(k, &geo));
+            let pieces = self.overlap_pieces(&over, (&xg, sn.as_ref()), &geo, m);
             // The dual basis biorthogonal over the overlap alone: on a slave edge that overlaps
             // the master only in part (at the master's ends), the whole edge's basis can be
             // negative over the overlap and turn the sign of the weighted gap (a node beyond the
@@ -508,18 +714,31 @@ impl Mortar {
                     w.partner = Partner::Edge(mi);
                 }
                 let (ws, wm) = interface_weights(ctx.model, e.element, me.element);
+                // Self-contact, walls close: the nodal normals of both edges.
+                let normals = (self.own[mi].zip(sn.as_ref()))
+                    .filter(|_| close_duals(&xg, &yg))
+                    .map(|(mk, sn)| (sn, self.edge_normals(mk, &geo)));
+                let own = normals.is_some();
                 add(&mut w, &coef, lo, hi, &|xi: Dual| {
                     let (x, t, mut nu, jac, xcur) = at(xi);
-                    // η where x(ξ) + s ν crosses the master: (y(η) − x(ξ))·x'(ξ) = 0.
-                    let eta = solve(0.5, m, yg.len() == 2, |eta| {
-                        let (y, ty, _) = curve(&yg, eta);
-                        (
-                            (y[0] - x[0]) * t[0] + (y[1] - x[1]) * t[1],
-                            ty[0] * t[0] + ty[1] * t[1],
-                        )
-                    });
+                    // η where x(ξ) + s ν crosses the master: (y(η) − x(ξ))·x'(ξ) = 0; in
+                    // self-contact along the mean of the two normals.
+                    let eta = if let Some((sn, mn)) = &normals {
+                        let n = interpolated(sn, xi).0;
+                        let (eta, mean) = symmetric_ray(x, [-n[0], -n[1]], &yg, mn, m);
+                        nu = mean;
+                        eta
+                    } else {
+                        solve(0.5, m, yg.len() == 2, |eta| {
+                            let (y, ty, _) = curve(&yg, eta);
+                            (
+                                (y[0] - x[0]) * t[0] + (y[1] - x[1]) * t[1],
+                                ty[0] * t[0] + ty[1] * t[1],
+                            )
+                        })
+                    };
                     let (ycur, _, _) = curve(&yc, eta);
-                    if !self.nlgeo {
+                    if !self.nlgeo && !own {
                         // The blend of the two reference normals ([`interface_weights`]).
                         let (_, ty, _) = curve(&yg, eta);
                         let ly = (ty[0] * ty[0] + ty[1] * ty[1]).sqrt();
@@ -581,6 +800,21 @@ impl Mortar {
                     local.add(ctx, n)?;
                 }
             }
+            // Self-contact's nodal normals move with the nodes beside both edges' ends.
+            let own = over.iter().filter(|&&mi| self.own[mi].is_some());
+            for &mi in own {
+                for &a in self.slave.edges[k]
+                    .nodes
+                    .iter()
+                    .chain(&self.master.edges[mi].nodes)
+                {
+                    for &b in &self.slave.at_node[&a] {
+                        for &n in &self.slave.edges[b].nodes {
+                            local.add(ctx, n)?;
+                        }
+                    }
+                }
+            }
             pairs.push((k, over));
         }
         if local.m() > dual::MAXV {
@@ -596,11 +830,13 @@ impl Mortar {
     }
 
     /// The parts [ξ_lo, ξ_hi] of slave edge `xg` that the master edges `over` overlap (the
-    /// master's ends projected on it, (y − x(ξ))·x'(ξ) = 0), with each master edge's nodes.
+    /// master's ends projected on it, (y − x(ξ))·x'(ξ) = 0; in self-contact, `sn` the slave
+    /// edge's nodal normals, along the mean of the two normals as the Gauss points' rays go,
+    /// [`symmetric_ray`]), with each master edge's nodes.
     fn overlap_pieces(
         &self,
         over: &[usize],
-        xg: &[[Dual; 2]],
+        (xg, sn): (&[[Dual; 2]], Option<&[[Dual; 2]; 2]>),
         geo: &dyn Fn(usize) -> [Dual; 2],
         m: usize,
     ) -> Vec<(usize, Vec<[Dual; 2]>, Dual, Dual)> {
@@ -609,11 +845,27 @@ impl Mortar {
         for &mi in over {
             let me = &self.master.edges[mi];
             let yg: Vec<[Dual; 2]> = me.nodes.iter().map(|&n| geo(n)).collect();
-            // The master's ends projected on the slave edge: (y − x(ξ))·x'(ξ) = 0.
-            let project = |y: [Dual; 2]| {
+            let own = (self.own[mi].zip(sn))
+                .filter(|_| close_duals(xg, &yg))
+                .map(|(mk, sn)| (sn, self.edge_normals(mk, geo)));
+            // The master's end `end` (0 or 1) projected on the slave edge.
+            let project = |end: usize| {
+                let y = yg[end];
                 let chord = [xg[1][0] - xg[0][0], xg[1][1] - xg[0][1]];
                 let s0 = ((y[0].v - xg[0][0].v) * chord[0].v + (y[1].v - xg[0][1].v) * chord[1].v)
                     / (chord[0].v * chord[0].v + chord[1].v * chord[1].v);
+                if let Some((sn, mn)) = &own {
+                    let ne = mn[end];
+                    return solve(s0, m, false, |s| {
+                        // The line from x(ξ) along ν(ξ) + n_e (ν = −n, n the slave's outward
+                        // normal) through y: r × d = 0.
+                        let (x, t, _) = curve(xg, s);
+                        let (n, dn) = interpolated(sn, s);
+                        let d = [ne[0] - n[0], ne[1] - n[1]];
+                        let r = [y[0] - x[0], y[1] - x[1]];
+                        (cross(r, d), cross(d, t) - cross(r, dn))
+                    });
+                }
                 solve(s0, m, xg.len() == 2, |s| {
                     let (x, t, t2) = curve(xg, s);
                     let r = [y[0] - x[0], y[1] - x[1]];
@@ -623,7 +875,7 @@ impl Mortar {
                     )
                 })
             };
-            let (pa, pb) = (project(yg[0]), project(yg[1]));
+            let (pa, pb) = (project(0), project(1));
             let (mut lo, mut hi) = if pa.v < pb.v { (pa, pb) } else { (pb, pa) };
             if lo.v < 0.0 {
                 lo = zero;
@@ -717,8 +969,9 @@ impl Formulation for Mortar {
     }
 
     fn symmetric(&self) -> bool {
-        // B = ∇g̃ in small deformation; the tangent is then symmetric (material part only).
-        !self.nlgeo && self.law.symmetric()
+        // B = ∇g̃ in small deformation; the tangent is then symmetric (material part only),
+        // but for a self-contact pair's merged constraint.
+        !self.nlgeo && self.law.symmetric() && self.own.iter().all(Option::is_none)
     }
 
     fn partner_nodes(&self, partner: Partner) -> &[usize] {
@@ -744,31 +997,170 @@ impl Formulation for Mortar {
             .map(|k| self.overlapping(ctx, &boxes, k))
             .collect::<Result<Vec<_>>>()?;
         let searching = start.elapsed().as_secs_f64();
-        for j in 0..self.slots.len() {
-            let (local, w) = self.integrate(ctx, &overlaps, j)?;
-            // The shares of the reference (small deformation) or current segmentation.
-            let slip = Some(SlipForm {
-                shares: w.shares.iter().map(|&s| s.into()).enumerate().collect(),
-                normal: [
-                    w.normal[0].into(),
-                    w.normal[1].into(),
-                    Jet::constant(0.0, local.m()),
-                ],
-            });
-            let w = Weighted {
-                gap: w.gap.into(),
-                area: w.area.into(),
-                b: w.b.into_iter().map(Into::into).collect(),
-                partner: w.partner,
-                slip,
+        let weighted = (0..self.slots.len())
+            .map(|j| {
+                let (local, w) = self.integrate(ctx, &overlaps, j)?;
+                // The shares of the reference (small deformation) or current segmentation.
+                let slip = Some(SlipForm {
+                    shares: w.shares.iter().map(|&s| s.into()).enumerate().collect(),
+                    normal: [
+                        w.normal[0].into(),
+                        w.normal[1].into(),
+                        Jet::constant(0.0, local.m()),
+                    ],
+                });
+                let w = Weighted {
+                    gap: w.gap.into(),
+                    area: w.area.into(),
+                    b: w.b.into_iter().map(Into::into).collect(),
+                    partner: w.partner,
+                    slip,
+                };
+                Ok((local, w))
+            })
+            .collect::<Result<Vec<_>>>()?;
+        // Self-contact: pairs that repeat one contact hold it by one constraint.
+        let pairs = self.repeated_pairs(ctx, &overlaps, &weighted, history)?;
+        let mut merged: Vec<Option<(Local, SlotKinematics)>> = Vec::new();
+        merged.resize_with(self.slots.len(), || None);
+        let mut reports = Vec::with_capacity(pairs.len());
+        for &(i, j) in &pairs {
+            let kin = |k: usize| {
+                let (local, w) = &weighted[k];
+                self.law.slot_kinematics(k, local, w, w.b.clone())
             };
-            let (point, state) =
-                self.law
-                    .evaluate(ctx, first_lambda, j, self.slots[j].0, &local, w, history)?;
+            let (ki, kj) = (kin(i), kin(j));
+            let (local, kin) = repeated::merge((&weighted[i].0, &ki), (&weighted[j].0, &kj));
+            reports.push(PairReport {
+                slots: [i, j],
+                shares: [self.slots[i].0, self.slots[j].0]
+                    .map(|n| repeated::share_at(&local, &kin, n)),
+                gaps: [ki.gap.v, kj.gap.v],
+                areas: [weighted[i].1.area.v, weighted[j].1.area.v],
+                partner: weighted[j].1.partner,
+            });
+            merged[i] = Some((local, kin));
+        }
+        let first_state = states.len();
+        for (j, (local, w)) in weighted.into_iter().enumerate() {
+            // The second of a pair holds nothing of its own (its multiplier at zero).
+            let w = match pairs.iter().any(|p| p.1 == j) {
+                true => Weighted::none(local.m()),
+                false => w,
+            };
+            let (point, state) = self.law.evaluate(
+                ctx,
+                first_lambda,
+                j,
+                self.slots[j].0,
+                &local,
+                w,
+                history,
+                merged[j].take(),
+            )?;
             points.push(point);
             states.push(state);
         }
+        let mine = &mut states[first_state..];
+        for r in reports {
+            // The merged constraint's pressure λ: each node carries λ times its share.
+            let (lambda, active) = (mine[r.slots[0]].pressure, mine[r.slots[0]].active);
+            for k in 0..2 {
+                let s = &mut mine[r.slots[k]];
+                s.force = lambda * r.shares[k];
+                s.area = r.areas[k];
+                s.pressure = s.force / s.area;
+                s.gap = r.gaps[k];
+                s.active = active;
+                s.repeated = true;
+            }
+            mine[r.slots[1]].partner = r.partner;
+        }
         Ok(searching)
+    }
+}
+
+/// What each node of a self-contact pair reports: its share of the merged force direction, its
+/// own weighted gap and support, and the second's partner.
+struct PairReport {
+    slots: [usize; 2],
+    shares: [f64; 2],
+    gaps: [f64; 2],
+    areas: [f64; 2],
+    partner: Partner,
+}
+
+impl Mortar {
+    /// Self-contact's repeated pairs ([`crate::contact::repeated`]): slots (i, j), i < j, whose
+    /// slave edges each overlap an own edge of the other's node, closer than a quarter of the
+    /// second's edge length (a third if either was in a pair at the last converged state),
+    /// closest first and each slot in one pair at most; frictionless, each with support on at
+    /// least [`SLIVER`] of its full support.
+    fn repeated_pairs(
+        &self,
+        ctx: &Ctx,
+        overlaps: &[Vec<usize>],
+        weighted: &[(Local, Weighted)],
+        history: Option<&[SlotState]>,
+    ) -> Result<Vec<(usize, usize)>> {
+        if self.own.iter().all(Option::is_none) || self.law.friction.is_some() {
+            return Ok(Vec::new());
+        }
+        let n = self.slots.len();
+        let slot_of: std::collections::HashMap<usize, usize> = (self.slots.iter().enumerate())
+            .map(|(j, s)| (s.0, j))
+            .collect();
+        // The nodes of the own edges each slot's slave edges overlap.
+        let met: Vec<Vec<usize>> = (0..n)
+            .map(|j| {
+                let area = weighted[j].1.area.v;
+                if !(area > 0.0 && area >= SLIVER * self.law.full_support[j]) {
+                    return Vec::new();
+                }
+                let mut nodes: Vec<usize> = (self.slots[j].1.iter())
+                    .flat_map(|&k| &overlaps[k])
+                    .filter(|&&mi| self.own[mi].is_some())
+                    .flat_map(|&mi| self.master.edges[mi].nodes.iter().copied())
+                    .collect();
+                nodes.sort_unstable();
+                nodes.dedup();
+                nodes
+            })
+            .collect();
+        let pos = |node: usize| ctx.position(node).map(|p| p.0);
+        let dist = |a: [f64; 3], b: [f64; 3]| (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>();
+        let was = |j: usize| history.and_then(|h| h.get(j)).is_some_and(|s| s.repeated);
+        let mut pairs = Vec::new();
+        for i in 0..n {
+            let a = self.slots[i].0;
+            for b in &met[i] {
+                let Some(&j) = slot_of.get(b) else { continue };
+                if j <= i || met[j].binary_search(&a).is_err() {
+                    continue;
+                }
+                let mut spacing = f64::INFINITY;
+                for &k in &self.slots[j].1 {
+                    let e = &self.slave.edges[k].nodes;
+                    spacing = spacing.min(dist(pos(e[0])?, pos(e[1])?).sqrt());
+                }
+                let limit = if was(i) || was(j) { KEEP } else { PAIR };
+                let d = dist(pos(a)?, pos(*b)?).sqrt();
+                if d < limit * spacing {
+                    pairs.push((d, i, j));
+                }
+            }
+        }
+        pairs.sort_by(|p, q| p.0.total_cmp(&q.0).then((p.1, p.2).cmp(&(q.1, q.2))));
+        let mut used = vec![false; n];
+        let mut out = Vec::new();
+        for (_, i, j) in pairs {
+            if !used[i] && !used[j] {
+                used[i] = true;
+                used[j] = true;
+                out.push((i, j));
+            }
+        }
+        Ok(out)
     }
 }
 

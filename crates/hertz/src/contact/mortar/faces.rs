@@ -1124,9 +1124,16 @@ impl Formulation for FaceMortar {
             (slots, 0.0)
         };
         for (j, (local, w)) in slots.into_iter().enumerate() {
-            let (point, state) =
-                self.law
-                    .evaluate(ctx, first_lambda, j, self.slots[j].0, &local, w, history)?;
+            let (point, state) = self.law.evaluate(
+                ctx,
+                first_lambda,
+                j,
+                self.slots[j].0,
+                &local,
+                w,
+                history,
+                None,
+            )?;
             points.push(point);
             states.push(state);
         }
@@ -1210,6 +1217,16 @@ fn check_surfaces(
             c,
             "a 3D mortar condition meets at most 4 rigid shapes that move with nodes",
         ));
+    }
+    if let crate::model::Pairing::Mortar { slave, segments } = &c.pairing {
+        if segments.contains(slave) {
+            return Err(input_error(
+                c,
+                "mortar self-contact (the slave segment among the master segments) is 2D only: \
+                 in 3D a node-to-segment condition (`n2s...`) whose `slaveset` holds the \
+                 segment's nodes and whose `segmentset` names it is self-contact",
+            ));
+        }
     }
     if slave.at_node.keys().any(|n| master.at_node.contains_key(n)) {
         return Err(input_error(

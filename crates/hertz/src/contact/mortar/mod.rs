@@ -128,6 +128,19 @@ struct Weighted {
     slip: Option<SlipForm>,
 }
 
+impl Weighted {
+    /// No support: a slot that holds nothing (its multiplier at zero).
+    fn none(m: usize) -> Weighted {
+        Weighted {
+            gap: Jet::constant(0.0, m),
+            area: Jet::constant(0.0, m),
+            b: vec![Jet::constant(0.0, m); m],
+            partner: Partner::None,
+            slip: None,
+        }
+    }
+}
+
 /// A slave node's weighted slip in a step, ũ_j = Σ_n w_jn·(x_n − x⁰_n) / D_j, x⁰ the positions
 /// of the last converged step, with the shares w_jn = ∫ Φ_j N_n dA for slave nodes and
 /// −∫ Φ_j M_l dA for master nodes (of the reference segmentation in small deformation, of the
@@ -281,7 +294,8 @@ impl MortarLaw {
 
     /// The contact point and state of slot `j` (slave node `node`) from its integrals, with the
     /// friction anchored where `history` (the converged states of the last step) leaves it, if
-    /// the condition has friction.
+    /// the condition has friction. `merged`: the kinematics (over their own unknowns) of a
+    /// self-contact pair's one constraint ([`crate::contact::repeated`]) in place of the slot's.
     #[allow(clippy::too_many_arguments)]
     fn evaluate(
         &self,
@@ -292,6 +306,7 @@ impl MortarLaw {
         local: &Local,
         mut w: Weighted,
         history: Option<&[SlotState]>,
+        merged: Option<(Local, SlotKinematics)>,
     ) -> Result<(SlotLinearization, SlotState)> {
         let anchor = history
             .and_then(|h| h.get(j))
@@ -303,7 +318,11 @@ impl MortarLaw {
         };
         let has = w.area.v > 0.0;
         let b = std::mem::take(&mut w.b);
-        let mut kin = self.slot_kinematics(j, local, &w, b);
+        let (merged_local, mut kin) = match merged {
+            Some((l, k)) => (Some(l), k),
+            None => (None, self.slot_kinematics(j, local, &w, b)),
+        };
+        let local = merged_local.as_ref().unwrap_or(local);
         // The multipliers' active-set rule compares a pressure with c·ḡ: c per unit area.
         let laws = Laws {
             c: ctx.laws.c / w.area.v.max(1e-300),
