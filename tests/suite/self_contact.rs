@@ -31,6 +31,9 @@ struct Ring {
     /// node-to-segment.
     mortar: bool,
     penalty: Option<f64>,
+    /// The lower half's nodes moved round by up to this fraction of a spacing (whole model):
+    /// the walls' nodes do not match.
+    skew: f64,
 }
 
 impl Ring {
@@ -54,6 +57,7 @@ fn ring(full: bool, r: Ring) -> String {
         axis,
         mortar,
         penalty,
+        skew,
     } = r;
     let x0 = axis.unwrap_or(0.0);
     let (ri, ro) = (0.6, 1.0);
@@ -72,7 +76,12 @@ fn ring(full: bool, r: Ring) -> String {
         for i in 0..=nr {
             let r = ri + (ro - ri) * i as f64 / nr as f64;
             for j in 0..jn {
-                let th = 2.0 * std::f64::consts::PI * j as f64 / nt as f64;
+                let step = 2.0 * std::f64::consts::PI / nt as f64;
+                let mut th = step * j as f64;
+                if full && j > nt / 2 {
+                    let s = std::f64::consts::PI * (j - nt / 2) as f64 / (nt / 2) as f64;
+                    th += skew * step * s.sin();
+                }
                 let c = [x0 + r * th.cos(), r * th.sin(), tz * z as f64];
                 nodes += &if d3 {
                     format!("node {} coords 3 {} {} {}\n", id(i, j, z), c[0], c[1], c[2])
@@ -403,6 +412,41 @@ fn a_ring_with_its_bore_in_mortar_self_contact_equals_its_half_model() {
         penalty: Some(1e5),
         ..plane
     });
+}
+
+/// Mortar self-contact on walls whose nodes do not match (the lower half's nodes moved round by
+/// up to 0.3 of a spacing), multipliers, crushed to 70 %: every step converges in at most 5
+/// iterations (seen 2–4), and the plate force follows node-to-segment self-contact's on the
+/// same mesh within 0.5 % (the two discretize the contact differently). Past 75 % such walls
+/// take many iterations (docs/guide.md).
+#[test]
+fn mortar_self_contact_on_walls_whose_nodes_do_not_match_follows_node_to_segment() {
+    let ring = Ring {
+        nt: 48,
+        nr: 3,
+        crush: 0.7,
+        steps: 29,
+        skew: 0.3,
+        ..Ring::default()
+    };
+    let n2s = crush(&ring.text(true));
+    let mortar = crush(
+        &Ring {
+            mortar: true,
+            ..ring
+        }
+        .text(true),
+    );
+    let iterations: Vec<usize> = mortar.iter().map(|s| s.iterations).collect();
+    assert!(iterations.iter().all(|&i| i <= 5), "{iterations:?}");
+    for (k, (m, n)) in mortar.iter().zip(&n2s).enumerate() {
+        assert!(
+            (m.plate - n.plate).abs() <= 5e-3 * n.plate.abs().max(1e-9),
+            "step {k}: plate force {} mortar, {} node-to-segment",
+            m.plate,
+            n.plate
+        );
+    }
 }
 
 /// Nearly incompressible rubber (K = 1000 G, barred quadrilaterals) crushed to 80 %: the crease
