@@ -428,17 +428,18 @@ fn a_ring_with_its_bore_in_mortar_self_contact_equals_its_half_model() {
 }
 
 /// Mortar self-contact on walls whose nodes do not match (the lower half's nodes moved round by
-/// up to 0.3 of a spacing), multipliers, crushed to 70 %: every step converges in at most 5
-/// iterations (seen 2–4), and the plate force follows node-to-segment self-contact's on the
-/// same mesh within 0.5 % (the two discretize the contact differently). Past 75 % such walls
-/// take many iterations (docs/guide.md).
+/// up to 0.3 of a spacing), multipliers, crushed to 80 %: every step converges without a cut,
+/// in 2–4 iterations but the last two (at most 15; seen 6 and 13), and the plate
+/// force follows node-to-segment self-contact's on the same mesh within 0.5 % (the two
+/// discretize the contact differently). Pairs of nodes within half a spacing hold one
+/// constraint; with node-to-segment's quarter the step to 97 % failed.
 #[test]
 fn mortar_self_contact_on_walls_whose_nodes_do_not_match_follows_node_to_segment() {
     let ring = Ring {
         nt: 48,
         nr: 3,
-        crush: 0.7,
-        steps: 29,
+        crush: 0.8,
+        steps: 33,
         skew: 0.3,
         ..Ring::default()
     };
@@ -451,7 +452,11 @@ fn mortar_self_contact_on_walls_whose_nodes_do_not_match_follows_node_to_segment
         .text(true),
     );
     let iterations: Vec<usize> = mortar.iter().map(|s| s.iterations).collect();
-    assert!(iterations.iter().all(|&i| i <= 5), "{iterations:?}");
+    let (early, late) = iterations.split_at(iterations.len() - 2);
+    assert!(
+        early.iter().all(|&i| i <= 4) && late.iter().all(|&i| i <= 15),
+        "{iterations:?}"
+    );
     for (k, (m, n)) in mortar.iter().zip(&n2s).enumerate() {
         assert!(
             (m.plate - n.plate).abs() <= 5e-3 * n.plate.abs().max(1e-9),
