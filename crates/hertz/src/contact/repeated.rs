@@ -18,6 +18,25 @@ use super::law::SlotKinematics;
 pub(crate) const PAIR: f64 = 0.25;
 pub(crate) const KEEP: f64 = 1.0 / 3.0;
 
+/// The pairs (i, j) of `candidates` (distance, i, j) closest first, each of the `n` slots in one
+/// pair at most.
+pub(crate) fn closest_first(
+    mut candidates: Vec<(f64, usize, usize)>,
+    n: usize,
+) -> Vec<(usize, usize)> {
+    candidates.sort_by(|p, q| p.0.total_cmp(&q.0).then((p.1, p.2).cmp(&(q.1, q.2))));
+    let mut used = vec![false; n];
+    let mut out = Vec::new();
+    for (_, i, j) in candidates {
+        if !used[i] && !used[j] {
+            used[i] = true;
+            used[j] = true;
+            out.push((i, j));
+        }
+    }
+    out
+}
+
 /// A jet over another local set's unknowns, placed by `map` among `m` unknowns.
 fn placed(x: &Jet, map: &[usize], m: usize) -> Jet {
     let mut d = vec![0.0; m];

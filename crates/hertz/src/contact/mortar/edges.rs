@@ -1160,17 +1160,7 @@ impl Mortar {
                 }
             }
         }
-        pairs.sort_by(|p, q| p.0.total_cmp(&q.0).then((p.1, p.2).cmp(&(q.1, q.2))));
-        let mut used = vec![false; n];
-        let mut out = Vec::new();
-        for (_, i, j) in pairs {
-            if !used[i] && !used[j] {
-                used[i] = true;
-                used[j] = true;
-                out.push((i, j));
-            }
-        }
-        Ok(out)
+        Ok(repeated::closest_first(pairs, n))
     }
 }
 

@@ -8,7 +8,7 @@
 use super::{NodeToSegment, Prepared, Slot};
 use crate::contact::formulation::{Formulation, Partner, Search};
 use crate::contact::law::SlotKinematics;
-use crate::contact::repeated::{KEEP, PAIR};
+use crate::contact::repeated::{self, KEEP, PAIR};
 
 impl NodeToSegment {
     /// The self-contact slots (i, j), i < j, whose constraints repeat each other, closest first
@@ -54,17 +54,7 @@ impl NodeToSegment {
                 }
             }
         }
-        pairs.sort_by(|p, q| p.0.total_cmp(&q.0).then((p.1, p.2).cmp(&(q.1, q.2))));
-        let mut used = vec![false; self.slots.len()];
-        let mut out = Vec::new();
-        for (_, i, j) in pairs {
-            if !used[i] && !used[j] {
-                used[i] = true;
-                used[j] = true;
-                out.push((i, j));
-            }
-        }
-        out
+        repeated::closest_first(pairs, self.slots.len())
     }
 }
 
