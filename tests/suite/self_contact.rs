@@ -425,29 +425,33 @@ fn a_ring_with_its_bore_in_mortar_self_contact_equals_its_half_model() {
         friction: Some(0.3),
         ..plane
     });
-    // A hollow torus: its half model's cut nodes lie on the plane, where a mortar multiplier
-    // has round-off work on their neighbours in axisymmetry and chatters, so the whole torus
-    // is held against node-to-segment's whole torus instead, which equals its own half model:
-    // on matched walls both hold each pair of nodes together, and the forces agree to 1e-9
-    // (seen: to the last bit), in as few iterations.
+    // A hollow torus (axisymmetric), whole and half, against node-to-segment's whole torus
+    // (which equals its own half model): on matched walls both hold each pair of nodes
+    // together, and the plate forces agree to 1e-9 (seen: to the bit). The half model's mortar
+    // slave reaches its plane, where the nodes held on it do not constrain anything (it
+    // chattered on them: their force is along their held motion, and the dual basis leaves a
+    // round-off share on their neighbours). Its bore forces are not compared: in axisymmetry
+    // the merged pairs' shares are biorthogonal in the reference configuration only.
     let torus = Ring {
         axis: Some(3.0),
         ..plane
     };
     let n2s = crush(&torus.text(true));
-    let mortar = crush(
-        &Ring {
-            mortar: true,
-            ..torus
+    let mortar = Ring {
+        mortar: true,
+        ..torus
+    };
+    for (what, run) in [
+        ("whole", crush(&mortar.text(true))),
+        ("half", crush(&mortar.text(false))),
+    ] {
+        for (k, (m, n)) in run.iter().zip(&n2s).enumerate() {
+            assert!(
+                (m.plate - n.plate).abs() <= 1e-9 * n.plate.abs().max(1e-9)
+                    && m.iterations <= n.iterations.max(5),
+                "torus {what}, step {k}: mortar {m:?}, node-to-segment {n:?}"
+            );
         }
-        .text(true),
-    );
-    for (k, (m, n)) in mortar.iter().zip(&n2s).enumerate() {
-        assert!(
-            (m.plate - n.plate).abs() <= 1e-9 * n.plate.abs().max(1e-9)
-                && m.iterations <= n.iterations.max(5),
-            "torus, step {k}: mortar {m:?}, node-to-segment {n:?}"
-        );
     }
 }
 

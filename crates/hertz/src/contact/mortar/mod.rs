@@ -128,6 +128,17 @@ struct Weighted {
     slip: Option<SlipForm>,
 }
 
+/// Whether every component of the force direction `kin.b` on `node` itself lies along held
+/// unknowns (a force along its own held motion).
+fn held_along_force(ctx: &Ctx, local: &Local, node: usize, kin: &SlotKinematics) -> bool {
+    let (dim, k) = (local.dim, local.index(node));
+    let own: Vec<f64> = (0..dim).map(|i| kin.b[dim * k + i].v).collect();
+    let size = own.iter().fold(0.0, |a: f64, v| a.max(v.abs()));
+    size > 0.0
+        && (0..dim)
+            .all(|i| own[i].abs() <= 1e-9 * size || !ctx.nodes.is_free(local.codes[dim * k + i]))
+}
+
 impl Weighted {
     /// No support: a slot that holds nothing (its multiplier at zero).
     fn none(m: usize) -> Weighted {
@@ -316,13 +327,25 @@ impl MortarLaw {
             xi: [0.0; 2],
             ..SlotState::unpaired(self.number, node, ctx.position(node)?.0)
         };
-        let has = w.area.v > 0.0;
         let b = std::mem::take(&mut w.b);
         let (merged_local, mut kin) = match merged {
             Some((l, k)) => (Some(l), k),
             None => (None, self.slot_kinematics(j, local, &w, b)),
         };
         let local = merged_local.as_ref().unwrap_or(local);
+        // A node held along its own force (a half model's slave node on its symmetry plane, a
+        // node held on the plane it meets): the supports take that force, and the constraint
+        // repeats the support's but for a round-off share of the neighbours' gaps (the dual
+        // basis is biorthogonal in the reference configuration), which left its multiplier
+        // undetermined: a hollow torus's half model chattered on its two cut nodes. It holds
+        // nothing.
+        let held = merged_local.is_none() && held_along_force(ctx, local, node, &kin);
+        let has = w.area.v > 0.0 && !held;
+        // Its gap is still reported.
+        let held_gap = held.then_some(kin.gap.v);
+        if held {
+            kin = self.slot_kinematics(j, local, &Weighted::none(local.m()), Vec::new());
+        }
         // The multipliers' active-set rule compares a pressure with c·ḡ: c per unit area.
         let laws = Laws {
             c: ctx.laws.c / w.area.v.max(1e-300),
@@ -403,6 +426,8 @@ impl MortarLaw {
         };
         if has {
             self.record_force(j, &point, &kin, &w, &mut state);
+        } else if let Some(gap) = held_gap {
+            state.gap = gap;
         } else {
             state.partner = Partner::None;
         }
