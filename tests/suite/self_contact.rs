@@ -809,7 +809,6 @@ fn a_node_on_a_sharp_convex_fold_pairs_with_nothing_of_its_own_surface() {
         )
     };
     let run = |contact: Option<bool>| {
-        std::fs::write(format!("/tmp/wedge_{contact:?}.in"), input(contact)).unwrap();
         let model = common::model_from_text(&input(contact)).unwrap();
         let tip = model
             .nodes
