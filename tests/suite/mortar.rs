@@ -1149,3 +1149,40 @@ fn mortar_on_curved_quadratic_faces_meets_lame() {
         }
     }
 }
+
+/// A body pushed onto a held slave surface: the blocks of `common::mortar_blocks` (4 and 5
+/// elements across, pressure 10 on the top) with the roles turned — the lower block's top
+/// edges the slave, every node of the lower block held in y. Each slave node's force lies
+/// along its held motion, but the master moves: the constraint holds the upper block, and the
+/// interface carries the pressure 10 (to 1e-8) at every slave node. (A rule that let slave nodes
+/// held along their force hold nothing, as a half model's nodes on its symmetry plane, dropped
+/// it here: the upper block then floated.)
+#[test]
+fn a_body_pushed_onto_a_held_slave_surface_is_held_by_it() {
+    let (n_low, n_up) = (4, 5);
+    let text = common::mortar_blocks(
+        n_low,
+        n_up,
+        0,
+        "s2slagrangianmultipliercontact 4 loadTimeFunction 1 slavesegment 2 segmentset 1 1",
+    );
+    let bottom: Vec<String> = (1..=n_low + 1).map(|k| k.to_string()).collect();
+    let lower: Vec<String> = (1..=3 * (n_low + 1)).map(|k| k.to_string()).collect();
+    let text = text.replace(
+        &format!("Set 6 nodes {} {}", bottom.len(), bottom.join(" ")),
+        &format!("Set 6 nodes {} {}", lower.len(), lower.join(" ")),
+    );
+    assert!(text.contains(&format!("Set 6 nodes {}", lower.len())));
+    let model = common::model_from_text(&text).unwrap();
+    let (states, _) = common::solve_model(&model);
+    assert_eq!(states.len(), n_low + 1);
+    for s in &states {
+        assert!(
+            s.active && (s.pressure - 10.0).abs() < 1e-8 * 10.0,
+            "slave node {}: pressure {} (active {})",
+            s.node,
+            s.pressure,
+            s.active
+        );
+    }
+}

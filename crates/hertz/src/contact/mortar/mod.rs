@@ -128,15 +128,30 @@ struct Weighted {
     slip: Option<SlipForm>,
 }
 
-/// Whether every component of the force direction `kin.b` on `node` itself lies along held
-/// unknowns (a force along its own held motion).
-fn held_along_force(ctx: &Ctx, local: &Local, node: usize, kin: &SlotKinematics) -> bool {
-    let (dim, k) = (local.dim, local.index(node));
-    let own: Vec<f64> = (0..dim).map(|i| kin.b[dim * k + i].v).collect();
-    let size = own.iter().fold(0.0, |a: f64, v| a.max(v.abs()));
+/// Whether the force direction `kin.b` on `node` itself lies along held unknowns (a force along
+/// its own held motion) and on every master node (not in `slave`) too: the constraint then
+/// moves nothing that is free but the slave neighbours' round-off shares. A master that moves
+/// (a body pushed onto a held slave surface) keeps the constraint: it holds that body.
+fn held_along_force(
+    ctx: &Ctx,
+    local: &Local,
+    node: usize,
+    kin: &SlotKinematics,
+    slave: &std::collections::HashSet<usize>,
+) -> bool {
+    let dim = local.dim;
+    let entries = |n: usize| {
+        let k = local.index(n);
+        (0..dim).map(move |i| (kin.b[dim * k + i].v, local.codes[dim * k + i]))
+    };
+    let size = entries(node).fold(0.0, |a: f64, (v, _)| a.max(v.abs()));
+    let held =
+        |n: usize| entries(n).all(|(v, code)| v.abs() <= 1e-9 * size || !ctx.nodes.is_free(code));
     size > 0.0
-        && (0..dim)
-            .all(|i| own[i].abs() <= 1e-9 * size || !ctx.nodes.is_free(local.codes[dim * k + i]))
+        && held(node)
+        && (local.nodes.iter())
+            .filter(|n| !slave.contains(n))
+            .all(|&n| held(n))
 }
 
 impl Weighted {
@@ -188,6 +203,9 @@ struct MortarLaw {
     full_support: Vec<f64>,
     mesh_penalty: Vec<f64>,
     dim: usize,
+    /// The slave nodes (the slots), unless the condition is self-contact (its slave surface is
+    /// among its masters): see [`held_along_force`].
+    slave_nodes: Option<std::collections::HashSet<usize>>,
 }
 
 /// The share of its full support below which a slave node's multiplier fades into a penalty
@@ -244,6 +262,12 @@ impl MortarLaw {
             full_support,
             mesh_penalty,
             dim: model.domain.nsd(),
+            slave_nodes: match &c.pairing {
+                crate::model::Pairing::Mortar { slave, segments } if segments.contains(slave) => {
+                    None
+                }
+                _ => Some(slots.iter().copied().collect()),
+            },
         }
     }
 
@@ -339,7 +363,9 @@ impl MortarLaw {
         // basis is biorthogonal in the reference configuration), which left its multiplier
         // undetermined: a hollow torus's half model chattered on its two cut nodes. It holds
         // nothing.
-        let held = merged_local.is_none() && held_along_force(ctx, local, node, &kin);
+        let held = merged_local.is_none()
+            && (self.slave_nodes.as_ref())
+                .is_some_and(|s| held_along_force(ctx, local, node, &kin, s));
         let has = w.area.v > 0.0 && !held;
         // Its gap is still reported.
         let held_gap = held.then_some(kin.gap.v);
