@@ -445,13 +445,16 @@ fn solve(s0: f64, m: usize, linear: bool, f: impl Fn(Dual) -> (Dual, Dual)) -> D
 const PAIR: f64 = 2.0 * repeated::PAIR;
 const PAIR_KEPT: f64 = 2.0 * repeated::KEEP;
 
-/// Whether two straight edges (ends `x`, `y`) are within the first's length of each other:
+/// Whether two straight edges (ends `x`, `y`, at their values) are within the first's length of
+/// each other:
 /// self-contact's walls close enough to meet along the mean of their normals
 /// ([`symmetric_ray`]). Farther apart the rays are along the slave's normal: on walls of one
 /// circle (an open bore) the mean of the normals joins every point to every other, and its
 /// parts and gaps are ill-posed; an open gap's value exerts no force, so the switch changes
 /// nothing a step converges to.
-fn close(x: [[f64; 2]; 2], y: [[f64; 2]; 2]) -> bool {
+fn close(x: &[[Dual; 2]], y: &[[Dual; 2]]) -> bool {
+    let v = |p: &[Dual; 2]| [p[0].v, p[1].v];
+    let (x, y) = ([v(&x[0]), v(&x[1])], [v(&y[0]), v(&y[1])]);
     let to_segment = |p: [f64; 2], [a, b]: [[f64; 2]; 2]| {
         let t = [b[0] - a[0], b[1] - a[1]];
         let l2 = t[0] * t[0] + t[1] * t[1];
@@ -468,12 +471,6 @@ fn close(x: [[f64; 2]; 2], y: [[f64; 2]; 2]) -> bool {
     .into_iter()
     .fold(f64::INFINITY, f64::min);
     gap < length
-}
-
-/// [`close`] of two edges' (end) positions in duals.
-fn close_duals(x: &[[Dual; 2]], y: &[[Dual; 2]]) -> bool {
-    let v = |p: &[Dual; 2]| [p[0].v, p[1].v];
-    close([v(&x[0]), v(&x[1])], [v(&y[0]), v(&y[1])])
 }
 
 /// a × b in 2D.
@@ -714,10 +711,11 @@ impl Mortar {
             } else {
                 let xref: Vec<[f64; 3]> =
                     e.nodes.iter().map(|&n| ctx.model.nodes[n].coords).collect();
-                let spans: Vec<(Dual, Dual)> = pieces.iter().map(|p| (p.2, p.3)).collect();
+                let spans: Vec<(Dual, Dual)> = pieces.iter().map(|p| p.span).collect();
                 dual_basis_over(&xref, &spans, self.axisymmetric)[jloc]
             };
-            for (mi, yg, lo, hi) in pieces {
+            for piece in pieces {
+                let (mi, yg, (lo, hi)) = (piece.master, piece.yg, piece.span);
                 let me = &self.master.edges[mi];
                 let yc: Vec<[Dual; 2]> = me.nodes.iter().map(|&n| cur(n)).collect();
                 if w.partner == Partner::None {
@@ -725,9 +723,7 @@ impl Mortar {
                 }
                 let (ws, wm) = interface_weights(ctx.model, e.element, me.element);
                 // Self-contact, walls close: the nodal normals of both edges.
-                let normals = (self.own[mi].zip(sn.as_ref()))
-                    .filter(|_| close_duals(&xg, &yg))
-                    .map(|(mk, sn)| (sn, self.edge_normals(mk, &geo)));
+                let normals = sn.as_ref().zip(piece.normals);
                 let own = normals.is_some();
                 add(&mut w, &coef, lo, hi, &|xi: Dual| {
                     let (x, t, mut nu, jac, xcur) = at(xi);
@@ -842,22 +838,23 @@ impl Mortar {
     /// The parts [ξ_lo, ξ_hi] of slave edge `xg` that the master edges `over` overlap (the
     /// master's ends projected on it, (y − x(ξ))·x'(ξ) = 0; in self-contact, `sn` the slave
     /// edge's nodal normals, along the mean of the two normals as the Gauss points' rays go,
-    /// [`symmetric_ray`]), with each master edge's nodes.
+    /// [`symmetric_ray`]).
     fn overlap_pieces(
         &self,
         over: &[usize],
         (xg, sn): (&[[Dual; 2]], Option<&[[Dual; 2]; 2]>),
         geo: &dyn Fn(usize) -> [Dual; 2],
         m: usize,
-    ) -> Vec<(usize, Vec<[Dual; 2]>, Dual, Dual)> {
+    ) -> Vec<Piece> {
         let zero = Dual::constant(0.0, m);
-        let mut pieces: Vec<(usize, Vec<[Dual; 2]>, Dual, Dual)> = Vec::new();
+        let mut pieces = Vec::new();
         for &mi in over {
             let me = &self.master.edges[mi];
             let yg: Vec<[Dual; 2]> = me.nodes.iter().map(|&n| geo(n)).collect();
-            let own = (self.own[mi].zip(sn))
-                .filter(|_| close_duals(xg, &yg))
-                .map(|(mk, sn)| (sn, self.edge_normals(mk, geo)));
+            let normals = (self.own[mi])
+                .filter(|_| sn.is_some() && close(xg, &yg))
+                .map(|mk| self.edge_normals(mk, geo));
+            let own = sn.zip(normals.as_ref());
             // The master's end `end` (0 or 1) projected on the slave edge.
             let project = |end: usize| {
                 let y = yg[end];
@@ -894,7 +891,12 @@ impl Mortar {
                 hi = Dual::constant(1.0, m);
             }
             if hi.v - lo.v > 1e-12 {
-                pieces.push((mi, yg, lo, hi));
+                pieces.push(Piece {
+                    master: mi,
+                    yg,
+                    span: (lo, hi),
+                    normals,
+                });
             }
         }
         pieces
@@ -1051,10 +1053,14 @@ impl Formulation for Mortar {
             });
             merged[i] = Some((local, kin));
         }
+        let mut second = vec![false; self.slots.len()];
+        for &(_, j) in &pairs {
+            second[j] = true;
+        }
         let first_state = states.len();
         for (j, (local, w)) in weighted.into_iter().enumerate() {
             // The second of a pair holds nothing of its own (its multiplier at zero).
-            let w = match pairs.iter().any(|p| p.1 == j) {
+            let w = match second[j] {
                 true => Weighted::none(local.m()),
                 false => w,
             };
@@ -1166,3 +1172,13 @@ impl Mortar {
 
 /// A slave edge and the master edges that overlap it.
 type EdgeOverlaps<'o> = (usize, &'o [usize]);
+
+/// The part [ξ_lo, ξ_hi] (`span`) of a slave edge that master edge `master` (positions `yg`)
+/// overlaps, and in self-contact where the walls are close the master edge's nodal normals
+/// (the rays then run along the mean of both walls' normals, [`symmetric_ray`]).
+struct Piece {
+    master: usize,
+    yg: Vec<[Dual; 2]>,
+    span: (Dual, Dual),
+    normals: Option<[[Dual; 2]; 2]>,
+}
