@@ -806,18 +806,18 @@ impl Mortar {
                     local.add(ctx, n)?;
                 }
             }
-            // Self-contact's nodal normals move with the nodes beside both edges' ends.
-            let own = over.iter().filter(|&&mi| self.own[mi].is_some());
-            for &mi in own {
-                for &a in self.slave.edges[k]
-                    .nodes
-                    .iter()
-                    .chain(&self.master.edges[mi].nodes)
-                {
-                    for &b in &self.slave.at_node[&a] {
-                        for &n in &self.slave.edges[b].nodes {
-                            local.add(ctx, n)?;
-                        }
+            // Self-contact's nodal normals move with the nodes beside both edges' ends (the
+            // slave edge's once, if it meets any own edge).
+            let own: Vec<usize> = (over.iter().copied())
+                .filter(|&mi| self.own[mi].is_some())
+                .collect();
+            let slave_ends = own.first().map(|_| &self.slave.edges[k].nodes);
+            let ends = (slave_ends.into_iter().flatten())
+                .chain(own.iter().flat_map(|&mi| &self.master.edges[mi].nodes));
+            for &a in ends {
+                for &b in &self.slave.at_node[&a] {
+                    for &n in &self.slave.edges[b].nodes {
+                        local.add(ctx, n)?;
                     }
                 }
             }
