@@ -110,6 +110,50 @@ fn round_off_overlap_with_a_rigid_circle_changes_nothing() {
     }
 }
 
+/// A plane model's section thickness scales its contact forces and nothing else: SSNV128's plate
+/// (`suite::plate_pushed_on_a_rigid_plane`, plane strain, friction) 2 mm thick and 1 thick has
+/// the same pressure and gap at every contact node and forces in the ratio of the thicknesses,
+/// with mortar (multipliers, a penalty per unit area given and from the mesh) and
+/// node-to-segment (multipliers, the penalty from the mesh; a given one is a force per length,
+/// OOFEM's). Mortar integrated over the edges' length alone: its pressures came out times the
+/// thickness (1.07e5 for 5.34e7) and a given penalty acted 1/thickness times too stiff.
+#[test]
+fn a_plane_sections_thickness_scales_contact_forces_not_pressures() {
+    for law in [
+        "s2slagrangianmultipliercontact",
+        "s2spenaltycontact penalty 1e14",
+        "s2spenaltycontact",
+        "n2slagrangianmultipliercontact",
+        "n2spenaltycontact",
+    ] {
+        let thin = suite::plate_pushed_on_a_rigid_plane(2, 8, law);
+        assert!(thin.contains("thick 0.002"));
+        let unit = thin.replace("thick 0.002", "thick 1");
+        let run = |text: &str| {
+            let model = common::model_from_text(text).unwrap();
+            let mut out = Vec::new();
+            hertz::solve::run_analysis(&model, &common::quiet(), |r| {
+                out = r.contact.iter().map(|s| (s.pressure, s.gap, s.force)).collect();
+                Ok(())
+            })
+            .unwrap_or_else(|e| panic!("{law}: {e}"));
+            out
+        };
+        let (a, b) = (run(&thin), run(&unit));
+        let p = b.iter().map(|s| s.0.abs()).fold(0.0, f64::max);
+        let g = b.iter().map(|s| s.1.abs()).fold(1e-20, f64::max);
+        let f = b.iter().map(|s| s.2.abs()).fold(0.0, f64::max);
+        assert!(p > 1e7, "{law}: pressed ({p})");
+        for (i, (s, t)) in a.iter().zip(&b).enumerate() {
+            assert!(
+                (s.0 - t.0).abs() < 1e-8 * p && (s.1 - t.1).abs() < 1e-6 * g,
+                "{law}, slot {i}: 2 mm {s:?}, 1 {t:?}"
+            );
+            assert!((s.2 / 0.002 - t.2).abs() < 1e-8 * f, "{law}, slot {i}: {s:?} {t:?}");
+        }
+    }
+}
+
 /// A node-to-segment penalty of 1e12 with E = 1000 (10⁹ times the elements' stiffness E·A/h
 /// under a node) is solved with its forces as unknowns and the penalty's compliance
 /// (`contact::law::penalty::solved_as_multipliers`): one step, no round-off floor (it was

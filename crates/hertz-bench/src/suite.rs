@@ -671,6 +671,129 @@ pub fn plate_drawn_on_a_block(dim: usize, keyword: &str, params: &str, mortar: b
     t
 }
 
+/// Code_Aster's SSNV128 (V6.04.128, after a GRECO case): a square plate of side 40 mm
+/// (`n` × `n` elements, E = 1.3e11, ν = 0.2) on a rigid plane y = 0 with Coulomb friction μ = 1,
+/// pressed by a pressure 5e7 on its top and pushed along x by 15e7 on its face x = 0, u_x = 0 on
+/// its face x = 40 mm (the problem's symmetry plane) and u_y = 0 at the node (40 mm, 0, 0). In
+/// plane strain (`dim` 2), or in 3D one layer of bricks 2 mm thick with u_z = 0 on every node,
+/// the same problem but for the corner's second node (40 mm, 0, 2 mm), which the contact holds.
+/// The plate's bottom is the slave of the contact condition `law` (the record's keyword and its
+/// law's parameters, e.g. `s2spenaltycontact` or `n2spenaltycontact penalty 1e12`): its edges
+/// (faces) in mortar, its nodes in node-to-segment; friction 1.
+pub fn plate_pushed_on_a_rigid_plane(dim: usize, n: usize, law: &str) -> String {
+    let (side, t) = (0.04, 0.002);
+    let layers = if dim == 3 { 2 } else { 1 };
+    let id = |i: usize, j: usize, k: usize| k * (n + 1) * (n + 1) + j * (n + 1) + i + 1;
+    let mut text = String::new();
+    let mut records = Vec::new();
+    for k in 0..layers {
+        for j in 0..=n {
+            for i in 0..=n {
+                let (x, y) = (side * i as f64 / n as f64, side * j as f64 / n as f64);
+                records.push(if dim == 3 {
+                    format!("node {} coords 3 {x} {y} {}", id(i, j, k), t * k as f64)
+                } else {
+                    format!("node {} coords 2 {x} {y}", id(i, j, k))
+                });
+            }
+        }
+    }
+    let element = |i: usize, j: usize| j * n + i + 1;
+    for j in 0..n {
+        for i in 0..n {
+            let face = |k| [id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k)];
+            let nodes: Vec<String> = match dim {
+                3 => [face(0), face(1)].concat(),
+                _ => face(0).to_vec(),
+            }
+            .iter()
+            .map(|x| x.to_string())
+            .collect();
+            let kind = if dim == 3 { "LSpace" } else { "Quad1PlaneStrain" };
+            records.push(format!(
+                "{kind} {} nodes {} {} crossSect 1 mat 1",
+                element(i, j),
+                nodes.len(),
+                nodes.join(" ")
+            ));
+        }
+    }
+    let list = |v: Vec<String>| format!("{} {}", v.len(), v.join(" "));
+    // The bottom, top and x = 0 sides: LSpace faces 3, 5, 6; quadrilateral edges 1, 3, 4.
+    let sides = |elements: Vec<usize>, side: usize| {
+        list(elements.iter().flat_map(|e| [e.to_string(), side.to_string()]).collect())
+    };
+    let (bottom, top, left) = if dim == 3 { (3, 5, 6) } else { (1, 3, 4) };
+    let symmetry: Vec<String> = (0..layers)
+        .flat_map(|k| (0..=n).map(move |j| id(n, j, k).to_string()))
+        .collect();
+    let (segment, set, plane, load, thick) = if dim == 3 {
+        (
+            "linear3delementsurfacecontactsegment",
+            "boundaryset",
+            "planecontactsegment 2 point 3 0 0 0 normal 3 0 1 0",
+            "ConstantSurfaceLoad",
+            "",
+        )
+    } else {
+        (
+            "linear2delementedgecontactsegment",
+            "edgeset",
+            "planecontactsegment 2 point 2 0 0 normal 2 0 1",
+            "ConstantEdgeLoad",
+            " thick 0.002",
+        )
+    };
+    let (down, along) = if dim == 3 {
+        ("components 3 0 -5e7 0", "components 3 15e7 0 0")
+    } else {
+        ("components 2 0 -5e7", "components 2 15e7 0")
+    };
+    text += &format!(
+        "ssnv128.out\nSSNV128, {dim}D\nNonLinearStatic nsteps 1 controlmode 1 rtolf 1e-10 maxiter 30\n\
+         domain {}\nOutputManager\nndofman {} nelem {} ncrosssect 1 nmat 1 nbc {} nic 0 nltf 1 \
+         nset 7 ncontactseg 2\n",
+        if dim == 3 { "3d" } else { "PlaneStrain" },
+        layers * (n + 1) * (n + 1),
+        n * n,
+        if dim == 3 { 6 } else { 5 },
+    );
+    for r in records {
+        text += &r;
+        text += "\n";
+    }
+    text += &format!("{segment} 1 {set} 1\n{plane}\nSimpleCS 1{thick} material 1 set 7\n");
+    text += "IsoLE 1 d 0 E 1.3e11 n 0.2 tAlpha 0\n";
+    text += "BoundaryCondition 1 loadTimeFunction 1 dofs 1 1 values 1 0 set 2\n";
+    text += "BoundaryCondition 2 loadTimeFunction 1 dofs 1 2 values 1 0 set 3\n";
+    text += &format!("{load} 3 loadTimeFunction 1 {down} set 5\n");
+    text += &format!("{load} 4 loadTimeFunction 1 {along} set 6\n");
+    let (keyword, params) = law.split_once(' ').unwrap_or((law, ""));
+    let pairing = match keyword.starts_with("n2s") {
+        true => format!(
+            "nodeset {} segmentset 1 2",
+            list((0..layers).flat_map(|k| (0..=n).map(move |i| id(i, 0, k).to_string())).collect())
+        ),
+        false => "slavesegment 1 segmentset 1 2".to_string(),
+    };
+    text += &format!("{keyword} 5 loadTimeFunction 1 {params} friction 1.0 {pairing}\n");
+    if dim == 3 {
+        let all: Vec<String> = (1..=2 * (n + 1) * (n + 1)).map(|x| x.to_string()).collect();
+        text += &format!("BoundaryCondition 6 loadTimeFunction 1 dofs 1 3 values 1 0 set 4\n");
+        text += "ConstantFunction 1 f(t) 1.0\n";
+        text += &format!("Set 4 nodes {}\n", list(all));
+    } else {
+        text += "ConstantFunction 1 f(t) 1.0\nSet 4 nodes 0\n";
+    }
+    text += &format!("Set 1 elementboundaries {}\n", sides((0..n).map(|i| element(i, 0)).collect(), bottom));
+    text += &format!("Set 2 nodes {}\n", list(symmetry));
+    text += &format!("Set 3 nodes 1 {}\n", id(n, 0, 0));
+    text += &format!("Set 5 elementboundaries {}\n", sides((0..n).map(|i| element(i, n - 1)).collect(), top));
+    text += &format!("Set 6 elementboundaries {}\n", sides((0..n).map(|j| element(0, j)).collect(), left));
+    text += "Set 7 allelements\n";
+    text
+}
+
 /// A neo-Hookean block [0, 1]^dim (8 elements a side in 2D, 5 in 3D; c1 = 0.5, k = 10)
 /// compressed 30 % in ten steps of large deformation by a die exactly as wide and a thousand
 /// times stiffer (two layers over the block, 0.2 thick), the block's top nodes the slave side:

@@ -68,6 +68,10 @@ pub struct Mortar {
     dual: Vec<[[f64; 4]; 4]>,
     /// Axisymmetric slave elements: every integral per radian, its arc length weighted by r.
     axisymmetric: bool,
+    /// Per slave edge, its element's thickness (plane stress and strain; 1 in axisymmetry):
+    /// every integral is over the edge's area, so that λ is a pressure and a penalty per unit
+    /// area acts as it does in 3D, whatever the section's thickness.
+    thick: Vec<f64>,
     /// Self-contact (the slave segment is among the master segments): per master edge, the
     /// slave edge it is, if it is one of the slave's own.
     own: Vec<Option<usize>>,
@@ -148,6 +152,12 @@ impl Mortar {
             .edges
             .iter()
             .any(|e| model.elements[e.element].etype.is_axisymmetric());
+        let thick: Vec<f64> = (slave.edges.iter())
+            .map(|e| match axisymmetric {
+                true => 1.0,
+                false => crate::solid::loads::element_thickness(model, e.element),
+            })
+            .collect();
         let full_support = slots
             .iter()
             .map(|(n, edges)| {
@@ -167,7 +177,7 @@ impl Mortar {
                                 let j = e.nodes.iter().position(|m| m == n).expect("its node");
                                 crate::contact::tributary::axisymmetric_shares(&x)[j]
                             }
-                            false => share * length(k),
+                            false => share * length(k) * thick[k],
                         }
                     })
                     .sum()
@@ -202,6 +212,7 @@ impl Mortar {
             own,
             dual,
             axisymmetric,
+            thick,
             search_limit,
             law,
             rigid_nodes: rigid.iter().filter_map(|&g| rigid_node(model, g)).collect(),
@@ -673,12 +684,16 @@ impl Mortar {
             let gauss: &[(f64, f64)] = if xg.len() == 3 { &GAUSS5 } else { &GAUSS };
             // One Gauss point at ξ: the slave point (geometry and current), ν into the slave
             // body, and ds/dξ.
-            // In axisymmetry ds/dξ carries the radius r of the slave point (per radian).
+            // In axisymmetry ds/dξ carries the radius r of the slave point (per radian), else the
+            // thickness.
             let at = |xi: Dual| {
                 let (x, t, _) = curve(&xg, xi);
                 let len = (t[0] * t[0] + t[1] * t[1]).sqrt();
                 let nu = [-(t[1] * e.side) / len, t[0] * e.side / len];
-                let jac = if self.axisymmetric { len * x[0] } else { len };
+                let jac = match self.axisymmetric {
+                    true => len * x[0],
+                    false => len * self.thick[k],
+                };
                 (x, t, nu, jac, curve(&xc, xi).0)
             };
             let slave_edge = SlaveEdge {
