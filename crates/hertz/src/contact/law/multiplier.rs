@@ -58,7 +58,7 @@ fn capped(c: f64, compliance: f64) -> f64 {
 /// `codes`: the displacement codes, then the equations of the multipliers `lambdas`: the
 /// friction force's components (if any) and last the normal force. `compliance`: 1/ε of a
 /// penalty condition solved in this form, else 0. `free`: whether a displacement code moves with
-/// a free equation (asked only with friction). Returns the point and, for an active point with friction, whether it
+/// a free equation. Returns the point and, for an active point with friction, whether it
 /// sticks and the friction force's magnitude.
 ///
 /// A friction component along an axis on which every node of the point is held (a plate with
@@ -100,7 +100,13 @@ pub fn evaluate(
         tol: laws.gap_tol,
     };
     let counts = k.weight.v > 0.0 || (compliance == 0.0 && k.past_end.is_some());
-    if !counts || k.gap.v.is_nan() {
+    // A multiplier whose force moves no free unknown (a slave node held along its normal by a
+    // support, against a master that does not move) repeats the support's constraint: it is
+    // undetermined, and the tangent singular ("held by contact alone"). It holds nothing; the
+    // support takes the force. (With a penalty's compliance its row determines it.)
+    let size = k.b.iter().fold(0.0, |a: f64, x| a.max(x.v.abs()));
+    let moves = (0..m).any(|i| k.b[i].v.abs() > 1e-9 * size && free(codes[i]));
+    if !counts || k.gap.v.is_nan() || (compliance == 0.0 && !moves) {
         return (linearization(codes, rule, &k.gap, None, false), None);
     }
     let mut fe = vec![0.0; mm];
@@ -135,7 +141,8 @@ pub fn evaluate(
             let (rows, stick, force) = coulomb(s, lambda, &lambda_t[..nt], m);
             let moves: Vec<bool> = codes[..m].iter().map(|&c| free(c)).collect();
             for (c, row) in rows.iter().enumerate() {
-                let acts = (0..m).any(|i| moves[i] && s.share[c][i].v != 0.0);
+                let size = s.share[c].iter().fold(0.0, |a: f64, x| a.max(x.v.abs()));
+                let acts = (0..m).any(|i| moves[i] && s.share[c][i].v.abs() > 1e-9 * size);
                 if acts {
                     fe[m + c] = row.v;
                     ke[(m + c) * mm..(m + c + 1) * mm].copy_from_slice(&row.d);
