@@ -133,7 +133,11 @@ fn a_plane_sections_thickness_scales_contact_forces_not_pressures() {
             let model = common::model_from_text(text).unwrap();
             let mut out = Vec::new();
             hertz::solve::run_analysis(&model, &common::quiet(), |r| {
-                out = r.contact.iter().map(|s| (s.pressure, s.gap, s.force)).collect();
+                out = r
+                    .contact
+                    .iter()
+                    .map(|s| (s.pressure, s.gap, s.force))
+                    .collect();
                 Ok(())
             })
             .unwrap_or_else(|e| panic!("{law}: {e}"));
@@ -149,7 +153,10 @@ fn a_plane_sections_thickness_scales_contact_forces_not_pressures() {
                 (s.0 - t.0).abs() < 1e-8 * p && (s.1 - t.1).abs() < 1e-6 * g,
                 "{law}, slot {i}: 2 mm {s:?}, 1 {t:?}"
             );
-            assert!((s.2 / 0.002 - t.2).abs() < 1e-8 * f, "{law}, slot {i}: {s:?} {t:?}");
+            assert!(
+                (s.2 / 0.002 - t.2).abs() < 1e-8 * f,
+                "{law}, slot {i}: {s:?} {t:?}"
+            );
         }
     }
 }
