@@ -701,7 +701,14 @@ pub fn plate_pushed_on_a_rigid_plane(dim: usize, n: usize, law: &str) -> String 
     let element = |i: usize, j: usize| j * n + i + 1;
     for j in 0..n {
         for i in 0..n {
-            let face = |k| [id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k)];
+            let face = |k| {
+                [
+                    id(i, j, k),
+                    id(i + 1, j, k),
+                    id(i + 1, j + 1, k),
+                    id(i, j + 1, k),
+                ]
+            };
             let nodes: Vec<String> = match dim {
                 3 => [face(0), face(1)].concat(),
                 _ => face(0).to_vec(),
@@ -709,7 +716,11 @@ pub fn plate_pushed_on_a_rigid_plane(dim: usize, n: usize, law: &str) -> String 
             .iter()
             .map(|x| x.to_string())
             .collect();
-            let kind = if dim == 3 { "LSpace" } else { "Quad1PlaneStrain" };
+            let kind = if dim == 3 {
+                "LSpace"
+            } else {
+                "Quad1PlaneStrain"
+            };
             records.push(format!(
                 "{kind} {} nodes {} {} crossSect 1 mat 1",
                 element(i, j),
@@ -721,7 +732,12 @@ pub fn plate_pushed_on_a_rigid_plane(dim: usize, n: usize, law: &str) -> String 
     let list = |v: Vec<String>| format!("{} {}", v.len(), v.join(" "));
     // The bottom, top and x = 0 sides: LSpace faces 3, 5, 6; quadrilateral edges 1, 3, 4.
     let sides = |elements: Vec<usize>, side: usize| {
-        list(elements.iter().flat_map(|e| [e.to_string(), side.to_string()]).collect())
+        list(
+            elements
+                .iter()
+                .flat_map(|e| [e.to_string(), side.to_string()])
+                .collect(),
+        )
     };
     let (bottom, top, left) = if dim == 3 { (3, 5, 6) } else { (1, 3, 4) };
     let symmetry: Vec<String> = (0..layers)
@@ -772,24 +788,37 @@ pub fn plate_pushed_on_a_rigid_plane(dim: usize, n: usize, law: &str) -> String 
     let pairing = match keyword.starts_with("n2s") {
         true => format!(
             "nodeset {} segmentset 1 2",
-            list((0..layers).flat_map(|k| (0..=n).map(move |i| id(i, 0, k).to_string())).collect())
+            list(
+                (0..layers)
+                    .flat_map(|k| (0..=n).map(move |i| id(i, 0, k).to_string()))
+                    .collect()
+            )
         ),
         false => "slavesegment 1 segmentset 1 2".to_string(),
     };
     text += &format!("{keyword} 5 loadTimeFunction 1 {params} friction 1.0 {pairing}\n");
     if dim == 3 {
         let all: Vec<String> = (1..=2 * (n + 1) * (n + 1)).map(|x| x.to_string()).collect();
-        text += &format!("BoundaryCondition 6 loadTimeFunction 1 dofs 1 3 values 1 0 set 4\n");
+        text += "BoundaryCondition 6 loadTimeFunction 1 dofs 1 3 values 1 0 set 4\n";
         text += "ConstantFunction 1 f(t) 1.0\n";
         text += &format!("Set 4 nodes {}\n", list(all));
     } else {
         text += "ConstantFunction 1 f(t) 1.0\nSet 4 nodes 0\n";
     }
-    text += &format!("Set 1 elementboundaries {}\n", sides((0..n).map(|i| element(i, 0)).collect(), bottom));
+    text += &format!(
+        "Set 1 elementboundaries {}\n",
+        sides((0..n).map(|i| element(i, 0)).collect(), bottom)
+    );
     text += &format!("Set 2 nodes {}\n", list(symmetry));
     text += &format!("Set 3 nodes 1 {}\n", id(n, 0, 0));
-    text += &format!("Set 5 elementboundaries {}\n", sides((0..n).map(|i| element(i, n - 1)).collect(), top));
-    text += &format!("Set 6 elementboundaries {}\n", sides((0..n).map(|j| element(0, j)).collect(), left));
+    text += &format!(
+        "Set 5 elementboundaries {}\n",
+        sides((0..n).map(|i| element(i, n - 1)).collect(), top)
+    );
+    text += &format!(
+        "Set 6 elementboundaries {}\n",
+        sides((0..n).map(|j| element(0, j)).collect(), left)
+    );
     text += "Set 7 allelements\n";
     text
 }
