@@ -8,10 +8,15 @@
 //! nodes meet the other wall to second order, alike. Each node of the pair reports the force
 //! the merged constraint puts on it (λ times its share of the direction): the same as its
 //! mirror's on a symmetric fold, the half model's on its plane.
+//!
+//! With friction the pair's friction force acts on its mean relative slip: a's slip over b's
+//! wall and b's over a's are opposite for a matched pair, so the merged slip is
+//! (s_a − s_b)/2 and a unit friction force acts along +e on a's side and −e on b's
+//! ((share_a − share_b)/2), the normal (n_a − n_b)/2.
 
 use super::dual::Jet;
 use super::formulation::Local;
-use super::law::SlotKinematics;
+use super::law::{SlipKinematics, SlotKinematics};
 
 /// A pair closer than this fraction of the spacing of the nodes around it repeats one contact;
 /// a pair that was one at the previous state stays one up to `KEEP` (a band: no alternation).
@@ -54,8 +59,30 @@ fn mean(x: &Jet, y: &Jet) -> Jet {
     }
 }
 
+/// (x − y)/2.
+fn half_difference(x: &Jet, y: &Jet) -> Jet {
+    Jet {
+        v: 0.5 * (x.v - y.v),
+        d: x.d.iter().zip(&y.d).map(|(p, q)| 0.5 * (p - q)).collect(),
+    }
+}
+
+/// `sign`·½·`v` (a residual over one side's local unknowns, `map` placing it among `m`) added
+/// to `out`.
+fn add_half(out: &mut [Jet], v: &[Jet], map: &[usize], m: usize, sign: f64) {
+    for (k, x) in v.iter().enumerate() {
+        let x = placed(x, map, m);
+        let t = &mut out[map[k]];
+        t.v += 0.5 * sign * x.v;
+        for (p, q) in t.d.iter_mut().zip(&x.d) {
+            *p += 0.5 * sign * q;
+        }
+    }
+}
+
 /// The constraint on the mean gap of two kinematics over their local sets, over the union of
-/// the sets (the first's area; neither has friction or an open end's ramp).
+/// the sets (the first's area; neither has an open end's ramp), with friction on their mean
+/// relative slip where both have friction (the first's law and anchors).
 pub(crate) fn merge(
     (la, ka): (&Local, &SlotKinematics),
     (lb, kb): (&Local, &SlotKinematics),
@@ -65,23 +92,40 @@ pub(crate) fn merge(
     let map_a: Vec<usize> = (0..la.m()).collect();
     let both = |x: &Jet, y: &Jet| mean(&placed(x, &map_a, m), &placed(y, &map_b, m));
     let mut b = vec![Jet::constant(0.0, m); m];
-    for (side, map) in [(&ka.b, &map_a), (&kb.b, &map_b)] {
-        for (k, v) in side.iter().enumerate() {
-            let v = placed(v, map, m);
-            let t = &mut b[map[k]];
-            t.v += 0.5 * v.v;
-            for (p, q) in t.d.iter_mut().zip(&v.d) {
-                *p += 0.5 * q;
-            }
+    add_half(&mut b, &ka.b, &map_a, m, 1.0);
+    add_half(&mut b, &kb.b, &map_b, m, 1.0);
+    let apart = |x: &Jet, y: &Jet| half_difference(&placed(x, &map_a, m), &placed(y, &map_b, m));
+    let slip = ka.slip.as_ref().zip(kb.slip.as_ref()).map(|(sa, sb)| {
+        let share = (sa.share.iter().zip(&sb.share))
+            .map(|(a, b)| {
+                let mut v = vec![Jet::constant(0.0, m); m];
+                add_half(&mut v, a, &map_a, m, 1.0);
+                add_half(&mut v, b, &map_b, m, -1.0);
+                v
+            })
+            .collect();
+        SlipKinematics {
+            slip: (sa.slip.iter().zip(&sb.slip))
+                .map(|(x, y)| apart(x, y))
+                .collect(),
+            normal: (sa.normal.iter().zip(&sb.normal))
+                .map(|(x, y)| apart(x, y))
+                .collect(),
+            share,
+            mu: sa.mu,
+            stiffness: sa.stiffness,
+            kept: sa.kept,
+            compliance: sa.compliance,
+            slid: sa.slid,
         }
-    }
+    });
     let kin = SlotKinematics {
         gap: both(&ka.gap, &kb.gap),
         weight: both(&ka.weight, &kb.weight),
         b,
         area: ka.area,
         past_end: None,
-        slip: None,
+        slip,
     };
     (local, kin)
 }

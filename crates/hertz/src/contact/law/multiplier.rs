@@ -203,8 +203,12 @@ fn coulomb(s: &SlipKinematics, lambda: f64, lambda_t: &[f64], m: usize) -> (Vec<
     let limit = if ln.v >= 0.0 { ln * s.mu } else { zero };
     // On the limit (within 1e-9: a node that slid in the last step starts the next one there)
     // the point slides: the force is the same either way, and the slip branch lets a steady
-    // slide go on in one iteration per step.
-    let stick = norm.v == 0.0 || norm.v < limit.v * (1.0 - 1e-9);
+    // slide go on in one iteration per step. Where v is round-off of the point's motion (a
+    // repeated self-contact pair on a symmetric fold: its mean relative slip cancels to 1e-17),
+    // its direction is noise: the point sticks (closing with λ = 0, the slip branch pushed it
+    // with μλ along that noise, and the fold's walls slid apart).
+    let motion = d.iter().fold(0.0, |a, x| a + x.v * x.v).sqrt();
+    let stick = norm.v <= 1e-12 * c * motion || norm.v < limit.v * (1.0 - 1e-9);
     let proj: Vec<Dual> = if stick {
         v
     } else {

@@ -762,8 +762,10 @@ impl Formulation for NodeToSegment {
         }
         // Self-contact: pairs that repeat one contact hold it by one constraint (see `pairs`).
         let pairs = self.repeated_pairs(&prepared, &search);
-        // Per pair, the share of the merged force on each of its two nodes.
+        // Per pair, the share of the merged force on each of its two nodes, and the second
+        // node's anchors (it sticks or slides with the first).
         let mut shares = Vec::with_capacity(pairs.len());
+        let mut anchors = Vec::with_capacity(pairs.len());
         for &(i, j) in &pairs {
             let (a, b) = (&prepared[i], &prepared[j]);
             let (local, kin) = repeated::merge((&a.local, &a.kin), (&b.local, &b.kin));
@@ -771,6 +773,7 @@ impl Formulation for NodeToSegment {
                 repeated::share_at(&local, &kin, self.slots[i].node),
                 repeated::share_at(&local, &kin, self.slots[j].node),
             ]);
+            anchors.push(b.kin.slip.as_ref().map(|s| (s.kept, s.slid)));
             (prepared[i].local, prepared[i].kin) = (local, kin);
             (prepared[j].local, prepared[j].kin) = self.no_partner(ctx, &self.slots[j])?;
             prepared[j].state.repeated = true;
@@ -795,13 +798,20 @@ impl Formulation for NodeToSegment {
             states.push(state);
         }
         let mine = &mut states[first_state..];
-        for ((i, j), share) in pairs.into_iter().zip(shares) {
+        for (((i, j), share), anchor) in pairs.into_iter().zip(shares).zip(anchors) {
             let (force, active) = (mine[i].force, mine[i].active);
             for (k, share) in [i, j].into_iter().zip(share) {
                 mine[k].force = force * share;
                 mine[k].active = active;
                 mine[k].area = areas[k];
                 mine[k].pressure = mine[k].force / areas[k];
+            }
+            // The merged friction force acts on both nodes whole.
+            mine[j].friction = mine[i].friction;
+            match (mine[i].friction, anchor) {
+                (Some((true, _)), Some((kept, _))) => mine[j].anchor = Some(kept),
+                (Some((false, _)), Some((_, Some(slid)))) => mine[j].anchor = Some(slid),
+                _ => {}
             }
         }
         if self.areas.has_curved() {

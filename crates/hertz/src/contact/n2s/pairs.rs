@@ -2,8 +2,9 @@
 //! that meet each other's partner within a quarter of their spacing. Dropping one, as two
 //! conditions do (`ContactSystem::drop_repeated_constraints`), left its node free to sink into
 //! the other wall by a second-order amount and broke the symmetry a fold has (a crushed ring's
-//! force came out 0.5 % off its half model's), so they are merged. With friction (whose slips
-//! do not merge) or past the ramp of an open end the pair is left to the two-condition rule.
+//! force came out 0.5 % off its half model's), so they are merged, friction and all (its force
+//! on the pair's mean relative slip). Past the ramp of an open end the pair is left to the
+//! two-condition rule.
 
 use super::{NodeToSegment, Prepared, Slot};
 use crate::contact::formulation::{Formulation, Partner, Search};
@@ -60,12 +61,11 @@ impl NodeToSegment {
 
 /// Whether a slot's kinematics can merge: on its partner (a weight above zero; a node on an
 /// open boundary of its surface, the free face of a slab, sits in its ramp) and short of any
-/// ramp's far end (the multipliers' max(g, e) is g), frictionless. The merged weight is the
+/// ramp's far end (the multipliers' max(g, e) is g). The merged weight is the
 /// mean (a penalty's force is ε·w·⟨−g⟩; the multipliers' weight only switches).
 fn mergeable(slot: &Slot, partner: Partner, kin: &SlotKinematics) -> bool {
     slot.own.is_some()
         && matches!(partner, Partner::Edge(_) | Partner::Face(_))
         && kin.weight.v > 0.0
         && kin.past_end.as_ref().is_none_or(|e| e.v < 0.0)
-        && kin.slip.is_none()
 }
