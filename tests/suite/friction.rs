@@ -1057,6 +1057,90 @@ fn friction_multipliers_on_nodes_held_along_an_axis_give_the_plane_strain_answer
     }
 }
 
+/// [`plate_drawn_on_a_block`] with the contact one node-to-segment self-contact condition: the
+/// plate's bottom and the block's top one surface, each node a slave against it. Every plate
+/// node meets a block node and the reverse: the pairs merge, their friction acting on the mean
+/// relative slip. Drawn along the block, every pair slides, so the plate's top carries
+/// R_x = μ·R_y exactly (its contact forces are all normal force and μ times it), in 2D and 3D.
+/// A merged friction force with the block's side taken with the plate's sign cancels on the
+/// plate: R_x came out near zero.
+#[test]
+fn a_self_contact_surface_of_two_blocks_drawn_along_each_other_slides_with_mu_n() {
+    for dim in [2, 3] {
+        let two =
+            plate_drawn_on_a_block(dim, "n2slagrangianmultipliercontact", "friction 0.3", false);
+        // The nodes on y = 0 (the plate's bottom and the block's top) and y = 1 (the plate's top).
+        let at = |y: f64| -> Vec<usize> {
+            (two.lines())
+                .filter_map(|l| {
+                    let w: Vec<&str> = l.split_whitespace().collect();
+                    (w.first() == Some(&"node") && w[5].parse::<f64>() == Ok(y))
+                        .then(|| w[1].parse::<usize>().unwrap())
+                })
+                .collect()
+        };
+        let (face, set) = if dim == 3 {
+            ("linear3delementsurfacecontactsegment", "boundaryset")
+        } else {
+            ("linear2delementedgecontactsegment", "edgeset")
+        };
+        let condition = (two.lines())
+            .find(|l| l.starts_with("n2slagrangianmultipliercontact"))
+            .unwrap()
+            .to_string();
+        let surface = at(0.0);
+        let own = format!(
+            "n2slagrangianmultipliercontact 4 loadTimeFunction 1 friction 0.3 nodeset {} {} \
+             segmentset 2 1 2",
+            surface.len(),
+            surface
+                .iter()
+                .map(|n| n.to_string())
+                .collect::<Vec<_>>()
+                .join(" ")
+        );
+        let one = two
+            .replace("ncontactseg 1", "ncontactseg 2")
+            .replace(
+                &format!("{face} 1 {set} 4\n"),
+                &format!("{face} 1 {set} 4\n{face} 2 {set} 5\n"),
+            )
+            .replace(&condition, &own);
+        let model = common::model_from_text(&one).unwrap();
+        let top: Vec<usize> = at(1.0).iter().map(|&l| l - 1).collect();
+        let mut steps = 0;
+        run_analysis(&model, &common::quiet(), |r| {
+            steps += 1;
+            let merged = r.contact.iter().filter(|s| s.repeated).count();
+            assert_eq!(
+                2 * merged,
+                surface.len(),
+                "{dim}D: every node in a merged pair"
+            );
+            assert!(
+                r.contact.iter().all(|s| s.friction.is_some_and(|f| !f.0)),
+                "{dim}D step {}: every node slides",
+                r.step
+            );
+            let mut force = [0.0; 2];
+            for (&(n, d, _), &f) in r.dofs.prescribed.iter().zip(r.reactions) {
+                if top.contains(&n) && (d as usize) <= 2 {
+                    force[d as usize - 1] += f;
+                }
+            }
+            assert!(force[1].abs() > 1.0, "{dim}D: pressed ({force:?})");
+            assert!(
+                (force[0].abs() - MU * force[1].abs()).abs() < 1e-9 * force[1].abs(),
+                "{dim}D step {}: top reactions {force:?}",
+                r.step
+            );
+            Ok(())
+        })
+        .unwrap();
+        assert_eq!(steps, 2);
+    }
+}
+
 /// Per column of contact nodes (by x): normal force, friction force, and whether any slides;
 /// the iterations of the one step.
 fn ssnv128(dim: usize, n: usize, law: &str) -> (Vec<(f64, f64, f64, bool)>, usize) {
