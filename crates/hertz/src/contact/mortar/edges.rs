@@ -29,7 +29,7 @@ use super::{
 };
 use crate::contact::dual::{self, Dual, Jet};
 use crate::contact::formulation::{
-    interface_weights, Ctx, Formulation, Local, Partner, Search, SlotState,
+    interface_weights, Anchor, Ctx, Formulation, Local, Partner, Search, SlotState,
 };
 use crate::contact::geometry::edges::{shape, EdgeSurface};
 use crate::contact::geometry::rigid;
@@ -1054,7 +1054,9 @@ impl Formulation for Mortar {
         for &(i, j) in &pairs {
             let kin = |k: usize| {
                 let (local, w) = &weighted[k];
-                self.law.slot_kinematics(k, local, w, w.b.clone())
+                let mut kin = self.law.slot_kinematics(k, local, w, w.b.clone());
+                kin.slip = self.law.slip_kinematics(ctx, k, local, w, history);
+                kin
             };
             let (ki, kj) = (kin(i), kin(j));
             let (local, kin) = repeated::merge((&weighted[i].0, &ki), (&weighted[j].0, &kj));
@@ -1106,6 +1108,17 @@ impl Formulation for Mortar {
                 s.repeated = true;
             }
             mine[r.slots[1]].partner = r.partner;
+            // The merged friction force acts on both nodes whole, each anchored at the pair's
+            // elastic slip (the second's relative slip is the first's reversed).
+            let [first, second] = r.slots;
+            mine[second].friction = mine[first]
+                .friction
+                .map(|(stick, t)| (stick, t / r.areas[0] * r.areas[1]));
+            mine[second].anchor = mine[first].anchor.map(|a| Anchor {
+                partner: r.partner,
+                offset: a.offset.map(|v| -v),
+                ..a
+            });
         }
         Ok(searching)
     }
@@ -1125,8 +1138,8 @@ impl Mortar {
     /// Self-contact's repeated pairs ([`crate::contact::repeated`]): slots (i, j), i < j, whose
     /// slave edges each overlap an own edge of the other's node, closer than [`PAIR`] of the
     /// second's edge length ([`PAIR_KEPT`] if either was in a pair at the last converged state),
-    /// closest first and each slot in one pair at most; frictionless, each with support on at
-    /// least [`SLIVER`] of its full support.
+    /// closest first and each slot in one pair at most, each with support on at least
+    /// [`SLIVER`] of its full support.
     fn repeated_pairs(
         &self,
         ctx: &Ctx,
@@ -1134,7 +1147,7 @@ impl Mortar {
         weighted: &[(Local, Weighted)],
         history: Option<&[SlotState]>,
     ) -> Result<Vec<(usize, usize)>> {
-        if self.own.iter().all(Option::is_none) || self.law.friction.is_some() {
+        if self.own.iter().all(Option::is_none) {
             return Ok(Vec::new());
         }
         let n = self.slots.len();

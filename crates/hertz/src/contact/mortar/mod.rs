@@ -343,9 +343,6 @@ impl MortarLaw {
         history: Option<&[SlotState]>,
         merged: Option<(Local, SlotKinematics)>,
     ) -> Result<(SlotLinearization, SlotState)> {
-        let anchor = history
-            .and_then(|h| h.get(j))
-            .and_then(|s| s.anchor.as_ref());
         let mut state = SlotState {
             partner: w.partner,
             xi: [0.0; 2],
@@ -397,21 +394,15 @@ impl MortarLaw {
             xi: [0.0; 2],
             offset: elastic,
         };
-        if let (Some(f), Some(slip), true) = (self.frictions[j], &w.slip, has) {
-            // With a penalty the slip is measured from the anchor's elastic slip.
-            let elastic = match anchor {
-                Some(a) if penalty_form => a.offset,
-                _ => [0.0; 3],
-            };
-            let u = slip.slip(ctx, local, &w.area, elastic);
-            let kept = anchored(elastic);
-            let mut sk = slip.kinematics(local, u, kept, f.mu, self.stiffness[j]);
-            if penalty_form {
-                sk.compliance = 1.0 / f.penalty;
+        if self.frictions[j].is_some() && has {
+            // A repeated pair's merged kinematics carry the pair's slip already.
+            if kin.slip.is_none() {
+                kin.slip = self.slip_kinematics(ctx, j, local, &w, history);
             }
-            kin.slip = Some(sk);
             // Open (or without a penalty): no elastic slip left.
-            state.anchor = Some(anchored([0.0; 3]));
+            if kin.slip.is_some() {
+                state.anchor = Some(anchored([0.0; 3]));
+            }
         }
         let point = if multipliers {
             let per = self.multipliers_per_slot();
@@ -458,6 +449,40 @@ impl MortarLaw {
             state.partner = Partner::None;
         }
         Ok((point, state))
+    }
+
+    /// The friction kinematics of slot `j` (with friction and support) from its integrals `w`:
+    /// its weighted slip in the step, with a penalty from its anchor's elastic slip (`history`:
+    /// the last converged states).
+    fn slip_kinematics(
+        &self,
+        ctx: &Ctx,
+        j: usize,
+        local: &Local,
+        w: &Weighted,
+        history: Option<&[SlotState]>,
+    ) -> Option<SlipKinematics> {
+        let (f, slip) = (self.frictions[j]?, w.slip.as_ref()?);
+        let penalty_form =
+            self.enforcement.forces_are_unknowns(self.friction) && self.laws[j].penalty() > 0.0;
+        let anchor = history
+            .and_then(|h| h.get(j))
+            .and_then(|s| s.anchor.as_ref());
+        let elastic = match anchor {
+            Some(a) if penalty_form => a.offset,
+            _ => [0.0; 3],
+        };
+        let u = slip.slip(ctx, local, &w.area, elastic);
+        let kept = Anchor {
+            partner: w.partner,
+            xi: [0.0; 2],
+            offset: elastic,
+        };
+        let mut sk = slip.kinematics(local, u, kept, f.mu, self.stiffness[j]);
+        if penalty_form {
+            sk.compliance = 1.0 / f.penalty;
+        }
+        Some(sk)
     }
 
     /// The kinematics of slot `j` from its integrals `w`: the weighted gap ḡ = g̃ / D with its
