@@ -417,7 +417,7 @@ fn a_crushed_ring_and_torus_with_their_bore_in_self_contact_equal_their_half_mod
 /// (mortar against the rigid plane) to round-off, in plane strain, with multipliers and a
 /// penalty (the half model's twice as stiff: its gap is half the overlap), and with friction
 /// (μ = 0.3: the walls of a symmetric fold do not slide on each other, so the frictionless half
-/// model's answer; a pair with friction is not merged, one of its constraints is dropped).
+/// model's answer; a pair's friction acts on its mean relative slip).
 #[test]
 fn a_ring_with_its_bore_in_mortar_self_contact_equals_its_half_model() {
     let plane = Ring {
@@ -472,7 +472,11 @@ fn a_ring_with_its_bore_in_mortar_self_contact_equals_its_half_model() {
 /// in 2–4 iterations but the last two (at most 15; seen 6 and 13), and the plate
 /// force follows node-to-segment self-contact's on the same mesh within 0.5 % (the two
 /// discretize the contact differently). Pairs of nodes within half a spacing hold one
-/// constraint; with node-to-segment's quarter the step to 97 % failed.
+/// constraint; with node-to-segment's quarter the step to 97 % failed. With friction (μ = 0.3)
+/// every step converges without a cut in at most 8 iterations (seen 2–4 but one 8), the plate
+/// force within 1 % of the frictionless one (seen 0.5 %): the pairs merge with their friction
+/// on the mean relative slip. Before, a pair with friction dropped one of its constraints and
+/// the crush stopped at step 28 of 33 (no convergence after 5 halvings, chattering).
 #[test]
 fn mortar_self_contact_on_walls_whose_nodes_do_not_match_follows_node_to_segment() {
     let ring = Ring {
@@ -503,6 +507,24 @@ fn mortar_self_contact_on_walls_whose_nodes_do_not_match_follows_node_to_segment
             "step {k}: plate force {} mortar, {} node-to-segment",
             m.plate,
             n.plate
+        );
+    }
+    let rubbing = crush(
+        &Ring {
+            mortar: true,
+            friction: Some(0.3),
+            ..ring
+        }
+        .text(true),
+    );
+    let its: Vec<usize> = rubbing.iter().map(|s| s.iterations).collect();
+    assert!(its.iter().all(|&i| i <= 8), "with friction: {its:?}");
+    for (k, (f, m)) in rubbing.iter().zip(&mortar).enumerate() {
+        assert!(
+            (f.plate - m.plate).abs() <= 1e-2 * m.plate.abs().max(1e-9),
+            "step {k}: plate force {} with friction, {} without",
+            f.plate,
+            m.plate
         );
     }
 }
