@@ -655,8 +655,9 @@ fn a_block_whose_boundary_is_one_self_contact_surface_is_compressed_without_cont
 
 /// The merged constraint of a repeated pair (the two walls of a ring's bore pressed onto each
 /// other, node onto mirror node, offsets of 1 % of a spacing along and across the walls) has the
-/// Jacobian of its residual as tangent, over the displacements and the multiplier, in 2D and 3D
-/// node-to-segment and 2D mortar.
+/// Jacobian of its residual as tangent, over the displacements and the multipliers, in 2D and 3D
+/// node-to-segment and 2D mortar, frictionless and with friction (sliding, the slips from the
+/// anchors of a state with a smaller shift).
 #[test]
 fn a_repeated_self_contact_pair_has_the_jacobian_of_its_residual_as_tangent() {
     for (tz, mortar, friction) in [
@@ -665,6 +666,7 @@ fn a_repeated_self_contact_pair_has_the_jacobian_of_its_residual_as_tangent() {
         (0.0, true, None),
         (0.0, false, Some(0.3)),
         (0.2, false, Some(0.3)),
+        (0.0, true, Some(0.3)),
     ] {
         let model = common::model_from_text(
             &Ring {
