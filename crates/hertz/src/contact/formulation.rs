@@ -52,7 +52,9 @@ pub struct SlotState {
     /// Boundary weight of the contact point (1 on its partner, less past an open end or edge).
     pub weight: f64,
     /// Its constraint repeats one of another condition (two-pass contact with multipliers) and
-    /// is dropped.
+    /// is dropped, or it is in a self-contact pair held by one merged constraint
+    /// ([`crate::contact::repeated`]; node-to-segment marks the pair's second node, mortar
+    /// both).
     pub repeated: bool,
     /// Friction of a closed point: stick (else slip) and the friction force's magnitude.
     pub friction: Option<(bool, f64)>,
