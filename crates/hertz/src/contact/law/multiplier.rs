@@ -104,9 +104,7 @@ pub fn evaluate(
     // support, against a master that does not move) repeats the support's constraint: it is
     // undetermined, and the tangent singular ("held by contact alone"). It holds nothing; the
     // support takes the force. (With a penalty's compliance its row determines it.)
-    let size = k.b.iter().fold(0.0, |a: f64, x| a.max(x.v.abs()));
-    let moves = (0..m).any(|i| k.b[i].v.abs() > 1e-9 * size && free(codes[i]));
-    if !counts || k.gap.v.is_nan() || (compliance == 0.0 && !moves) {
+    if !counts || k.gap.v.is_nan() || (compliance == 0.0 && !moves_free(&k.b, &codes, free)) {
         return (linearization(codes, rule, &k.gap, None, false), None);
     }
     let mut fe = vec![0.0; mm];
@@ -139,11 +137,8 @@ pub fn evaluate(
                 }
             }
             let (rows, stick, force) = coulomb(s, lambda, &lambda_t[..nt], m);
-            let moves: Vec<bool> = codes[..m].iter().map(|&c| free(c)).collect();
             for (c, row) in rows.iter().enumerate() {
-                let size = s.share[c].iter().fold(0.0, |a: f64, x| a.max(x.v.abs()));
-                let acts = (0..m).any(|i| moves[i] && s.share[c][i].v.abs() > 1e-9 * size);
-                if acts {
+                if moves_free(&s.share[c], &codes, free) {
                     fe[m + c] = row.v;
                     ke[(m + c) * mm..(m + c + 1) * mm].copy_from_slice(&row.d);
                 } else {
@@ -167,6 +162,17 @@ pub fn evaluate(
         linearization(codes, rule, &h, Some((fe, ke)), active),
         friction,
     )
+}
+
+/// Whether a force spread over the displacement `codes` as `share` moves a free unknown by more
+/// than round-off (1e-9 of its largest entry): shares of 1e-22 on a held node's neighbours (a
+/// dual basis biorthogonal in the reference configuration) move nothing.
+fn moves_free(share: &[Jet], codes: &[usize], free: &dyn Fn(usize) -> bool) -> bool {
+    let size = share.iter().fold(0.0, |a: f64, x| a.max(x.v.abs()));
+    share
+        .iter()
+        .zip(codes)
+        .any(|(x, &c)| x.v.abs() > 1e-9 * size && free(c))
 }
 
 /// The rows C_T of the friction multipliers over (q, λ_T, λ) (m + nt + 1 unknowns), whether the
