@@ -51,19 +51,15 @@ fn placed(x: &Jet, map: &[usize], m: usize) -> Jet {
     Jet { v: x.v, d }
 }
 
-/// (x + y)/2.
-fn mean(x: &Jet, y: &Jet) -> Jet {
+/// (x + sign·y)/2: the mean, or half the difference.
+fn half_sum(x: &Jet, y: &Jet, sign: f64) -> Jet {
     Jet {
-        v: 0.5 * (x.v + y.v),
-        d: x.d.iter().zip(&y.d).map(|(p, q)| 0.5 * (p + q)).collect(),
-    }
-}
-
-/// (x − y)/2.
-fn half_difference(x: &Jet, y: &Jet) -> Jet {
-    Jet {
-        v: 0.5 * (x.v - y.v),
-        d: x.d.iter().zip(&y.d).map(|(p, q)| 0.5 * (p - q)).collect(),
+        v: 0.5 * (x.v + sign * y.v),
+        d: x.d
+            .iter()
+            .zip(&y.d)
+            .map(|(p, q)| 0.5 * (p + sign * q))
+            .collect(),
     }
 }
 
@@ -90,11 +86,11 @@ pub(crate) fn merge(
     let (local, map_b) = la.union(lb);
     let m = local.m();
     let map_a: Vec<usize> = (0..la.m()).collect();
-    let both = |x: &Jet, y: &Jet| mean(&placed(x, &map_a, m), &placed(y, &map_b, m));
+    let both = |x: &Jet, y: &Jet| half_sum(&placed(x, &map_a, m), &placed(y, &map_b, m), 1.0);
     let mut b = vec![Jet::constant(0.0, m); m];
     add_half(&mut b, &ka.b, &map_a, m, 1.0);
     add_half(&mut b, &kb.b, &map_b, m, 1.0);
-    let apart = |x: &Jet, y: &Jet| half_difference(&placed(x, &map_a, m), &placed(y, &map_b, m));
+    let apart = |x: &Jet, y: &Jet| half_sum(&placed(x, &map_a, m), &placed(y, &map_b, m), -1.0);
     let slip = ka.slip.as_ref().zip(kb.slip.as_ref()).map(|(sa, sb)| {
         let share = (sa.share.iter().zip(&sb.share))
             .map(|(a, b)| {
