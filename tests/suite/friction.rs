@@ -973,25 +973,39 @@ fn column_forces(text: &str) -> Vec<(Vec<Column>, bool)> {
     let model = common::model_from_text(text).unwrap();
     let mut out = Vec::new();
     run_analysis(&model, &common::quiet(), |r| {
-        let mut cols: Vec<Column> = Vec::new();
-        for s in r.contact {
-            let x = model.nodes[s.node].coords[0];
-            let f = s.friction.map_or(0.0, |f| f.1);
-            match cols.iter_mut().find(|c| (c.0 - x).abs() < 1e-9) {
-                Some(c) => {
-                    c.1 += s.force;
-                    c.2 += f;
-                }
-                None => cols.push((x, s.force, f)),
-            }
-        }
-        cols.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let cols = columns(&model, r.contact)
+            .into_iter()
+            .map(|c| c.0)
+            .collect();
         let slides = r.contact.iter().all(|s| s.friction.is_some_and(|f| !f.0));
         out.push((cols, slides));
         Ok(())
     })
     .unwrap();
     out
+}
+
+/// The contact nodes in columns along x (within 1e-9), sorted by x: each column's x, its normal
+/// and friction forces summed, and whether any of its nodes slides.
+fn columns(
+    model: &hertz::model::Model,
+    contact: &[hertz::contact::SlotState],
+) -> Vec<(Column, bool)> {
+    let mut cols: Vec<(Column, bool)> = Vec::new();
+    for s in contact {
+        let x = model.nodes[s.node].coords[0];
+        let (stick, f) = s.friction.unwrap_or((true, 0.0));
+        match cols.iter_mut().find(|c| (c.0 .0 - x).abs() < 1e-9) {
+            Some(c) => {
+                c.0 .1 += s.force;
+                c.0 .2 += f;
+                c.1 |= !stick;
+            }
+            None => cols.push(((x, s.force, f), !stick)),
+        }
+    }
+    cols.sort_by(|a, b| a.0 .0.total_cmp(&b.0 .0));
+    cols
 }
 
 /// Friction multipliers on nodes with a prescribed displacement component (issue 30, class 2): a
@@ -1178,25 +1192,13 @@ fn ssnv128(dim: usize, n: usize, law: &str) -> (Vec<(f64, f64, f64, bool)>, usiz
     let (mut cols, mut its) = (Vec::new(), 0);
     run_analysis(&model, &params, |r| {
         its = r.info.iterations;
-        for s in r.contact {
-            let x = model.nodes[s.node].coords[0];
-            let (stick, f) = s.friction.unwrap_or((true, 0.0));
-            match cols
-                .iter_mut()
-                .find(|c: &&mut (f64, f64, f64, bool)| (c.0 - x).abs() < 1e-9)
-            {
-                Some(c) => {
-                    c.1 += s.force;
-                    c.2 += f;
-                    c.3 |= !stick;
-                }
-                None => cols.push((x, s.force, f, !stick)),
-            }
-        }
+        cols = columns(&model, r.contact)
+            .into_iter()
+            .map(|((x, n, f), slides)| (x, n, f, slides))
+            .collect();
         Ok(())
     })
     .unwrap_or_else(|e| panic!("{law}, {dim}D, {n} × {n}: {e}"));
-    cols.sort_by(|a, b| a.0.total_cmp(&b.0));
     (cols, its)
 }
 
