@@ -65,6 +65,10 @@ pub struct SlotState {
     /// crossed the master surface where no partner measures it (past an end or a crease). A
     /// converged state must have none (see [`crate::solve`]).
     pub crossed: Option<Inside>,
+    /// How deep the node lies behind the other wall of a repeated pair whose one constraint
+    /// does not hold it (see [`crate::contact::repeated::unheld`]). A converged state must have
+    /// none.
+    pub unheld: Option<f64>,
 }
 
 impl SlotState {
@@ -87,6 +91,7 @@ impl SlotState {
             friction: None,
             anchor: None,
             crossed: None,
+            unheld: None,
         }
     }
 }

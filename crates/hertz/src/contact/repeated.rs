@@ -23,6 +23,23 @@ use super::law::{SlipKinematics, SlotKinematics};
 pub(crate) const PAIR: f64 = 0.25;
 pub(crate) const KEEP: f64 = 1.0 / 3.0;
 
+/// How deep a node of a repeated pair may lie behind the other wall, beyond its partner's own
+/// overlap, as a fraction of its spacing: where both nodes meet the other wall near the other
+/// node, the one constraint holds both to second order (on walls whose nodes do not match, at
+/// most 2.4 % of an element).
+pub(crate) const UNHELD: f64 = 0.05;
+
+/// How deep a node of a pair held by one constraint lies behind the other wall (`gap`, its
+/// partner's `other`), if more than [`UNHELD`] of its `spacing` beyond its partner's overlap:
+/// the pair is then not one contact seen from both sides — a convex corner pressed into a face
+/// beside the face's node, the corner behind the face and the face's node in front of the
+/// corner, or two surfaces crossing between their nodes — and the mean gap (or the kept one)
+/// hides the overlap. Reported, not hidden: node-to-segment cannot hold both constraints there
+/// (nearly dependent, they chatter).
+pub(crate) fn unheld(gap: f64, other: f64, spacing: f64, tol: f64) -> Option<f64> {
+    (gap < other.min(0.0) - (UNHELD * spacing).max(tol)).then_some(-gap)
+}
+
 /// The pairs (i, j) of `candidates` (distance, i, j) closest first, each of the `n` slots in one
 /// pair at most.
 pub(crate) fn closest_first(

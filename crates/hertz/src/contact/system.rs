@@ -4,7 +4,7 @@
 use super::formulation::{Ctx, Formulation, Partner, Search, SlotState};
 use super::law::Laws;
 use super::slot::SlotLinearization;
-use super::{mortar, n2n, n2s};
+use super::{mortar, n2n, n2s, repeated};
 use crate::assembly::{ExtraDofs, NodalState};
 use crate::error::Result;
 use crate::model::queries::model_size;
@@ -207,9 +207,24 @@ impl ContactSystem {
     }
 }
 
-/// Why a state with contact nodes that crossed their master (see [`SlotState::crossed`]) cannot
+/// Why a state with contact nodes that crossed their master (see [`SlotState::crossed`]) or that
+/// a repeated pair's one constraint leaves behind the other wall ([`SlotState::unheld`]) cannot
 /// be a solution, in words: the worst few nodes, their conditions and the elements they are in.
 pub fn crossing_message(model: &Model, states: &[SlotState]) -> Option<String> {
+    if let Some((s, depth)) = (states.iter())
+        .filter_map(|s| s.unheld.map(|d| (s, d)))
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+    {
+        return Some(format!(
+            "node {} of contact condition {} lies {depth:.3e} behind the other surface, which \
+             it meets near a node of that surface held by the same constraint (two-pass or \
+             self-contact keep one constraint per contact): the two are not one contact — a \
+             corner pressed into a face beside one of its nodes, or two surfaces crossing \
+             between their nodes — and node-to-segment cannot hold both; one condition whose \
+             nodes are the corner's side and whose master is the face holds it",
+            model.nodes[s.node].label, s.condition
+        ));
+    }
     let mut crossed: Vec<(&SlotState, super::geometry::bodies::Inside)> = states
         .iter()
         .filter_map(|s| s.crossed.map(|c| (s, c)))
@@ -317,14 +332,14 @@ impl ContactSystem {
                     let limit = if before { 1.0 / 3.0 } else { 0.25 };
                     let d = dist(&states[i].x, &xb);
                     if d < limit * spacing {
-                        pairs.push((d, i, j));
+                        pairs.push((d, spacing, i, j));
                     }
                 }
             }
         }
         pairs.sort_by(|p, q| p.0.total_cmp(&q.0));
         let mut used = vec![false; states.len()];
-        for (_, i, j) in pairs {
+        for (_, spacing, i, j) in pairs {
             if used[i] || used[j] {
                 continue;
             }
@@ -346,7 +361,9 @@ impl ContactSystem {
             // left the dropped side's field empty where it carries the contact).
             let kept = if drop == i { j } else { i };
             let (pressure, active) = (states[kept].pressure, states[kept].active);
+            let unheld = repeated::unheld(states[drop].gap, states[kept].gap, spacing, 0.0);
             let s = &mut states[drop];
+            s.unheld = unheld;
             s.active = active;
             s.pressure = if active { pressure } else { 0.0 };
             s.force = s.pressure * s.area;

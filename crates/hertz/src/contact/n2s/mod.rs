@@ -766,8 +766,16 @@ impl Formulation for NodeToSegment {
         // node's anchors (it sticks or slides with the first).
         let mut shares = Vec::with_capacity(pairs.len());
         let mut anchors = Vec::with_capacity(pairs.len());
+        let mut unheld = HashMap::new();
         for &(i, j) in &pairs {
             let (a, b) = (&prepared[i], &prepared[j]);
+            let (ga, gb) = (a.kin.gap.v, b.kin.gap.v);
+            for (k, g, other) in [(i, ga, gb), (j, gb, ga)] {
+                let spacing = self.slots[k].own.as_ref().map_or(0.0, |o| o.spacing);
+                if let Some(depth) = repeated::unheld(g, other, spacing, ctx.laws.gap_tol) {
+                    unheld.insert(k, depth);
+                }
+            }
             let (local, kin) = repeated::merge((&a.local, &a.kin), (&b.local, &b.kin));
             shares.push([
                 repeated::share_at(&local, &kin, self.slots[i].node),
@@ -794,6 +802,7 @@ impl Formulation for NodeToSegment {
                 state.crossed = (self.inside_body(ctx, slot, state.x, &cur))
                     .filter(|i| i.depth > ctx.laws.gap_tol);
             }
+            state.unheld = unheld.get(&k).copied();
             points.push(point);
             states.push(state);
         }
