@@ -69,6 +69,9 @@ pub struct SlotState {
     /// does not hold it (see [`crate::contact::repeated::unheld`]). A converged state must have
     /// none.
     pub unheld: Option<f64>,
+    /// The contact point on the partner (node-to-segment against an edge or face): two nodes
+    /// each near the other's contact point hold one contact, open or closed.
+    pub point: Option<[f64; 3]>,
 }
 
 impl SlotState {
@@ -92,6 +95,7 @@ impl SlotState {
             anchor: None,
             crossed: None,
             unheld: None,
+            point: None,
         }
     }
 }

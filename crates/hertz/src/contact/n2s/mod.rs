@@ -571,6 +571,38 @@ impl NodeToSegment {
                 .is_some_and(|xi| shape.inside_margin(xi) > -ROUND_OFF)
     }
 
+    /// Where candidate `c`'s contact point lies on its edge or face.
+    fn contact_point(&self, c: Candidate, cur: &Current) -> Option<[f64; 3]> {
+        let (nodes, w): (&[usize], Vec<f64>) = match c.partner {
+            Partner::Edge(k) => {
+                let e = &self.edges.edges[k];
+                (
+                    &e.nodes,
+                    super::geometry::edges::shape(e.nodes.len(), c.xi[0])
+                        .0
+                        .to_vec(),
+                )
+            }
+            Partner::Face(k) => {
+                let f = &self.faces.faces[k];
+                (
+                    &f.nodes,
+                    faces_geom::shape_values(f.kind, c.xi[0], c.xi[1])
+                        .0
+                        .to_vec(),
+                )
+            }
+            _ => return None,
+        };
+        let mut p = [0.0; 3];
+        for (n, w) in nodes.iter().zip(w) {
+            for i in 0..3 {
+                p[i] += w * cur.x[n][i];
+            }
+        }
+        Some(p)
+    }
+
     /// The local unknowns and kinematics of a slot without a partner: no force; a multiplier is
     /// held at zero.
     fn no_partner(&self, ctx: &Ctx, slot: &Slot) -> Result<(Local, SlotKinematics)> {
@@ -748,6 +780,7 @@ impl Formulation for NodeToSegment {
                     };
                     state.anchor = next;
                     state.gap = kin.gap.v;
+                    state.point = self.contact_point(c, &cur);
                     state.weight = kin.weight.v;
                     (local, kin)
                 }

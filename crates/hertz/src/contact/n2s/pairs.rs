@@ -49,7 +49,14 @@ impl NodeToSegment {
                 } else {
                     PAIR
                 };
-                let d = dist(&state(i).x, &xb).sqrt();
+                // How far each node lies from the other's contact point: along the walls, so
+                // that a pair closing from across an open gap is one before it closes (its two
+                // constraints closing in one step were dependent).
+                let xa = state(i).x;
+                let along = |k: usize, x: &[f64; 3], y: &[f64; 3]| {
+                    state(k).point.map_or(dist(x, y), |p| dist(&p, x))
+                };
+                let d = along(i, &xb, &xa).max(along(j, &xa, &xb)).sqrt();
                 if spacing.is_finite() && d < limit * spacing {
                     pairs.push((d, i, j));
                 }
