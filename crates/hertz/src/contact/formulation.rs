@@ -69,6 +69,12 @@ pub struct SlotState {
     /// does not hold it (see [`crate::contact::repeated::unheld`]). A converged state must have
     /// none.
     pub unheld: Option<f64>,
+    /// How much the partner surface bends at the partner's corner nearest the contact point:
+    /// 1 − n̂·n there, n̂ the smoothed normal the gap is measured along and n the partner's own
+    /// (0 on a flat part, 0.29 at a right-angled corner; 0 where not known). Of two nodes of
+    /// one self-contact surface at one place, the one meeting the flatter part holds the
+    /// contact (see [`crate::contact::repeated::BEND_APART`]).
+    pub bend: f64,
     /// The contact point on the partner (node-to-segment against an edge or face): two nodes
     /// each near the other's contact point hold one contact, open or closed.
     pub point: Option<[f64; 3]>,
@@ -95,6 +101,7 @@ impl SlotState {
             anchor: None,
             crossed: None,
             unheld: None,
+            bend: 0.0,
             point: None,
         }
     }

@@ -40,6 +40,13 @@ pub(crate) fn unheld(gap: f64, other: f64, spacing: f64, tol: f64) -> Option<f64
     (gap < other.min(0.0) - (UNHELD * spacing).max(tol)).then_some(-gap)
 }
 
+/// Two nodes at one place whose partner surfaces bend by more than this apart
+/// ([`crate::contact::formulation::SlotState::bend`]: a corner on a face, the face's node
+/// meeting the corner) do not hold one contact seen from both sides: the one meeting the
+/// flatter surface holds it, the other's constraint is dropped (their mean let the corner sink
+/// into the face by the order of their offset).
+pub(crate) const BEND_APART: f64 = 0.05;
+
 /// The pairs (i, j) of `candidates` (distance, i, j) closest first, each of the `n` slots in one
 /// pair at most.
 pub(crate) fn closest_first(

@@ -354,7 +354,19 @@ impl ContactSystem {
             used[i] = true;
             used[j] = true;
             let beside = |k: usize| states[k].weight < 1.0;
-            let drop = if was_repeated(i) && !was_repeated(j) {
+            let (bi, bj) = (states[i].bend, states[j].bend);
+            let one_surface = owner[i] == owner[j];
+            let drop = if one_surface && (bi - bj).abs() > repeated::BEND_APART {
+                // Self-contact, a corner on a face: the corner's constraint on the face holds.
+                // (Two conditions keep the earlier one's: which side is the corner is the
+                // user's choice there, and under a deep indentation the face's dent bends
+                // as much as the corner.)
+                if bi > bj {
+                    i
+                } else {
+                    j
+                }
+            } else if was_repeated(i) && !was_repeated(j) {
                 i
             } else if was_repeated(j) && !was_repeated(i) {
                 j

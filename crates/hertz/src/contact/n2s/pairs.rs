@@ -57,7 +57,9 @@ impl NodeToSegment {
                     state(k).point.map_or(dist(x, y), |p| dist(&p, x))
                 };
                 let d = along(i, &xb, &xa).max(along(j, &xa, &xb)).sqrt();
-                if spacing.is_finite() && d < limit * spacing {
+                // A corner on a face: left to the two-condition rule (see `BEND_APART`).
+                let alike = (state(i).bend - state(j).bend).abs() <= repeated::BEND_APART;
+                if spacing.is_finite() && d < limit * spacing && alike {
                     pairs.push((d, i, j));
                 }
             }
