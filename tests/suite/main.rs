@@ -17,6 +17,7 @@ mod elements;
 mod examples;
 mod friction;
 mod gmsh;
+mod hairpin;
 mod hyperelastic;
 mod indentation;
 pub(crate) mod locking;
