@@ -571,69 +571,6 @@ impl NodeToSegment {
                 .is_some_and(|xi| shape.inside_margin(xi) > -ROUND_OFF)
     }
 
-    /// Where candidate `c`'s contact point lies on its edge or face.
-    fn contact_point(&self, c: Candidate, cur: &Current) -> Option<[f64; 3]> {
-        let (nodes, w): (&[usize], Vec<f64>) = match c.partner {
-            Partner::Edge(k) => {
-                let e = &self.edges.edges[k];
-                (
-                    &e.nodes,
-                    super::geometry::edges::shape(e.nodes.len(), c.xi[0])
-                        .0
-                        .to_vec(),
-                )
-            }
-            Partner::Face(k) => {
-                let f = &self.faces.faces[k];
-                (
-                    &f.nodes,
-                    faces_geom::shape_values(f.kind, c.xi[0], c.xi[1])
-                        .0
-                        .to_vec(),
-                )
-            }
-            _ => return None,
-        };
-        let mut p = [0.0; 3];
-        for (n, w) in nodes.iter().zip(w) {
-            for i in 0..3 {
-                p[i] += w * cur.x[n][i];
-            }
-        }
-        Some(p)
-    }
-
-    /// How much the partner surface of candidate `c` bends at the partner's corner nearest its
-    /// contact point (see [`SlotState::bend`]), for a node at `xs`: 1 − n̂·n there, n̂ the
-    /// smoothed normal and n the partner's own.
-    fn bend(&self, c: Candidate, xs: [f64; 3], cur: &Current) -> f64 {
-        let at = |n: &usize| cur.x[n];
-        let (smooth, own) = match c.partner {
-            Partner::Edge(k) => {
-                let geometry = self.edge_geometry_f64(k, cur);
-                let s = if c.xi[0] < 0.5 { 0.0 } else { 1.0 };
-                let (_, n) = geometry.gap([xs[0], xs[1]], s);
-                let own = edge_normal(&geometry.x, self.edges.edges[k].side, s);
-                ([n[0], n[1], 0.0], [own[0], own[1], 0.0])
-            }
-            Partner::Face(k) => {
-                let f = &self.faces.faces[k];
-                let x: Vec<[f64; 3]> = f.nodes.iter().map(at).collect();
-                let (w, _, _) = faces_geom::shape_values(f.kind, c.xi[0], c.xi[1]);
-                let corner = (0..f.kind.corners())
-                    .max_by(|&a, &b| w[a].total_cmp(&w[b]))
-                    .unwrap_or(0);
-                let (xi, eta) = faces_geom::node_param(f.kind, corner);
-                (
-                    self.face_geometry_f64(k, cur).gap(&xs, xi, eta).1,
-                    faces_geom::face_normal(f.kind, &x, f.side, xi, eta),
-                )
-            }
-            _ => return 0.0,
-        };
-        1.0 - (0..3).map(|i| smooth[i] * own[i]).sum::<f64>()
-    }
-
     /// The local unknowns and kinematics of a slot without a partner: no force; a multiplier is
     /// held at zero.
     fn no_partner(&self, ctx: &Ctx, slot: &Slot) -> Result<(Local, SlotKinematics)> {
