@@ -25,7 +25,7 @@
 //! walls at one place hold one constraint (`contact::repeated`).
 
 use super::{
-    nearest_sheet, rigid_node, search_limit, Facing, MortarLaw, SlipForm, Weighted, SLIVER,
+    nearest_sheet, rigid_node, search_limit, Facing, MortarLaw, SlipForm, Weighted, GRAZING, SLIVER,
 };
 use crate::contact::dual::{self, Dual, Jet};
 use crate::contact::formulation::{
@@ -332,7 +332,7 @@ impl Mortar {
                 let tm = [yb[0] - ya[0], yb[1] - ya[1]];
                 let lm = (tm[0] * tm[0] + tm[1] * tm[1]).sqrt();
                 let nm = [tm[1] * me.side / lm, -tm[0] * me.side / lm];
-                let squarely = if own { OWN_FACING } else { 0.0 };
+                let squarely = if own { OWN_FACING } else { GRAZING };
                 if nm[0] * n[0] + nm[1] * n[1] >= squarely {
                     continue;
                 }

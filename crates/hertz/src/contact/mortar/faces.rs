@@ -25,7 +25,9 @@
 
 use super::curved::{self, CurvedPoint};
 use super::segment::{dual_basis, face_rule, overlap, Point};
-use super::{nearest_sheet, rigid_node, search_limit, Facing, MortarLaw, SlipForm, Weighted};
+use super::{
+    nearest_sheet, rigid_node, search_limit, Facing, MortarLaw, SlipForm, Weighted, GRAZING,
+};
 use crate::contact::dual::{DualN, Jet};
 use crate::contact::formulation::{
     interface_weights, Ctx, Formulation, Local, Partner, Search, SlotState,
@@ -197,7 +199,7 @@ impl FaceMortar {
                     let m = &masters.facets[mi];
                     let d = sub(&m.centre, &f.centre);
                     let dist = dot(&d, &f.normal);
-                    let facing = dot(&f.normal, &m.normal) < 0.0;
+                    let facing = dot(&f.normal, &m.normal) < GRAZING;
                     // The centre's offset in the slave's plane against both faces' reach.
                     let offset = sub(&d, &f.normal.map(|v| v * dist));
                     let near = dot(&offset, &offset).sqrt() <= f.diameter + m.diameter;

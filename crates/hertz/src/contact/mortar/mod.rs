@@ -88,6 +88,13 @@ struct Facing {
 /// sheet (those within a facet size of its distance), so that a facet finds its partners at any
 /// gap — in small deformation the reference segmentation is final — while a farther sheet (the
 /// other side of a thin body) is left out.
+/// A master edge or face faces a slave one when their outward normals make more than 90.6°
+/// (n_m·n_s below this), not merely more than 90°. Perpendicular to within that, the slave's
+/// normal rays graze the master: the side edge of a slave surface's corner (a hairpin arm's tip
+/// face, 0.02° off perpendicular) overlapped master edges far along them for 1e-5 of its
+/// length, gaps of ±1.5 that closed and opened its corner node by turns.
+pub(super) const GRAZING: f64 = -0.01;
+
 fn nearest_sheet(
     size: f64,
     limit: f64,
