@@ -27,6 +27,9 @@ enum Contact {
     /// Planned and its converse, the bottom arm's top nodes against the top arm's lower face and
     /// tip (node-to-segment, two pass).
     TwoPass,
+    /// The top arm's lower face and its tip's lowest edge as the mortar slave against the
+    /// bottom arm's top face.
+    Mortar,
 }
 
 /// The hairpin of spacing `h`: arms 2 long and 0.2 thick, the slot 0.1 high, the spine 0.2
@@ -160,6 +163,9 @@ fn hairpin(h: f64, load: Load, contact: Contact) -> String {
                 ));
             }
         }
+        Contact::Mortar => conditions.push(format!(
+            "s2slagrangianmultipliercontact {c0} loadTimeFunction 1 slavesegment 3 segmentset 1 2"
+        )),
     }
     let (e, nu) = (1000.0, 0.3);
     format!(
@@ -284,4 +290,21 @@ fn a_corner_driven_into_a_face_beside_its_node_is_refused_not_hidden() {
     let run = press(0.1, load, Contact::Planned).unwrap();
     let last = run.last().unwrap();
     assert!(last.active >= 2 && last.gap >= -1e-12, "{run:?}");
+}
+
+/// Mortar with the top arm's tip edge in its slave surface (the lower face and the side edge
+/// of its corner), the tip face pushed 0.2: the side edge's normal is perpendicular to the
+/// bottom arm's face, and its rays along it grazed master edges far along them (an overlap of
+/// 1e-5 of the edge, gaps of ±1.5 that closed and opened the corner node by turns): the run
+/// stopped as the corner touched (step 5). A master faces a slave only where their normals make
+/// more than 90.6° now: all ten steps converge (one cut in two, open), no slave node behind the
+/// face.
+#[test]
+fn mortar_whose_slave_surface_turns_a_corner_does_not_graze_the_master() {
+    let run = press(0.1, Load::Push(0.2), Contact::Mortar).unwrap();
+    let last = run.last().unwrap();
+    assert!(
+        run.iter().all(|s| s.gap >= -1e-9) && last.active >= 2,
+        "{run:?}"
+    );
 }
