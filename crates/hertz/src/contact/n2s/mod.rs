@@ -748,8 +748,11 @@ impl Formulation for NodeToSegment {
                     };
                     state.anchor = next;
                     state.gap = kin.gap.v;
-                    state.bend = self.bend(c, state.x, &cur);
-                    state.point = self.contact_point(c, &cur);
+                    // What pairing judges (self-contact, or two conditions: two-pass).
+                    if slot.own.is_some() || !self.covered.is_empty() {
+                        state.bend = self.bend(c, state.x, &cur);
+                        state.point = self.contact_point(c, &cur);
+                    }
                     state.weight = kin.weight.v;
                     (local, kin)
                 }
