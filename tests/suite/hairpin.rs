@@ -241,8 +241,8 @@ fn press(h: f64, load: Load, contact: Contact) -> Result<Vec<Step>, String> {
 /// 0.3 %), no cut-back and at most 6 iterations a step, at two mesh sizes. Before, both
 /// stopped at the first step: the tip's corner and the bottom arm's node beneath it closed in
 /// one step from a slot's height apart, each holding the other (two dependent constraints, "the
-/// tangent matrix is singular"); and in self-contact the two, merged, held their mean gap with
-/// the corner 6.7e-3 inside the bottom arm.
+/// tangent matrix is singular"). Paired before they close, self-contact also needs the corner
+/// and the node kept apart: merged, their mean gap left the corner 6.7e-3 inside the arm.
 #[test]
 fn a_hairpin_pressed_shut_touches_itself_where_the_planned_contact_does() {
     for h in [0.1, 0.05] {
