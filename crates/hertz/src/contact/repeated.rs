@@ -47,6 +47,24 @@ pub(crate) fn unheld(gap: f64, other: f64, spacing: f64, tol: f64) -> Option<f64
 /// into the face by the order of their offset).
 pub(crate) const BEND_APART: f64 = 0.05;
 
+/// How far apart two nodes at `xa` and `xb` lie as a pair: each from the other's contact point
+/// (`pa`, `pb`), along the walls, so that a pair closing from across an open gap is one before
+/// it closes (its two constraints closing in one step were dependent, the tangent singular);
+/// the nodes' distance where a contact point is not known.
+pub(crate) fn apart(
+    xa: &[f64; 3],
+    pa: Option<[f64; 3]>,
+    xb: &[f64; 3],
+    pb: Option<[f64; 3]>,
+) -> f64 {
+    let dist =
+        |a: &[f64; 3], b: &[f64; 3]| (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt();
+    match (pa, pb) {
+        (Some(pa), Some(pb)) => dist(&pa, xb).max(dist(&pb, xa)),
+        _ => dist(xa, xb),
+    }
+}
+
 /// The pairs (i, j) of `candidates` (distance, i, j) closest first, each of the `n` slots in one
 /// pair at most.
 pub(crate) fn closest_first(

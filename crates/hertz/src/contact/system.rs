@@ -330,15 +330,7 @@ impl ContactSystem {
                     }
                     let before = was_repeated(i) || was_repeated(j);
                     let limit = if before { 1.0 / 3.0 } else { 0.25 };
-                    // How far each node lies from the other's contact point: along the walls, so
-                    // that a pair closing from across an open gap is one before it closes (its
-                    // two constraints closing in one step were dependent, the tangent singular);
-                    // the nodes' distance where no contact point is known.
-                    let along = |k: usize, x: &[f64; 3]| states[k].point.map(|p| dist(&p, x));
-                    let d = match (along(i, &xb), along(j, &states[i].x)) {
-                        (Some(a), Some(b)) => a.max(b),
-                        _ => dist(&states[i].x, &xb),
-                    };
+                    let d = repeated::apart(&states[i].x, states[i].point, &xb, states[j].point);
                     if d < limit * spacing {
                         pairs.push((d, spacing, i, j));
                     }

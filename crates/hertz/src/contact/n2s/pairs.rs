@@ -54,14 +54,7 @@ impl NodeToSegment {
                 } else {
                     PAIR
                 };
-                // How far each node lies from the other's contact point: along the walls, so
-                // that a pair closing from across an open gap is one before it closes (its two
-                // constraints closing in one step were dependent).
-                let xa = state(i).x;
-                let along = |k: usize, x: &[f64; 3], y: &[f64; 3]| {
-                    state(k).point.map_or(dist(x, y), |p| dist(&p, x))
-                };
-                let d = along(i, &xb, &xa).max(along(j, &xa, &xb)).sqrt();
+                let d = repeated::apart(&state(i).x, state(i).point, &xb, state(j).point);
                 // A corner on a face: left to the two-condition rule (see `BEND_APART`).
                 let alike = (state(i).bend - state(j).bend).abs() <= repeated::BEND_APART;
                 if spacing.is_finite() && d < limit * spacing && alike {
