@@ -82,12 +82,6 @@ struct Facing {
     size: f64,
 }
 
-/// The master facets of the sheet nearest to a slave facet of size `size`, among the facing,
-/// overlapping ones that `query(grow)` finds in the slave facet's box grown by `grow`: the box
-/// grows (up to `limit`, the problem's size) until it holds the nearest facet and the rest of its
-/// sheet (those within a facet size of its distance), so that a facet finds its partners at any
-/// gap — in small deformation the reference segmentation is final — while a farther sheet (the
-/// other side of a thin body) is left out.
 /// A master edge or face faces a slave one when their outward normals make more than 90.6°
 /// (n_m·n_s below this), not merely more than 90°. Perpendicular to within that, the slave's
 /// normal rays graze the master: the side edge of a slave surface's corner (a hairpin arm's tip
@@ -95,6 +89,12 @@ struct Facing {
 /// length, gaps of ±1.5 that closed and opened its corner node by turns.
 pub(super) const GRAZING: f64 = -0.01;
 
+/// The master facets of the sheet nearest to a slave facet of size `size`, among the facing,
+/// overlapping ones that `query(grow)` finds in the slave facet's box grown by `grow`: the box
+/// grows (up to `limit`, the problem's size) until it holds the nearest facet and the rest of its
+/// sheet (those within a facet size of its distance), so that a facet finds its partners at any
+/// gap — in small deformation the reference segmentation is final — while a farther sheet (the
+/// other side of a thin body) is left out.
 fn nearest_sheet(
     size: f64,
     limit: f64,
@@ -119,6 +119,17 @@ fn nearest_sheet(
             return Ok(Vec::new());
         }
         grow *= 2.0;
+    }
+}
+
+/// A mortar slot's friction anchor on `partner`, keeping the elastic slip `elastic` of the last
+/// converged step (none with multipliers; a mortar slip is weighted over the slot's support:
+/// no point on the partner).
+fn anchor_on(partner: Partner, elastic: [f64; 3]) -> Anchor {
+    Anchor {
+        partner,
+        xi: [0.0; 2],
+        offset: elastic,
     }
 }
 
@@ -395,12 +406,6 @@ impl MortarLaw {
         } else {
             sliver.as_ref().map_or(0.0, |c| c.v)
         };
-        // Anchors keep the elastic slip of the last converged step (none with multipliers).
-        let anchored = |elastic: [f64; 3]| Anchor {
-            partner: w.partner,
-            xi: [0.0; 2],
-            offset: elastic,
-        };
         if self.frictions[j].is_some() && has {
             // A repeated pair's merged kinematics carry the pair's slip already.
             if kin.slip.is_none() {
@@ -408,7 +413,7 @@ impl MortarLaw {
             }
             // Open (or without a penalty): no elastic slip left.
             if kin.slip.is_some() {
-                state.anchor = Some(anchored([0.0; 3]));
+                state.anchor = Some(anchor_on(w.partner, [0.0; 3]));
             }
         }
         let point = if multipliers {
@@ -435,13 +440,16 @@ impl MortarLaw {
                 state.friction = friction.map(|(stick, t)| (stick, t * w.area.v));
                 // A closed penalty slot leaves its elastic slip λ_T/ε_T.
                 if friction.is_some() && s.compliance > 0.0 {
-                    state.anchor = Some(anchored(std::array::from_fn(|i| {
-                        if i < self.dim {
-                            lambdas[i] * s.compliance
-                        } else {
-                            0.0
-                        }
-                    })));
+                    state.anchor = Some(anchor_on(
+                        w.partner,
+                        std::array::from_fn(|i| {
+                            if i < self.dim {
+                                lambdas[i] * s.compliance
+                            } else {
+                                0.0
+                            }
+                        }),
+                    ));
                 }
             }
             point
@@ -480,12 +488,13 @@ impl MortarLaw {
             _ => [0.0; 3],
         };
         let u = slip.slip(ctx, local, &w.area, elastic);
-        let kept = Anchor {
-            partner: w.partner,
-            xi: [0.0; 2],
-            offset: elastic,
-        };
-        let mut sk = slip.kinematics(local, u, kept, f.mu, self.stiffness[j]);
+        let mut sk = slip.kinematics(
+            local,
+            u,
+            anchor_on(w.partner, elastic),
+            f.mu,
+            self.stiffness[j],
+        );
         if penalty_form {
             sk.compliance = 1.0 / f.penalty;
         }
