@@ -325,11 +325,16 @@ fn crush(text: &str) -> Vec<Step> {
 
 /// The plate force of `run` (named `what`) equals the half model's at every step, to 1e-9.
 fn same_plate_force(what: &str, run: &[Step], half: &[Step]) {
-    assert_eq!(run.len(), half.len());
-    for (k, (w, h)) in run.iter().zip(half).enumerate() {
+    plate_forces_agree((what, run), ("half", half), 1e-9);
+}
+
+/// The plate force of `run` equals `reference`'s at every step, within `tol` of it.
+fn plate_forces_agree((what, run): (&str, &[Step]), (name, reference): (&str, &[Step]), tol: f64) {
+    assert_eq!(run.len(), reference.len());
+    for (k, (w, h)) in run.iter().zip(reference).enumerate() {
         assert!(
-            (w.plate - h.plate).abs() <= 1e-9 * h.plate.abs().max(1e-9),
-            "step {k}: plate force {} {what}, {} half",
+            (w.plate - h.plate).abs() <= tol * h.plate.abs().max(1e-9),
+            "step {k}: plate force {} {what}, {} {name}",
             w.plate,
             h.plate
         );
@@ -501,14 +506,7 @@ fn mortar_self_contact_on_walls_whose_nodes_do_not_match_follows_node_to_segment
         early.iter().all(|&i| i <= 4) && late.iter().all(|&i| i <= 15),
         "{iterations:?}"
     );
-    for (k, (m, n)) in mortar.iter().zip(&n2s).enumerate() {
-        assert!(
-            (m.plate - n.plate).abs() <= 5e-3 * n.plate.abs().max(1e-9),
-            "step {k}: plate force {} mortar, {} node-to-segment",
-            m.plate,
-            n.plate
-        );
-    }
+    plate_forces_agree(("mortar", &mortar), ("node-to-segment", &n2s), 5e-3);
     let rubbing = crush(
         &Ring {
             mortar: true,
@@ -519,14 +517,7 @@ fn mortar_self_contact_on_walls_whose_nodes_do_not_match_follows_node_to_segment
     );
     let its: Vec<usize> = rubbing.iter().map(|s| s.iterations).collect();
     assert!(its.iter().all(|&i| i <= 8), "with friction: {its:?}");
-    for (k, (f, m)) in rubbing.iter().zip(&mortar).enumerate() {
-        assert!(
-            (f.plate - m.plate).abs() <= 1e-2 * m.plate.abs().max(1e-9),
-            "step {k}: plate force {} with friction, {} without",
-            f.plate,
-            m.plate
-        );
-    }
+    plate_forces_agree(("with friction", &rubbing), ("without", &mortar), 1e-2);
 }
 
 /// Nearly incompressible rubber (K = 1000 G, barred quadrilaterals) crushed to 80 %: the crease
