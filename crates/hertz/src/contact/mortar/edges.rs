@@ -19,23 +19,21 @@
 //! deformation all of it is evaluated at the current state and differentiated.
 //!
 //! Self-contact (the slave segment among the master segments, straight edges): each own edge
-//! meets the parts of the surface that face it squarely (`OWN_FACING`, `OWN_DEPTH`); where two
+//! meets the parts of the surface that face it squarely ([`own`]); where two
 //! walls are within an edge length the rays bisect their normals (`symmetric_ray`), so that
 //! each wall as a slave is the mirror image of the other; pairs of nodes that meet each other's
 //! walls at one place hold one constraint (`contact::repeated`).
 
 use super::{
-    nearest_sheet, rigid_node, search_limit, Facing, MortarLaw, SlipForm, Weighted, GRAZING, SLIVER,
+    nearest_sheet, own, rigid_node, search_limit, Facing, MortarLaw, SlipForm, Weighted, GRAZING,
 };
 use crate::contact::dual::{self, Dual, Jet};
 use crate::contact::formulation::{
-    interface_weights, Anchor, Ctx, Formulation, Local, Partner, Search, SlotState,
+    interface_weights, Ctx, Formulation, Local, Partner, Search, SlotState,
 };
 use crate::contact::geometry::edges::{shape, EdgeSurface};
 use crate::contact::geometry::rigid;
 use crate::contact::geometry::scalar::Scalar;
-use crate::contact::law::SlotKinematics;
-use crate::contact::repeated;
 use crate::contact::search::broad::BroadPhase;
 use crate::contact::slot::SlotLinearization;
 use crate::error::{Error, Result};
@@ -332,7 +330,7 @@ impl Mortar {
                 let tm = [yb[0] - ya[0], yb[1] - ya[1]];
                 let lm = (tm[0] * tm[0] + tm[1] * tm[1]).sqrt();
                 let nm = [tm[1] * me.side / lm, -tm[0] * me.side / lm];
-                let squarely = if own { OWN_FACING } else { GRAZING };
+                let squarely = if own { own::OWN_FACING } else { GRAZING };
                 if nm[0] * n[0] + nm[1] * n[1] >= squarely {
                     continue;
                 }
@@ -365,7 +363,7 @@ impl Mortar {
                     let depth = (ctx.model.elements[me.element].nodes.iter())
                         .map(|&k| pos(k).map(|y| (ya[0] - y[0]) * nm[0] + (ya[1] - y[1]) * nm[1]))
                         .try_fold(0.0, |acc: f64, v| v.map(|v| acc.max(v)))?;
-                    if behind > OWN_DEPTH * l.min(lm).min(depth) {
+                    if !own::within_reach(behind, l.min(lm), depth) {
                         continue;
                     }
                 }
@@ -379,18 +377,6 @@ impl Mortar {
         })
     }
 }
-
-/// Self-contact: a slave edge meets a facing part of its own surface behind it only within this
-/// fraction of the edges' size or of the depth of the element behind that part.
-const OWN_DEPTH: f64 = 0.25;
-
-/// Self-contact: a slave edge meets a part of its own surface only where their normals are more
-/// than 120° apart (cos = −0.5): walls closing on each other, the two edges at the tip of a
-/// closing crease, not the next edge round a bend, nor a wall seen askew, whose rays along the
-/// mean of the two normals ([`symmetric_ray`]) would skim both. A slave node's own constraint
-/// never takes a master edge through the node itself (its gap there is zero whatever the
-/// motion).
-const OWN_FACING: f64 = -0.5;
 
 /// The gap at a slave parameter ξ, with the master nodes and their shape values there, the force
 /// direction ν and ds/dξ.
@@ -445,16 +431,6 @@ fn solve(s0: f64, m: usize, linear: bool, f: impl Fn(Dual) -> (Dual, Dual)) -> D
     let (v, d) = f(c);
     c - v / d
 }
-
-/// Self-contact: two slave nodes closer than this fraction of the second's edge length, each
-/// meeting the other's wall, hold one contact; a pair that was one at the last converged state
-/// stays one up to `PAIR_KEPT` (a band: no alternation). Twice node-to-segment's radius
-/// ([`repeated::PAIR`]): a node's weighted gap spans its edges, and two nodes within half a
-/// spacing of each other share most of their supports, so their two constraints are nearly
-/// dependent — kept apart, a ring whose walls' nodes are offset by 0.3 of a spacing took 43
-/// iterations and two cuts at one step of its crush (merged: at most 10, no cut).
-const PAIR: f64 = 2.0 * repeated::PAIR;
-const PAIR_KEPT: f64 = 2.0 * repeated::KEEP;
 
 /// Whether two straight edges (ends `x`, `y`, at their values) are within the first's length of
 /// each other:
@@ -1048,98 +1024,24 @@ impl Formulation for Mortar {
             .collect::<Result<Vec<_>>>()?;
         // Self-contact: pairs that repeat one contact hold it by one constraint.
         let pairs = self.repeated_pairs(ctx, &overlaps, &weighted, history)?;
-        let mut merged: Vec<Option<(Local, SlotKinematics)>> = Vec::new();
-        merged.resize_with(self.slots.len(), || None);
-        let mut reports = Vec::with_capacity(pairs.len());
-        for &(i, j) in &pairs {
-            let kin = |k: usize| {
-                let (local, w) = &weighted[k];
-                let mut kin = self.law.slot_kinematics(k, local, w, w.b.clone());
-                kin.slip = self.law.slip_kinematics(ctx, k, local, w, history);
-                kin
-            };
-            let (ki, kj) = (kin(i), kin(j));
-            let (local, kin) = repeated::merge((&weighted[i].0, &ki), (&weighted[j].0, &kj));
-            reports.push(PairReport {
-                slots: [i, j],
-                shares: [self.slots[i].0, self.slots[j].0]
-                    .map(|n| repeated::share_at(&local, &kin, n)),
-                gaps: [ki.gap.v, kj.gap.v],
-                areas: [weighted[i].1.area.v, weighted[j].1.area.v],
-                partner: weighted[j].1.partner,
-            });
-            merged[i] = Some((local, kin));
-        }
-        let mut second = vec![false; self.slots.len()];
-        for &(_, j) in &pairs {
-            second[j] = true;
-        }
-        let first_state = states.len();
-        for (j, (local, w)) in weighted.into_iter().enumerate() {
-            // The second of a pair holds nothing of its own (its multiplier at zero).
-            let w = match second[j] {
-                true => Weighted::none(local.m()),
-                false => w,
-            };
-            let (point, state) = self.law.evaluate(
-                ctx,
-                first_lambda,
-                j,
-                self.slots[j].0,
-                &local,
-                w,
-                history,
-                merged[j].take(),
-            )?;
-            points.push(point);
-            states.push(state);
-        }
-        let mine = &mut states[first_state..];
-        for r in reports {
-            // The merged constraint's pressure λ: each node carries λ times its share.
-            let (lambda, active) = (mine[r.slots[0]].pressure, mine[r.slots[0]].active);
-            for k in 0..2 {
-                let s = &mut mine[r.slots[k]];
-                s.force = lambda * r.shares[k];
-                s.area = r.areas[k];
-                s.pressure = s.force / s.area;
-                s.gap = r.gaps[k];
-                s.active = active;
-                s.repeated = true;
-            }
-            mine[r.slots[1]].partner = r.partner;
-            // The merged friction force acts on both nodes whole, each anchored at the pair's
-            // elastic slip (the second's relative slip is the first's reversed).
-            let [first, second] = r.slots;
-            mine[second].friction = mine[first]
-                .friction
-                .map(|(stick, t)| (stick, t / r.areas[0] * r.areas[1]));
-            mine[second].anchor = mine[first].anchor.map(|a| Anchor {
-                partner: r.partner,
-                offset: a.offset.map(|v| -v),
-                ..a
-            });
-        }
+        let nodes: Vec<usize> = self.slots.iter().map(|s| s.0).collect();
+        self.law.evaluate_slots(
+            ctx,
+            first_lambda,
+            &nodes,
+            weighted,
+            &pairs,
+            history,
+            points,
+            states,
+        )?;
         Ok(searching)
     }
 }
 
-/// What each node of a self-contact pair reports: its share of the merged force direction, its
-/// own weighted gap and support, and the second's partner.
-struct PairReport {
-    slots: [usize; 2],
-    shares: [f64; 2],
-    gaps: [f64; 2],
-    areas: [f64; 2],
-    partner: Partner,
-}
-
 impl Mortar {
-    /// Self-contact's repeated pairs ([`crate::contact::repeated`]): slots (i, j), i < j, whose
-    /// slave edges each overlap an own edge of the other's node, closer than [`PAIR`] of the
-    /// second's edge length ([`PAIR_KEPT`] if either was in a pair at the last converged state),
-    /// closest first and each slot in one pair at most, each with support on at least
-    /// [`SLIVER`] of its full support.
+    /// Self-contact's repeated pairs ([`own::repeated_pairs`]): slots whose slave edges each
+    /// overlap an own edge of the other's node, their spacing the second's shortest edge.
     fn repeated_pairs(
         &self,
         ctx: &Ctx,
@@ -1150,18 +1052,10 @@ impl Mortar {
         if self.own.iter().all(Option::is_none) {
             return Ok(Vec::new());
         }
-        let n = self.slots.len();
-        let slot_of: std::collections::HashMap<usize, usize> = (self.slots.iter().enumerate())
-            .map(|(j, s)| (s.0, j))
-            .collect();
         // The nodes of the own edges each slot's slave edges overlap.
-        let met: Vec<Vec<usize>> = (0..n)
-            .map(|j| {
-                let area = weighted[j].1.area.v;
-                if !(area > 0.0 && area >= SLIVER * self.law.full_support[j]) {
-                    return Vec::new();
-                }
-                let mut nodes: Vec<usize> = (self.slots[j].1.iter())
+        let met: Vec<Vec<usize>> = (self.slots.iter())
+            .map(|(_, edges)| {
+                let mut nodes: Vec<usize> = (edges.iter())
                     .flat_map(|&k| &overlaps[k])
                     .filter(|&&mi| self.own[mi].is_some())
                     .flat_map(|&mi| self.master.edges[mi].nodes.iter().copied())
@@ -1172,29 +1066,25 @@ impl Mortar {
             })
             .collect();
         let pos = |node: usize| ctx.position(node).map(|p| p.0);
-        let dist = |a: [f64; 3], b: [f64; 3]| (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>();
-        let was = |j: usize| history.and_then(|h| h.get(j)).is_some_and(|s| s.repeated);
-        let mut pairs = Vec::new();
-        for i in 0..n {
-            let a = self.slots[i].0;
-            for b in &met[i] {
-                let Some(&j) = slot_of.get(b) else { continue };
-                if j <= i || met[j].binary_search(&a).is_err() {
-                    continue;
-                }
-                let mut spacing = f64::INFINITY;
-                for &k in &self.slots[j].1 {
-                    let e = &self.slave.edges[k].nodes;
-                    spacing = spacing.min(dist(pos(e[0])?, pos(e[1])?).sqrt());
-                }
-                let limit = if was(i) || was(j) { PAIR_KEPT } else { PAIR };
-                let d = dist(pos(a)?, pos(*b)?).sqrt();
-                if d < limit * spacing {
-                    pairs.push((d, i, j));
-                }
+        // The shortest of a slot's slave edges.
+        let spacing = |j: usize| -> Result<f64> {
+            let mut spacing = f64::INFINITY;
+            for &k in &self.slots[j].1 {
+                let e = &self.slave.edges[k].nodes;
+                let (a, b) = (pos(e[0])?, pos(e[1])?);
+                spacing = spacing.min((0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt());
             }
-        }
-        Ok(repeated::closest_first(pairs, n))
+            Ok(spacing)
+        };
+        let nodes: Vec<usize> = self.slots.iter().map(|s| s.0).collect();
+        own::repeated_pairs(
+            ctx,
+            &nodes,
+            &met,
+            &|j| self.law.supported(j, weighted[j].1.area.v),
+            &spacing,
+            history,
+        )
     }
 }
 

@@ -32,6 +32,7 @@
 pub mod curved;
 pub mod edges;
 pub mod faces;
+mod own;
 pub mod segment;
 
 use super::dual::Jet;
