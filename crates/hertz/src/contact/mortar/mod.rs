@@ -32,6 +32,7 @@
 pub mod curved;
 pub mod edges;
 pub mod faces;
+pub mod mirror;
 mod own;
 pub mod segment;
 

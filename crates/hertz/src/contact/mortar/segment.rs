@@ -31,7 +31,8 @@ pub struct Point<T> {
     /// Shape values of the slave and master faces there (a triangle's fourth is 0).
     pub slave: [T; 4],
     pub master: [T; 4],
-    /// Unit vector towards the slave body (−n₀): the gap is (x_S − x_M)·ν.
+    /// Unit vector towards the slave body (−n₀; in self-contact's [`super::mirror`] the bisector
+    /// of the two walls' normals): the gap is (x_S − x_M)·ν.
     pub nu: V3<T>,
     /// Quadrature weight times the slave area element.
     pub weight: T,
@@ -39,7 +40,7 @@ pub struct Point<T> {
 
 /// The 7-point rule of degree 5 on a triangle (Radon): barycentric a, a, 1 − 2a and weights
 /// (summing to 1, of the triangle's area).
-fn triangle_rule() -> [([f64; 3], f64); 7] {
+pub(super) fn triangle_rule() -> [([f64; 3], f64); 7] {
     let s = 15f64.sqrt();
     let (a1, w1) = ((6.0 - s) / 21.0, (155.0 - s) / 1200.0);
     let (a2, w2) = ((6.0 + s) / 21.0, (155.0 + s) / 1200.0);
@@ -61,7 +62,7 @@ fn left<T: Scalar>(a: &V2<T>, b: &V2<T>, p: &V2<T>) -> T {
 }
 
 /// Twice the signed area of a polygon.
-fn area2<T: Scalar>(p: &[V2<T>]) -> T {
+pub(super) fn area2<T: Scalar>(p: &[V2<T>]) -> T {
     let mut s = p[0][0].cst(0.0);
     for i in 0..p.len() {
         let (a, b) = (&p[i], &p[(i + 1) % p.len()]);
@@ -75,7 +76,7 @@ fn area2<T: Scalar>(p: &[V2<T>]) -> T {
 /// crosses an edge. The mean of the vertices jumps there (by a vertex's share), and with it every
 /// cell of the fan, so the quadrature of the rational integrands of distorted faces (inverse
 /// bilinear maps, area ratios) jumped by its error as a master corner crossed a slave edge.
-fn area_centroid<T: Scalar>(p: &[V2<T>]) -> V2<T> {
+pub(super) fn area_centroid<T: Scalar>(p: &[V2<T>]) -> V2<T> {
     let z = p[0][0].cst(0.0);
     let (mut cx, mut cy) = (z, z);
     for i in 0..p.len() {
@@ -121,7 +122,7 @@ pub fn clip<T: Scalar>(subject: &[V2<T>], clip: &[V2<T>]) -> Vec<V2<T>> {
 /// The parameters of a face whose projected corners are `s` at the plane point `p`: Newton on
 /// the values (a quadrilateral's map is bilinear), then one step in `T` from the root, which
 /// makes the derivatives exact; None when the map is degenerate there.
-fn inverse<T: Scalar>(kind: FaceKind, s: &[V2<T>], p: &V2<T>) -> Option<(T, T)> {
+pub(super) fn inverse<T: Scalar>(kind: FaceKind, s: &[V2<T>], p: &V2<T>) -> Option<(T, T)> {
     // One Newton step from (ξ, η): the new (ξ, η) and the step's size.
     fn step<T: Scalar>(
         kind: FaceKind,

@@ -1,0 +1,240 @@
+//! Self-contact's segmentation in 3D: a slave face against a master face of the same surface
+//! where the two walls are close (a tube's bore folding shut), along rays that bisect the two
+//! walls' normals, so that two walls that mirror each other meet at mirror points along the
+//! normal of their mirror plane, from either side: each wall's segmentation, gap and force as a
+//! slave are then the mirror images of the other's, and the whole fold equals its half model on
+//! the mirror plane. Along the slave's normal alone (the auxiliary plane of
+//! [`super::segment`]) a wall inclined to the mirror plane meets the other askew.
+//!
+//! Glossary (slave face S with nodal normals n_a, master face M with nodal normals m_b, all
+//! unit and outward; n(ξ) = normalize(Σ N_a(ξ) n_a) the interpolated normal):
+//! * carried corner: master corner y_b taken into the slave's parameters, the ξ where the line
+//!   through x(ξ) along m_b − n(ξ) passes through y_b. Neighbouring master faces share their
+//!   corners and carry them to one point, so their parts of a slave face tile it (the nodal
+//!   normals are the surface's, the same whatever face asks);
+//! * clip polygon: the slave's parameter domain cut by the carried master polygon, split into
+//!   cells from its area centroid as [`super::segment`] does;
+//! * at a point ξ of a cell: the slave point x(ξ), the master parameters of ξ in the carried
+//!   polygon (the master's shape functions over its carried corners), ν = normalize(m − n)
+//!   from both faces' interpolated normals (towards the slave body) and dA = |x_ξ × x_η|.
+//!
+//! Written over any [`Scalar`] like [`super::segment::overlap`]: in `f64` for small deformation,
+//! in duals over the faces' coordinates and nodal normals for large.
+
+use super::segment::{area2, area_centroid, clip, inverse, triangle_rule, Point};
+use crate::contact::dual::DualN;
+use crate::contact::geometry::faces::{cross, dot, node_param, shape, sub, FaceKind};
+use crate::contact::geometry::scalar::Scalar;
+
+type V3<T> = [T; 3];
+type V2<T> = [T; 2];
+
+/// A face's position and interpolated unit normal (from nodal normals `nn`), and its tangents,
+/// at (ξ, η).
+fn at<T: Scalar>(kind: FaceKind, x: &[V3<T>], nn: &[V3<T>], xi: T, eta: T) -> [V3<T>; 4] {
+    let z = xi.cst(0.0);
+    let (n, dx, de) = shape(kind, xi, eta);
+    let (mut p, mut t1, mut t2, mut nv) = ([z; 3], [z; 3], [z; 3], [z; 3]);
+    for a in 0..x.len() {
+        for i in 0..3 {
+            p[i] = p[i] + x[a][i] * n[a];
+            t1[i] = t1[i] + x[a][i] * dx[a];
+            t2[i] = t2[i] + x[a][i] * de[a];
+            nv[i] = nv[i] + nn[a][i] * n[a];
+        }
+    }
+    let len = dot(&nv, &nv).sqrt();
+    [p, nv.map(|v| v / len), t1, t2]
+}
+
+/// How far the line through the slave point x(ξ, η) along m − n(ξ, η) misses `y`: (r × d)·x_ξ
+/// and (r × d)·x_η, r = y − x, both zero on the line (d is no tangent of the slave).
+fn miss<T: Scalar>(
+    kind: FaceKind,
+    (xs, ns): (&[V3<T>], &[V3<T>]),
+    (y, m): (&V3<T>, &V3<T>),
+    xi: T,
+    eta: T,
+) -> [T; 2] {
+    let [x, n, t1, t2] = at(kind, xs, ns, xi, eta);
+    let c = cross(&sub(y, &x), &sub(m, &n));
+    [dot(&c, &t1), dot(&c, &t2)]
+}
+
+/// The slave parameters master corner `y` (nodal normal `m`) is carried to: Newton on the values
+/// from the face's centre, then one step in `T` from the root, which makes its derivatives
+/// exact; None when the rays do not settle (a corner far round the surface).
+fn carry<T: Scalar>(
+    kind: FaceKind,
+    slave: (&[V3<T>], &[V3<T>]),
+    (y, m): (&V3<T>, &V3<T>),
+) -> Option<V2<T>> {
+    type D2 = DualN<2>;
+    let value = |v: &[V3<T>]| -> Vec<V3<D2>> {
+        v.iter()
+            .map(|p| p.map(|c| D2::constant(c.val(), 2)))
+            .collect()
+    };
+    let (xs, ns) = (value(slave.0), value(slave.1));
+    let (yv, mv) = (value(&[*y])[0], value(&[*m])[0]);
+    let (mut xi, mut eta) = crate::contact::geometry::faces::centre(kind);
+    let mut jac = [[0.0; 2]; 2];
+    let mut settled = false;
+    for _ in 0..30 {
+        let f = miss(
+            kind,
+            (&xs, &ns),
+            (&yv, &mv),
+            D2::variable(xi, 0, 2),
+            D2::variable(eta, 1, 2),
+        );
+        jac = [[f[0].d[0], f[0].d[1]], [f[1].d[0], f[1].d[1]]];
+        let det = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
+        if !(det.abs() > 0.0) {
+            return None;
+        }
+        let dxi = (f[0].v * jac[1][1] - f[1].v * jac[0][1]) / det;
+        let deta = (f[1].v * jac[0][0] - f[0].v * jac[1][0]) / det;
+        xi -= dxi;
+        eta -= deta;
+        // Beyond a few faces' reach the carried polygon means nothing.
+        if !(xi.abs() < 20.0 && eta.abs() < 20.0) {
+            return None;
+        }
+        if dxi.abs().max(deta.abs()) < 1e-14 {
+            settled = true;
+            break;
+        }
+    }
+    if !settled {
+        return None;
+    }
+    // The step in T from the root: (ξ, η) − J⁻¹ f with J at the root's values (f vanishes
+    // there, so J's own derivative does not enter).
+    let z = y[0].cst(0.0);
+    let f = miss(kind, slave, (y, m), z + xi, z + eta);
+    let det = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
+    Some([
+        (z + xi) - (f[0] * jac[1][1] - f[1] * jac[0][1]) * (1.0 / det),
+        (z + eta) - (f[1] * jac[0][0] - f[0] * jac[1][0]) * (1.0 / det),
+    ])
+}
+
+/// The integration points of slave face `xs` (nodal normals `ns`) against master face `xm`
+/// (nodal normals `nm`) of the same surface, along the rays that bisect the two walls' normals
+/// (see the module's glossary); empty when they do not overlap, None when a master corner
+/// cannot be carried (the caller then segments along the slave's normal).
+pub fn mirror_overlap<T: Scalar>(
+    sk: FaceKind,
+    (xs, ns): (&[V3<T>], &[V3<T>]),
+    mk: FaceKind,
+    (xm, nm): (&[V3<T>], &[V3<T>]),
+) -> Option<Vec<Point<T>>> {
+    let z = xs[0][0].cst(0.0);
+    let mut pm = Vec::with_capacity(xm.len());
+    for (y, m) in xm.iter().zip(nm) {
+        pm.push(carry(sk, (xs, ns), (y, m))?);
+    }
+    let ps: Vec<V2<T>> = (0..xs.len())
+        .map(|a| {
+            let (u, v) = node_param(sk, a);
+            [z + u, z + v]
+        })
+        .collect();
+    let ccw = |p: &[V2<T>]| {
+        let mut p = p.to_vec();
+        if area2(&p).val() < 0.0 {
+            p.reverse();
+        }
+        p
+    };
+    let slave_poly = ccw(&ps);
+    let poly = clip(&slave_poly, &ccw(&pm));
+    if poly.len() < 3 || area2(&poly).val() <= 1e-12 * area2(&slave_poly).val() {
+        return Some(Vec::new());
+    }
+    let centroid = area_centroid(&poly);
+    let mut out = Vec::new();
+    for i in 0..poly.len() {
+        let (b, c) = (&poly[i], &poly[(i + 1) % poly.len()]);
+        // Every cell with its signed area, as in [`super::segment::overlap`].
+        let cell = area2(&[centroid, *b, *c]) * 0.5;
+        for (l, w) in triangle_rule() {
+            let p = [
+                centroid[0] * l[0] + b[0] * l[1] + c[0] * l[2],
+                centroid[1] * l[0] + b[1] * l[1] + c[1] * l[2],
+            ];
+            let Some((mxi, meta)) = inverse(mk, &pm, &p) else {
+                continue;
+            };
+            let [_, n, t1, t2] = at(sk, xs, ns, p[0], p[1]);
+            let [_, m, _, _] = at(mk, xm, nm, mxi, meta);
+            let d = sub(&m, &n);
+            let len = dot(&d, &d).sqrt();
+            let da = cross(&t1, &t2);
+            out.push(Point {
+                slave: shape(sk, p[0], p[1]).0,
+                master: shape(mk, mxi, meta).0,
+                nu: d.map(|v| v / len),
+                weight: cell * dot(&da, &da).sqrt() * w,
+            });
+        }
+    }
+    Some(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A unit square face at height `z` (outward normal ±z), its nodes counter-clockwise seen
+    /// from +z when `up`.
+    fn square(x0: f64, y0: f64, z: f64, up: bool) -> Vec<[f64; 3]> {
+        let mut v = vec![
+            [x0, y0, z],
+            [x0 + 1.0, y0, z],
+            [x0 + 1.0, y0 + 1.0, z],
+            [x0, y0 + 1.0, z],
+        ];
+        if !up {
+            v.reverse();
+        }
+        v
+    }
+
+    /// Two walls inclined to their mirror plane z = 0 (a fold's sides): the slave face
+    /// x ∈ [0, 1] rises as z = 0.1 + 0.2 x, the master is its mirror image. The rays bisect
+    /// the normals, so every point meets its mirror point: ν = −e_z, the gap twice the
+    /// height, the whole face overlapped and every master parameter the slave's.
+    #[test]
+    fn mirror_walls_meet_at_mirror_points_along_the_mirror_planes_normal() {
+        let lift = |p: [f64; 3], s: f64| [p[0], p[1], s * (0.1 + 0.2 * p[0])];
+        let xs: Vec<[f64; 3]> = square(0.0, 0.0, 0.0, true)
+            .into_iter()
+            .map(|p| lift(p, 1.0))
+            .collect();
+        let xm: Vec<[f64; 3]> = square(0.0, 0.0, 0.0, false)
+            .into_iter()
+            .map(|p| lift(p, -1.0))
+            .collect();
+        // Outward normals: the slave's body lies above it, the master's below.
+        let tilt = (1.0f64 + 0.04).sqrt();
+        let ns = vec![[0.2 / tilt, 0.0, -1.0 / tilt]; 4];
+        let nm = vec![[0.2 / tilt, 0.0, 1.0 / tilt]; 4];
+        let points = mirror_overlap(FaceKind::Quad, (&xs, &ns), FaceKind::Quad, (&xm, &nm))
+            .expect("carried");
+        let area: f64 = points.iter().map(|p| p.weight).sum();
+        assert!((area - tilt).abs() < 1e-13, "area {area}");
+        for p in &points {
+            assert!((p.nu[2] - 1.0).abs() < 1e-14 && p.nu[0].abs() < 1e-14, "{:?}", p.nu);
+            let pos = |x: &[[f64; 3]], s: &[f64; 4]| {
+                [0, 1, 2].map(|i| (0..4).map(|a| x[a][i] * s[a]).sum::<f64>())
+            };
+            let (x, y) = (pos(&xs, &p.slave), pos(&xm, &p.master));
+            assert!(
+                (x[0] - y[0]).abs() < 1e-13 && (x[1] - y[1]).abs() < 1e-13 && (x[2] + y[2]).abs() < 1e-13,
+                "{x:?} {y:?}"
+            );
+        }
+    }
+}
