@@ -839,11 +839,20 @@ impl Mortar {
     ) -> Vec<Piece> {
         let zero = Dual::constant(0.0, m);
         let mut pieces = Vec::new();
+        let ends = |mi: usize| -> Vec<[Dual; 2]> {
+            (self.master.edges[mi].nodes.iter())
+                .map(|&n| geo(n))
+                .collect()
+        };
+        // Along the mirror rays for every own edge if one is close: the parts of a slave edge
+        // tile it only if all are cut along the same rays (mixed, a crease's two sides covered
+        // the slave edge twice).
+        let mirrored =
+            sn.is_some() && (over.iter()).any(|&mi| self.own[mi].is_some() && close(xg, &ends(mi)));
         for &mi in over {
-            let me = &self.master.edges[mi];
-            let yg: Vec<[Dual; 2]> = me.nodes.iter().map(|&n| geo(n)).collect();
+            let yg = ends(mi);
             let normals = (self.own[mi])
-                .filter(|_| sn.is_some() && close(xg, &yg))
+                .filter(|_| mirrored)
                 .map(|mk| self.edge_normals(mk, geo));
             let own = sn.zip(normals.as_ref());
             // The master's end `end` (0 or 1) projected on the slave edge.
