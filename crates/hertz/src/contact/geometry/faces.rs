@@ -455,6 +455,9 @@ impl<const N: usize> FaceGeometry<super::super::dual::DualN<N>> {
 pub struct NodalNormal {
     pub n: [f64; 3],
     pub jac: Vec<(usize, [[f64; 3]; 3])>,
+    /// |Σ n_f| over the number of faces: 1 where the faces around agree, near 0 at the tip of
+    /// a crease folded flat (where n turns with the round-off).
+    pub agreement: f64,
 }
 
 impl FaceSurface {
@@ -600,7 +603,8 @@ impl FaceSurface {
                 (node, j)
             })
             .collect();
-        NodalNormal { n, jac }
+        let agreement = len / self.at_node[&a].len() as f64;
+        NodalNormal { n, jac, agreement }
     }
 }
 

@@ -22,18 +22,26 @@
 //! positions, g̃_j = Σ_n c_jn·x_n with c_jn = B_j at node n (computed once). Large deformation:
 //! each overlapping pair is segmented at the current state in duals over its two faces'
 //! coordinates and its integrals are scattered into the constraints of the slave face's nodes.
+//!
+//! Self-contact (the slave segment among the master segments, linear faces): each own face
+//! meets the parts of the surface that face it squarely ([`own`]), a node never the faces
+//! through itself; where two walls are within a face's size a face meets all its own partners
+//! along the rays that bisect the walls' nodal normals ([`super::mirror`]), so that each wall as
+//! a slave is the mirror image of the other; pairs of nodes that meet each other's walls at one
+//! place hold one constraint (`contact::repeated`).
 
 use super::curved::{self, CurvedPoint};
+use super::mirror::mirror_overlap;
 use super::segment::{dual_basis, face_rule, overlap, Point};
 use super::{
-    nearest_sheet, rigid_node, search_limit, Facing, MortarLaw, SlipForm, Weighted, GRAZING,
+    nearest_sheet, own, rigid_node, search_limit, Facing, MortarLaw, SlipForm, Weighted, GRAZING,
 };
 use crate::contact::dual::{DualN, Jet};
 use crate::contact::formulation::{
     interface_weights, Ctx, Formulation, Local, Partner, Search, SlotState,
 };
 use crate::contact::geometry::faces::{
-    self, cross, dot, face_normal, shape, sub, Face, FaceKind, FaceSurface,
+    self, cross, dot, face_normal, shape, sub, Face, FaceKind, FaceSurface, NodalNormal,
 };
 use crate::contact::geometry::rigid;
 use crate::contact::search::broad::BroadPhase;
@@ -55,6 +63,8 @@ struct LinearSlot {
     /// (node, w_jn) and ∫ Φ_j ν: the weighted relative position of friction ([`SlipForm`]).
     shares: Vec<(usize, f64)>,
     normal: [f64; 3],
+    /// Self-contact: the nodes of the own faces the slot meets (sorted).
+    met: Vec<usize>,
 }
 
 impl LinearSlot {
@@ -103,14 +113,19 @@ pub struct FaceMortar {
     nlgeo: bool,
     /// Small deformation: the slots' linear forms, from the reference segmentation.
     linear: Vec<LinearSlot>,
-    /// Per slave face, the coefficients of its whole (reference) face's dual basis: against
-    /// rigid shapes.
+    /// Per slave face, the coefficients of its whole reference face's dual basis: against rigid
+    /// shapes in small deformation (in large, the current face's, [`FaceMortar::add_rigid`]).
     dual: Vec<[[f64; 4]; 4]>,
     /// Rigid master shapes (planes, spheres; model segment indices) and the nodes they move with.
     rigid: Vec<usize>,
     rigid_nodes: Vec<usize>,
     /// How far the search for master faces goes.
     search_limit: f64,
+    /// Self-contact (the slave segment among the master segments): per master face, the slave
+    /// face it is, if it is one of the slave's own.
+    own: Vec<Option<usize>>,
+    /// Per own master face, its element's shape and nodes (what lies behind it).
+    own_elements: Vec<Option<(crate::fem::Shape, Vec<usize>)>>,
 }
 
 impl FaceMortar {
@@ -120,9 +135,11 @@ impl FaceMortar {
             unreachable!("a mortar condition")
         };
         let (rigid, face_segments) = split_masters(model, c, *slave, segments)?;
+        let self_contact = segments.contains(slave);
         let slave = FaceSurface::new(model, &[*slave]);
         let master = FaceSurface::new(model, &face_segments);
-        let rigid_nodes = check_surfaces(model, c, (&slave, &master), &rigid)?;
+        let own = own_faces(&slave, &master, self_contact);
+        let rigid_nodes = check_surfaces(model, c, (&slave, &master), &rigid, &own)?;
         let (slots, slot_of) = slots_of(&slave);
         // Without a penalty, h is the mean size (√area) of the node's slave faces.
         let nodes: Vec<usize> = slots.iter().map(|s| s.0).collect();
@@ -165,13 +182,20 @@ impl FaceMortar {
             dual,
             law,
             nlgeo: slave.faces.iter().any(|f| f.nlgeo),
-            slave,
-            master,
             slots,
             slot_of,
             linear: Vec::new(),
             rigid,
             rigid_nodes,
+            own_elements: (own.iter().zip(&master.faces))
+                .map(|(o, f)| {
+                    let e = &model.elements[f.element];
+                    o.map(|_| (e.etype.shape(), e.nodes.clone()))
+                })
+                .collect(),
+            own,
+            slave,
+            master,
         };
         if !mortar.nlgeo {
             mortar.linear = mortar.reference_forms(model);
@@ -180,7 +204,10 @@ impl FaceMortar {
     }
 
     /// Master faces that can overlap slave face `k` at positions `pos`: facing it, their
-    /// centres within reach of its projection, of the nearest sheet ([`nearest_sheet`]).
+    /// centres within reach of its projection, of the nearest sheet ([`nearest_sheet`]); in
+    /// self-contact not the face itself, and its own surface only where it faces the face
+    /// squarely ([`own::OWN_FACING`]) and lies in front of it or within reach behind it
+    /// ([`FaceMortar::own_within_reach`]). `pos` holds the own master faces' elements' nodes.
     fn candidates(
         &self,
         masters: &MasterIndex,
@@ -197,13 +224,19 @@ impl FaceMortar {
                 .into_iter()
                 .filter_map(|mi| {
                     let m = &masters.facets[mi];
+                    let own = self.own[mi].is_some();
+                    if self.own[mi] == Some(k) {
+                        return None;
+                    }
                     let d = sub(&m.centre, &f.centre);
                     let dist = dot(&d, &f.normal);
-                    let facing = dot(&f.normal, &m.normal) < GRAZING;
+                    let squarely = if own { own::OWN_FACING } else { GRAZING };
+                    let facing = dot(&f.normal, &m.normal) < squarely;
                     // The centre's offset in the slave's plane against both faces' reach.
                     let offset = sub(&d, &f.normal.map(|v| v * dist));
                     let near = dot(&offset, &offset).sqrt() <= f.diameter + m.diameter;
-                    (facing && near).then_some(Facing {
+                    let reach = || !own || self.own_within_reach((k, &f), (mi, m), pos);
+                    (facing && near && reach()).then_some(Facing {
                         index: mi,
                         dist,
                         size: m.size,
@@ -212,6 +245,43 @@ impl FaceMortar {
                 .collect())
         });
         found.unwrap_or_default()
+    }
+
+    /// Self-contact: whether own master face `mi` (at `m`) lies in front of slave face `k` (at
+    /// `f`), or behind it within reach ([`own::within_reach`]), judged by the master's corners
+    /// off the slave face: a face sharing a side or a corner with it lies in front across a
+    /// closing crease, behind round a convex edge.
+    fn own_within_reach(
+        &self,
+        (k, f): (usize, &Facet),
+        (mi, m): (usize, &Facet),
+        pos: &dyn Fn(usize) -> [f64; 3],
+    ) -> bool {
+        let (sf, mf) = (&self.slave.faces[k], &self.master.faces[mi]);
+        let off: Vec<[f64; 3]> = (mf.nodes.iter())
+            .filter(|n| !sf.nodes.contains(n))
+            .map(|&n| pos(n))
+            .collect();
+        let behind = -off
+            .iter()
+            .map(|y| dot(&sub(y, &f.centre), &f.normal))
+            .sum::<f64>()
+            / off.len() as f64;
+        // The depth of the master's element behind its face.
+        let Some((shape, element)) = &self.own_elements[mi] else {
+            return true;
+        };
+        let x: Vec<[f64; 3]> = element.iter().map(|&e| pos(e)).collect();
+        let depth = (x.iter())
+            .map(|y| dot(&sub(&m.centre, y), &m.normal))
+            .fold(0.0, f64::max);
+        // The slave's corners off that element: a face of the same element (a thin slab's far
+        // side) lies on its boundary without having crossed it.
+        let corners: Vec<[f64; 3]> = (sf.nodes.iter())
+            .filter(|n| !element.contains(n))
+            .map(|&n| pos(n))
+            .collect();
+        own::within_reach(behind, f.size.min(m.size), depth) || own::crossed(*shape, &x, &corners)
     }
 
     /// The master faces at positions `pos`, for the search.
@@ -237,6 +307,7 @@ impl FaceMortar {
     fn reference_forms(&self, model: &Model) -> Vec<LinearSlot> {
         let pos = |n: usize| model.nodes[n].coords;
         let masters = self.master_index(&pos);
+        let normals = self.own_normals(&pos);
         let mut forms: Vec<LinearSlot> = (0..self.slots.len())
             .map(|_| LinearSlot {
                 area: 0.0,
@@ -244,6 +315,7 @@ impl FaceMortar {
                 partner: Partner::None,
                 shares: Vec::new(),
                 normal: [0.0; 3],
+                met: Vec::new(),
             })
             .collect();
         for k in 0..self.slave.faces.len() {
@@ -259,31 +331,63 @@ impl FaceMortar {
                 self.curved_forms(model, k, &xs, &candidates, &mut forms);
                 continue;
             }
-            let pieces: Vec<(usize, Vec<Point<f64>>)> = candidates
+            // Each candidate's points, along the mirror rays where self-contact's walls are
+            // close (then ν is the rays' own, not a blend).
+            let mirrored = self.mirrored(k, &candidates, &pos, &normals);
+            let normal =
+                |f: &Face| -> Vec<[f64; 3]> { (f.nodes.iter()).map(|n| normals[n].n).collect() };
+            let pieces: Vec<(usize, bool, Vec<Point<f64>>)> = candidates
                 .into_iter()
                 .map(|mi| {
                     let mf = &self.master.faces[mi];
                     let xm: Vec<[f64; 3]> = mf.nodes.iter().map(|&n| pos(n)).collect();
-                    (mi, overlap(sf.kind, &xs, sf.side, mf.kind, &xm))
+                    match mirrored && self.own[mi].is_some() {
+                        true => {
+                            let (ns, nm) = (normal(sf), normal(mf));
+                            // A corner the rays do not carry: a face far round the surface.
+                            let points = mirror_overlap(sf.kind, (&xs, &ns), mf.kind, (&xm, &nm));
+                            (mi, true, points.unwrap_or_default())
+                        }
+                        false => (mi, false, overlap(sf.kind, &xs, sf.side, mf.kind, &xm)),
+                    }
                 })
-                .filter(|(_, points)| !points.is_empty())
+                .filter(|(_, _, points)| !points.is_empty())
                 .collect();
-            let dual = overlap_dual_basis(sf.nodes.len(), pieces.iter().flat_map(|p| &p.1));
-            for (mi, points) in pieces {
-                let mf = &self.master.faces[mi];
-                let xm: Vec<[f64; 3]> = mf.nodes.iter().map(|&n| pos(n)).collect();
-                let (cx, ce) = faces::centre(mf.kind);
-                let nm = face_normal(mf.kind, &xm, mf.side, cx, ce);
-                let (ws, wm) = interface_weights(model, sf.element, mf.element);
-                for p in points {
-                    let nu: [f64; 3] = std::array::from_fn(|i| ws * p.nu[i] + wm * nm[i]);
-                    let len = dot(&nu, &nu).sqrt();
-                    let nu = nu.map(|v| v / len);
-                    let shapes = (&p.slave[..], &p.master[..], &p.slave[..]);
-                    let dual = |a: usize, b: usize| dual[a][b];
-                    self.add_reference_point(&mut forms, (k, mi), shapes, &dual, &nu, p.weight);
+            // Each face node with the pieces it meets (in self-contact no own face through
+            // itself) and its dual function biorthogonal over them.
+            for a in 0..sf.nodes.len() {
+                let meets = |mi: usize| {
+                    self.own[mi].is_none() || !self.master.faces[mi].nodes.contains(&sf.nodes[a])
+                };
+                let met = || pieces.iter().filter(|p| meets(p.0));
+                let dual = overlap_dual_basis(sf.nodes.len(), met().flat_map(|p| &p.2));
+                for (mi, mirrored, points) in met() {
+                    let mf = &self.master.faces[*mi];
+                    let xm: Vec<[f64; 3]> = mf.nodes.iter().map(|&n| pos(n)).collect();
+                    let (cx, ce) = faces::centre(mf.kind);
+                    let nm = face_normal(mf.kind, &xm, mf.side, cx, ce);
+                    let (ws, wm) = interface_weights(model, sf.element, mf.element);
+                    for p in points {
+                        let nu: [f64; 3] = match mirrored {
+                            true => p.nu,
+                            false => std::array::from_fn(|i| ws * p.nu[i] + wm * nm[i]),
+                        };
+                        let len = dot(&nu, &nu).sqrt();
+                        let nu = nu.map(|v| v / len);
+                        let shapes = (&p.slave[..], &p.master[..], &p.slave[..]);
+                        let dual = |a: usize, b: usize| dual[a][b];
+                        let at = (k, *mi, a);
+                        self.add_reference_point(&mut forms, at, shapes, &dual, &nu, p.weight);
+                    }
+                    if self.own[*mi].is_some() {
+                        forms[self.slot_of[&sf.nodes[a]]].met.extend(&mf.nodes);
+                    }
                 }
             }
+        }
+        for f in &mut forms {
+            f.met.sort_unstable();
+            f.met.dedup();
         }
         forms
     }
@@ -324,19 +428,21 @@ impl FaceMortar {
                 let nu = nu.map(|v| v / len);
                 let shapes = (&p.slave[..], &p.master[..], &p.modified[..]);
                 let dual = |a: usize, b: usize| dual[a][b];
-                self.add_reference_point(forms, (k, mi), shapes, &dual, &nu, p.weight);
+                for a in 0..sf.nodes.len() {
+                    self.add_reference_point(forms, (k, mi, a), shapes, &dual, &nu, p.weight);
+                }
             }
         }
     }
 
     /// Add one point of the reference segmentation of slave face `k` against master face `mi` to
-    /// the slots of the slave face's nodes: the slave's and the master's shape values there and
-    /// the slave's weight functions (`shapes`: N, or a quadratic face's N̂), the coefficients
+    /// the slot of the slave face's node `a`: the slave's and the master's shape values there
+    /// and the slave's weight functions (`shapes`: N, or a quadratic face's N̂), the coefficients
     /// `dual(a, b)` of node a's dual function over the weight functions, ν and the point's weight.
     fn add_reference_point(
         &self,
         forms: &mut [LinearSlot],
-        (k, mi): (usize, usize),
+        (k, mi, a): (usize, usize, usize),
         (slave, master, basis): (&[f64], &[f64], &[f64]),
         dual: &dyn Fn(usize, usize) -> f64,
         nu: &[f64; 3],
@@ -344,16 +450,14 @@ impl FaceMortar {
     ) {
         let (sf, mf) = (&self.slave.faces[k], &self.master.faces[mi]);
         let kn = sf.nodes.len();
-        for (a, &node) in sf.nodes.iter().enumerate() {
-            let phi: f64 = (0..kn).map(|b| dual(a, b) * basis[b]).sum();
-            let shapes = sf
-                .nodes
-                .iter()
-                .copied()
-                .zip(slave.iter().copied())
-                .chain(mf.nodes.iter().copied().zip(master.iter().map(|v| -v)));
-            forms[self.slot_of[&node]].add(mi, phi * weight, basis[a] * weight, nu, shapes);
-        }
+        let phi: f64 = (0..kn).map(|b| dual(a, b) * basis[b]).sum();
+        let shapes = sf
+            .nodes
+            .iter()
+            .copied()
+            .zip(slave.iter().copied())
+            .chain(mf.nodes.iter().copied().zip(master.iter().map(|v| -v)));
+        forms[self.slot_of[&sf.nodes[a]]].add(mi, phi * weight, basis[a] * weight, nu, shapes);
     }
 
     /// Slot `j` in small deformation: its linear form at the current positions.
@@ -454,6 +558,14 @@ impl FaceMortar {
                 .collect();
             let map = unknowns(&nodes, |n| local.index(n));
             let nf = face.nodes.len();
+            // The face's dual basis: the reference face's in small deformation, the current
+            // one's in large (with its derivative), as against element faces, where it is
+            // biorthogonal over the current overlaps ([`Moments`]): a fold in self-contact then
+            // equals its half model on a rigid plane.
+            let coef = match self.nlgeo {
+                true => dual_basis(face.kind, &geometry),
+                false => self.dual[k].map(|r| r.map(|v| PairDual::constant(v, nv))),
+            };
             for (xi, eta, wq) in face_rule(face.kind) {
                 let (n, dxi, deta) = shape(face.kind, xi, eta);
                 let mut t1 = [PairDual::constant(0.0, nv); 3];
@@ -469,7 +581,9 @@ impl FaceMortar {
                 let c = cross(&t1, &t2);
                 let da = dot(&c, &c).sqrt() * wq;
                 let (g, nu, moving, shape) = self.rigid_gap(ctx, &nodes, &x, &xp);
-                let phi: f64 = (0..4).map(|b| self.dual[k][a][b] * n[b]).sum();
+                let phi = (0..4).fold(PairDual::constant(0.0, nv), |acc, b| {
+                    acc + coef[a][b] * n[b]
+                });
                 let na = da * phi;
                 let add = |jet: &mut Jet, v: PairDual| add_pair(jet, &map, &v);
                 add(&mut w.gap, na * g);
@@ -545,16 +659,19 @@ impl FaceMortar {
     }
 
     /// Every slot in large deformation: the current segmentation of each slave face against its
-    /// candidates, each pair's integrals scattered into the slots of the slave face's nodes.
-    /// Also gives the seconds spent finding the candidates.
-    fn current_slots(&self, ctx: &Ctx) -> Result<(Vec<(Local, Weighted)>, f64)> {
+    /// candidates, each pair's integrals scattered into the slots of the slave face's nodes;
+    /// per slot the nodes of the own faces it meets (self-contact) and the seconds spent
+    /// finding the candidates.
+    fn current_slots(&self, ctx: &Ctx) -> Result<CurrentSlots> {
         let start = std::time::Instant::now();
         let mut positions = HashMap::new();
-        for f in self.slave.faces.iter().chain(&self.master.faces) {
-            for &n in &f.nodes {
-                if let std::collections::hash_map::Entry::Vacant(e) = positions.entry(n) {
-                    e.insert(ctx.position(n)?.0);
-                }
+        let own_elements = self.own_elements.iter().flatten().flat_map(|e| &e.1);
+        for &n in (self.slave.faces.iter().chain(&self.master.faces))
+            .flat_map(|f| &f.nodes)
+            .chain(own_elements)
+        {
+            if let std::collections::hash_map::Entry::Vacant(e) = positions.entry(n) {
+                e.insert(ctx.position(n)?.0);
             }
         }
         let pos = |n: usize| positions[&n];
@@ -562,21 +679,42 @@ impl FaceMortar {
         let candidates: Vec<Vec<usize>> = (0..self.slave.faces.len())
             .map(|k| self.candidates(&masters, k, &pos))
             .collect();
+        let normals = self.own_normals(&pos);
+        let mirrored: Vec<Vec<bool>> = (candidates.iter().enumerate())
+            .map(|(k, c)| {
+                let face = self.mirrored(k, c, &pos, &normals);
+                c.iter().map(|&mi| face && self.own[mi].is_some()).collect()
+            })
+            .collect();
         let searching = start.elapsed().as_secs_f64();
+        // Each face's unknowns: its nodes, its candidates', and those the nodal normals of its
+        // mirrored pairs move with.
+        let face_nodes: Vec<Vec<usize>> = (self.slave.faces.iter().enumerate())
+            .map(|(k, sf)| {
+                let mut nodes: Vec<usize> = sf.nodes.clone();
+                let mut add = |n: usize| {
+                    if !nodes.contains(&n) {
+                        nodes.push(n);
+                    }
+                };
+                for (c, &mi) in candidates[k].iter().enumerate() {
+                    let mf = &self.master.faces[mi];
+                    mf.nodes.iter().for_each(|&n| add(n));
+                    if mirrored[k][c] {
+                        for n in sf.nodes.iter().chain(&mf.nodes) {
+                            normals[n].jac.iter().for_each(|&(b, _)| add(b));
+                        }
+                    }
+                }
+                nodes
+            })
+            .collect();
         let mut out = Vec::with_capacity(self.slots.len());
         for (node, faces) in &self.slots {
             let mut local = Local::new(3);
             local.add(ctx, *node)?;
             for &k in faces {
-                for &n in &self.slave.faces[k].nodes {
-                    local.add(ctx, n)?;
-                }
-                for &mi in &candidates[k] {
-                    for &n in &self.master.faces[mi].nodes {
-                        local.add(ctx, n)?;
-                    }
-                }
-                for &n in self.rigid_face_nodes(k) {
+                for &n in face_nodes[k].iter().chain(self.rigid_face_nodes(k)) {
                     local.add(ctx, n)?;
                 }
             }
@@ -596,75 +734,185 @@ impl FaceMortar {
             };
             out.push((local, w));
         }
+        let mut met = vec![Vec::new(); self.slots.len()];
         let mut terms = Box::<PairTerms<24, 4, 8>>::default();
         let mut curved_terms: Option<Box<PairTerms<48, 8, 16>>> = None;
-        let quadratic = |f: &Face| matches!(f.kind, FaceKind::Tri6 | FaceKind::Quad8);
+        let mut mirror_terms: Option<Box<PairTerms<48, 4, 8>>> = None;
         for (k, sf) in self.slave.faces.iter().enumerate() {
             let kn = sf.nodes.len();
-            // The face's unknowns: its nodes and its candidates' (face node i holds face
-            // unknowns 3i..3i + 3).
-            let mut face_nodes: Vec<usize> = sf.nodes.clone();
-            for &mi in &candidates[k] {
-                for &n in &self.master.faces[mi].nodes {
-                    if !face_nodes.contains(&n) {
-                        face_nodes.push(n);
-                    }
-                }
-            }
+            let face_nodes = &face_nodes[k];
             let at = |n: usize| {
                 face_nodes
                     .iter()
                     .position(|&m| m == n)
                     .expect("a face node")
             };
-            // The integrals weighted by each N_b and the face's M and D over the overlaps (the
-            // dual basis adapted to them), over the face's unknowns.
-            let mut moments: Option<Moments> = None;
-            for &mi in &candidates[k] {
+            // The face's nodes in groups that meet the same candidates (in self-contact a node
+            // meets no own face through itself), each group with its integrals weighted by
+            // each N_b and its M and D over its overlaps (the dual basis adapted to them), over
+            // the face's unknowns.
+            let meets = |a: usize, mi: usize| {
+                self.own[mi].is_none() || !self.master.faces[mi].nodes.contains(&sf.nodes[a])
+            };
+            let mut groups: Vec<(Vec<bool>, Vec<usize>, Option<Moments>)> = Vec::new();
+            for a in 0..kn {
+                let key: Vec<bool> = candidates[k].iter().map(|&mi| meets(a, mi)).collect();
+                match groups.iter_mut().find(|g| g.0 == key) {
+                    Some(g) => g.1.push(a),
+                    None => groups.push((key, vec![a], None)),
+                }
+            }
+            for (c, &mi) in candidates[k].iter().enumerate() {
+                if !groups.iter().any(|g| g.0[c]) {
+                    continue;
+                }
                 let mf = &self.master.faces[mi];
                 // The integrands are linear in the points' terms: summed over the pair's points
                 // first, then added to the face's moments once.
-                let curved = quadratic(sf) || quadratic(mf);
-                let overlapping = if curved {
-                    curved_terms
+                let mut chain = Vec::new();
+                let mirror = match mirrored[k][c] {
+                    true => {
+                        let t = mirror_terms.get_or_insert_with(Default::default);
+                        // A corner the rays do not carry: a face far round the surface.
+                        let overlapping = t.fill_mirror(sf, mf, &pos, &normals).unwrap_or(false);
+                        chain = normal_chain(sf.nodes.iter().chain(&mf.nodes), &normals, at);
+                        Some(overlapping)
+                    }
+                    false => None,
+                };
+                let curved = is_quadratic(sf) || is_quadratic(mf);
+                let overlapping = match mirror {
+                    Some(overlapping) => overlapping,
+                    None if curved => curved_terms
                         .get_or_insert_with(Default::default)
-                        .fill(sf, mf, &pos)
-                } else {
-                    terms.fill(sf, mf, &pos)
+                        .fill(sf, mf, &pos),
+                    None => terms.fill(sf, mf, &pos),
                 };
                 if !overlapping {
                     continue;
                 }
-                for &node in &sf.nodes {
-                    let w = &mut out[self.slot_of[&node]].1;
-                    if w.partner == Partner::None {
-                        w.partner = Partner::Face(mi);
+                // Pair unknown p is the face's unknown map[p], the nodal normals' beyond them
+                // chained to the face's unknowns.
+                let pair: Vec<usize> = sf.nodes.iter().chain(&mf.nodes).copied().collect();
+                let map = PairMap {
+                    place: unknowns(&pair, at),
+                    chain: &chain,
+                };
+                for group in groups.iter_mut().filter(|g| g.0[c]) {
+                    for &a in &group.1 {
+                        let j = self.slot_of[&sf.nodes[a]];
+                        if out[j].1.partner == Partner::None {
+                            out[j].1.partner = Partner::Face(mi);
+                        }
+                        if self.own[mi].is_some() {
+                            met[j].extend_from_slice(&mf.nodes);
+                        }
+                    }
+                    let mo = (group.2).get_or_insert_with(|| Moments::new(kn, face_nodes.len()));
+                    match (&mirror, &mirror_terms, &curved_terms, curved) {
+                        (Some(_), Some(t), _, _) => mo.add(&map, t),
+                        (None, _, Some(t), true) => mo.add(&map, t),
+                        _ => mo.add(&map, &terms),
                     }
                 }
-                // Pair unknown p is the face's unknown map[p].
-                let pair: Vec<usize> = sf.nodes.iter().chain(&mf.nodes).copied().collect();
-                let map = unknowns(&pair, at);
-                let mo = moments.get_or_insert_with(|| Moments::new(kn, face_nodes.len()));
-                match (&curved_terms, curved) {
-                    (Some(t), true) => mo.add(&map, t),
-                    _ => mo.add(&map, &terms),
-                }
             }
-            let Some(mo) = moments else {
-                continue;
-            };
-            for (a, &node) in sf.nodes.iter().enumerate() {
-                let (local, w) = &mut out[self.slot_of[&node]];
-                // Face unknown e is the slot's unknown to_slot[e].
-                let to_slot = unknowns(&face_nodes, |n| local.index(n));
-                mo.weigh(a, &to_slot, w);
+            for (_, nodes, moments) in groups {
+                let Some(mo) = moments else {
+                    continue;
+                };
+                for a in nodes {
+                    let (local, w) = &mut out[self.slot_of[&sf.nodes[a]]];
+                    // Face unknown e is the slot's unknown to_slot[e].
+                    let to_slot = unknowns(face_nodes, |n| local.index(n));
+                    mo.weigh(a, &to_slot, w);
+                }
             }
         }
         for (j, (local, w)) in out.iter_mut().enumerate() {
             self.add_rigid(ctx, j, local, w)?;
         }
-        Ok((out, searching))
+        for m in &mut met {
+            m.sort_unstable();
+            m.dedup();
+        }
+        Ok(CurrentSlots {
+            slots: out,
+            met,
+            searching,
+        })
     }
+
+    /// Self-contact: the nodal normals of the slave surface's nodes at positions `pos`, with
+    /// their derivatives (none without self-contact).
+    fn own_normals(&self, pos: &dyn Fn(usize) -> [f64; 3]) -> HashMap<usize, NodalNormal> {
+        if self.own.iter().all(Option::is_none) {
+            return HashMap::new();
+        }
+        (self.slots.iter())
+            .map(|(n, _)| (*n, self.slave.nodal_normal_jacobian(*n, pos)))
+            .collect()
+    }
+
+    /// Self-contact: whether slave face `k` meets its own surface among `candidates` along the
+    /// mirror rays ([`mirror_overlap`]): one own candidate within the face's size ([`close`]),
+    /// every nodal normal of the face and of its own candidates defined (not the tip of a crease
+    /// folded flat, as in 2D: the faces' normals there cancel). One way for all of a face's own
+    /// candidates: their parts tile the face only if all are cut along the same rays.
+    fn mirrored(
+        &self,
+        k: usize,
+        candidates: &[usize],
+        pos: &dyn Fn(usize) -> [f64; 3],
+        normals: &HashMap<usize, NodalNormal>,
+    ) -> bool {
+        let sf = &self.slave.faces[k];
+        let own: Vec<&Face> = (candidates.iter())
+            .filter(|&&mi| self.own[mi].is_some())
+            .map(|&mi| &self.master.faces[mi])
+            .collect();
+        if own.is_empty() {
+            return false;
+        }
+        let defined = (sf.nodes.iter())
+            .chain(own.iter().flat_map(|f| &f.nodes))
+            .all(|n| normals[n].agreement > 5e-4);
+        let corners = |f: &Face| f.nodes.iter().map(|&n| pos(n)).collect::<Vec<_>>();
+        let size = Facet::at(sf, pos).size;
+        defined && own.iter().any(|mf| close(&corners(sf), &corners(mf), size))
+    }
+}
+
+/// What [`FaceMortar::current_slots`] gives: every slot's integrals over its local unknowns,
+/// per slot the nodes of the own faces it meets (sorted), the seconds spent searching.
+struct CurrentSlots {
+    slots: Vec<(Local, Weighted)>,
+    met: Vec<Vec<usize>>,
+    searching: f64,
+}
+
+/// How a mirrored pair's nodal normals move with the face's unknowns: for each normal
+/// component (of `nodes` in the pair's order, then x, y, z) the face unknowns (`at(node)` the
+/// face node) and ∂n_i/∂x.
+fn normal_chain<'a>(
+    nodes: impl Iterator<Item = &'a usize>,
+    normals: &HashMap<usize, NodalNormal>,
+    at: impl Fn(usize) -> usize,
+) -> Vec<Vec<(usize, f64)>> {
+    let mut chain = Vec::new();
+    for n in nodes {
+        let jac = &normals[n].jac;
+        for i in 0..3 {
+            chain.push(
+                (jac.iter())
+                    .flat_map(|(b, d)| {
+                        let f = at(*b);
+                        (0..3).map(move |j| (3 * f + j, d[i][j]))
+                    })
+                    .collect(),
+            );
+        }
+    }
+    chain
 }
 
 /// The dual basis of a slave face with `k` nodes biorthogonal over the integration points
@@ -724,27 +972,28 @@ impl Moments {
         }
     }
 
-    /// A pair's integrands `t` (pair unknown i is the face's unknown `map[i]`).
+    /// A pair's integrands `t` (placed among the face's unknowns by `map`).
     fn add<const N: usize, const S: usize, const Q: usize>(
         &mut self,
-        map: &[usize],
+        map: &PairMap,
         t: &PairTerms<N, S, Q>,
     ) {
         let kn = self.d.len();
+        let place = &map.place;
         for b in 0..kn {
-            add_pair(&mut self.gap[b], map, &t.gap[b]);
+            map.add(&mut self.gap[b], &t.gap[b]);
             for q in 0..t.nodes {
                 for i in 0..3 {
-                    add_pair(&mut self.b[b][map[3 * q + i]], map, &t.b[b][q][i]);
+                    map.add(&mut self.b[b][place[3 * q + i]], &t.b[b][q][i]);
                 }
-                add_pair(&mut self.share[b][map[3 * q] / 3], map, &t.share[b][q]);
+                map.add(&mut self.share[b][place[3 * q] / 3], &t.share[b][q]);
             }
             for i in 0..3 {
-                add_pair(&mut self.normal[b][i], map, &t.normal[b][i]);
+                map.add(&mut self.normal[b][i], &t.normal[b][i]);
             }
-            add_pair(&mut self.d[b], map, &t.nw[b]);
+            map.add(&mut self.d[b], &t.nw[b]);
             for c in 0..kn {
-                add_pair(&mut self.m[b][c], map, &t.m[b][c]);
+                map.add(&mut self.m[b][c], &t.m[b][c]);
             }
         }
     }
@@ -827,6 +1076,30 @@ fn mapped_product(dst: &mut Jet, a: &Jet, b: &Jet, map: &[usize]) {
     dst.v += a.v * b.v;
     for ((&t, x), y) in map.iter().zip(&a.d).zip(&b.d) {
         dst.d[t] += x * b.v + a.v * y;
+    }
+}
+
+/// Where a pair's duals go among a face's unknowns: pair unknown i (a node's coordinate) is
+/// the face's `place[i]`; the duals beyond them (a mirrored pair's nodal normals' components)
+/// each move the face's unknowns `chain[k]` with their derivatives.
+struct PairMap<'a> {
+    place: Vec<usize>,
+    chain: &'a [Vec<(usize, f64)>],
+}
+
+impl PairMap<'_> {
+    /// Add `v` (over the pair's duals) to `jet` (over the face's unknowns).
+    fn add<const N: usize>(&self, jet: &mut Jet, v: &DualN<N>) {
+        add_pair(jet, &self.place, v);
+        let n = self.place.len();
+        for (k, terms) in self.chain.iter().enumerate() {
+            let x = v.d[n + k];
+            if x != 0.0 {
+                for &(t, c) in terms {
+                    jet.d[t] += c * x;
+                }
+            }
+        }
     }
 }
 
@@ -926,6 +1199,38 @@ impl<const N: usize, const S: usize, const Q: usize> PairTerms<N, S, Q> {
             }
             !points.is_empty()
         }
+    }
+
+    /// The terms of slave face `sf` against own master face `mf` along the mirror rays
+    /// ([`mirror_overlap`]), in duals over their coordinates and then their nodal normals'
+    /// components (`normals`; [`normal_chain`] carries their derivatives to the coordinates):
+    /// whether they overlap, None (the terms untouched) when a master corner cannot be carried.
+    fn fill_mirror(
+        &mut self,
+        sf: &Face,
+        mf: &Face,
+        pos: &dyn Fn(usize) -> [f64; 3],
+        normals: &HashMap<usize, NodalNormal>,
+    ) -> Option<bool> {
+        let (kn, nodes) = (sf.nodes.len(), sf.nodes.len() + mf.nodes.len());
+        let nv = 6 * nodes;
+        let var = |p: [f64; 3], first: usize| -> [DualN<N>; 3] {
+            std::array::from_fn(|i| DualN::variable(p[i], first + i, nv))
+        };
+        let pair: Vec<usize> = sf.nodes.iter().chain(&mf.nodes).copied().collect();
+        let x: Vec<[DualN<N>; 3]> = (pair.iter().enumerate())
+            .map(|(b, &n)| var(pos(n), 3 * b))
+            .collect();
+        let nn: Vec<[DualN<N>; 3]> = (pair.iter().enumerate())
+            .map(|(b, n)| var(normals[n].n, 3 * (nodes + b)))
+            .collect();
+        let (xs, xm) = x.split_at(kn);
+        let points = mirror_overlap(sf.kind, (xs, &nn[..kn]), mf.kind, (xm, &nn[kn..]))?;
+        self.clear(kn, nodes);
+        for p in &points {
+            self.add_point(xs, xm, (&p.slave, &p.master, &p.slave), &p.nu, p.weight);
+        }
+        Some(!points.is_empty())
     }
 
     /// Zero the terms of a pair with `kn` slave and `nodes` nodes in all (in place: the terms
@@ -1090,8 +1395,12 @@ impl Formulation for FaceMortar {
     }
 
     fn symmetric(&self) -> bool {
-        // B = ∇g̃ in small deformation against faces.
-        !self.nlgeo && self.rigid.is_empty() && self.law.symmetric()
+        // B = ∇g̃ in small deformation against faces, but for a self-contact pair's merged
+        // constraint.
+        !self.nlgeo
+            && self.rigid.is_empty()
+            && self.law.symmetric()
+            && self.own.iter().all(Option::is_none)
     }
 
     fn partner_nodes(&self, partner: Partner) -> &[usize] {
@@ -1117,28 +1426,49 @@ impl Formulation for FaceMortar {
         points: &mut Vec<SlotLinearization>,
         states: &mut Vec<SlotState>,
     ) -> Result<f64> {
-        let (slots, searching) = if self.nlgeo {
-            self.current_slots(ctx)?
+        let (slots, met, searching) = if self.nlgeo {
+            let current = self.current_slots(ctx)?;
+            (current.slots, current.met, current.searching)
         } else {
             let slots = (0..self.slots.len())
                 .map(|j| self.linear_slot(ctx, j))
                 .collect::<Result<Vec<_>>>()?;
-            (slots, 0.0)
+            let met = self.linear.iter().map(|f| f.met.clone()).collect();
+            (slots, met, 0.0)
         };
-        for (j, (local, w)) in slots.into_iter().enumerate() {
-            let (point, state) = self.law.evaluate(
-                ctx,
-                first_lambda,
-                j,
-                self.slots[j].0,
-                &local,
-                w,
-                history,
-                None,
-            )?;
-            points.push(point);
-            states.push(state);
-        }
+        let nodes: Vec<usize> = self.slots.iter().map(|s| s.0).collect();
+        // Self-contact: pairs that repeat one contact hold it by one constraint.
+        let pairs = match self.own.iter().any(Option::is_some) {
+            true => {
+                let pos = |n: usize| ctx.position(n).map(|p| p.0);
+                // The shortest side of a slot's slave faces.
+                let spacing = |j: usize| -> Result<f64> {
+                    let mut spacing = f64::INFINITY;
+                    for &k in &self.slots[j].1 {
+                        let f = &self.slave.faces[k];
+                        let nc = f.kind.corners();
+                        for a in 0..nc {
+                            let d = sub(&pos(f.nodes[a])?, &pos(f.nodes[(a + 1) % nc])?);
+                            spacing = spacing.min(dot(&d, &d).sqrt());
+                        }
+                    }
+                    Ok(spacing)
+                };
+                let supported = |j: usize| self.law.supported(j, slots[j].1.area.v);
+                own::repeated_pairs(ctx, &nodes, &met, &supported, &spacing, history)?
+            }
+            false => Vec::new(),
+        };
+        self.law.evaluate_slots(
+            ctx,
+            first_lambda,
+            &nodes,
+            slots,
+            &pairs,
+            history,
+            points,
+            states,
+        )?;
         Ok(searching)
     }
 }
@@ -1191,14 +1521,16 @@ fn split_masters(
 }
 
 /// What the slave and master surfaces of a 3D mortar condition may be: not empty, faces or
-/// rigid shapes (at most 4 moving with nodes, whose nodes are returned) but not both, no shared
-/// nodes, quadratic slave faces against faces only (they are segmented through flat sub-faces,
-/// [`super::curved`]).
+/// rigid shapes (at most 4 moving with nodes, whose nodes are returned) but not both, no nodes
+/// shared but with the slave's own faces (self-contact, `own`), quadratic slave faces against
+/// faces only (they are segmented through flat sub-faces, [`super::curved`]) and not in
+/// self-contact.
 fn check_surfaces(
     model: &Model,
     c: &ContactCondition,
     (slave, master): (&FaceSurface, &FaceSurface),
     rigid: &[usize],
+    own: &[Option<usize>],
 ) -> Result<Vec<usize>> {
     if slave.faces.is_empty() || (master.faces.is_empty() && rigid.is_empty()) {
         return Err(input_error(
@@ -1220,17 +1552,19 @@ fn check_surfaces(
             "a 3D mortar condition meets at most 4 rigid shapes that move with nodes",
         ));
     }
-    if let crate::model::Pairing::Mortar { slave, segments } = &c.pairing {
-        if segments.contains(slave) {
-            return Err(input_error(
-                c,
-                "mortar self-contact (the slave segment among the master segments) is 2D only: \
-                 in 3D a node-to-segment condition (`n2s...`) whose `slaveset` holds the \
-                 segment's nodes and whose `segmentset` names it is self-contact",
-            ));
-        }
+    let self_contact = own.iter().any(Option::is_some);
+    if self_contact && slave.faces.iter().chain(&master.faces).any(is_quadratic) {
+        return Err(input_error(
+            c,
+            "mortar self-contact takes linear (3- and 4-node) faces: a node-to-segment \
+             condition (`n2s...`) whose `slaveset` holds the segment's nodes is self-contact on \
+             quadratic ones",
+        ));
     }
-    if slave.at_node.keys().any(|n| master.at_node.contains_key(n)) {
+    let others = (master.faces.iter().zip(own))
+        .filter(|(_, o)| o.is_none())
+        .flat_map(|(f, _)| &f.nodes);
+    if others.into_iter().any(|n| slave.at_node.contains_key(n)) {
         return Err(input_error(
             c,
             "the slave and master segments share nodes: a surface cannot contact itself",
@@ -1244,6 +1578,65 @@ fn check_surfaces(
         ));
     }
     Ok(rigid_nodes)
+}
+
+/// Self-contact (`self_contact`: the slave segment among the masters): per master face, the
+/// slave face it is, if it is one of the slave's own.
+fn own_faces(slave: &FaceSurface, master: &FaceSurface, self_contact: bool) -> Vec<Option<usize>> {
+    let key = |f: &Face| {
+        let mut nodes = f.nodes.clone();
+        nodes.sort_unstable();
+        (f.element, nodes)
+    };
+    let index: HashMap<_, usize> = (slave.faces.iter().enumerate())
+        .map(|(k, f)| (key(f), k))
+        .collect();
+    (master.faces.iter())
+        .map(|f| index.get(&key(f)).copied().filter(|_| self_contact))
+        .collect()
+}
+
+/// The distance from `p` to the triangle `t`.
+fn to_triangle(p: &[f64; 3], t: &[[f64; 3]; 3]) -> f64 {
+    let to_segment = |a: &[f64; 3], b: &[f64; 3]| {
+        let (ab, ap) = (sub(b, a), sub(p, a));
+        let s = (dot(&ap, &ab) / dot(&ab, &ab)).clamp(0.0, 1.0);
+        let r = sub(&ap, &ab.map(|v| v * s));
+        dot(&r, &r).sqrt()
+    };
+    let n = cross(&sub(&t[1], &t[0]), &sub(&t[2], &t[0]));
+    let len = dot(&n, &n).sqrt();
+    let r = sub(p, &t[0]);
+    // Inside the prism over the triangle: its plane's distance.
+    let inside = (0..3).all(|i| {
+        let (a, b) = (&t[i], &t[(i + 1) % 3]);
+        dot(&cross(&sub(b, a), &sub(p, a)), &n) >= 0.0
+    });
+    if inside && len > 0.0 {
+        return (dot(&r, &n) / len).abs();
+    }
+    (0..3)
+        .map(|i| to_segment(&t[i], &t[(i + 1) % 3]))
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Whether two faces (corners `xs`, `xm`) are within `size` of each other: self-contact's walls
+/// close enough to meet along the mirror rays ([`super::mirror`]). Farther apart the rays are
+/// along the slave's normal: on the walls of an open bore the bisectors of the normals join
+/// points far round it, and their parts and gaps are ill-posed; an open gap exerts no force, so
+/// the switch changes nothing a step converges to.
+fn close(xs: &[[f64; 3]], xm: &[[f64; 3]], size: f64) -> bool {
+    let triangles = |x: &[[f64; 3]]| match x.len() {
+        4 => vec![[x[0], x[1], x[2]], [x[0], x[2], x[3]]],
+        _ => vec![[x[0], x[1], x[2]]],
+    };
+    let apart = |a: &[[f64; 3]], b: &[[f64; 3]]| {
+        let tb = triangles(b);
+        (a.iter())
+            .flat_map(|p| tb.iter().map(move |t| to_triangle(p, t)))
+            .fold(f64::INFINITY, f64::min)
+    };
+    apart(xs, xm).min(apart(xm, xs)) < size
 }
 
 /// Whether a face is quadratic (6- or 8-node).

@@ -226,15 +226,111 @@ mod tests {
         let area: f64 = points.iter().map(|p| p.weight).sum();
         assert!((area - tilt).abs() < 1e-13, "area {area}");
         for p in &points {
-            assert!((p.nu[2] - 1.0).abs() < 1e-14 && p.nu[0].abs() < 1e-14, "{:?}", p.nu);
+            assert!(
+                (p.nu[2] - 1.0).abs() < 1e-14 && p.nu[0].abs() < 1e-14,
+                "{:?}",
+                p.nu
+            );
             let pos = |x: &[[f64; 3]], s: &[f64; 4]| {
                 [0, 1, 2].map(|i| (0..4).map(|a| x[a][i] * s[a]).sum::<f64>())
             };
             let (x, y) = (pos(&xs, &p.slave), pos(&xm, &p.master));
             assert!(
-                (x[0] - y[0]).abs() < 1e-13 && (x[1] - y[1]).abs() < 1e-13 && (x[2] + y[2]).abs() < 1e-13,
+                (x[0] - y[0]).abs() < 1e-13
+                    && (x[1] - y[1]).abs() < 1e-13
+                    && (x[2] + y[2]).abs() < 1e-13,
                 "{x:?} {y:?}"
             );
+        }
+    }
+}
+
+#[cfg(test)]
+mod derivative_tests {
+    use super::*;
+    type D = DualN<48>;
+
+    /// The overlap's area, ∫ g N_0 and ∫ M_2 ν_x of slave face `x[..4]` against master `x[4..]`
+    /// with nodal normals `n`.
+    fn integrals<T: Scalar>(x: &[[T; 3]], n: &[[T; 3]]) -> (T, T, T) {
+        let pts = mirror_overlap(
+            FaceKind::Quad,
+            (&x[..4], &n[..4]),
+            FaceKind::Quad,
+            (&x[4..], &n[4..]),
+        )
+        .unwrap();
+        let z = x[0][0].cst(0.0);
+        let (mut a, mut g, mut s) = (z, z, z);
+        for p in &pts {
+            let mut d = [z; 3];
+            for i in 0..3 {
+                for b in 0..4 {
+                    d[i] = d[i] + p.slave[b] * x[b][i] - p.master[b] * x[4 + b][i];
+                }
+            }
+            a = a + p.weight;
+            g = g + p.weight * dot(&d, &p.nu) * p.slave[0];
+            s = s + p.weight * p.master[2] * p.nu[0];
+        }
+        (a, g, s)
+    }
+
+    /// Inclined faces at an angle, nodal normals apart from node to node: the area, a weighted
+    /// gap and a master-weighted normal integrated over the mirror segmentation have the
+    /// derivatives of central differences, over both faces' coordinates and nodal normals.
+    #[test]
+    fn mirror_integrals_have_exact_derivatives() {
+        let mut v = vec![
+            [0.0, 0.0, 0.1],
+            [1.0, 0.05, 0.2],
+            [1.1, 1.0, 0.25],
+            [0.0, 0.9, 0.12],
+            [0.3, 1.2, -0.1],
+            [1.2, 1.1, -0.2],
+            [1.3, 0.2, -0.15],
+            [0.2, 0.1, -0.05],
+            [0.1, 0.0, -1.0],
+            [0.2, 0.1, -1.0],
+            [0.0, 0.1, -1.0],
+            [0.05, -0.1, -1.0],
+            [0.1, 0.0, 1.0],
+            [0.0, 0.2, 1.0],
+            [-0.1, 0.1, 1.0],
+            [0.1, 0.1, 1.0],
+        ];
+        for p in v[8..].iter_mut() {
+            let l = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+            *p = p.map(|c| c / l);
+        }
+        let flat: Vec<f64> = v.iter().flatten().copied().collect();
+        let dual: Vec<[D; 3]> = (0..16)
+            .map(|b| std::array::from_fn(|i| D::variable(flat[3 * b + i], 3 * b + i, 48)))
+            .collect();
+        let (a, g, s) = integrals(&dual[..8], &dual[8..]);
+        assert!(a.v > 0.3, "the faces overlap: {}", a.v);
+        let h = 1e-6;
+        for k in 0..48 {
+            let at = |d: f64| {
+                let mut w = v.clone();
+                w[k / 3][k % 3] += d;
+                integrals(&w[..8], &w[8..])
+            };
+            let (p, m) = (at(h), at(-h));
+            let fd = [
+                (p.0 - m.0) / (2.0 * h),
+                (p.1 - m.1) / (2.0 * h),
+                (p.2 - m.2) / (2.0 * h),
+            ];
+            let ad = [a.d[k], g.d[k], s.d[k]];
+            for c in 0..3 {
+                assert!(
+                    (fd[c] - ad[c]).abs() < 1e-6,
+                    "k {k} c {c}: fd {} ad {}",
+                    fd[c],
+                    ad[c]
+                );
+            }
         }
     }
 }

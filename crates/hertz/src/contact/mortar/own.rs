@@ -39,6 +39,15 @@ pub(super) fn within_reach(behind: f64, size: f64, depth: f64) -> bool {
     behind <= 0.0 || behind <= OWN_DEPTH * size.min(depth)
 }
 
+/// Whether one of `points` lies in the element of shape `shape` at `x`, its boundary included:
+/// a slave facet with a corner there has crossed that element's face, however deep (a Newton
+/// iterate's overshoot past [`within_reach`]), and meets it.
+pub(super) fn crossed(shape: crate::fem::Shape, x: &[[f64; 3]], points: &[[f64; 3]]) -> bool {
+    (points.iter()).any(|&p| {
+        crate::fem::geometry::locate(shape, x, p).is_some_and(|xi| shape.inside_margin(xi) > -1e-9)
+    })
+}
+
 /// Self-contact's repeated pairs: slots (i, j), i < j, of nodes `nodes[i]` and `nodes[j]`
 /// whose slave facets each overlap an own facet of the other's node (`met[j]`: the nodes of the
 /// own facets slot j meets, sorted), closer than [`PAIR`] of the second's facet size

@@ -286,30 +286,29 @@ pub fn face_rule(kind: FaceKind) -> Vec<(f64, f64, f64)> {
 /// The dual (biorthogonal) basis of a slave face at positions `x`: Φ_a = Σ_b A_ab N_b with
 /// ∫ Φ_a N_b dA = δ_ab ∫ N_b dA over the face, A = D M⁻¹ (D = diag ∫ N_a, M = [∫ N_a N_b]).
 /// Σ_a Φ_a = 1, so a uniform pressure still gives the consistent forces; a slave node's force
-/// is then D_j λ_j along ν, not spread over its neighbours.
-pub fn dual_basis(kind: FaceKind, x: &[[f64; 3]]) -> [[f64; 4]; 4] {
+/// is then D_j λ_j along ν, not spread over its neighbours. In `f64`, or in duals where the
+/// positions move (large deformation: biorthogonal on the current face).
+pub fn dual_basis<T: Scalar>(kind: FaceKind, x: &[[T; 3]]) -> [[T; 4]; 4] {
     let k = x.len();
-    let (mut m, mut d) = ([[0.0; 4]; 4], [0.0; 4]);
-    let mut add = |xi: f64, eta: f64, w: f64| {
+    let z = x[0][0].cst(0.0);
+    let (mut m, mut d) = ([[z; 4]; 4], [z; 4]);
+    for (xi, eta, w) in face_rule(kind) {
         let (n, dx, de) = shape(kind, xi, eta);
-        let (mut t1, mut t2) = ([0.0; 3], [0.0; 3]);
+        let (mut t1, mut t2) = ([z; 3], [z; 3]);
         for a in 0..k {
             for i in 0..3 {
-                t1[i] += x[a][i] * dx[a];
-                t2[i] += x[a][i] * de[a];
+                t1[i] = t1[i] + x[a][i] * dx[a];
+                t2[i] = t2[i] + x[a][i] * de[a];
             }
         }
         let c = cross(&t1, &t2);
-        let da = w * dot(&c, &c).sqrt();
+        let da = dot(&c, &c).sqrt() * w;
         for a in 0..k {
-            d[a] += n[a] * da;
+            d[a] = d[a] + da * n[a];
             for b in 0..k {
-                m[a][b] += n[a] * n[b] * da;
+                m[a][b] = m[a][b] + da * (n[a] * n[b]);
             }
         }
-    };
-    for (xi, eta, w) in face_rule(kind) {
-        add(xi, eta, w);
     }
     biorthogonal(&m, &d, k)
 }
