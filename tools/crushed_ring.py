@@ -3,7 +3,7 @@ the whole ring with its bore in self-contact (--model full), or its upper half, 
 against a rigid plane on the symmetry line (--model half). Plane strain (q4, q8, bb: barred
 quadrilaterals; --kg sets K/G), or --dim 3: --nz layers of LSpace bricks over a length --tz,
 u_z = 0 at z = 0. Neo-Hookean, nlgeo 1, multipliers (--law penalty for the penalty); the
-bore node-to-segment, or in 2D --bore mortar (its half model's plane then twice as stiff).
+bore node-to-segment, or --bore mortar (its half model's plane then twice as stiff).
 Used for BENCHMARKS.md's self-contact section, e.g.
 
     python3 tools/crushed_ring.py --model full --dim 3 --nt 48 --nr 3 --nz 10 --tz 1.0 \
@@ -28,7 +28,7 @@ p.add_argument('--tz', type=float, default=0.2)
 p.add_argument('--nz', type=int, default=1)
 p.add_argument('--skew', type=float, default=0.0)
 p.add_argument('--holdall', type=int, default=0)
-p.add_argument('--bore', default='n2s')  # or mortar (2D)
+p.add_argument('--bore', default='n2s')  # or mortar
 a = p.parse_args()
 nr, nt = a.nr, a.nt
 q = 2 if a.el == 'q8' else 1
