@@ -21,7 +21,7 @@
 //! Written over any [`Scalar`] like [`super::segment::overlap`]: in `f64` for small deformation,
 //! in duals over the faces' coordinates and nodal normals for large.
 
-use super::segment::{area2, area_centroid, clip, inverse, triangle_rule, Point};
+use super::segment::{area2, area_centroid, clipped, inverse, triangle_rule, Point};
 use crate::contact::dual::DualN;
 use crate::contact::geometry::faces::{cross, dot, node_param, shape, sub, FaceKind};
 use crate::contact::geometry::scalar::Scalar;
@@ -141,18 +141,9 @@ pub fn mirror_overlap<T: Scalar>(
             [z + u, z + v]
         })
         .collect();
-    let ccw = |p: &[V2<T>]| {
-        let mut p = p.to_vec();
-        if area2(&p).val() < 0.0 {
-            p.reverse();
-        }
-        p
-    };
-    let slave_poly = ccw(&ps);
-    let poly = clip(&slave_poly, &ccw(&pm));
-    if poly.len() < 3 || area2(&poly).val() <= 1e-12 * area2(&slave_poly).val() {
+    let Some(poly) = clipped(&ps, &pm) else {
         return Some(Vec::new());
-    }
+    };
     let centroid = area_centroid(&poly);
     let mut out = Vec::new();
     for i in 0..poly.len() {

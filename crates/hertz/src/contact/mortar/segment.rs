@@ -119,6 +119,21 @@ pub fn clip<T: Scalar>(subject: &[V2<T>], clip: &[V2<T>]) -> Vec<V2<T>> {
     out
 }
 
+/// The slave polygon `ps` cut by the master polygon `pm` (of either orientation), counter-
+/// clockwise; None where they overlap by less than 1e-12 of the slave's area.
+pub(super) fn clipped<T: Scalar>(ps: &[V2<T>], pm: &[V2<T>]) -> Option<Vec<V2<T>>> {
+    let ccw = |p: &[V2<T>]| {
+        let mut p = p.to_vec();
+        if area2(&p).val() < 0.0 {
+            p.reverse();
+        }
+        p
+    };
+    let slave_poly = ccw(ps);
+    let poly = clip(&slave_poly, &ccw(pm));
+    (poly.len() >= 3 && area2(&poly).val() > 1e-12 * area2(&slave_poly).val()).then_some(poly)
+}
+
 /// The parameters of a face whose projected corners are `s` at the plane point `p`: Newton on
 /// the values (a quadrilateral's map is bilinear), then one step in `T` from the root, which
 /// makes the derivatives exact; None when the map is degenerate there.
@@ -200,18 +215,9 @@ pub fn overlap<T: Scalar>(
     };
     let ps: Vec<V2<T>> = xs.iter().map(plane).collect();
     let pm: Vec<V2<T>> = xm.iter().map(plane).collect();
-    let ccw = |p: &[V2<T>]| {
-        let mut p = p.to_vec();
-        if area2(&p).val() < 0.0 {
-            p.reverse();
-        }
-        p
-    };
-    let slave_poly = ccw(&ps);
-    let poly = clip(&slave_poly, &ccw(&pm));
-    if poly.len() < 3 || area2(&poly).val() <= 1e-12 * area2(&slave_poly).val() {
+    let Some(poly) = clipped(&ps, &pm) else {
         return Vec::new();
-    }
+    };
     let centroid = area_centroid(&poly);
     let nu = n0.map(|v| -v);
     let mut out = Vec::new();
