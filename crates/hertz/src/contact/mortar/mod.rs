@@ -31,6 +31,7 @@
 
 pub mod curved;
 pub mod edges;
+mod face_terms;
 pub mod faces;
 pub mod mirror;
 mod own;
