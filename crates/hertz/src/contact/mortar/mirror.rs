@@ -13,7 +13,7 @@
 //!   corners and carry them to one point, so their parts of a slave face tile it (the nodal
 //!   normals are the surface's, the same whatever face asks);
 //! * clip polygon: the slave's parameter domain cut by the carried master polygon, split into
-//!   cells from its area centroid as [`super::segment`] does;
+//!   cells from its area centroid ([`super::segment::fan_points`]);
 //! * at a point ξ of a cell: the slave point x(ξ), the master parameters of ξ in the carried
 //!   polygon (the master's shape functions over its carried corners), ν = normalize(m − n)
 //!   from both faces' interpolated normals (towards the slave body) and dA = |x_ξ × x_η|.
@@ -21,7 +21,7 @@
 //! Written over any [`Scalar`] like [`super::segment::overlap`]: in `f64` for small deformation,
 //! in duals over the faces' coordinates and nodal normals for large.
 
-use super::segment::{area2, area_centroid, clipped, inverse, triangle_rule, Point};
+use super::segment::{clipped, fan_points, inverse, Point};
 use crate::contact::dual::DualN;
 use crate::contact::geometry::faces::{cross, dot, node_param, shape, sub, FaceKind};
 use crate::contact::geometry::scalar::Scalar;
@@ -144,32 +144,22 @@ pub fn mirror_overlap<T: Scalar>(
     let Some(poly) = clipped(&ps, &pm) else {
         return Some(Vec::new());
     };
-    let centroid = area_centroid(&poly);
     let mut out = Vec::new();
-    for i in 0..poly.len() {
-        let (b, c) = (&poly[i], &poly[(i + 1) % poly.len()]);
-        // Every cell with its signed area, as in [`super::segment::overlap`].
-        let cell = area2(&[centroid, *b, *c]) * 0.5;
-        for (l, w) in triangle_rule() {
-            let p = [
-                centroid[0] * l[0] + b[0] * l[1] + c[0] * l[2],
-                centroid[1] * l[0] + b[1] * l[1] + c[1] * l[2],
-            ];
-            let Some((mxi, meta)) = inverse(mk, &pm, &p) else {
-                continue;
-            };
-            let [_, n, t1, t2] = at(sk, xs, ns, p[0], p[1]);
-            let [_, m, _, _] = at(mk, xm, nm, mxi, meta);
-            let d = sub(&m, &n);
-            let len = dot(&d, &d).sqrt();
-            let da = cross(&t1, &t2);
-            out.push(Point {
-                slave: shape(sk, p[0], p[1]).0,
-                master: shape(mk, mxi, meta).0,
-                nu: d.map(|v| v / len),
-                weight: cell * dot(&da, &da).sqrt() * w,
-            });
-        }
+    for (p, w) in fan_points(&poly) {
+        let Some((mxi, meta)) = inverse(mk, &pm, &p) else {
+            continue;
+        };
+        let [_, n, t1, t2] = at(sk, xs, ns, p[0], p[1]);
+        let [_, m, _, _] = at(mk, xm, nm, mxi, meta);
+        let d = sub(&m, &n);
+        let len = dot(&d, &d).sqrt();
+        let da = cross(&t1, &t2);
+        out.push(Point {
+            slave: shape(sk, p[0], p[1]).0,
+            master: shape(mk, mxi, meta).0,
+            nu: d.map(|v| v / len),
+            weight: dot(&da, &da).sqrt() * w,
+        });
     }
     Some(out)
 }

@@ -40,7 +40,7 @@ pub struct Point<T> {
 
 /// The 7-point rule of degree 5 on a triangle (Radon): barycentric a, a, 1 − 2a and weights
 /// (summing to 1, of the triangle's area).
-pub(super) fn triangle_rule() -> [([f64; 3], f64); 7] {
+fn triangle_rule() -> [([f64; 3], f64); 7] {
     let s = 15f64.sqrt();
     let (a1, w1) = ((6.0 - s) / 21.0, (155.0 - s) / 1200.0);
     let (a2, w2) = ((6.0 + s) / 21.0, (155.0 + s) / 1200.0);
@@ -62,7 +62,7 @@ fn left<T: Scalar>(a: &V2<T>, b: &V2<T>, p: &V2<T>) -> T {
 }
 
 /// Twice the signed area of a polygon.
-pub(super) fn area2<T: Scalar>(p: &[V2<T>]) -> T {
+fn area2<T: Scalar>(p: &[V2<T>]) -> T {
     let mut s = p[0][0].cst(0.0);
     for i in 0..p.len() {
         let (a, b) = (&p[i], &p[(i + 1) % p.len()]);
@@ -76,7 +76,7 @@ pub(super) fn area2<T: Scalar>(p: &[V2<T>]) -> T {
 /// crosses an edge. The mean of the vertices jumps there (by a vertex's share), and with it every
 /// cell of the fan, so the quadrature of the rational integrands of distorted faces (inverse
 /// bilinear maps, area ratios) jumped by its error as a master corner crossed a slave edge.
-pub(super) fn area_centroid<T: Scalar>(p: &[V2<T>]) -> V2<T> {
+fn area_centroid<T: Scalar>(p: &[V2<T>]) -> V2<T> {
     let z = p[0][0].cst(0.0);
     let (mut cx, mut cy) = (z, z);
     for i in 0..p.len() {
@@ -218,51 +218,61 @@ pub fn overlap<T: Scalar>(
     let Some(poly) = clipped(&ps, &pm) else {
         return Vec::new();
     };
-    let centroid = area_centroid(&poly);
     let nu = n0.map(|v| -v);
     let mut out = Vec::new();
+    for (p, w) in fan_points(&poly) {
+        let (Some((xi, eta)), Some((mxi, meta))) = (inverse(sk, &ps, &p), inverse(mk, &pm, &p))
+        else {
+            continue;
+        };
+        // dA = |x_ξ × x_η| / |det ∂p/∂ξ| times the plane area.
+        let (slave, dx, de) = shape(sk, xi, eta);
+        let (mut t1, mut t2) = ([z; 3], [z; 3]);
+        let (mut j1, mut j2) = ([z; 2], [z; 2]);
+        for a in 0..xs.len() {
+            for i in 0..3 {
+                t1[i] = t1[i] + xs[a][i] * dx[a];
+                t2[i] = t2[i] + xs[a][i] * de[a];
+            }
+            for i in 0..2 {
+                j1[i] = j1[i] + ps[a][i] * dx[a];
+                j2[i] = j2[i] + ps[a][i] * de[a];
+            }
+        }
+        let n = cross(&t1, &t2);
+        let det = j1[0] * j2[1] - j1[1] * j2[0];
+        let ratio = dot(&n, &n).sqrt() / if det.val() < 0.0 { -det } else { det };
+        out.push(Point {
+            slave,
+            master: shape(mk, mxi, meta).0,
+            nu,
+            weight: ratio * w,
+        });
+    }
+    out
+}
+
+/// The quadrature points of a clip polygon `poly` and their weights (plane area): the polygon
+/// split into cells from its area centroid, each integrated by the 7-point rule.
+///
+/// Every cell counts with its signed area, also one of zero or negative area: the tolerant clip
+/// repeats a vertex that lies on a clipping line (the vertex itself and the intersection of its
+/// edge with the line), and the cell between the two has a round-off area of either sign but a
+/// derivative as large as the polygon. Dropping it when not positive dropped that derivative:
+/// the tangent of a slave face whose edge lay along a master's (a 3D extrusion's side, a
+/// symmetry plane) was off by 10⁴ × its size, and Newton cycled there.
+pub(super) fn fan_points<T: Scalar>(poly: &[V2<T>]) -> Vec<(V2<T>, T)> {
+    let centroid = area_centroid(poly);
+    let mut out = Vec::with_capacity(7 * poly.len());
     for i in 0..poly.len() {
         let (b, c) = (&poly[i], &poly[(i + 1) % poly.len()]);
-        // Every cell counts with its signed area, also one of zero or negative area: the
-        // tolerant clip repeats a vertex that lies on a clipping line (the vertex itself and the
-        // intersection of its edge with the line), and the cell between the two has a round-off
-        // area of either sign but a derivative as large as the polygon. Dropping it when not
-        // positive dropped that derivative: the tangent of a slave face whose edge lay along a
-        // master's (a 3D extrusion's side, a symmetry plane) was off by 10⁴ × its size, and
-        // Newton cycled there.
         let cell = area2(&[centroid, *b, *c]) * 0.5;
         for (l, w) in triangle_rule() {
             let p = [
                 centroid[0] * l[0] + b[0] * l[1] + c[0] * l[2],
                 centroid[1] * l[0] + b[1] * l[1] + c[1] * l[2],
             ];
-            let (Some((xi, eta)), Some((mxi, meta))) = (inverse(sk, &ps, &p), inverse(mk, &pm, &p))
-            else {
-                continue;
-            };
-            // dA = |x_ξ × x_η| / |det ∂p/∂ξ| times the plane area.
-            let (slave, dx, de) = shape(sk, xi, eta);
-            let (mut t1, mut t2) = ([z; 3], [z; 3]);
-            let (mut j1, mut j2) = ([z; 2], [z; 2]);
-            for a in 0..xs.len() {
-                for i in 0..3 {
-                    t1[i] = t1[i] + xs[a][i] * dx[a];
-                    t2[i] = t2[i] + xs[a][i] * de[a];
-                }
-                for i in 0..2 {
-                    j1[i] = j1[i] + ps[a][i] * dx[a];
-                    j2[i] = j2[i] + ps[a][i] * de[a];
-                }
-            }
-            let n = cross(&t1, &t2);
-            let det = j1[0] * j2[1] - j1[1] * j2[0];
-            let ratio = dot(&n, &n).sqrt() / if det.val() < 0.0 { -det } else { det };
-            out.push(Point {
-                slave,
-                master: shape(mk, mxi, meta).0,
-                nu,
-                weight: cell * ratio * w,
-            });
+            out.push((p, cell * w));
         }
     }
     out
