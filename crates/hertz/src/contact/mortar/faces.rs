@@ -683,11 +683,9 @@ impl FaceMortar {
             .map(|k| self.candidates(&masters, k, &pos))
             .collect();
         let normals = self.own_normals(&pos);
-        let mirrored: Vec<Vec<bool>> = (candidates.iter().enumerate())
-            .map(|(k, c)| {
-                let face = self.mirrored(k, c, &pos, &normals);
-                c.iter().map(|&mi| face && self.own[mi].is_some()).collect()
-            })
+        // Per slave face: its own candidates cut along the mirror rays.
+        let mirrored: Vec<bool> = (candidates.iter().enumerate())
+            .map(|(k, c)| self.mirrored(k, c, &pos, &normals))
             .collect();
         let searching = start.elapsed().as_secs_f64();
         // Each face's unknowns: its nodes, its candidates', and those the nodal normals of its
@@ -700,10 +698,10 @@ impl FaceMortar {
                         nodes.push(n);
                     }
                 };
-                for (c, &mi) in candidates[k].iter().enumerate() {
+                for &mi in &candidates[k] {
                     let mf = &self.master.faces[mi];
                     mf.nodes.iter().for_each(|&n| add(n));
-                    if mirrored[k][c] {
+                    if mirrored[k] && self.own[mi].is_some() {
                         for n in sf.nodes.iter().chain(&mf.nodes) {
                             normals[n].jac.iter().for_each(|&(b, _)| add(b));
                         }
@@ -772,14 +770,11 @@ impl FaceMortar {
                 let mf = &self.master.faces[mi];
                 // The integrands are linear in the points' terms: summed over the pair's points
                 // first, then added to the face's moments once.
-                let mut chain = Vec::new();
-                let mirror = match mirrored[k][c] {
+                let mirror = match mirrored[k] && self.own[mi].is_some() {
                     true => {
                         let t = mirror_terms.get_or_insert_with(Default::default);
                         // A corner the rays do not carry: a face far round the surface.
-                        let overlapping = t.fill_mirror(sf, mf, &pos, &normals).unwrap_or(false);
-                        chain = normal_chain(sf.nodes.iter().chain(&mf.nodes), &normals, at);
-                        Some(overlapping)
+                        Some(t.fill_mirror(sf, mf, &pos, &normals).unwrap_or(false))
                     }
                     false => None,
                 };
@@ -796,6 +791,10 @@ impl FaceMortar {
                 }
                 // Pair unknown p is the face's unknown map[p], the nodal normals' beyond them
                 // chained to the face's unknowns.
+                let chain = match mirror {
+                    Some(_) => normal_chain(sf.nodes.iter().chain(&mf.nodes), &normals, at),
+                    None => Vec::new(),
+                };
                 let pair: Vec<usize> = sf.nodes.iter().chain(&mf.nodes).copied().collect();
                 let map = PairMap {
                     place: unknowns(&pair, at),
