@@ -324,6 +324,15 @@ fn crush(text: &str) -> Vec<Step> {
     out
 }
 
+/// Every step of the whole `ring` with its bore node-to-segment self-contact, and with it mortar.
+fn bore_both_ways(ring: Ring) -> (Vec<Step>, Vec<Step>) {
+    let mortar = Ring {
+        mortar: true,
+        ..ring
+    };
+    (crush(&ring.text(true)), crush(&mortar.text(true)))
+}
+
 /// The plate force of `run` (named `what`) equals the half model's at every step, to 1e-9.
 fn same_plate_force(what: &str, run: &[Step], half: &[Step]) {
     plate_forces_agree((what, run), ("half", half), 1e-9);
@@ -493,14 +502,7 @@ fn mortar_self_contact_on_walls_whose_nodes_do_not_match_follows_node_to_segment
         skew: 0.3,
         ..Ring::default()
     };
-    let n2s = crush(&ring.text(true));
-    let mortar = crush(
-        &Ring {
-            mortar: true,
-            ..ring
-        }
-        .text(true),
-    );
+    let (n2s, mortar) = bore_both_ways(ring);
     let iterations: Vec<usize> = mortar.iter().map(|s| s.iterations).collect();
     let (early, late) = iterations.split_at(iterations.len() - 2);
     assert!(
@@ -596,14 +598,7 @@ fn mortar_self_contact_in_3d_on_walls_whose_nodes_do_not_match_follows_node_to_s
         skew: 0.3,
         ..Ring::default()
     };
-    let n2s = crush(&tube.text(true));
-    let mortar = crush(
-        &Ring {
-            mortar: true,
-            ..tube
-        }
-        .text(true),
-    );
+    let (n2s, mortar) = bore_both_ways(tube);
     let iterations: Vec<usize> = mortar.iter().map(|s| s.iterations).collect();
     assert!(iterations.iter().all(|&i| i <= 5), "{iterations:?}");
     plate_forces_agree(("mortar", &mortar), ("node-to-segment", &n2s), 5e-3);
