@@ -21,10 +21,16 @@
 //! Written over any [`Scalar`] like [`super::segment::overlap`]: in `f64` for small deformation,
 //! in duals over the faces' coordinates and nodal normals for large.
 
-use super::segment::{clipped, fan_points, inverse, Point};
+use super::segment::{clipped, fan_points, inverse, Point, SETTLED};
 use crate::contact::dual::DualN;
 use crate::contact::geometry::faces::{cross, dot, node_param, shape, sub, FaceKind};
 use crate::contact::geometry::scalar::Scalar;
+
+/// A master corner is carried only along a ray whose two normals are more than 60° apart
+/// (m·n < 0.5, so |m − n| > 1): walls that face each other, or the sides of a crease's tip
+/// against its neighbours (the tip's normal lies along the fold, at most 90° from either
+/// wall's), never two tips of one crease (their normals agree).
+const APART: f64 = 0.5;
 
 type V3<T> = [T; 3];
 type V2<T> = [T; 2];
@@ -63,7 +69,8 @@ fn miss<T: Scalar>(
 
 /// The slave parameters master corner `y` (nodal normal `m`) is carried to: Newton on the values
 /// from the face's centre, then one step in `T` from the root, which makes its derivatives
-/// exact; None when the rays do not settle (a corner far round the surface).
+/// exact; None when the rays do not settle (a corner far round the surface) or the walls do not
+/// face each other where they do.
 fn carry<T: Scalar>(
     kind: FaceKind,
     slave: (&[V3<T>], &[V3<T>]),
@@ -101,12 +108,19 @@ fn carry<T: Scalar>(
         if !(xi.abs() < 20.0 && eta.abs() < 20.0) {
             return None;
         }
-        if dxi.abs().max(deta.abs()) < 1e-14 {
+        if dxi.abs().max(deta.abs()) < SETTLED * (1.0 + xi.abs() + eta.abs()) {
             settled = true;
             break;
         }
     }
     if !settled {
+        return None;
+    }
+    // The ray's direction m − n means something only where the walls' normals are apart:
+    // at the tips of a crease, whose nodal normals all point along the fold, it is round-off
+    // and the corner lands anywhere (slivers of a face far along the fold).
+    let [_, n, _, _] = at(kind, &xs, &ns, D2::constant(xi, 2), D2::constant(eta, 2));
+    if !(dot(&mv, &n).val() < APART) {
         return None;
     }
     // The step in T from the root: (ξ, η) − J⁻¹ f with J at the root's values (f vanishes
@@ -123,7 +137,7 @@ fn carry<T: Scalar>(
 /// The integration points of slave face `xs` (nodal normals `ns`) against master face `xm`
 /// (nodal normals `nm`) of the same surface, along the rays that bisect the two walls' normals
 /// (see the module's glossary); empty when they do not overlap, None when a master corner
-/// cannot be carried (the caller then segments along the slave's normal).
+/// cannot be carried (the pair then meets nowhere).
 pub fn mirror_overlap<T: Scalar>(
     sk: FaceKind,
     (xs, ns): (&[V3<T>], &[V3<T>]),
@@ -133,7 +147,15 @@ pub fn mirror_overlap<T: Scalar>(
     let z = xs[0][0].cst(0.0);
     let mut pm = Vec::with_capacity(xm.len());
     for (y, m) in xm.iter().zip(nm) {
-        pm.push(carry(sk, (xs, ns), (y, m))?);
+        // A corner the two faces share stays where it is (its ray has no direction there).
+        let shared = (0..xs.len()).find(|&a| (0..3).all(|i| xs[a][i].val() == y[i].val()));
+        match shared {
+            Some(a) => {
+                let (u, v) = node_param(sk, a);
+                pm.push([z + u, z + v]);
+            }
+            None => pm.push(carry(sk, (xs, ns), (y, m))?),
+        }
     }
     let ps: Vec<V2<T>> = (0..xs.len())
         .map(|a| {
@@ -221,6 +243,96 @@ mod tests {
                     && (x[1] - y[1]).abs() < 1e-13
                     && (x[2] + y[2]).abs() < 1e-13,
                 "{x:?} {y:?}"
+            );
+        }
+    }
+}
+
+#[cfg(test)]
+mod crease_tests {
+    use super::*;
+
+    /// The tip face of a crease's upper side between z0 and z0 + 1 (`up`), or of its lower
+    /// side (the mirror image in y = 0): the tip edge on x = 0, the far edge at x = −1,
+    /// y = ±0.2; its outward nodal normals (towards the slit), along the fold (−x) at the tip.
+    fn tip_face(z0: f64, up: bool) -> (Vec<[f64; 3]>, Vec<[f64; 3]>) {
+        let s = if up { 1.0 } else { -1.0 };
+        let mut x = vec![
+            [0.0, 0.0, z0],
+            [0.0, 0.0, z0 + 1.0],
+            [-1.0, 0.2 * s, z0 + 1.0],
+            [-1.0, 0.2 * s, z0],
+        ];
+        let l = 1.04f64.sqrt();
+        let mut n = vec![
+            [-1.0, 0.0, 0.0],
+            [-1.0, 0.0, 0.0],
+            [-0.2 / l, -s / l, 0.0],
+            [-0.2 / l, -s / l, 0.0],
+        ];
+        if !up {
+            x.reverse();
+            n.reverse();
+        }
+        (x, n)
+    }
+
+    /// The two sides of a crease's tip share its edge: the shared corners stay where they are
+    /// (along m − n, zero there, Newton crept to them and gave up: the pair was refused), and
+    /// the far ones are carried to their mirror points: the faces meet whole, each point its
+    /// mirror point, along e_y.
+    #[test]
+    fn a_creases_two_sides_meet_whole_at_its_tip() {
+        let (xs, ns) = tip_face(0.0, true);
+        let (xm, nm) = tip_face(0.0, false);
+        let points = mirror_overlap(FaceKind::Quad, (&xs, &ns), FaceKind::Quad, (&xm, &nm))
+            .expect("carried");
+        let area: f64 = points.iter().map(|p| p.weight).sum();
+        assert!((area - 1.04f64.sqrt()).abs() < 1e-13, "area {area}");
+        let pos = |x: &[[f64; 3]], s: &[f64; 4]| {
+            [0, 1, 2].map(|i| (0..4).map(|a| x[a][i] * s[a]).sum::<f64>())
+        };
+        for p in &points {
+            assert!((p.nu[1] - 1.0).abs() < 1e-14, "{:?}", p.nu);
+            let (x, y) = (pos(&xs, &p.slave), pos(&xm, &p.master));
+            assert!(
+                (x[0] - y[0]).abs() < 1e-13
+                    && (x[1] + y[1]).abs() < 1e-13
+                    && (x[2] - y[2]).abs() < 1e-13,
+                "{x:?} {y:?}"
+            );
+        }
+    }
+
+    /// Along a fold the tips of other layers lie on the tip's line, their normals all along
+    /// it: the rays m − n between two tips are round-off. Tip faces of other layers (the next
+    /// one and two away, either side), their corners and normals off by round-off to 1 %, meet
+    /// nothing (before: overlaps in 405 of 2 000 such draws, up to 0.4 of the face).
+    #[test]
+    fn tips_of_one_crease_on_other_layers_meet_nothing() {
+        let mut seed: u64 = 12345;
+        let mut draw = || {
+            seed = (seed.wrapping_mul(6364136223846793005)).wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        for trial in 0..2000 {
+            let (mut xs, mut ns) = tip_face(0.0, trial % 2 == 0);
+            let z0 = [2.0, -2.0, 1.0, -1.0][trial % 4];
+            let (mut xm, mut nm) = tip_face(z0, trial % 2 == 1);
+            let off = [1e-2, 1e-3, 1e-6][trial % 3];
+            for v in xs.iter_mut().chain(xm.iter_mut()) {
+                v.iter_mut().for_each(|c| *c += off * draw());
+            }
+            for v in ns.iter_mut().chain(nm.iter_mut()) {
+                v.iter_mut().for_each(|c| *c += off * draw());
+                let l = dot(v, v).sqrt();
+                *v = v.map(|c| c / l);
+            }
+            let points = mirror_overlap(FaceKind::Quad, (&xs, &ns), FaceKind::Quad, (&xm, &nm));
+            let area: f64 = points.iter().flatten().map(|p| p.weight).sum();
+            assert!(
+                area == 0.0,
+                "draw {trial} (z0 {z0}, off {off}): area {area}"
             );
         }
     }

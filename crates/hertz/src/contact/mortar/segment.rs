@@ -25,6 +25,11 @@ use crate::contact::geometry::scalar::Scalar;
 type V3<T> = [T; 3];
 type V2<T> = [T; 2];
 
+/// A Newton iteration on face parameters has settled once its step is below this fraction of
+/// the parameters' size: at round-off (~1e-14 near a corner, where a parameter is ±1) the steps
+/// stop falling, and a tighter bar refused points and whole pairs by turns between iterations.
+pub(super) const SETTLED: f64 = 1e-12;
+
 /// One integration point of a slave face against a master face.
 #[derive(Debug, Clone)]
 pub struct Point<T> {
@@ -172,7 +177,7 @@ pub(super) fn inverse<T: Scalar>(kind: FaceKind, s: &[V2<T>], p: &V2<T>) -> Opti
         for _ in 0..40 {
             let (x, e, size) = step(kind, &sv, &pv, xi, eta)?;
             (xi, eta) = (x, e);
-            if size < 1e-14 {
+            if size < SETTLED * (1.0 + xi.abs() + eta.abs()) {
                 settled = true;
                 break;
             }
