@@ -176,6 +176,7 @@ impl EdgeGeometry<f64> {
         let t = [b[0] - a[0], b[1] - a[1]];
         let tt = t[0] * t[0] + t[1] * t[1];
         let mut s = ((xs[0] - a[0]) * t[0] + (xs[1] - a[1]) * t[1]) / tt;
+        let mut last = f64::INFINITY;
         for _ in 0..40 {
             let (f, df) = self.residual(xs, s);
             if !(df.abs() > 1e-300) {
@@ -184,12 +185,18 @@ impl EdgeGeometry<f64> {
             // Limit the step: a far node must not jump across the whole surface.
             let step = (f / df).clamp(-0.5, 0.5);
             s -= step;
-            if step.abs() < 1e-14 * (1.0 + s.abs()) {
-                let (_, _, n, _) = self.eval(s);
-                return (n[0] * n[0] + n[1] * n[1] > 1e-24).then_some(s);
+            last = step.abs();
+            if last < 1e-14 * (1.0 + s.abs()) {
+                break;
             }
         }
-        None
+        // Steps that stall at round-off (a kink of the normal field at an edge's end) have
+        // settled too.
+        if !(last < 1e-10) {
+            return None;
+        }
+        let (_, _, n, _) = self.eval(s);
+        (n[0] * n[0] + n[1] * n[1] > 1e-24).then_some(s)
     }
 }
 

@@ -60,6 +60,7 @@ fn poly_residual<T: Scalar>(a: &[f64], x: &[T], t: T) -> (T, T) {
 /// to a minimum.
 pub fn project_on_poly(a: &[f64], x: [f64; 2]) -> Option<f64> {
     let mut t = x[0];
+    let mut last = f64::INFINITY;
     for _ in 0..60 {
         let (g, h) = poly_residual(a, &x, t);
         if !(h.abs() > 1e-300) {
@@ -67,11 +68,13 @@ pub fn project_on_poly(a: &[f64], x: [f64; 2]) -> Option<f64> {
         }
         let step = g / h;
         t -= step;
-        if step.abs() <= 1e-14 * (1.0 + t.abs()) {
-            return (poly_residual(a, &x, t).1 > 0.0).then_some(t);
+        last = step.abs();
+        if last <= 1e-14 * (1.0 + t.abs()) {
+            break;
         }
     }
-    None
+    // Steps that stall at round-off have settled too.
+    (last < 1e-10 * (1.0 + t.abs()) && poly_residual(a, &x, t).1 > 0.0).then_some(t)
 }
 
 /// Gap and normal against the polynomial curve, with the closest abscissa `t0` converged in plain
