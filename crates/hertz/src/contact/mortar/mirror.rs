@@ -69,8 +69,8 @@ fn miss<T: Scalar>(
 
 /// The slave parameters master corner `y` (nodal normal `m`) is carried to: Newton on the values
 /// from the face's centre, then one step in `T` from the root, which makes its derivatives
-/// exact; None when the rays do not settle (a corner far round the surface) or the walls do not
-/// face each other where they do.
+/// exact; None when the rays do not settle (a corner far round the surface) or their two normals
+/// are not [`APART`] where they do.
 fn carry<T: Scalar>(
     kind: FaceKind,
     slave: (&[V3<T>], &[V3<T>]),
