@@ -145,10 +145,22 @@ pub fn mirror_overlap<T: Scalar>(
     (xm, nm): (&[V3<T>], &[V3<T>]),
 ) -> Option<Vec<Point<T>>> {
     let z = xs[0][0].cst(0.0);
+    // Positions from the slave's first corner: the rays' round-off then scales with the faces,
+    // not with their distance from the origin (at 1e6 faces' sizes away, every pair was
+    // refused: Newton's steps stalled above its bar).
+    let origin = xs[0].map(|c| c.val());
+    let local = |x: &[V3<T>]| -> Vec<V3<T>> {
+        x.iter()
+            .map(|p| std::array::from_fn(|i| p[i] - origin[i]))
+            .collect()
+    };
+    let (xs_at, xm_at) = (xs, xm);
+    let (xs, xm) = (&local(xs)[..], &local(xm)[..]);
     let mut pm = Vec::with_capacity(xm.len());
-    for (y, m) in xm.iter().zip(nm) {
+    for (b, (y, m)) in xm.iter().zip(nm).enumerate() {
         // A corner the two faces share stays where it is (its ray has no direction there).
-        let shared = (0..xs.len()).find(|&a| (0..3).all(|i| xs[a][i].val() == y[i].val()));
+        let shared =
+            (0..xs.len()).find(|&a| (0..3).all(|i| xs_at[a][i].val() == xm_at[b][i].val()));
         match shared {
             Some(a) => {
                 let (u, v) = node_param(sk, a);
@@ -301,6 +313,30 @@ mod crease_tests {
                     && (x[2] - y[2]).abs() < 1e-13,
                 "{x:?} {y:?}"
             );
+        }
+    }
+
+    /// The crease's tip faces far from the origin (1e2 to 1e6 away, faces of size 1 to 0.01):
+    /// they meet whole, to the round-off of their own coordinates. Before, from 1e6 faces'
+    /// sizes away every corner's Newton stalled above its bar and the pair was refused.
+    #[test]
+    fn a_crease_far_from_the_origin_meets_as_near_it() {
+        let exact = 1.04f64.sqrt();
+        for off in [1e2, 1e3, 1e4, 1e5, 1e6] {
+            for size in [1.0, 0.1, 0.01] {
+                let at = |x: Vec<[f64; 3]>| -> Vec<[f64; 3]> {
+                    x.into_iter().map(|p| p.map(|c| c * size + off)).collect()
+                };
+                let ((xs, ns), (xm, nm)) = (tip_face(0.0, true), tip_face(0.0, false));
+                let (xs, xm) = (at(xs), at(xm));
+                let points = mirror_overlap(FaceKind::Quad, (&xs, &ns), FaceKind::Quad, (&xm, &nm))
+                    .unwrap_or_else(|| panic!("{off} away, size {size}: refused"));
+                let area = points.iter().map(|p| p.weight).sum::<f64>() / (size * size);
+                assert!(
+                    (area - exact).abs() < 1e-14 * off / size,
+                    "{off} away, size {size}: area {area}"
+                );
+            }
         }
     }
 
