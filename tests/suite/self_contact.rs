@@ -17,9 +17,9 @@ use hertz::contact::{ContactSystem, Search};
 /// A ring (bore 0.6, outside 1.0; `nt` elements round, `nr` through the wall) crushed by two
 /// rigid plates that each travel `crush` over `steps` steps, neo-Hookean (E = 1000, ν = 0.3),
 /// `nlgeo 1`, plane strain. 3D (`tz` > 0): `layers` layers of bricks (at least one) each `tz`
-/// thick, u_z = 0 on the face z = 0. Nearly incompressible with `kg` = K/G (on barred quadrilaterals). Axisymmetric
-/// (`axis`): the ring's section centred at x = `axis` (a hollow torus, `L4Axisymm`); in 3D the
-/// tube merely centred there.
+/// thick, u_z = 0 on the face z = 0. Nearly incompressible with `kg` = K/G (on barred
+/// quadrilaterals). Axisymmetric (`axis`): the ring's section centred at x = `axis` (a hollow
+/// torus, `L4Axisymm`); in 3D the tube merely centred there.
 #[derive(Clone, Copy, Default)]
 struct Ring {
     tz: f64,
@@ -599,9 +599,9 @@ fn a_crushed_tube_of_bricks_with_its_bore_in_mortar_self_contact_equals_its_half
 ///
 /// The same tube 1 000 from the origin (10⁴ of its elements' size) as well: the mirror rays'
 /// round-off grew with the distance, and a crease tip's strips along an edge it shares with
-/// the other wall's faces, supports of 1e-23 of a face, closed on their noise (8 iterations at
-/// one step here, 13 and a residual of 1e16 translated along all three axes); a slot's support
-/// below 1e-9 of its full support is none now.
+/// the other wall's faces, supports of 1e-23 of a face, closed on their noise (13 iterations
+/// and a residual of 1e16 at one step; 8 with the rays mended alone); a slot's support below
+/// 1e-9 of its full support is none now.
 #[test]
 fn a_tube_of_several_brick_layers_closes_its_bore_to_the_crease_tips_in_mortar_self_contact() {
     let tube = Ring {
