@@ -168,18 +168,16 @@ impl Moments {
                         continue;
                     }
                     let k = to_slot[3 * node] / 3;
-                    let at = match slip.shares.iter().position(|s| s.0 == k) {
-                        Some(at) => at,
-                        None => {
-                            slip.shares.push((k, Jet::constant(0.0, w.gap.d.len())));
-                            slip.shares.len() - 1
-                        }
-                    };
-                    mapped_product(&mut slip.shares[at].1, coeff, share, to_slot);
+                    mapped_product(slip.share_mut(k), coeff, share, to_slot);
                 }
             }
         }
     }
+}
+
+/// Whether a face is quadratic (6- or 8-node).
+pub(super) fn is_quadratic(f: &Face) -> bool {
+    matches!(f.kind, FaceKind::Tri6 | FaceKind::Quad8)
 }
 
 /// The unknowns (x, y, z of each) of `nodes` in a numbering where node n is `index(n)`.
@@ -245,15 +243,7 @@ pub(super) fn add_share<const N: usize>(
     map: &[usize],
     v: &DualN<N>,
 ) {
-    let at = match slip.shares.iter().position(|s| s.0 == k) {
-        Some(at) => at,
-        None => {
-            let m = slip.normal[0].d.len();
-            slip.shares.push((k, Jet::constant(0.0, m)));
-            slip.shares.len() - 1
-        }
-    };
-    add_pair(&mut slip.shares[at].1, map, v);
+    add_pair(slip.share_mut(k), map, v);
 }
 
 /// A pair of faces' integrands over the pair's unknowns (in duals of N: 24 for linear faces, 48
@@ -300,29 +290,20 @@ impl<const N: usize, const S: usize, const Q: usize> PairTerms<N, S, Q> {
     /// their flat sub-faces ([`curved`]), ν the curved slave's normal at each point.
     pub(super) fn fill(&mut self, sf: &Face, mf: &Face, pos: &dyn Fn(usize) -> [f64; 3]) -> bool {
         let (kn, mn) = (sf.nodes.len(), mf.nodes.len());
-        let quadratic = |f: &Face| matches!(f.kind, FaceKind::Tri6 | FaceKind::Quad8);
+        let curved = is_quadratic(sf) || is_quadratic(mf);
+        let xv: Vec<[f64; 3]> = sf.nodes.iter().chain(&mf.nodes).map(|&n| pos(n)).collect();
         // Most candidates do not overlap: found in plain numbers first (the same decision the
         // duals' values make), at a fiftieth of the cost.
-        if !(quadratic(sf) || quadratic(mf)) {
-            let xv: Vec<[f64; 3]> = sf.nodes.iter().chain(&mf.nodes).map(|&n| pos(n)).collect();
-            if overlap(sf.kind, &xv[..kn], sf.side, mf.kind, &xv[kn..]).is_empty() {
-                return false;
-            }
+        if !curved && overlap(sf.kind, &xv[..kn], sf.side, mf.kind, &xv[kn..]).is_empty() {
+            return false;
         }
         let nv = 3 * (kn + mn);
-        let x: Vec<[DualN<N>; 3]> = sf
-            .nodes
-            .iter()
-            .chain(&mf.nodes)
-            .enumerate()
-            .map(|(b, &n)| {
-                let p = pos(n);
-                std::array::from_fn(|i| DualN::variable(p[i], 3 * b + i, nv))
-            })
+        let x: Vec<[DualN<N>; 3]> = (xv.iter().enumerate())
+            .map(|(b, p)| std::array::from_fn(|i| DualN::variable(p[i], 3 * b + i, nv)))
             .collect();
         let (xs, xm) = x.split_at(kn);
         self.clear(kn, kn + mn);
-        if quadratic(sf) || quadratic(mf) {
+        if curved {
             let mut any = false;
             let (slave, master) = ((sf.kind, xs, sf.side), (mf.kind, xm, mf.side));
             curved::each_curved_point(slave, master, |p| {
@@ -361,15 +342,14 @@ impl<const N: usize, const S: usize, const Q: usize> PairTerms<N, S, Q> {
             return Some(false);
         }
         let nv = 6 * nodes;
-        let var = |p: [f64; 3], first: usize| -> [DualN<N>; 3] {
+        let var = |p: &[f64; 3], first: usize| -> [DualN<N>; 3] {
             std::array::from_fn(|i| DualN::variable(p[i], first + i, nv))
         };
-        let pair: Vec<usize> = sf.nodes.iter().chain(&mf.nodes).copied().collect();
-        let x: Vec<[DualN<N>; 3]> = (pair.iter().enumerate())
-            .map(|(b, &n)| var(pos(n), 3 * b))
+        let x: Vec<[DualN<N>; 3]> = (xv.iter().enumerate())
+            .map(|(b, p)| var(p, 3 * b))
             .collect();
-        let nn: Vec<[DualN<N>; 3]> = (pair.iter().enumerate())
-            .map(|(b, n)| var(normals[n].n, 3 * (nodes + b)))
+        let nn: Vec<[DualN<N>; 3]> = (nnv.iter().enumerate())
+            .map(|(b, n)| var(n, 3 * (nodes + b)))
             .collect();
         let (xs, xm) = x.split_at(kn);
         let points = mirror_overlap(sf.kind, (xs, &nn[..kn]), mf.kind, (xm, &nn[kn..]))?;

@@ -32,7 +32,8 @@
 
 use super::curved::{self, CurvedPoint};
 use super::face_terms::{
-    add_pair, add_share, normal_chain, overlap_dual_basis, unknowns, Moments, PairMap, PairTerms,
+    add_pair, add_share, is_quadratic, normal_chain, overlap_dual_basis, unknowns, Moments,
+    PairMap, PairTerms,
 };
 use super::mirror::mirror_overlap;
 use super::segment::{dual_basis, face_rule, overlap, Point};
@@ -44,7 +45,7 @@ use crate::contact::formulation::{
     interface_weights, Ctx, Formulation, Local, Partner, Search, SlotState,
 };
 use crate::contact::geometry::faces::{
-    self, cross, dot, face_normal, shape, sub, Face, FaceKind, FaceSurface, NodalNormal,
+    self, cross, dot, face_normal, shape, sub, Face, FaceSurface, NodalNormal,
 };
 use crate::contact::geometry::rigid;
 use crate::contact::search::broad::BroadPhase;
@@ -325,11 +326,10 @@ impl FaceMortar {
             let sf = &self.slave.faces[k];
             let xs: Vec<[f64; 3]> = sf.nodes.iter().map(|&n| pos(n)).collect();
             let candidates = self.candidates(&masters, k, &pos);
-            let quadratic = |f: &Face| matches!(f.kind, FaceKind::Tri6 | FaceKind::Quad8);
-            if quadratic(sf)
+            if is_quadratic(sf)
                 || candidates
                     .iter()
-                    .any(|&mi| quadratic(&self.master.faces[mi]))
+                    .any(|&mi| is_quadratic(&self.master.faces[mi]))
             {
                 self.curved_forms(model, k, &xs, &candidates, &mut forms);
                 continue;
@@ -1225,11 +1225,6 @@ fn close(xs: &[[f64; 3]], xm: &[[f64; 3]], size: f64) -> bool {
             .fold(f64::INFINITY, f64::min)
     };
     apart(xs, xm).min(apart(xm, xs)) < size
-}
-
-/// Whether a face is quadratic (6- or 8-node).
-fn is_quadratic(f: &Face) -> bool {
-    matches!(f.kind, FaceKind::Tri6 | FaceKind::Quad8)
 }
 
 /// The slots of the slave surface: each node with its faces, and each node's slot.

@@ -300,7 +300,7 @@ impl MortarLaw {
     }
 
     /// Whether slot `j` with support `area` has any ([`NO_SUPPORT`]).
-    fn supports(&self, j: usize, area: f64) -> bool {
+    fn has_support(&self, j: usize, area: f64) -> bool {
         area > NO_SUPPORT * self.full_support[j]
     }
 
@@ -396,7 +396,7 @@ impl MortarLaw {
         let held = merged_local.is_none()
             && (self.slave_nodes.as_ref())
                 .is_some_and(|s| held_along_force(ctx, local, node, &kin, s));
-        let has = self.supports(j, w.area.v) && !held;
+        let has = self.has_support(j, w.area.v) && !held;
         // Its gap is still reported.
         let held_gap = held.then_some(kin.gap.v);
         if held {
@@ -527,7 +527,7 @@ impl MortarLaw {
         b: Vec<Jet>,
     ) -> SlotKinematics {
         let m = local.m();
-        let has = self.supports(j, w.area.v);
+        let has = self.has_support(j, w.area.v);
         let (gap, b) = if has {
             let q = w.gap.v / w.area.v;
             let d = (w.gap.d.iter().zip(&w.area.d))
@@ -579,6 +579,19 @@ impl MortarLaw {
 }
 
 impl SlipForm {
+    /// The share of local node `k` (over the local unknowns), zero where it has none yet.
+    fn share_mut(&mut self, k: usize) -> &mut Jet {
+        let at = match self.shares.iter().position(|s| s.0 == k) {
+            Some(at) => at,
+            None => {
+                let m = self.normal[0].d.len();
+                self.shares.push((k, Jet::constant(0.0, m)));
+                self.shares.len() - 1
+            }
+        };
+        &mut self.shares[at].1
+    }
+
     /// The force direction of a multiplier: node n gets w_jn n̂_j, n̂_j = ∫ Φ_j ν / |∫ Φ_j ν| (over
     /// the local unknowns). With the dual basis w_jk = δ_jk D_j among the slave nodes wherever the
     /// master covers the slave facets, so a slave node carries its own multiplier alone and the
