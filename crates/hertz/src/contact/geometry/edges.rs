@@ -170,8 +170,19 @@ impl<T: Scalar> EdgeGeometry<T> {
 
 impl EdgeGeometry<f64> {
     /// Contact point parameter of `xs` by Newton on F(s) = 0, started at the chord projection.
-    /// None when it does not converge or the normal field degenerates.
+    /// None when it does not converge or the normal field degenerates. Worked from the edge's
+    /// first node, as the face projection is ([`super::faces::FaceGeometry::project`]).
     pub fn project(&self, xs: [f64; 2]) -> Option<f64> {
+        let o = self.x[0];
+        let local = EdgeGeometry {
+            x: self.x.iter().map(|p| [p[0] - o[0], p[1] - o[1]]).collect(),
+            n: self.n.clone(),
+            open: self.open,
+        };
+        local.project_from_origin([xs[0] - o[0], xs[1] - o[1]])
+    }
+
+    fn project_from_origin(&self, xs: [f64; 2]) -> Option<f64> {
         let (a, b) = (self.x[0], self.x[1]);
         let t = [b[0] - a[0], b[1] - a[1]];
         let tt = t[0] * t[0] + t[1] * t[1];

@@ -375,24 +375,31 @@ impl<T: Scalar> FaceGeometry<T> {
 }
 
 impl FaceGeometry<f64> {
-    /// The face with its corners and normals as constants of duals in (ξ, η).
-    fn constant_in_xi_eta(&self) -> FaceGeometry<super::super::dual::DualN<2>> {
+    /// The face with its corners, measured from `origin`, and its normals as constants of duals
+    /// in (ξ, η).
+    fn constant_in_xi_eta(&self, origin: [f64; 3]) -> FaceGeometry<super::super::dual::DualN<2>> {
         type Dual = super::super::dual::DualN<2>;
         let constant = |p: &[f64; 3]| p.map(|v| Dual::constant(v, 2));
+        let from = |p: &[f64; 3]| constant(&std::array::from_fn(|i| p[i] - origin[i]));
         FaceGeometry {
             kind: self.kind,
-            x: self.x.iter().map(constant).collect(),
+            x: self.x.iter().map(from).collect(),
             n: self.n.iter().map(constant).collect(),
         }
     }
 
     /// Contact point of `xs` by Newton on r(ξ, η) = 0 from the face centre, with the Jacobian
     /// from dual numbers in (ξ, η). None when it does not converge.
+    ///
+    /// Worked from the face's first corner: in absolute coordinates each evaluation of x(ξ, η)
+    /// carries a round-off of ε times the coordinates' size, a step in ξ of that over the face's
+    /// size, and a face 10⁶ of its sizes from the origin met no point (Newton never settled).
     pub fn project(&self, xs: [f64; 3]) -> Option<(f64, f64)> {
         type Dual = super::super::dual::DualN<2>;
         let (mut xi, mut eta) = centre(self.kind);
-        let geom = self.constant_in_xi_eta();
-        let xs_d = xs.map(|v| Dual::constant(v, 2));
+        let origin = self.x[0];
+        let geom = self.constant_in_xi_eta(origin);
+        let xs_d: [Dual; 3] = std::array::from_fn(|i| Dual::constant(xs[i] - origin[i], 2));
         let mut last = f64::INFINITY;
         for _ in 0..40 {
             let r = geom.residual(&xs_d, Dual::variable(xi, 0, 2), Dual::variable(eta, 1, 2));
@@ -419,9 +426,10 @@ impl FaceGeometry<f64> {
     /// ∂r/∂(ξ, η) at (ξ, η), plain numbers.
     pub fn jacobian(&self, xs: [f64; 3], xi: f64, eta: f64) -> [[f64; 2]; 2] {
         type Dual = super::super::dual::DualN<2>;
-        let geom = self.constant_in_xi_eta();
+        let origin = self.x[0];
+        let geom = self.constant_in_xi_eta(origin);
         let r = geom.residual(
-            &xs.map(|v| Dual::constant(v, 2)),
+            &std::array::from_fn(|i| Dual::constant(xs[i] - origin[i], 2)),
             Dual::variable(xi, 0, 2),
             Dual::variable(eta, 1, 2),
         );
