@@ -7,7 +7,7 @@ use super::slot::SlotLinearization;
 use super::{mortar, n2n, n2s, repeated};
 use crate::assembly::{ExtraDofs, NodalState};
 use crate::error::Result;
-use crate::model::queries::model_size;
+use crate::model::queries::{coordinate_size, model_size};
 use crate::model::{Model, Pairing};
 
 /// All contact conditions of a model.
@@ -50,7 +50,9 @@ impl ContactSystem {
             formulations,
             laws: Laws {
                 c: young,
-                gap_tol: 1e-12 * model_size(model),
+                // Never below the round-off of the positions the gaps are differences of.
+                gap_tol: (1e-12 * model_size(model))
+                    .max(64.0 * f64::EPSILON * coordinate_size(model)),
                 pressure_limit: young,
             },
             dim: model.domain.nsd(),

@@ -15,6 +15,18 @@ pub fn model_size(model: &Model) -> f64 {
     let d2: f64 = (0..3).map(|i| (hi[i] - lo[i]).max(0.0).powi(2)).sum();
     d2.sqrt().max(1e-300)
 }
+
+/// The size of the nodes' coordinates: the largest |X_i|, at least the model's size. A contact
+/// gap is a difference of positions of this size, so its round-off is ε times it: a model far
+/// from the origin (a mesh in a machine's coordinates, millimetres 10⁵ away) resolves gaps no
+/// finer than that, however small the model.
+pub fn coordinate_size(model: &Model) -> f64 {
+    let far = (model.nodes.iter())
+        .flat_map(|n| n.coords.iter())
+        .fold(0.0f64, |a, x| a.max(x.abs()));
+    far.max(model_size(model))
+}
+
 /// Young's modulus of the stiffest element on the master segments `segments` (infinite when one
 /// is rigid): with the slave's, the modulus of the friction law's c_T.
 pub fn master_young(model: &Model, segments: &[usize]) -> f64 {
