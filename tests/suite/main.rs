@@ -31,4 +31,5 @@ mod plot;
 mod pressure;
 mod robustness;
 mod self_contact;
+mod translation;
 mod upstream;
