@@ -23,7 +23,8 @@ def main(src, out, face_set):
     for line in lines:
         t = line.split()
         if line.startswith("Set"):
-            sets[int(t[1])] = [int(x) for x in t[4:]]
+            # `Set N elementboundaries COUNT v1 v2 ... [name "..."]`: the COUNT values.
+            sets[int(t[1])] = [int(x) for x in t[4 : 4 + int(t[3])]]
         elif len(t) > 3 and t[2] == "nodes":
             nodes_of[int(t[1])] = [int(x) for x in t[4 : 4 + int(t[3])]]
     tied = set()
