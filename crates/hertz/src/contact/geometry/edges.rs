@@ -187,7 +187,7 @@ impl EdgeGeometry<f64> {
         let t = [b[0] - a[0], b[1] - a[1]];
         let tt = t[0] * t[0] + t[1] * t[1];
         let mut s = ((xs[0] - a[0]) * t[0] + (xs[1] - a[1]) * t[1]) / tt;
-        let mut last = f64::INFINITY;
+        let (mut last, mut slope) = (f64::INFINITY, 0.0);
         for _ in 0..40 {
             let (f, df) = self.residual(xs, s);
             if !(df.abs() > 1e-300) {
@@ -196,17 +196,20 @@ impl EdgeGeometry<f64> {
             // Limit the step: a far node must not jump across the whole surface.
             let step = (f / df).clamp(-0.5, 0.5);
             s -= step;
-            last = step.abs();
+            (last, slope) = (step.abs(), df.abs());
             if last < 1e-14 * (1.0 + s.abs()) {
                 break;
             }
         }
-        // Steps that stall at round-off (a kink of the normal field at an edge's end) have
-        // settled too.
-        if !(last < 1e-10) {
+        // Steps that stall at round-off have settled too: at a kink of the normal field (an
+        // edge's end), or for a node far over a short edge, where F = d × ñ carries ε·|d|·|ñ|
+        // (d = x_s − x(s)) and its slope F' is the edge's length.
+        let (x, _, n, _) = self.eval(s);
+        let d = [xs[0] - x[0], xs[1] - x[1]];
+        let noise = 64.0 * f64::EPSILON * d[0].hypot(d[1]) * n[0].hypot(n[1]) / slope;
+        if !(last < 1e-10_f64.max(noise)) {
             return None;
         }
-        let (_, _, n, _) = self.eval(s);
         (n[0] * n[0] + n[1] * n[1] > 1e-24).then_some(s)
     }
 }
@@ -338,5 +341,64 @@ fn outward_side(model: &Model, e: usize, nodes: &[usize]) -> f64 {
         -1.0
     } else {
         1.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Nodes over an edge far from it (up to 10⁸ of its length away, as a coarse body's node
+    /// over a fine mesh) are projected: Newton's last steps there are the round-off of the
+    /// residual (ε times the distance) over its slope (the edge's length), above 1e-14 of the
+    /// parameter, and settle no further; each such point is still found, to 1e-6. Edges of every
+    /// direction and length, straight normal fields (and, near the edge, end normals up to 40°
+    /// apart), points anywhere along the edge and past its open end.
+    #[test]
+    fn nodes_far_over_an_edge_are_projected_onto_it() {
+        let mut seed = 987654321u64;
+        let mut rand = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut checked = 0;
+        for _ in 0..2000 {
+            let len = 10f64.powf(4.0 * rand() - 2.0);
+            let phi = 6.3 * rand();
+            let t = [phi.cos(), phi.sin()];
+            let a = [10.0 * rand() - 5.0, 10.0 * rand() - 5.0];
+            let b = [a[0] + len * t[0], a[1] + len * t[1]];
+            let normal = |turn: f64| {
+                let (c, s) = (turn.cos(), turn.sin());
+                [c * -t[1] - s * t[0], s * -t[1] + c * t[0]]
+            };
+            let turn = if rand() < 0.5 { 0.7 } else { 0.0 };
+            let geom = EdgeGeometry {
+                x: vec![a, b],
+                n: vec![normal(turn * (rand() - 0.5)), normal(turn * (rand() - 0.5))],
+                open: [false, true],
+            };
+            let target = 1.2 * rand();
+            let (p, _, np, _) = geom.eval(target);
+            let nl = (np[0] * np[0] + np[1] * np[1]).sqrt();
+            // Far only over a straight normal field: over turning normals a far node's rays
+            // fan out and it may have no contact point (it meets another edge first).
+            let gap = match turn > 0.0 {
+                true => len * 0.25 * rand(),
+                false => len * 10f64.powf(9.0 * rand() - 1.0),
+            };
+            let xs = [p[0] + gap * np[0] / nl, p[1] + gap * np[1] / nl];
+            let s = geom
+                .project(xs)
+                .unwrap_or_else(|| panic!("refused: len {len:e}, gap {gap:e}, at {target}"));
+            assert!(
+                (s - target).abs() < 1e-6,
+                "s = {s} for {target}, gap {gap:e}"
+            );
+            checked += 1;
+        }
+        assert_eq!(checked, 2000);
     }
 }

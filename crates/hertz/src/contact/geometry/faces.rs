@@ -400,7 +400,7 @@ impl FaceGeometry<f64> {
         let origin = self.x[0];
         let geom = self.constant_in_xi_eta(origin);
         let xs_d: [Dual; 3] = std::array::from_fn(|i| Dual::constant(xs[i] - origin[i], 2));
-        let mut last = f64::INFINITY;
+        let (mut last, mut slope) = (f64::INFINITY, 0.0);
         for _ in 0..40 {
             let r = geom.residual(&xs_d, Dual::variable(xi, 0, 2), Dual::variable(eta, 1, 2));
             let (j00, j01, j10, j11) = (r[0].d[0], r[0].d[1], r[1].d[0], r[1].d[1]);
@@ -408,6 +408,7 @@ impl FaceGeometry<f64> {
             if !(det.abs() > 1e-300) {
                 return None;
             }
+            slope = det.abs().sqrt();
             // Limit the step: a far node must not jump across the whole surface.
             let dxi = ((j11 * r[0].v - j01 * r[1].v) / det).clamp(-0.5, 0.5);
             let deta = ((-j10 * r[0].v + j00 * r[1].v) / det).clamp(-0.5, 0.5);
@@ -418,9 +419,14 @@ impl FaceGeometry<f64> {
                 return Some((xi, eta));
             }
         }
-        // On a face edge the normal field has a kink (it is frozen past the face): Newton can
-        // bounce across the edge by steps near round-off instead of settling.
-        (last < 1e-10).then_some((xi, eta))
+        // Steps that stall at round-off have settled too: on a face edge, where the normal field
+        // has a kink (it is frozen past the face) and Newton can bounce across the edge, or for
+        // a node far over a small face, where r_α = d·x_α − … carries ε·|d|·|x_α| (d = x_s −
+        // x(ξ, η)) and its slope is |x_α|² (√|det| of the Jacobian).
+        let (x, _, _, _) = self.eval(xi, eta);
+        let d: f64 = (0..3).map(|i| (xs[i] - x[i]).powi(2)).sum::<f64>().sqrt();
+        let noise = 64.0 * f64::EPSILON * d / slope.sqrt();
+        (last < 1e-10_f64.max(noise)).then_some((xi, eta))
     }
 
     /// ∂r/∂(ξ, η) at (ξ, η), plain numbers.
@@ -637,5 +643,82 @@ fn outward_side(model: &Model, e: usize, nodes: &[usize], kind: FaceKind) -> f64
         -1.0
     } else {
         1.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Nodes over a flat face far from it (up to 10⁸ of its size away, as a coarse body's node
+    /// over a fine mesh) are projected: Newton's last steps there are the round-off of the
+    /// residual (ε times the distance) over its slope (the face's size), above the bar of 1e-10
+    /// from about 10⁶ sizes away, and settle no further; each such point is still found, to
+    /// 1e-6. Triangles and skewed quadrilaterals of every orientation and size, anywhere on the
+    /// face.
+    #[test]
+    fn nodes_far_over_a_face_are_projected_onto_it() {
+        let mut seed = 246813579u64;
+        let mut rand = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for k in 0..2000 {
+            let kind = if k % 2 == 0 {
+                FaceKind::Quad
+            } else {
+                FaceKind::Tri
+            };
+            let size = 10f64.powf(4.0 * rand() - 2.0);
+            // An orthonormal frame (e1, e2, n) of a random direction.
+            let n = normalize(&[2.0 * rand() - 1.0, 2.0 * rand() - 1.0, 2.0 * rand() - 1.0]);
+            let a = if n[0].abs() < 0.9 {
+                [1.0, 0.0, 0.0]
+            } else {
+                [0.0, 1.0, 0.0]
+            };
+            let e1 = normalize(&cross(&n, &a));
+            let e2 = cross(&n, &e1);
+            let o: V3<f64> = std::array::from_fn(|_| 10.0 * rand() - 5.0);
+            let at = |u: f64, v: f64| -> V3<f64> {
+                std::array::from_fn(|i| o[i] + size * (u * e1[i] + v * e2[i]))
+            };
+            let skew = 0.3 * rand();
+            let x: Vec<V3<f64>> = match kind {
+                FaceKind::Tri => vec![at(0.0, 0.0), at(1.0, 0.0), at(skew, 1.0)],
+                _ => vec![
+                    at(0.0, 0.0),
+                    at(1.0, 0.0),
+                    at(1.0 + skew, 1.0),
+                    at(skew, 0.8),
+                ],
+            };
+            let side = if dot(&cross(&sub(&x[1], &x[0]), &sub(&x[2], &x[0])), &n) > 0.0 {
+                1.0
+            } else {
+                -1.0
+            };
+            let geom = FaceGeometry {
+                kind,
+                n: vec![n.map(|v| v * side); x.len()],
+                x,
+            };
+            let (xi, eta) = match kind {
+                FaceKind::Tri => (0.1 + 0.3 * rand(), 0.1 + 0.3 * rand()),
+                _ => (1.6 * rand() - 0.8, 1.6 * rand() - 0.8),
+            };
+            let (p, _, _, _) = geom.eval(xi, eta);
+            let gap = size * 10f64.powf(9.0 * rand() - 1.0);
+            let xs: V3<f64> = std::array::from_fn(|i| p[i] + gap * side * n[i]);
+            let (u, v) = geom
+                .project(xs)
+                .unwrap_or_else(|| panic!("refused: {kind:?}, size {size:e}, gap {gap:e}"));
+            assert!(
+                (u - xi).abs() < 1e-6 && (v - eta).abs() < 1e-6,
+                "({u}, {v}) for ({xi}, {eta}), gap {gap:e}"
+            );
+        }
     }
 }
