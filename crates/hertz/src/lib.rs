@@ -52,3 +52,5 @@ pub mod model;
 pub mod output;
 pub mod solid;
 pub mod solve;
+#[cfg(test)]
+mod testing;

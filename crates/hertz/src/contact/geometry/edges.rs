@@ -356,13 +356,7 @@ mod tests {
     /// apart), points anywhere along the edge and past its open end.
     #[test]
     fn nodes_far_over_an_edge_are_projected_onto_it() {
-        let mut seed = 987654321u64;
-        let mut rand = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rand = crate::testing::uniform(987654321);
         let mut checked = 0;
         for _ in 0..2000 {
             let len = 10f64.powf(4.0 * rand() - 2.0);

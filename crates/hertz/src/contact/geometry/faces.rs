@@ -658,13 +658,7 @@ mod tests {
     /// face.
     #[test]
     fn nodes_far_over_a_face_are_projected_onto_it() {
-        let mut seed = 246813579u64;
-        let mut rand = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rand = crate::testing::uniform(246813579);
         for k in 0..2000 {
             let kind = if k % 2 == 0 {
                 FaceKind::Quad

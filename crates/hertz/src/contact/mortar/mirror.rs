@@ -346,11 +346,8 @@ mod crease_tests {
     /// nothing (before: overlaps in 405 of 2 000 such draws, up to 0.4 of the face).
     #[test]
     fn tips_of_one_crease_on_other_layers_meet_nothing() {
-        let mut seed: u64 = 12345;
-        let mut draw = || {
-            seed = (seed.wrapping_mul(6364136223846793005)).wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut uniform = crate::testing::uniform(12345);
+        let mut draw = || uniform() - 0.5;
         for trial in 0..2000 {
             let (mut xs, mut ns) = tip_face(0.0, trial % 2 == 0);
             let z0 = [2.0, -2.0, 1.0, -1.0][trial % 4];

@@ -579,13 +579,7 @@ mod tests {
     /// relative.
     #[test]
     fn thin_skewed_quadrilaterals_invert_at_every_interior_point() {
-        let mut seed = 12345u64;
-        let mut rand = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rand = crate::testing::uniform(12345);
         let mut checked = 0;
         for _ in 0..400 {
             let thin = 10f64.powf(-3.0 * rand());
