@@ -374,18 +374,22 @@ impl<T: Scalar> FaceGeometry<T> {
     }
 }
 
+/// A dual over a face's two parameters (ξ, η).
+type InParams = super::super::dual::DualN<2>;
+
 impl FaceGeometry<f64> {
-    /// The face with its corners, measured from `origin`, and its normals as constants of duals
-    /// in (ξ, η).
-    fn constant_in_xi_eta(&self, origin: [f64; 3]) -> FaceGeometry<super::super::dual::DualN<2>> {
-        type Dual = super::super::dual::DualN<2>;
-        let constant = |p: &[f64; 3]| p.map(|v| Dual::constant(v, 2));
+    /// The face and the point `xs` as constants of duals in (ξ, η), positions measured from the
+    /// face's first corner (see [`Self::project`]).
+    fn constant_in_xi_eta(&self, xs: [f64; 3]) -> (FaceGeometry<InParams>, V3<InParams>) {
+        let origin = self.x[0];
+        let constant = |p: &[f64; 3]| p.map(|v| InParams::constant(v, 2));
         let from = |p: &[f64; 3]| constant(&std::array::from_fn(|i| p[i] - origin[i]));
-        FaceGeometry {
+        let geom = FaceGeometry {
             kind: self.kind,
             x: self.x.iter().map(from).collect(),
             n: self.n.iter().map(constant).collect(),
-        }
+        };
+        (geom, from(&xs))
     }
 
     /// Contact point of `xs` by Newton on r(ξ, η) = 0 from the face centre, with the Jacobian
@@ -395,11 +399,9 @@ impl FaceGeometry<f64> {
     /// carries a round-off of ε times the coordinates' size, a step in ξ of that over the face's
     /// size, and a face 10⁶ of its sizes from the origin met no point (Newton never settled).
     pub fn project(&self, xs: [f64; 3]) -> Option<(f64, f64)> {
-        type Dual = super::super::dual::DualN<2>;
+        type Dual = InParams;
         let (mut xi, mut eta) = centre(self.kind);
-        let origin = self.x[0];
-        let geom = self.constant_in_xi_eta(origin);
-        let xs_d: [Dual; 3] = std::array::from_fn(|i| Dual::constant(xs[i] - origin[i], 2));
+        let (geom, xs_d) = self.constant_in_xi_eta(xs);
         let (mut last, mut slope) = (f64::INFINITY, 0.0);
         for _ in 0..40 {
             let r = geom.residual(&xs_d, Dual::variable(xi, 0, 2), Dual::variable(eta, 1, 2));
@@ -431,14 +433,9 @@ impl FaceGeometry<f64> {
 
     /// ∂r/∂(ξ, η) at (ξ, η), plain numbers.
     pub fn jacobian(&self, xs: [f64; 3], xi: f64, eta: f64) -> [[f64; 2]; 2] {
-        type Dual = super::super::dual::DualN<2>;
-        let origin = self.x[0];
-        let geom = self.constant_in_xi_eta(origin);
-        let r = geom.residual(
-            &std::array::from_fn(|i| Dual::constant(xs[i] - origin[i], 2)),
-            Dual::variable(xi, 0, 2),
-            Dual::variable(eta, 1, 2),
-        );
+        type Dual = InParams;
+        let (geom, xs_d) = self.constant_in_xi_eta(xs);
+        let r = geom.residual(&xs_d, Dual::variable(xi, 0, 2), Dual::variable(eta, 1, 2));
         [[r[0].d[0], r[0].d[1]], [r[1].d[0], r[1].d[1]]]
     }
 }
